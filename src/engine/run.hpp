@@ -1,0 +1,22 @@
+// Entry point from the command line into a simulation: given the effective scene and
+// an output folder, run the scene's drive mode and write every output with provenance.
+#pragma once
+
+#include <string>
+
+#include "io/scene.hpp"
+
+namespace bkq {
+
+struct RunRequest {
+  Scene scene;
+  std::string out_dir = "out";
+  bool resume = false;
+  bool force = false;
+  bool quiet = false;
+};
+
+// Runs the scene; returns the process exit status. Throws bkq::Error on bad input.
+int run_scene(const RunRequest& request);
+
+}  // namespace bkq

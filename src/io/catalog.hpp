@@ -1,0 +1,40 @@
+// The event catalogue: one schema table lists each column once (name, units, meaning);
+// that table writes the CSV header and is what the readers (bkquake fit, analysis/*.py)
+// rely on. Rows are streamed as events happen.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bkq {
+
+struct EventRecord {
+  std::int64_t event = 0;     // 1-based event number (after the transient)
+  double load = 0;            // substrate displacement at the trigger
+  int trigger = 0;            // 0-based index of the block that failed first
+  int blocks = 0;             // number of distinct blocks that slipped
+  double moment = 0;          // M = sum_j delta u_j
+  double magnitude = 0;       // mu = ln M
+  double duration = 0;        // from trigger until the last block re-stuck
+  double max_speed = 0;       // largest |relative velocity| of any block during the event
+  double pad_displacement = 0;// change of pad position over the event (0 for BK)
+  int first_block = 0;        // lowest index that slipped
+  int last_block = 0;         // highest index that slipped
+  double energy_residual = 0; // energy balance residual (issue 6; 0 until computed)
+};
+
+struct ColumnSpec {
+  const char* name;
+  const char* units;
+  const char* doc;
+};
+
+// The catalogue schema: column order is the CSV column order.
+const std::vector<ColumnSpec>& catalog_schema();
+// "event,load,trigger,..." (no newline).
+std::string catalog_header();
+// One CSV row (no newline), numbers printed round-trip exactly (%.17g or shortest).
+std::string catalog_row(const EventRecord& e);
+
+}  // namespace bkq

@@ -1,0 +1,77 @@
+// Scenes: every parameter of bkquake declared once (name, type, default, allowed range,
+// units, one-line doc), read from INI files with Boost.Program_options plus
+// `--set section.key=value` overrides, validated against that one table. The same table
+// writes `bkquake run --dump-defaults` and the effective `scene.ini` of every run.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bkq {
+
+enum class ParamType { Real, Integer, Choice, Boolean };
+
+// One row of the parameter table. Ranges are inclusive unless the *_open flag is set.
+struct ParamSpec {
+  std::string key;            // "section.key"
+  ParamType type;
+  std::string default_value;  // as written in a scene file
+  double min = 0, max = 0;    // Real/Integer only
+  bool min_open = false, max_open = false;
+  bool has_min = false, has_max = false;
+  std::vector<std::string> choices;  // Choice only
+  std::string units;                 // "" for dimensionless or not applicable
+  std::string doc;                   // one line
+};
+
+// The parameter table (the single place a key is declared).
+const std::vector<ParamSpec>& parameter_table();
+const ParamSpec* find_param(const std::string& key);
+
+class Scene {
+ public:
+  // All defaults (the built-in carlson-langer event-driven reference).
+  Scene();
+
+  // Reads an INI file; unknown keys, bad values and unreadable files throw bkq::Error.
+  static Scene from_file(const std::string& path);
+  // Parses INI text; `origin` names the source in error messages.
+  static Scene from_text(const std::string& text, const std::string& origin);
+
+  // Sets one key from text ("section.key", "value"); validates type and range.
+  void set(const std::string& key, const std::string& value, const std::string& origin = "--set");
+  // Applies "section.key=value" (the --set syntax).
+  void apply_override(const std::string& assignment);
+
+  // Cross-key checks (contradictory combinations); throws bkq::Error. Call after all sets.
+  void validate() const;
+
+  double real(const std::string& key) const;
+  std::int64_t integer(const std::string& key) const;
+  const std::string& choice(const std::string& key) const;
+  bool flag(const std::string& key) const;
+  // True when the key was given explicitly (file or --set), false when it holds its default.
+  bool is_set(const std::string& key) const;
+  // The value as text (default or given).
+  const std::string& text(const std::string& key) const;
+
+  // The effective scene as an INI file: every key, commented with its doc, units and range;
+  // `header` lines (provenance) go first as comments.
+  std::string to_ini(const std::vector<std::string>& header = {}) const;
+  // A stable hash of the effective values (for checkpoints).
+  std::uint64_t hash() const;
+
+  std::string origin;  // the file it came from, or "built-in default"
+
+ private:
+  std::map<std::string, std::string> values_;
+  std::map<std::string, bool> given_;
+};
+
+// The commented scene file with all defaults (for --dump-defaults).
+std::string dump_defaults();
+
+}  // namespace bkq

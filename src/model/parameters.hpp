@@ -1,0 +1,50 @@
+// Physical parameters of a chain, derived once from a scene in one of the two
+// parameterisations of SPEC §1 (thesis Table 3.1, or the dimensionless Carlson–Langer
+// units of eq. 2.2). Everything downstream sees only these numbers.
+#pragma once
+
+#include <string>
+
+namespace bkq {
+
+class Scene;
+
+enum class ModelKind { BK, BKP, OneDof };
+enum class Boundary { Free, Periodic };
+enum class FrictionLaw { Thesis, Clst91, Cl89 };
+
+struct ModelParams {
+  ModelKind kind = ModelKind::BK;
+  Boundary boundary = Boundary::Free;
+  int n = 100;  // number of blocks
+
+  double m_u = 1;  // block mass
+  double k_p = 1;  // pulling spring (block to pad)
+  double k_c = 0;  // neighbour spring
+  double c_u = 0;  // block damper (1DOF model only, thesis eq. 2.11)
+
+  double m_x = 0;   // pad mass (BKP)
+  double k_p0 = 0;  // caliper-pad spring (BKP)
+  double c_p = 0;   // pad damper (BKP)
+
+  FrictionLaw law = FrictionLaw::Clst91;
+  double F0 = 1;      // static threshold per unit block mass: stuck while |f| <= F0*m_u
+  double sigma = 0;   // drop from static to kinetic friction
+  double v_c = 1e300; // characteristic velocity (Carlson–Langer: 1/(2 alpha)); huge = flat law
+
+  bool pad_moves() const { return kind == ModelKind::BKP; }
+  bool has_neighbours() const { return k_c != 0 && n > 1; }
+  // Static threshold on the spring force of one block.
+  double threshold() const { return F0 * m_u; }
+  // Largest angular frequency of the linear part (thesis eq. 3.2, and the pad's).
+  double max_angular_frequency() const;
+  // Stuck blocks' force grows by this much per unit substrate displacement (SPEC §2).
+  double loading_rate() const;
+};
+
+ModelParams model_from_scene(const Scene& scene);
+
+const char* to_string(ModelKind k);
+const char* to_string(FrictionLaw f);
+
+}  // namespace bkq
