@@ -1,0 +1,15 @@
+// The subcommands of the bkquake program. main() only dispatches on the first word;
+// each command parses its own arguments (args excludes the program and command names)
+// and returns the exit status. User errors are thrown as bkq::Error.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace bkq {
+
+int cmd_run(const std::vector<std::string>& args);    // src/cli/run.cpp
+int cmd_fit(const std::vector<std::string>& args);    // src/cli/fit.cpp
+int cmd_merge(const std::vector<std::string>& args);  // src/cli/merge.cpp
+
+}  // namespace bkq
