@@ -25,6 +25,7 @@ struct ParamSpec {
   std::vector<std::string> choices;  // Choice only
   std::string units;                 // "" for dimensionless or not applicable
   std::string doc;                   // one line
+  bool allow_auto = false;           // Real only: the word `auto` is accepted too
 };
 
 // The parameter table (the single place a key is declared).
@@ -53,6 +54,8 @@ class Scene {
   std::int64_t integer(const std::string& key) const;
   const std::string& choice(const std::string& key) const;
   bool flag(const std::string& key) const;
+  // A Real key that also accepts `auto` (stats.mu_min, stats.mu_max): nullopt for auto.
+  std::optional<double> real_or_auto(const std::string& key) const;
   // True when the key was given explicitly (file or --set), false when it holds its default.
   bool is_set(const std::string& key) const;
   // The value as text (default or given).
@@ -63,6 +66,14 @@ class Scene {
   std::string to_ini(const std::vector<std::string>& header = {}) const;
   // A stable hash of the effective values (for checkpoints).
   std::uint64_t hash() const;
+  // False for a key this scene does not use (a thesis-only key in a carlson-langer scene,
+  // drive.step_* without the steps schedule, ...): validate() rejects such a key when it is
+  // given, and to_ini() writes it as a comment so the effective scene reads back cleanly.
+  bool applies(const std::string& key) const;
+
+  // Scenes are equal when every effective value is equal (origin and which keys were
+  // given explicitly do not count): from_text(s.to_ini(), ...) == s.
+  bool operator==(const Scene& other) const { return values_ == other.values_; }
 
   std::string origin;  // the file it came from, or "built-in default"
 
@@ -70,6 +81,9 @@ class Scene {
   std::map<std::string, std::string> values_;
   std::map<std::string, bool> given_;
 };
+
+// The allowed values of a key as text: "[0, 1)", "thesis|clst91|cl89", "true|false".
+std::string allowed_text(const ParamSpec& spec);
 
 // The commented scene file with all defaults (for --dump-defaults).
 std::string dump_defaults();

@@ -1,0 +1,64 @@
+// The bkquake program: dispatches on the first word to a subcommand (commands.hpp) and
+// turns errors into one line on stderr and an exit status: bad input (bkq::Error) exits 2,
+// anything else is a bug and exits 1.
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "bkquake_version.hpp"
+#include "cli/commands.hpp"
+#include "io/error.hpp"
+
+namespace {
+
+const char* kUsage =
+    R"(bkquake: earthquake statistics for Burridge-Knopoff spring-block chains and the BK-Pad model
+
+Usage:
+  bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume] [--force]
+  bkquake run --dump-defaults      print a commented scene with every key at its default
+  bkquake --help | --version
+
+Commands:
+  run     simulate a scene (event-driven or continuously driven) and write
+          scene.ini, catalog.csv, histogram.csv, summary.json (+ timeseries.csv)
+
+Examples:
+  bkquake run                                    the Carlson-Langer reference, event-driven
+  bkquake run data/scenes/thesis.ini --out runs/thesis
+  bkquake run data/scenes/carlson-langer.ini --set friction.alpha=1 --set run.events=20000
+
+Each command takes --help. Every scene key, its default, range and meaning:
+'bkquake run --dump-defaults' and README.md (section Scenes).
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> all(argv + 1, argv + argc);
+  try {
+    if (all.empty()) {
+      std::cerr << kUsage;
+      return bkq::kExitBadInput;
+    }
+    const std::string& command = all.front();
+    const std::vector<std::string> args(all.begin() + 1, all.end());
+    if (command == "--help" || command == "-h" || command == "help") {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (command == "--version") {
+      std::cout << "bkquake " << bkq::kVersion << " (git " << bkq::kGitRevision << ")\n";
+      return 0;
+    }
+    if (command == "run") return bkq::cmd_run(args);
+    throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
+  } catch (const bkq::Error& e) {
+    std::cerr << "bkquake: error: " << e.what() << "\n";
+    return bkq::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "bkquake: internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,77 @@
+// The output folder of a run and the low-level writers every driver uses: the folder
+// itself (created, probed for writing, protected against overwriting a finished run),
+// atomic whole-file writes (scene.ini, histogram.csv, summary.json: a reader never sees
+// half a file), streamed CSVs (catalog.csv, timeseries.csv: header first, flushed often
+// so an unattended run loses little when killed) and the provenance lines of every output.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace bkq {
+
+class Scene;
+
+class OutputFolder {
+ public:
+  // Creates `dir` (and its parents) and checks it can be written. Throws bkq::Error when it
+  // cannot, or when it holds a finished run (summary.json) and neither force nor resume is set.
+  OutputFolder(const std::string& dir, bool force, bool resume);
+  // dir/name.
+  std::string path(const std::string& name) const;
+  const std::string& dir() const { return dir_; }
+  bool resume() const { return resume_; }
+
+ private:
+  std::string dir_;
+  bool resume_ = false;
+};
+
+// Writes `content` to a temporary file in the same folder, fsyncs it and renames it over
+// `path`. Throws bkq::Error naming the file and the system's reason.
+void write_file_atomic(const std::string& path, const std::string& content);
+
+// "bkquake 0.1.0 (git abc123)", "seed 20261121", "scene <origin>", "scene hash <hex>",
+// "written 2026-11-21T10:54:00Z": the provenance carried by every output.
+std::vector<std::string> provenance_lines(const Scene& scene);
+
+// Current UTC time as ISO 8601 ("2026-11-21T10:54:00Z").
+std::string utc_now_iso();
+
+// A CSV file written row by row. The header is the first line (no comment lines: readers
+// rely on it). Rows are buffered and flushed every `flush_rows` rows, at least once a
+// second, and on close. Every write failure throws bkq::Error naming the file.
+class CsvStream {
+ public:
+  // Truncates and writes the header; with `append` keeps existing rows (resume) and writes
+  // the header only when the file is new or empty, or throws if its header differs.
+  CsvStream(const std::string& path, const std::string& header, bool append = false,
+            std::size_t flush_rows = 1000);
+  ~CsvStream();  // closes; errors here are lost, so call close() to see them
+  CsvStream(const CsvStream&) = delete;
+  CsvStream& operator=(const CsvStream&) = delete;
+
+  // Appends one line (no newline in `line`).
+  void row(const std::string& line);
+  void flush();
+  // Flushes, syncs to disk and closes; throws on failure. Idempotent.
+  void close();
+
+  const std::string& path() const { return path_; }
+  std::size_t rows() const { return rows_; }
+
+ private:
+  void check(bool ok, const char* what);
+
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  std::size_t flush_rows_;
+  std::size_t rows_ = 0;
+  std::size_t unflushed_ = 0;
+  std::chrono::steady_clock::time_point last_flush_;
+};
+
+}  // namespace bkq

@@ -1,0 +1,544 @@
+// The parameter table of bkquake and the Scene that reads, checks and writes it.
+// Every key is declared exactly once below (type, default, range, units, doc); reading
+// (INI files through Boost.Program_options and --set overrides), validation,
+// --dump-defaults and the effective scene.ini of each run are all driven by that table,
+// so a new parameter is one new row. Values are stored as normalised text (shortest
+// round-trip reals, true/false booleans) so equal scenes hash equally.
+#include "io/scene.hpp"
+
+#include <algorithm>
+#include <boost/program_options.hpp>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "io/error.hpp"
+#include "io/json.hpp"
+
+namespace bkq {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMaxInt64 = 9223372036854775807.0;  // 2^63 - 1 (rounds to 2^63 as a double)
+
+// Range brackets: '[' or ']' is inclusive, '(' or ')' exclusive; an infinite bound is
+// always written open, so `inf` itself is never an accepted value.
+ParamSpec real(const char* key, const char* def, char lo_br, double lo, double hi, char hi_br,
+               const char* units, const char* doc) {
+  ParamSpec p;
+  p.key = key;
+  p.type = ParamType::Real;
+  p.default_value = def;
+  p.min = lo;
+  p.max = hi;
+  p.has_min = std::isfinite(lo);
+  p.has_max = std::isfinite(hi);
+  p.min_open = lo_br == '(' || !p.has_min;
+  p.max_open = hi_br == ')' || !p.has_max;
+  p.units = units;
+  p.doc = doc;
+  return p;
+}
+
+ParamSpec integer(const char* key, const char* def, double lo, double hi, const char* units,
+                  const char* doc) {
+  ParamSpec p;
+  p.key = key;
+  p.type = ParamType::Integer;
+  p.default_value = def;
+  p.min = lo;
+  p.max = hi;
+  p.has_min = p.has_max = true;
+  p.units = units;
+  p.doc = doc;
+  return p;
+}
+
+ParamSpec choice(const char* key, const char* def, std::vector<std::string> choices,
+                 const char* doc) {
+  ParamSpec p;
+  p.key = key;
+  p.type = ParamType::Choice;
+  p.default_value = def;
+  p.choices = std::move(choices);
+  p.doc = doc;
+  return p;
+}
+
+ParamSpec boolean(const char* key, const char* def, const char* doc) {
+  ParamSpec p;
+  p.key = key;
+  p.type = ParamType::Boolean;
+  p.default_value = def;
+  p.doc = doc;
+  return p;
+}
+
+ParamSpec auto_real(const char* key, const char* units, const char* doc) {
+  ParamSpec p = real(key, "auto", '(', -kInf, kInf, ')', units, doc);
+  p.allow_auto = true;
+  return p;
+}
+
+std::vector<ParamSpec> make_table() {
+  return {
+      // --- model: which chain, in which units (SPEC §1) ---
+      choice("model.kind", "bk", {"bk", "bkp", "1dof"},
+             "bk: plain Burridge-Knopoff chain, pad fixed; bkp: BK-Pad, the pad moves; "
+             "1dof: one block with spring and damper (thesis eq. 2.11)"),
+      choice("model.parameterisation", "carlson-langer", {"carlson-langer", "thesis"},
+             "carlson-langer: dimensionless units of eq. 2.2 (m_u = k_p = F0 = 1); "
+             "thesis: Table 3.1 scalings"),
+      integer("model.blocks", "100", 1, 1e7, "", "number of blocks N"),
+      choice("model.boundary", "free", {"free", "periodic"},
+             "chain ends: free (missing neighbour, no spring) or periodic (a ring)"),
+      real("model.l", "10", '[', 0, 1e4, ']', "",
+           "stiffness ratio l, neighbour spring k_c = l^2 (carlson-langer only)"),
+      real("model.pad_mass", "100", '(', 0, kInf, ')', "mass", "pad mass m_x (thesis only)"),
+      real("model.caliper_stiffness", "100", '[', 0, kInf, ')', "force/length",
+           "caliper-pad spring k_p0 (thesis only)"),
+      real("model.damping_ratio", "0.0833333333333333", '[', 0, kInf, ')', "",
+           "damping ratio zeta: pad damper for bkp, block damper for 1dof"),
+      real("model.s_m", "1", '(', 0, kInf, ')', "", "mass scaling s_m: m_u = s_m m_x / N"),
+      real("model.s_p", "1", '(', 0, kInf, ')', "",
+           "pulling-spring scaling s_p: k_p = s_p k_p0 / N"),
+      real("model.s_c", "0.01", '[', 0, kInf, ')', "",
+           "coupling scaling s_c: k_c = s_c k_p0 N (thesis only)"),
+
+      // --- friction: the law phi(y) of SPEC §1 ---
+      choice("friction.law", "clst91", {"thesis", "clst91", "cl89"},
+             "thesis (eq. 3.5, backslip allowed), clst91 (Carlson et al. 1991 eq. 2.9, no "
+             "backslip), cl89 (Carlson-Langer 1989 eq. 2.3)"),
+      real("friction.F0", "1", '(', 0, kInf, ')', "force/mass",
+           "static threshold per unit block mass F0 (thesis only)"),
+      real("friction.sigma", "0.01", '[', 0, 1, ')', "",
+           "drop sigma from static to kinetic friction"),
+      real("friction.alpha", "2.5", '[', 0, 1e6, ']', "",
+           "velocity weakening alpha, v_c = 1/(2 alpha) (carlson-langer only)"),
+      real("friction.vc", "1", '(', 0, kInf, ')', "length/time",
+           "characteristic velocity v_c (thesis only)"),
+
+      // --- drive: how the substrate moves ---
+      choice("drive.mode", "events", {"events", "continuous"},
+             "events: quasistatic loading, one relaxation per slip event (nu -> 0); "
+             "continuous: integrate at finite substrate speed"),
+      real("drive.speed", "0.01", '[', 0, kInf, ')', "length/time",
+           "substrate speed v (continuous mode; the start value of a steps schedule)"),
+      choice("drive.schedule", "constant", {"constant", "steps", "ramp"},
+             "substrate speed over time (continuous mode)"),
+      real("drive.step_increment", "0.005", '(', -kInf, kInf, ')', "length/time",
+           "speed change at each step (schedule steps)"),
+      real("drive.step_interval", "2000", '(', 0, kInf, ')', "time",
+           "time between speed steps (schedule steps)"),
+      real("drive.ramp_from", "0", '[', 0, kInf, ')', "length/time",
+           "speed at the start of the ramp (schedule ramp)"),
+      real("drive.ramp_to", "1", '[', 0, kInf, ')', "length/time",
+           "speed at the end of the ramp (schedule ramp)"),
+      real("drive.ramp_duration", "40000", '(', 0, kInf, ')', "time",
+           "time over which the speed ramps (schedule ramp)"),
+
+      // --- run: length, seed, start, checkpoints ---
+      integer("run.events", "100000", 0, 1e12, "", "events to record (events mode)"),
+      integer("run.transient_events", "1000", 0, 1e12, "",
+              "events discarded before recording starts (events mode)"),
+      real("run.duration", "1000", '(', 0, kInf, ')', "time",
+           "simulated time (continuous mode)"),
+      integer("run.seed", "20261121", 0, kMaxInt64, "", "random seed (initial disorder)"),
+      real("run.initial_disorder", "0.01", '[', 0, 10, ']', "D0",
+           "initial displacements uniform in +-value*D0, D0 = F0 m_u / k_p"),
+      integer("run.checkpoint_events", "0", 0, 1e12, "",
+              "write a checkpoint every this many events (0 = off)"),
+      real("run.checkpoint_seconds", "600", '[', 0, kInf, ')', "wall s",
+           "write a checkpoint at least this often in wall-clock seconds (0 = off)"),
+
+      // --- integrator: the stepper of the dynamic phase ---
+      choice("integrator.scheme", "rk4", {"rk2", "rk4", "verlet", "theta", "adaptive"},
+             "rk2 (explicit midpoint), rk4, verlet, theta (theta-method, set-valued friction), "
+             "adaptive (event-located adaptive reference)"),
+      real("integrator.dt", "0.01", '(', 0, kInf, ')', "time", "time step"),
+      real("integrator.tolerance", "1e-08", '[', 1e-14, 1e-2, ']', "",
+           "local error tolerance (scheme adaptive)"),
+
+      // --- output ---
+      real("output.every", "1", '(', 0, kInf, ')', "time",
+           "time between timeseries rows (continuous mode)"),
+      boolean("output.blocks", "false", "also write block trajectories (continuous mode)"),
+
+      // --- stats: magnitude histogram and fits ---
+      real("stats.bin_width", "0.2", '(', 0, 10, ']', "",
+           "magnitude bin width of the histogram"),
+      auto_real("stats.mu_min", "", "lower end of the Gutenberg-Richter fit window, or auto"),
+      auto_real("stats.mu_max", "", "upper end of the Gutenberg-Richter fit window, or auto"),
+  };
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string bound_text(const ParamSpec& p, double x) {
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  if (p.type == ParamType::Integer) {
+    if (x >= kMaxInt64) return "9223372036854775807";
+    return std::to_string(static_cast<std::int64_t>(x));
+  }
+  return format_real(x);
+}
+
+std::string suffix(const std::string& origin) { return origin.empty() ? "" : " (" + origin + ")"; }
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+[[noreturn]] void unknown_key(const std::string& key, const std::string& origin) {
+  std::string msg = "unknown key '" + key + "'" + suffix(origin);
+  const ParamSpec* best = nullptr;
+  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  for (const auto& p : parameter_table()) {
+    const std::size_t d = edit_distance(key, p.key);
+    if (d < best_d) {
+      best_d = d;
+      best = &p;
+    }
+  }
+  // A far-off "suggestion" only confuses; offer one when it plausibly is a typo.
+  if (best && best_d <= std::max<std::size_t>(3, key.size() / 3))
+    msg += "; did you mean '" + best->key + "'?";
+  else
+    msg += "; see 'bkquake run --dump-defaults' for all keys";
+  throw Error(msg);
+}
+
+// Parses `text` for `p`; returns the normalised text or throws naming key, value and range.
+std::string normalise(const ParamSpec& p, const std::string& raw, const std::string& origin) {
+  const std::string text = trim(raw);
+  const std::string where = suffix(origin);
+  switch (p.type) {
+    case ParamType::Choice:
+      if (std::find(p.choices.begin(), p.choices.end(), text) == p.choices.end())
+        throw Error(p.key + ": expected one of " + allowed_text(p) + ", got '" + text + "'" +
+                    where);
+      return text;
+    case ParamType::Boolean: {
+      const std::string t = lower(text);
+      if (t == "true" || t == "yes" || t == "1" || t == "on") return "true";
+      if (t == "false" || t == "no" || t == "0" || t == "off") return "false";
+      throw Error(p.key + ": expected a boolean (true|false|yes|no|on|off|1|0), got '" + text +
+                  "'" + where);
+    }
+    case ParamType::Integer: {
+      const std::string what = "expected an integer in " + allowed_text(p);
+      std::int64_t v = 0;
+      const char* b = text.data();
+      const char* e = text.data() + text.size();
+      if (b != e && *b == '+') ++b;
+      const auto res = std::from_chars(b, e, v);
+      if (text.empty() || res.ec == std::errc::invalid_argument || res.ptr != e)
+        throw Error(p.key + ": " + what + ", got '" + text + "'" + where);
+      if (res.ec == std::errc::result_out_of_range)
+        throw Error(p.key + ": " + what + ", got " + text + " (too large)" + where);
+      if (static_cast<double>(v) < p.min || static_cast<double>(v) > p.max)
+        throw Error(p.key + ": " + what + ", got " + text + where);
+      return std::to_string(v);
+    }
+    case ParamType::Real: {
+      if (p.allow_auto && text == "auto") return text;
+      const std::string what = "expected a value in " + allowed_text(p);
+      double v = 0;
+      const char* b = text.data();
+      const char* e = text.data() + text.size();
+      if (b != e && *b == '+') ++b;
+      const auto res = std::from_chars(b, e, v);
+      // from_chars reports tiny/huge magnitudes as out of range; those are still numbers
+      // and are judged by the range check (huge ones end up as inf, outside every range).
+      if (text.empty() || res.ec == std::errc::invalid_argument || res.ptr != e ||
+          std::isnan(v))
+        throw Error(p.key + ": " + what + ", got '" + text + "'" + where);
+      if (res.ec == std::errc::result_out_of_range) v = std::strtod(std::string(b, e).c_str(), nullptr);
+      const bool below = p.min_open ? !(v > p.min) : !(v >= p.min);
+      const bool above = p.max_open ? !(v < p.max) : !(v <= p.max);
+      if (below || above || std::isinf(v)) throw Error(p.key + ": " + what + ", got " + text + where);
+      return format_real(v);
+    }
+  }
+  return text;
+}
+
+// Keys that only mean something under another key's value. validate() rejects them when
+// given explicitly; to_ini() comments them out so the written scene reads back cleanly.
+struct Dependency {
+  std::vector<std::string> keys;
+  std::string controller;
+  std::string needed;
+};
+
+const std::vector<Dependency>& dependencies() {
+  static const std::vector<Dependency> deps = {
+      {{"model.pad_mass", "model.caliper_stiffness", "model.s_c", "friction.F0", "friction.vc"},
+       "model.parameterisation",
+       "thesis"},
+      {{"model.l", "friction.alpha"}, "model.parameterisation", "carlson-langer"},
+      {{"drive.step_increment", "drive.step_interval"}, "drive.schedule", "steps"},
+      {{"drive.ramp_from", "drive.ramp_to", "drive.ramp_duration"}, "drive.schedule", "ramp"},
+  };
+  return deps;
+}
+
+const Dependency* dependency_of(const std::string& key) {
+  for (const auto& d : dependencies())
+    if (std::find(d.keys.begin(), d.keys.end(), key) != d.keys.end()) return &d;
+  return nullptr;
+}
+
+}  // namespace
+
+const std::vector<ParamSpec>& parameter_table() {
+  static const std::vector<ParamSpec> table = make_table();
+  return table;
+}
+
+const ParamSpec* find_param(const std::string& key) {
+  for (const auto& p : parameter_table())
+    if (p.key == key) return &p;
+  return nullptr;
+}
+
+std::string allowed_text(const ParamSpec& p) {
+  switch (p.type) {
+    case ParamType::Choice: {
+      std::string s;
+      for (const auto& c : p.choices) s += (s.empty() ? "" : "|") + c;
+      return s;
+    }
+    case ParamType::Boolean: return "true|false";
+    case ParamType::Integer:
+    case ParamType::Real: {
+      std::string s = std::string(p.min_open ? "(" : "[") + bound_text(p, p.min) + ", " +
+                      bound_text(p, p.max) + (p.max_open ? ")" : "]");
+      if (p.allow_auto) s += " or auto";
+      return s;
+    }
+  }
+  return "";
+}
+
+Scene::Scene() : origin("built-in default (carlson-langer, event-driven)") {
+  for (const auto& p : parameter_table()) {
+    values_[p.key] = normalise(p, p.default_value, "default");
+    given_[p.key] = false;
+  }
+}
+
+Scene Scene::from_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error("cannot read scene file '" + path + "': " + std::strerror(EISDIR));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot read scene file '" + path + "': " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw Error("cannot read scene file '" + path + "': " + std::strerror(errno));
+  return from_text(text.str(), path);
+}
+
+Scene Scene::from_text(const std::string& text, const std::string& origin_name) {
+  namespace po = boost::program_options;
+  Scene scene;
+  scene.origin = origin_name;
+  const std::string where = "in " + origin_name;
+
+  po::options_description desc;
+  for (const auto& p : parameter_table()) desc.add_options()(p.key.c_str(), po::value<std::string>());
+
+  std::istringstream in(text);
+  po::parsed_options parsed(&desc);
+  try {
+    parsed = po::parse_config_file(in, desc, /*allow_unregistered=*/true);
+  } catch (const po::error& e) {
+    throw Error(std::string(e.what()) + suffix(where));
+  }
+
+  std::set<std::string> seen;
+  for (const auto& opt : parsed.options) {
+    const std::string& key = opt.string_key;
+    if (opt.unregistered || !find_param(key)) unknown_key(key, where);
+    if (!seen.insert(key).second)
+      throw Error(key + ": given more than once" + suffix(where));
+    const std::string value = opt.value.empty() ? std::string() : opt.value.front();
+    scene.set(key, value, where);
+  }
+  return scene;
+}
+
+void Scene::set(const std::string& key, const std::string& value, const std::string& where) {
+  const ParamSpec* p = find_param(key);
+  if (!p) unknown_key(key, where);
+  values_[key] = normalise(*p, value, where);
+  given_[key] = true;
+}
+
+void Scene::apply_override(const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos)
+    throw Error("--set expects section.key=value, got '" + assignment + "'");
+  const std::string key = trim(assignment.substr(0, eq));
+  if (key.empty()) throw Error("--set expects section.key=value, got '" + assignment + "'");
+  set(key, assignment.substr(eq + 1), "--set");
+}
+
+bool Scene::applies(const std::string& key) const {
+  if (key == "model.blocks") return choice("model.kind") != "1dof" || integer(key) == 1;
+  const Dependency* d = dependency_of(key);
+  return !d || text(d->controller) == d->needed;
+}
+
+void Scene::validate() const {
+  const std::string where = suffix("scene " + origin);
+  for (const auto& p : parameter_table()) {
+    if (!is_set(p.key) || applies(p.key)) continue;
+    if (p.key == "model.blocks")
+      throw Error("model.blocks = " + text(p.key) +
+                  " contradicts model.kind = 1dof (a single block); remove model.blocks or set "
+                  "it to 1" + where);
+    const Dependency* d = dependency_of(p.key);
+    throw Error(p.key + " = " + text(p.key) + " applies only with " + d->controller + " = " +
+                d->needed + ", but " + d->controller + " = " + text(d->controller) + where);
+  }
+  if (choice("model.boundary") == "periodic" && integer("model.blocks") < 3)
+    throw Error("model.boundary = periodic needs model.blocks >= 3, got model.blocks = " +
+                text("model.blocks") + where);
+  const auto lo = real_or_auto("stats.mu_min");
+  const auto hi = real_or_auto("stats.mu_max");
+  if (lo && hi && *lo >= *hi)
+    throw Error("stats.mu_min = " + text("stats.mu_min") + " must be below stats.mu_max = " +
+                text("stats.mu_max") + where);
+}
+
+namespace {
+const ParamSpec& spec_of(const std::string& key, ParamType type) {
+  const ParamSpec* p = find_param(key);
+  if (!p) throw std::logic_error("scene: no parameter '" + key + "'");
+  if (p->type != type) throw std::logic_error("scene: parameter '" + key + "' read as wrong type");
+  return *p;
+}
+}  // namespace
+
+double Scene::real(const std::string& key) const {
+  const ParamSpec& p = spec_of(key, ParamType::Real);
+  const std::string& t = values_.at(key);
+  if (p.allow_auto && t == "auto")
+    throw std::logic_error("scene: " + key + " is auto; read it with real_or_auto()");
+  return std::strtod(t.c_str(), nullptr);
+}
+
+std::optional<double> Scene::real_or_auto(const std::string& key) const {
+  spec_of(key, ParamType::Real);
+  const std::string& t = values_.at(key);
+  if (t == "auto") return std::nullopt;
+  return std::strtod(t.c_str(), nullptr);
+}
+
+std::int64_t Scene::integer(const std::string& key) const {
+  spec_of(key, ParamType::Integer);
+  return std::stoll(values_.at(key));
+}
+
+const std::string& Scene::choice(const std::string& key) const {
+  spec_of(key, ParamType::Choice);
+  return values_.at(key);
+}
+
+bool Scene::flag(const std::string& key) const {
+  spec_of(key, ParamType::Boolean);
+  return values_.at(key) == "true";
+}
+
+bool Scene::is_set(const std::string& key) const {
+  const auto it = given_.find(key);
+  if (it == given_.end()) throw std::logic_error("scene: no parameter '" + key + "'");
+  return it->second;
+}
+
+const std::string& Scene::text(const std::string& key) const {
+  const auto it = values_.find(key);
+  if (it == values_.end()) throw std::logic_error("scene: no parameter '" + key + "'");
+  return it->second;
+}
+
+std::string Scene::to_ini(const std::vector<std::string>& header) const {
+  std::ostringstream out;
+  for (const auto& h : header) out << "# " << h << "\n";
+  if (!header.empty()) out << "\n";
+  std::string section;
+  for (const auto& p : parameter_table()) {
+    const auto dot = p.key.find('.');
+    const std::string sec = p.key.substr(0, dot);
+    const std::string name = p.key.substr(dot + 1);
+    if (sec != section) {
+      if (!section.empty()) out << "\n";
+      out << "[" << sec << "]\n";
+      section = sec;
+    }
+    out << "# " << p.doc;
+    if (!p.units.empty()) out << " [" << p.units << "]";
+    out << " (allowed: " << allowed_text(p) << ")\n";
+    const std::string& v = values_.at(p.key);
+    if (applies(p.key) || is_set(p.key)) {
+      out << name << " = " << v << "\n";
+    } else if (p.key == "model.blocks") {
+      out << "# " << name << " = " << v << "  (unused: model.kind = 1dof has one block)\n";
+    } else {
+      const Dependency* d = dependency_of(p.key);
+      out << "# " << name << " = " << v << "  (unused: needs " << d->controller << " = "
+          << d->needed << ")\n";
+    }
+  }
+  return out.str();
+}
+
+std::uint64_t Scene::hash() const {
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64-bit offset basis
+  for (const auto& p : parameter_table()) {
+    const std::string line = p.key + "=" + values_.at(p.key) + "\n";
+    for (unsigned char c : line) {
+      h ^= c;
+      h *= 1099511628211ull;  // FNV prime
+    }
+  }
+  return h;
+}
+
+std::string dump_defaults() {
+  return Scene().to_ini({"bkquake scene with every key at its default value",
+                         "the built-in default: the Carlson-Langer reference, event-driven",
+                         "keys shown as comments are unused by this scene's choices"});
+}
+
+}  // namespace bkq

@@ -1,0 +1,97 @@
+// The bkquake program as users and scripts see it (SPEC §5): exit statuses, one-line
+// errors on stderr naming key and value, --version, --help, --dump-defaults, and the
+// output-folder guards. Runs the built binary as a subprocess.
+#include <gtest/gtest.h>
+
+#include "../cli_helpers.hpp"
+#include "io/scene.hpp"
+
+namespace bkq {
+namespace {
+
+using test::run_bkquake;
+
+// Exactly one line on stderr, starting "bkquake: error: " and containing every part.
+void expect_one_error_line(const test::ProcessResult& r, std::initializer_list<std::string> parts) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << r.err;
+  EXPECT_EQ(lines[0].rfind("bkquake: error: ", 0), 0u) << lines[0];
+  for (const auto& p : parts) EXPECT_NE(lines[0].find(p), std::string::npos) << lines[0] << " lacks " << p;
+}
+
+TEST(Cli, Version) {
+  const auto r = run_bkquake({"--version"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("bkquake 0.1.0", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("git "), std::string::npos);
+  EXPECT_TRUE(r.err.empty());
+}
+
+TEST(Cli, Help) {
+  for (const char* h : {"--help", "-h", "help"}) {
+    const auto r = run_bkquake({h});
+    EXPECT_EQ(r.status, 0) << h;
+    EXPECT_NE(r.out.find("bkquake run"), std::string::npos);
+    EXPECT_NE(r.out.find("--dump-defaults"), std::string::npos);
+  }
+  const auto r = run_bkquake({"run", "--help"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("--set"), std::string::npos);
+}
+
+TEST(Cli, UnknownCommandAndOption) {
+  expect_one_error_line(run_bkquake({"frobnicate"}), {"unknown command 'frobnicate'"});
+  expect_one_error_line(run_bkquake({"run", "--frobnicate"}), {"--frobnicate"});
+  expect_one_error_line(run_bkquake({"run", "--set"}), {"--set"});
+}
+
+TEST(Cli, DumpDefaultsParsesBackToDefaults) {
+  const auto r = run_bkquake({"run", "--dump-defaults"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.err.empty());
+  EXPECT_EQ(Scene::from_text(r.out, "dump"), Scene());
+}
+
+TEST(Cli, BadValueInSceneFile) {
+  test::TempDir tmp;
+  const std::string scene = tmp.write("bad.ini", "[friction]\nsigma = 1.5\n");
+  expect_one_error_line(run_bkquake({"run", scene, "--out", tmp.file("out")}),
+                        {"friction.sigma", "1.5", "[0, 1)", "bad.ini"});
+}
+
+TEST(Cli, UnknownKeyAndBadOverride) {
+  test::TempDir tmp;
+  const std::string scene = tmp.write("typo.ini", "[friction]\nsigmaa = 0.1\n");
+  expect_one_error_line(run_bkquake({"run", scene}), {"friction.sigmaa", "friction.sigma"});
+  expect_one_error_line(run_bkquake({"run", "--set", "model.blocks=12abc"}),
+                        {"model.blocks", "'12abc'", "(--set)"});
+  expect_one_error_line(run_bkquake({"run", "--set", "model.blocks"}), {"section.key=value"});
+  expect_one_error_line(run_bkquake({"run", "--set", "model.pad_mass=3"}),
+                        {"model.pad_mass", "model.parameterisation"});
+}
+
+TEST(Cli, MissingSceneFile) {
+  test::TempDir tmp;
+  expect_one_error_line(run_bkquake({"run", tmp.file("nope.ini")}),
+                        {"cannot read scene file", "nope.ini", "No such file or directory"});
+}
+
+TEST(Cli, UnwritableOutputFolder) {
+  test::TempDir tmp;
+  const std::string file = tmp.write("plain", "x");
+  expect_one_error_line(run_bkquake({"run", "--out", file + "/sub"}),
+                        {"cannot create output folder", file + "/sub"});
+}
+
+TEST(Cli, FinishedRunIsNotOverwritten) {
+  test::TempDir tmp;
+  const std::string content = "{\n  \"events\": 5\n}\n";
+  const std::string summary = tmp.write("summary.json", content);
+  expect_one_error_line(run_bkquake({"run", "--out", tmp.path().string()}),
+                        {"already holds a finished run", "--force"});
+  EXPECT_EQ(test::read_file(summary), content);
+}
+
+}  // namespace
+}  // namespace bkq
