@@ -1,0 +1,76 @@
+// Implementation of the streaming catalogue reader (see catalog_reader.hpp).
+#include "stats/catalog_reader.hpp"
+
+#include <cmath>
+
+#include "io/error.hpp"
+#include "stats/csv_util.hpp"
+
+namespace bkq {
+
+CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.string()), in_(path) {
+  if (!in_) throw Error(file_ + ": cannot open");
+  std::string header_line;
+  if (!std::getline(in_, header_line) ||
+      header_line.find_first_not_of(" \t\r") == std::string::npos)
+    throw Error(file_ + ": empty file, expected a header line");
+  const auto header = csv::split(header_line);
+  n_fields_ = header.size();
+  c_event_ = csv::find_column(header, "event");
+  c_load_ = csv::find_column(header, "load");
+  c_blocks_ = csv::find_column(header, "blocks");
+  c_first_ = csv::find_column(header, "first_block");
+  c_last_ = csv::find_column(header, "last_block");
+  c_moment_ = csv::find_column(header, "moment");
+  c_magnitude_ = csv::find_column(header, "magnitude");
+  if (c_moment_ < 0 && c_magnitude_ < 0)
+    throw Error(file_ + ": missing column 'moment' (header: " + header_line + ")");
+}
+
+bool CatalogReader::next(CatalogEvent& e) {
+  while (std::getline(in_, line_)) {
+    ++lineno_;
+    if (line_.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto f = csv::split(line_);
+    const std::string where = file_ + " line " + std::to_string(lineno_);
+    if (f.size() != n_fields_)
+      throw Error(where + ": expected " + std::to_string(n_fields_) + " fields, got " +
+                  std::to_string(f.size()));
+    auto field = [&](int c) { return f[static_cast<std::size_t>(c)]; };
+    auto as_int = [&](int c, const char* name) -> int {
+      const std::int64_t v = csv::parse_int(field(c), file_, lineno_, name);
+      if (v < 0 || v > 1'000'000'000)
+        throw Error(where + ": " + name + " must be >= 0, got " + std::string(field(c)));
+      return static_cast<int>(v);
+    };
+    e = CatalogEvent{};
+    e.event = c_event_ >= 0 ? csv::parse_int(field(c_event_), file_, lineno_, "event")
+                            : events_ + 1;
+    if (c_load_ >= 0) e.load = csv::parse_double(field(c_load_), file_, lineno_, "load");
+    if (c_blocks_ >= 0) e.blocks = as_int(c_blocks_, "blocks");
+    if (c_first_ >= 0) e.first_block = as_int(c_first_, "first_block");
+    if (c_last_ >= 0) e.last_block = as_int(c_last_, "last_block");
+    if (c_moment_ >= 0) {
+      e.moment = csv::parse_double(field(c_moment_), file_, lineno_, "moment");
+      if (!(e.moment > 0) || !std::isfinite(e.moment))
+        throw Error(where + ": moment must be > 0, got " + std::string(field(c_moment_)));
+      e.magnitude = std::log(e.moment);
+    } else {
+      e.magnitude = csv::parse_double(field(c_magnitude_), file_, lineno_, "magnitude");
+      if (!std::isfinite(e.magnitude))
+        throw Error(where + ": magnitude must be finite, got " + std::string(field(c_magnitude_)));
+      e.moment = std::exp(e.magnitude);
+    }
+    ++events_;
+    return true;
+  }
+  if (in_.bad()) throw Error(file_ + ": read error after line " + std::to_string(lineno_));
+  return false;
+}
+
+void require_events_to_fit(const std::string& file, std::int64_t n) {
+  if (n < 2)
+    throw Error(file + ": need at least 2 events to fit, found " + std::to_string(n));
+}
+
+}  // namespace bkq

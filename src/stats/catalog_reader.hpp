@@ -1,0 +1,53 @@
+// Streaming reader of an event catalogue (catalog.csv, schema in io/catalog.hpp) for the
+// statistics: rows are read one at a time, columns are found by their header names (no
+// column order is assumed), and every problem is a bkq::Error that names the file and
+// the line, e.g. "catalog.csv line 17: moment must be > 0, got -0.3".
+// Required: a header line and the column `moment` (or, failing that, `magnitude`).
+// Optional: event, load, blocks, first_block, last_block (the event classes need the
+// last three). The magnitude used is ln(moment) (thesis eq. 2.6).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bkq {
+
+struct CatalogEvent {
+  std::int64_t event = 0;
+  double load = 0;
+  int blocks = 0;
+  int first_block = 0;
+  int last_block = 0;
+  double moment = 0;
+  double magnitude = 0;
+};
+
+class CatalogReader {
+ public:
+  explicit CatalogReader(const std::filesystem::path& path);
+  // Reads the next event; false at the end of the file. Blank lines are skipped.
+  bool next(CatalogEvent& e);
+  bool has_extent() const { return c_blocks_ >= 0 && c_first_ >= 0 && c_last_ >= 0; }
+  bool has_load() const { return c_load_ >= 0; }
+  std::int64_t events_read() const { return events_; }
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+  std::ifstream in_;
+  std::string line_;
+  std::int64_t lineno_ = 1;
+  std::int64_t events_ = 0;
+  std::size_t n_fields_ = 0;
+  int c_event_ = -1, c_load_ = -1, c_blocks_ = -1, c_first_ = -1, c_last_ = -1;
+  int c_moment_ = -1, c_magnitude_ = -1;
+};
+
+// bkq::Error "<file>: need at least 2 events to fit, found <n>" when n < 2.
+void require_events_to_fit(const std::string& file, std::int64_t n);
+
+}  // namespace bkq

@@ -1,0 +1,48 @@
+// Implementation of the event classes (definitions in event_classes.hpp).
+#include "stats/event_classes.hpp"
+
+#include "io/error.hpp"
+
+namespace bkq {
+
+Boundary parse_boundary(const std::string& text) {
+  if (text == "free") return Boundary::free_ends;
+  if (text == "periodic") return Boundary::periodic;
+  throw Error("model.boundary: expected free or periodic, got '" + text + "'");
+}
+
+const char* to_string(EventClass c) {
+  switch (c) {
+    case EventClass::single_block: return "single_block";
+    case EventClass::localised: return "localised";
+    case EventClass::delocalised: return "delocalised";
+  }
+  return "?";
+}
+
+EventClass classify_event(int blocks, int first_block, int last_block, int n, Boundary boundary) {
+  if (blocks <= 1) return EventClass::single_block;
+  if (blocks >= n - 1) return EventClass::delocalised;
+  if (boundary == Boundary::free_ends && (first_block <= 0 || last_block >= n - 1))
+    return EventClass::delocalised;
+  return EventClass::localised;
+}
+
+void EventClassCounts::add(EventClass c) {
+  switch (c) {
+    case EventClass::single_block: ++single_block; break;
+    case EventClass::localised: ++localised; break;
+    case EventClass::delocalised: ++delocalised; break;
+  }
+}
+
+double EventClassCounts::fraction(EventClass c) const {
+  const std::int64_t n = total();
+  if (n == 0) return 0;
+  const std::int64_t k = c == EventClass::single_block ? single_block
+                         : c == EventClass::localised  ? localised
+                                                       : delocalised;
+  return static_cast<double>(k) / static_cast<double>(n);
+}
+
+}  // namespace bkq

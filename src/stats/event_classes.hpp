@@ -1,0 +1,37 @@
+// Event classes of Carlson & Langer (1989) and Carlson et al. (1991) (thesis section 2.2:
+// "microscopic", "localized" and "delocalized" events), made operational for a chain of
+// N blocks. Every event falls in exactly one class, tested in this order:
+//   single-block  blocks == 1 (the "microscopic" one-block events);
+//   delocalised   the slip reached the chain's ends or spanned it: blocks >= N - 1, or,
+//                 with a free boundary, first_block == 0 or last_block == N - 1 (a pulse
+//                 that reaches a free end is reflected, the signature of great events);
+//   localised     everything else (2 <= blocks < N - 1, away from the free ends).
+// With a periodic boundary there are no ends, so only the span criterion applies.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace bkq {
+
+enum class Boundary { free_ends, periodic };
+// "free" | "periodic"; bkq::Error otherwise.
+Boundary parse_boundary(const std::string& text);
+
+enum class EventClass { single_block, localised, delocalised };
+const char* to_string(EventClass c);
+
+// blocks: number of blocks that slipped; first/last: 0-based lowest/highest index; n: N.
+EventClass classify_event(int blocks, int first_block, int last_block, int n, Boundary boundary);
+
+struct EventClassCounts {
+  std::int64_t single_block = 0;
+  std::int64_t localised = 0;
+  std::int64_t delocalised = 0;
+
+  void add(EventClass c);
+  std::int64_t total() const { return single_block + localised + delocalised; }
+  double fraction(EventClass c) const;
+};
+
+}  // namespace bkq

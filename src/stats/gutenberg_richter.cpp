@@ -1,0 +1,343 @@
+// Implementation of the Gutenberg-Richter fits (see gutenberg_richter.hpp for the
+// estimators and their sources). All likelihood estimates share one structure: the
+// model fixes the mean m(b) of (mu - window start), the MLE solves m(b) = observed mean,
+// and the error is the standard error of the mean over |m'(b)| (Shi & Bolt 1982).
+#include "stats/gutenberg_richter.hpp"
+
+#include <algorithm>
+#include <boost/math/special_functions/gamma.hpp>
+#include <cmath>
+#include <limits>
+
+#include "io/error.hpp"
+#include "stats/csv_util.hpp"
+
+namespace bkq {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// h(x) = 1/x - 1/(e^x - 1): the mean of a unit-width truncated exponential is h(b).
+double h(double x) {
+  if (std::fabs(x) < 1e-3) return 0.5 - x / 12 + x * x * x / 720;
+  if (x > 700) return 1 / x;
+  if (x < -700) return 1 / x + 1;
+  return 1 / x - 1 / std::expm1(x);
+}
+double h_prime(double x) {
+  if (std::fabs(x) < 1e-3) return -1.0 / 12 + x * x / 240;
+  if (std::fabs(x) > 700) return -1 / (x * x);
+  return -1 / (x * x) + 1 / (std::expm1(x) * -std::expm1(-x));
+}
+
+// Mean of (mu - a) and its derivative for the four models. D = window length, w = bin
+// width (0: continuous). Binned means are of (bin centre - first bin centre).
+struct Model {
+  double D;       // +inf when untruncated
+  double w;       // 0 when unbinned
+  double m(double b) const {
+    const double cont = std::isinf(D) ? 1 / b : D * h(b * D);
+    return w > 0 ? cont - w * h(b * w) : cont;
+  }
+  double dm(double b) const {
+    const double cont = std::isinf(D) ? -1 / (b * b) : D * D * h_prime(b * D);
+    return w > 0 ? cont - w * w * h_prime(b * w) : cont;
+  }
+};
+// Note on the binned untruncated mean: E[w j] = w/(e^{bw} - 1) = 1/b - w h(bw); for the
+// truncated one with J = D/w bins: w/(e^{bw}-1) - D/(e^{bD}-1) = D h(bD) - w h(bw).
+
+double solve_b(const Model& model, double m_obs) {
+  if (!(m_obs > 0)) return kInf;  // every event in the first bin / at the threshold
+  if (std::isinf(model.D)) {
+    // Closed forms: Aki 1965 (continuous), Tinti & Mulargia 1987 (binned), base e.
+    return model.w > 0 ? std::log1p(model.w / m_obs) / model.w : 1 / m_obs;
+  }
+  // Truncated: m(b) decreases from D - w (b -> -inf) to 0 (b -> +inf). Bisection.
+  if (m_obs >= model.D - model.w) return -kInf;
+  double lo = -1, hi = 1;
+  while (model.m(hi) > m_obs && hi < 1e8) hi *= 2;
+  while (model.m(lo) < m_obs && lo > -1e8) lo *= 2;
+  for (int i = 0; i < 300 && hi - lo > 1e-15 * std::max(1.0, std::fabs(hi)); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (model.m(mid) > m_obs ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+BEstimate estimate(const Model& model, std::int64_t n, double mean_minus_a, double var_sum) {
+  BEstimate e;
+  e.n = n;
+  e.b = solve_b(model, mean_minus_a);
+  // Shi & Bolt 1982: standard error of the mean, sqrt(sum (mu - <mu>)^2 / (n (n-1))).
+  const double se_mean = std::sqrt(std::max(0.0, var_sum) / (static_cast<double>(n) * (n - 1)));
+  e.err = std::isfinite(e.b) ? se_mean / std::fabs(model.dm(e.b)) : kNaN;
+  return e;
+}
+
+struct Line {
+  double slope = kNaN, intercept = kNaN, slope_err = kNaN, ssr = kInf;
+  std::size_t n = 0;
+};
+// Weighted least squares y = intercept + slope x.
+Line weighted_line(const std::vector<double>& x, const std::vector<double>& y,
+                   const std::vector<double>& wt, std::size_t begin, std::size_t end) {
+  Line l;
+  l.n = end - begin;
+  if (l.n < 2) return l;
+  double W = 0, sx = 0, sy = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    W += wt[i];
+    sx += wt[i] * x[i];
+    sy += wt[i] * y[i];
+  }
+  const double xm = sx / W, ym = sy / W;
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    sxx += wt[i] * (x[i] - xm) * (x[i] - xm);
+    sxy += wt[i] * (x[i] - xm) * (y[i] - ym);
+  }
+  if (!(sxx > 0)) return l;
+  l.slope = sxy / sxx;
+  l.intercept = ym - l.slope * xm;
+  l.ssr = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    const double r = y[i] - l.intercept - l.slope * x[i];
+    l.ssr += wt[i] * r * r;
+  }
+  l.slope_err = l.n > 2 ? std::sqrt(l.ssr / static_cast<double>(l.n - 2) / sxx) : kNaN;
+  return l;
+}
+
+std::string fmt(double x) { return csv::format_double(x); }
+
+}  // namespace
+
+BEstimate aki_mle(std::span<const double> mu, double mu_min, std::optional<double> mu_max) {
+  std::int64_t n = 0;
+  double sum = 0;
+  for (double m : mu)
+    if (m >= mu_min && (!mu_max || m < *mu_max)) {
+      ++n;
+      sum += m - mu_min;
+    }
+  if (n < 2)
+    throw Error("fit window [" + fmt(mu_min) + ", " + (mu_max ? fmt(*mu_max) : "inf") +
+                ") holds " + std::to_string(n) + " events; need at least 2");
+  const double mean = sum / static_cast<double>(n);
+  double var_sum = 0;
+  for (double m : mu)
+    if (m >= mu_min && (!mu_max || m < *mu_max)) var_sum += (m - mu_min - mean) * (m - mu_min - mean);
+  const Model model{mu_max ? *mu_max - mu_min : kInf, 0};
+  return estimate(model, n, mean, var_sum);
+}
+
+BEstimate binned_mle(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi,
+                     bool truncated) {
+  const double w = h.bin_width();
+  std::int64_t n = 0;
+  double s = 0;
+  for (std::int64_t k = k_lo; k <= k_hi; ++k) {
+    n += h.count(k);
+    s += static_cast<double>(h.count(k)) * static_cast<double>(k - k_lo) * w;
+  }
+  if (n < 2)
+    throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) + ") holds " +
+                std::to_string(n) + " events; need at least 2");
+  // Mean of (bin centre - centre of the first bin): Tinti & Mulargia 1987.
+  const double mean = s / static_cast<double>(n);
+  double var_sum = 0;
+  for (std::int64_t k = k_lo; k <= k_hi; ++k) {
+    const double d = static_cast<double>(k - k_lo) * w - mean;
+    var_sum += static_cast<double>(h.count(k)) * d * d;
+  }
+  const Model model{truncated ? static_cast<double>(k_hi - k_lo + 1) * w : kInf, w};
+  return estimate(model, n, mean, var_sum);
+}
+
+double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi,
+                          double b, bool truncated) {
+  const double w = h.bin_width();
+  const std::int64_t n = h.count_range(k_lo, k_hi);
+  if (n == 0 || !std::isfinite(b)) return kNaN;
+  const double J = static_cast<double>(k_hi - k_lo + 1);
+  double d = 0;
+  std::int64_t above = n;
+  for (std::int64_t j = k_lo + 1; j <= k_hi + 1; ++j) {
+    above -= h.count(j - 1);
+    const double s_emp = static_cast<double>(above) / static_cast<double>(n);
+    const double i = static_cast<double>(j - k_lo);
+    double s_fit;
+    if (!truncated) {
+      s_fit = std::exp(-b * w * i);
+    } else if (std::fabs(b * w * J) < 1e-12) {
+      s_fit = (J - i) / J;
+    } else {
+      s_fit = (std::exp(-b * w * i) - std::exp(-b * w * J)) / -std::expm1(-b * w * J);
+    }
+    d = std::max(d, std::fabs(s_emp - s_fit));
+  }
+  return d;
+}
+
+GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
+                    std::optional<double> mu_max, const GrFitOptions& opt) {
+  GrFit f;
+  f.bin_width = h.bin_width();
+  f.n_total = h.events();
+  if (h.events() < 2)
+    throw Error("need at least 2 events to fit, found " + std::to_string(h.events()));
+  const double w = h.bin_width();
+  constexpr double eps = 1e-9;
+
+  std::int64_t k_hi = h.last_bin();
+  if (mu_max) {
+    k_hi = static_cast<std::int64_t>(std::floor(*mu_max / w + eps)) - 1;
+    f.truncated = true;
+    if (std::fabs(h.mu_high(k_hi) - *mu_max) > eps * std::max(1.0, std::fabs(*mu_max)))
+      f.notes.push_back("mu_max " + fmt(*mu_max) + " snapped down to the bin edge " +
+                        fmt(h.mu_high(k_hi)));
+  }
+  std::int64_t k_lo;
+  if (mu_min) {
+    k_lo = static_cast<std::int64_t>(std::ceil(*mu_min / w - eps));
+    if (std::fabs(h.mu_low(k_lo) - *mu_min) > eps * std::max(1.0, std::fabs(*mu_min)))
+      f.notes.push_back("mu_min " + fmt(*mu_min) + " snapped up to the bin edge " +
+                        fmt(h.mu_low(k_lo)));
+  } else {
+    // Clauset, Shalizi & Newman 2009: minimise the KS distance over candidate mu_min.
+    f.window_auto = true;
+    k_lo = h.first_bin();
+    double best = kInf;
+    bool any = false;
+    for (std::int64_t k = h.first_bin(); k < k_hi; ++k) {
+      if (h.count_range(k, k_hi) < opt.min_tail) break;
+      int populated = 0;
+      for (std::int64_t j = k; j <= k_hi && populated < 2; ++j) populated += h.count(j) > 0;
+      if (populated < 2) break;
+      const BEstimate e = binned_mle(h, k, k_hi, f.truncated);
+      const double d = ks_distance_binned(h, k, k_hi, e.b, f.truncated);
+      if (std::isfinite(d) && d < best) {
+        best = d;
+        k_lo = k;
+        any = true;
+      }
+    }
+    if (!any)
+      f.notes.push_back("fewer than " + std::to_string(opt.min_tail) +
+                        " events above every candidate: window starts at the first bin");
+  }
+  if (k_hi < k_lo)
+    throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) +
+                ") is empty");
+  f.mu_min = h.mu_low(k_lo);
+  f.mu_max = h.mu_high(k_hi);
+  f.n_in_window = h.count_range(k_lo, k_hi);
+
+  const BEstimate e = binned_mle(h, k_lo, k_hi, f.truncated);
+  f.b_mle = e.b;
+  f.b_mle_err = e.err;
+  if (!std::isfinite(e.b)) f.notes.push_back("b_mle is unbounded: the window's events fill one bin");
+  f.ks_distance = ks_distance_binned(h, k_lo, k_hi, e.b, f.truncated);
+  const double nw = static_cast<double>(f.n_in_window);
+  f.ln_A = std::log(nw) + f.b_mle * f.mu_min;
+  if (f.truncated) f.ln_A -= std::log(-std::expm1(-f.b_mle * (f.mu_max - f.mu_min)));
+
+  // Unbinned estimate from the exact sums when the window holds every event.
+  f.b_aki = f.b_aki_err = kNaN;
+  if (h.exact_moments() && !f.truncated && k_lo <= h.first_bin()) {
+    const double n = static_cast<double>(h.events());
+    const double mean = h.mean_mu();
+    const double var_sum = std::max(0.0, h.sum_mu2() - n * mean * mean);
+    const BEstimate a = estimate(Model{kInf, 0}, h.events(), mean - f.mu_min, var_sum);
+    f.b_aki = a.b;
+    f.b_aki_err = a.err;
+  }
+
+  // Least squares on ln R at the lower bin edges, weights R (Poisson).
+  {
+    std::vector<double> x, y, wt;
+    for (std::int64_t k = k_lo; k <= k_hi; ++k) {
+      const auto r = h.R(k);
+      if (r <= 0) continue;
+      x.push_back(h.mu_low(k));
+      y.push_back(std::log(static_cast<double>(r)));
+      wt.push_back(static_cast<double>(r));
+    }
+    const Line l = weighted_line(x, y, wt, 0, x.size());
+    f.b_lsq = -l.slope;
+    f.b_lsq_err = l.slope_err;
+  }
+
+  // Two power laws on ln D (thesis eq. 2.10), crossover scanned over the bin edges.
+  {
+    std::vector<double> x, y, wt;
+    std::vector<std::int64_t> kk;
+    for (std::int64_t k = k_lo; k <= h.last_bin(); ++k) {
+      if (h.count(k) <= 0) continue;
+      x.push_back(0.5 * (h.mu_low(k) + h.mu_high(k)));
+      y.push_back(std::log(h.D(k)));
+      wt.push_back(static_cast<double>(h.count(k)));
+      kk.push_back(k);
+    }
+    constexpr std::size_t kMinSide = 3;
+    double best = kInf;
+    for (std::size_t s = kMinSide; x.size() >= 2 * kMinSide && s + kMinSide <= x.size(); ++s) {
+      const Line a = weighted_line(x, y, wt, 0, s);
+      const Line b = weighted_line(x, y, wt, s, x.size());
+      if (!std::isfinite(a.slope) || !std::isfinite(b.slope)) continue;
+      if (a.ssr + b.ssr < best) {
+        best = a.ssr + b.ssr;
+        f.two_law_ok = true;
+        f.two_law_b1 = -a.slope;
+        f.two_law_b2 = -b.slope;
+        f.two_law_mu_cross = h.mu_low(kk[s]);
+        f.two_law_moment_cross = std::exp(f.two_law_mu_cross);
+        f.two_law_mu_low = h.mu_low(k_lo);
+        f.two_law_mu_high = h.mu_high(h.last_bin());
+        f.two_law_ln_A1 = a.intercept + a.slope * f.two_law_mu_cross;
+        f.two_law_ln_A2 = b.intercept + b.slope * f.two_law_mu_high;
+      }
+    }
+    if (!f.two_law_ok)
+      f.notes.push_back("two-power-law fit skipped: fewer than 6 populated bins above mu_min");
+  }
+
+  // Large-event excess over the fitted line R = A e^{-b mu}.
+  if (std::isfinite(f.b_mle)) {
+    for (std::int64_t k = h.last_bin(); k >= k_lo; --k) {
+      const auto r = h.R(k);
+      const double expected = std::exp(f.ln_A - f.b_mle * h.mu_low(k));
+      if (r <= 0 || !(static_cast<double>(r) > expected)) break;
+      // P(X >= r | expected) for Poisson X is the regularised lower incomplete gamma P(r, expected).
+      const double tail = boost::math::gamma_p(static_cast<double>(r), expected);
+      if (!(tail < opt.excess_tail_probability)) break;
+      f.excess_found = true;
+      f.excess_mu = h.mu_low(k);
+      f.excess_observed = r;
+      f.excess_expected = expected;
+      f.excess_count = static_cast<double>(r) - expected;
+    }
+  }
+  return f;
+}
+
+void add_unbinned(GrFit& fit, std::span<const double> mu) {
+  const BEstimate a =
+      aki_mle(mu, fit.mu_min, fit.truncated ? std::optional<double>(fit.mu_max) : std::nullopt);
+  fit.b_aki = a.b;
+  fit.b_aki_err = a.err;
+}
+
+GrFit fit_magnitudes(std::span<const double> mu, double bin_width, std::optional<double> mu_min,
+                     std::optional<double> mu_max, const GrFitOptions& opt) {
+  MagnitudeHistogram h(bin_width);
+  for (double m : mu) h.add(m);
+  GrFit f = fit_histogram(h, mu_min, mu_max, opt);
+  add_unbinned(f, mu);
+  return f;
+}
+
+}  // namespace bkq

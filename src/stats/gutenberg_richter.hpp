@@ -1,0 +1,128 @@
+// Gutenberg-Richter fits of a magnitude distribution (SPEC section 4; thesis eqs. 2.7,
+// 2.8 and 2.10). Magnitudes are natural logarithms of the moment (mu = ln M, thesis
+// eq. 2.6), so the law is R(mu) = A e^{-b mu} with no ln 10 factors anywhere.
+//
+// What is fitted, on a window [mu_min, mu_max] of whole bins:
+//  * b_aki:  unbinned maximum likelihood (Aki 1965, base e): b = 1 / (<mu> - mu_min).
+//            With an explicit mu_max the truncated exponential is used (Page 1968):
+//            <mu> - mu_min = 1/b - D/(e^{bD} - 1), D = mu_max - mu_min, solved for b.
+//  * b_mle:  binned maximum likelihood (Tinti & Mulargia 1987, base e). For bins of
+//            width w the bin index above the window's first bin is geometric with
+//            p = e^{-bw}, so b = (1/w) ln(1 + w/(<mu_c> - mu_c1)) with <mu_c> the mean of
+//            the bin centres and mu_c1 the CENTRE of the first bin of the window
+//            (= lower edge + w/2; with the lower edge instead, b is biased low by ~10 %
+//            at bw = 0.2). With an explicit mu_max the truncated geometric is used.
+//  * errors: Shi & Bolt (1982) in base e, sigma_b = b^2 sqrt(sum (mu_i - <mu>)^2 /
+//            (n (n-1))) for the untruncated continuous case; in general we use the same
+//            standard error of the mean divided by |d<mu>/db| of the model (delta method),
+//            which reduces to Shi & Bolt exactly when there is no truncation and w -> 0.
+//  * b_lsq:  weighted least squares slope of ln R(mu) at the lower bin edges of the
+//            window (weights R, the Poisson inverse variance of ln R). Its error is the
+//            formal one from the weighted residuals; cumulative counts are correlated, so
+//            it is optimistic.
+//  * window: when mu_min is not given it is chosen as in Clauset, Shalizi & Newman (2009):
+//            every bin edge with >= min_tail events above it is a candidate, b_mle is
+//            fitted above it, and the candidate with the smallest Kolmogorov-Smirnov
+//            distance between the empirical and fitted (binned, geometric) survival
+//            functions wins. mu_max defaults to the upper edge of the largest populated
+//            bin and the likelihood is then left untruncated (the sample maximum is not
+//            a physical cut-off); an explicit mu_max truncates the likelihood.
+//  * two power laws (thesis eq. 2.10, Carlson et al. 1991): ln D(mu) is fitted by two
+//            straight lines, slope -b1 below the crossover mu~ = ln M~ and -b2 above it,
+//            each with its own constant (A at M~, A' at the upper cutoff M*), on the bins
+//            from mu_min to the largest populated bin; the crossover bin edge is scanned
+//            and the split with the smallest weighted (Poisson) residual wins.
+//  * excess of large events: scanning down from the largest populated bin, the bins
+//            whose observed R exceeds the fitted line R = A e^{-b mu} (b = b_mle, A from
+//            the window count) by more than 2 sigma in the Poisson sense (one-sided tail
+//            probability < 2.275 %); excess_mu is the lowest edge of that contiguous run
+//            and excess_count = R_obs - R_fit there.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "stats/histogram.hpp"
+
+namespace bkq {
+
+struct GrFitOptions {
+  std::int64_t min_tail = 50;  // CSN: fewest events above a candidate mu_min
+  double excess_tail_probability = 0.02275;  // one-sided 2 sigma
+};
+
+struct GrFit {
+  double bin_width = 0;
+  std::int64_t n_total = 0;
+  // Window [mu_min, mu_max] (whole bins).
+  double mu_min = 0;
+  double mu_max = 0;
+  bool window_auto = false;   // mu_min chosen by the KS scan
+  bool truncated = false;     // mu_max was given: truncated likelihoods
+  std::int64_t n_in_window = 0;
+  // Binned MLE (Tinti & Mulargia 1987) and its error.
+  double b_mle = 0;
+  double b_mle_err = 0;
+  // Unbinned MLE (Aki 1965) and its error (Shi & Bolt 1982); NaN when the magnitudes
+  // themselves are not available.
+  double b_aki = 0;
+  double b_aki_err = 0;
+  // Least squares slope of ln R.
+  double b_lsq = 0;
+  double b_lsq_err = 0;
+  // R(mu) = A e^{-b_mle mu}, normalised so the window holds n_in_window events.
+  double ln_A = 0;
+  double ks_distance = 0;
+  // Two power laws (thesis eq. 2.10).
+  bool two_law_ok = false;
+  double two_law_b1 = 0;         // slope below the crossover (localised events)
+  double two_law_b2 = 0;         // slope above the crossover (delocalised events)
+  double two_law_mu_cross = 0;   // crossover magnitude mu~ = ln M~ (a bin edge)
+  double two_law_moment_cross = 0;  // M~
+  double two_law_ln_A1 = 0;      // ln A: D(mu~) of the lower branch
+  double two_law_ln_A2 = 0;      // ln A': D(mu*) of the upper branch at the upper cutoff
+  double two_law_mu_low = 0;     // ln M1, lower cutoff (fit range start)
+  double two_law_mu_high = 0;    // ln M*, upper cutoff (fit range end)
+  // Large-event excess.
+  bool excess_found = false;
+  double excess_mu = 0;
+  std::int64_t excess_observed = 0;
+  double excess_expected = 0;
+  double excess_count = 0;       // observed - expected at excess_mu
+  std::vector<std::string> notes;
+};
+
+// A maximum-likelihood estimate with its standard error.
+struct BEstimate {
+  double b = 0;
+  double err = 0;
+  std::int64_t n = 0;
+};
+
+// Unbinned Aki MLE on the magnitudes in [mu_min, mu_max) (all above mu_min when mu_max is
+// not given; then untruncated). bkq::Error when fewer than 2 magnitudes lie in the window.
+BEstimate aki_mle(std::span<const double> mu, double mu_min, std::optional<double> mu_max);
+// Binned Tinti-Mulargia MLE on bins k_lo..k_hi; truncated geometric if `truncated`.
+BEstimate binned_mle(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi,
+                     bool truncated);
+// Discrete KS distance between the empirical survival function on bins k_lo..k_hi and the
+// fitted geometric one with exponent b.
+double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi,
+                          double b, bool truncated);
+
+// Full fit of a histogram. Window limits are snapped inward to whole bins. b_aki is filled
+// from the histogram's sums only when the window covers every event and the sums are exact;
+// otherwise it is NaN (use fit_magnitudes).
+GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
+                    std::optional<double> mu_max, const GrFitOptions& opt = {});
+// The same from the magnitudes themselves (binned with width w), with b_aki filled in on
+// the same window.
+GrFit fit_magnitudes(std::span<const double> mu, double bin_width, std::optional<double> mu_min,
+                     std::optional<double> mu_max, const GrFitOptions& opt = {});
+// Adds the unbinned Aki estimate on fit's window.
+void add_unbinned(GrFit& fit, std::span<const double> mu);
+
+}  // namespace bkq
