@@ -91,7 +91,8 @@ inline ProcessResult run_process(const std::string& program, const std::vector<s
 }
 
 // Runs the bkquake binary built alongside the tests.
-inline ProcessResult run_bkquake(const std::vector<std::string>& args, const std::string& cwd = "") {
+inline ProcessResult run_bkquake(const std::vector<std::string>& args,
+                                 const std::string& cwd = "") {
   return run_process(BKQUAKE_BINARY, args, cwd);
 }
 

@@ -16,15 +16,13 @@ namespace po = boost::program_options;
 
 int cmd_run(const std::vector<std::string>& args) {
   po::options_description opts("bkquake run [SCENE] [options]");
-  opts.add_options()
-      ("set", po::value<std::vector<std::string>>()->composing(),
-       "section.key=value: override one scene key (repeatable, applied in order)")
-      ("out", po::value<std::string>()->default_value("out"), "output folder")
-      ("resume", "continue the run in the output folder from its checkpoint")
-      ("force", "overwrite a finished run in the output folder")
-      ("quiet", "no progress output")
-      ("dump-defaults", "print a commented scene with every key at its default, then exit")
-      ("help,h", "this help");
+  opts.add_options()("set", po::value<std::vector<std::string>>()->composing(),
+                     "section.key=value: override one scene key (repeatable, applied in order)")(
+      "out", po::value<std::string>()->default_value("out"), "output folder")(
+      "resume", "continue the run in the output folder from its checkpoint")(
+      "force", "overwrite a finished run in the output folder")("quiet", "no progress output")(
+      "dump-defaults", "print a commented scene with every key at its default, then exit")(
+      "help,h", "this help");
   po::options_description hidden;
   hidden.add_options()("scene", po::value<std::vector<std::string>>(), "scene file");
   po::options_description all;
@@ -56,9 +54,9 @@ int cmd_run(const std::vector<std::string>& args) {
 
   std::vector<std::string> scenes;
   if (vm.count("scene")) scenes = vm["scene"].as<std::vector<std::string>>();
-  if (scenes.size() > 1) throw Error("run: expected at most one scene file, got " +
-                                     std::to_string(scenes.size()) + " ('" + scenes[0] +
-                                     "', '" + scenes[1] + "', ...)");
+  if (scenes.size() > 1)
+    throw Error("run: expected at most one scene file, got " + std::to_string(scenes.size()) +
+                " ('" + scenes[0] + "', '" + scenes[1] + "', ...)");
 
   RunRequest request;
   request.scene = scenes.empty() ? Scene() : Scene::from_file(scenes.front());

@@ -74,13 +74,27 @@ std::string json_quote(const std::string& s) {
   std::string out = "\"";
   for (unsigned char c : s) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      case '\b': out += "\\b"; break;
-      case '\f': out += "\\f"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\b':
+        out += "\\b";
+        break;
+      case '\f':
+        out += "\\f";
+        break;
       default:
         if (c < 0x20) {
           char buf[8];
@@ -99,9 +113,15 @@ void Json::write(std::string& out, int indent) const {
   const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
   const std::string close_pad(static_cast<std::size_t>(indent), ' ');
   switch (kind_) {
-    case Kind::Null: out += "null"; break;
-    case Kind::Bool: out += b_ ? "true" : "false"; break;
-    case Kind::Integer: out += std::to_string(i_); break;
+    case Kind::Null:
+      out += "null";
+      break;
+    case Kind::Bool:
+      out += b_ ? "true" : "false";
+      break;
+    case Kind::Integer:
+      out += std::to_string(i_);
+      break;
     case Kind::Number: {
       std::string t = format_real(x_);
       // Keep numbers recognisably real for readers that distinguish ints from floats.
@@ -109,7 +129,9 @@ void Json::write(std::string& out, int indent) const {
       out += t;
       break;
     }
-    case Kind::String: out += json_quote(s_); break;
+    case Kind::String:
+      out += json_quote(s_);
+      break;
     case Kind::Array:
       if (items_.empty()) {
         out += "[]";

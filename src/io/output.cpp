@@ -21,7 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string reason(int err) { return std::strerror(err); }
+std::string reason(int err) {
+  return std::strerror(err);
+}
 
 // Writes all of `data` to `fd`, retrying on short writes and EINTR; returns errno or 0.
 int write_all(int fd, const std::string& data) {
@@ -70,7 +72,8 @@ std::string OutputFolder::path(const std::string& name) const {
 }
 
 void write_file_atomic(const std::string& path, const std::string& content) {
-  std::string tmp = (fs::path(folder_of(path)) / (fs::path(path).filename().string() + ".tmp-XXXXXX")).string();
+  std::string tmp =
+      (fs::path(folder_of(path)) / (fs::path(path).filename().string() + ".tmp-XXXXXX")).string();
   const int fd = ::mkstemp(tmp.data());
   if (fd < 0) throw Error("cannot write '" + path + "': " + reason(errno));
   int err = write_all(fd, content);

@@ -149,8 +149,7 @@ std::vector<ParamSpec> make_table() {
       integer("run.events", "100000", 0, 1e12, "", "events to record (events mode)"),
       integer("run.transient_events", "1000", 0, 1e12, "",
               "events discarded before recording starts (events mode)"),
-      real("run.duration", "1000", '(', 0, kInf, ')', "time",
-           "simulated time (continuous mode)"),
+      real("run.duration", "1000", '(', 0, kInf, ')', "time", "simulated time (continuous mode)"),
       integer("run.seed", "20261121", 0, kMaxInt64, "", "random seed (initial disorder)"),
       real("run.initial_disorder", "0.01", '[', 0, 10, ']', "D0",
            "initial displacements uniform in +-value*D0, D0 = F0 m_u / k_p"),
@@ -173,8 +172,7 @@ std::vector<ParamSpec> make_table() {
       boolean("output.blocks", "false", "also write block trajectories (continuous mode)"),
 
       // --- stats: magnitude histogram and fits ---
-      real("stats.bin_width", "0.2", '(', 0, 10, ']', "",
-           "magnitude bin width of the histogram"),
+      real("stats.bin_width", "0.2", '(', 0, 10, ']', "", "magnitude bin width of the histogram"),
       auto_real("stats.mu_min", "", "lower end of the Gutenberg-Richter fit window, or auto"),
       auto_real("stats.mu_max", "", "upper end of the Gutenberg-Richter fit window, or auto"),
   };
@@ -201,7 +199,9 @@ std::string bound_text(const ParamSpec& p, double x) {
   return format_real(x);
 }
 
-std::string suffix(const std::string& origin) { return origin.empty() ? "" : " (" + origin + ")"; }
+std::string suffix(const std::string& origin) {
+  return origin.empty() ? "" : " (" + origin + ")";
+}
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
@@ -278,13 +278,14 @@ std::string normalise(const ParamSpec& p, const std::string& raw, const std::str
       const auto res = std::from_chars(b, e, v);
       // from_chars reports tiny/huge magnitudes as out of range; those are still numbers
       // and are judged by the range check (huge ones end up as inf, outside every range).
-      if (text.empty() || res.ec == std::errc::invalid_argument || res.ptr != e ||
-          std::isnan(v))
+      if (text.empty() || res.ec == std::errc::invalid_argument || res.ptr != e || std::isnan(v))
         throw Error(p.key + ": " + what + ", got '" + text + "'" + where);
-      if (res.ec == std::errc::result_out_of_range) v = std::strtod(std::string(b, e).c_str(), nullptr);
+      if (res.ec == std::errc::result_out_of_range)
+        v = std::strtod(std::string(b, e).c_str(), nullptr);
       const bool below = p.min_open ? !(v > p.min) : !(v >= p.min);
       const bool above = p.max_open ? !(v < p.max) : !(v <= p.max);
-      if (below || above || std::isinf(v)) throw Error(p.key + ": " + what + ", got " + text + where);
+      if (below || above || std::isinf(v))
+        throw Error(p.key + ": " + what + ", got " + text + where);
       return format_real(v);
     }
   }
@@ -337,7 +338,8 @@ std::string allowed_text(const ParamSpec& p) {
       for (const auto& c : p.choices) s += (s.empty() ? "" : "|") + c;
       return s;
     }
-    case ParamType::Boolean: return "true|false";
+    case ParamType::Boolean:
+      return "true|false";
     case ParamType::Integer:
     case ParamType::Real: {
       std::string s = std::string(p.min_open ? "(" : "[") + bound_text(p, p.min) + ", " +
@@ -375,7 +377,8 @@ Scene Scene::from_text(const std::string& text, const std::string& origin_name) 
   const std::string where = "in " + origin_name;
 
   po::options_description desc;
-  for (const auto& p : parameter_table()) desc.add_options()(p.key.c_str(), po::value<std::string>());
+  for (const auto& p : parameter_table())
+    desc.add_options()(p.key.c_str(), po::value<std::string>());
 
   std::istringstream in(text);
   po::parsed_options parsed(&desc);
@@ -389,8 +392,7 @@ Scene Scene::from_text(const std::string& text, const std::string& origin_name) 
   for (const auto& opt : parsed.options) {
     const std::string& key = opt.string_key;
     if (opt.unregistered || !find_param(key)) unknown_key(key, where);
-    if (!seen.insert(key).second)
-      throw Error(key + ": given more than once" + suffix(where));
+    if (!seen.insert(key).second) throw Error(key + ": given more than once" + suffix(where));
     const std::string value = opt.value.empty() ? std::string() : opt.value.front();
     scene.set(key, value, where);
   }
@@ -426,7 +428,8 @@ void Scene::validate() const {
     if (p.key == "model.blocks")
       throw Error("model.blocks = " + text(p.key) +
                   " contradicts model.kind = 1dof (a single block); remove model.blocks or set "
-                  "it to 1" + where);
+                  "it to 1" +
+                  where);
     const Dependency* d = dependency_of(p.key);
     throw Error(p.key + " = " + text(p.key) + " applies only with " + d->controller + " = " +
                 d->needed + ", but " + d->controller + " = " + text(d->controller) + where);
@@ -437,8 +440,8 @@ void Scene::validate() const {
   const auto lo = real_or_auto("stats.mu_min");
   const auto hi = real_or_auto("stats.mu_max");
   if (lo && hi && *lo >= *hi)
-    throw Error("stats.mu_min = " + text("stats.mu_min") + " must be below stats.mu_max = " +
-                text("stats.mu_max") + where);
+    throw Error("stats.mu_min = " + text("stats.mu_min") +
+                " must be below stats.mu_max = " + text("stats.mu_max") + where);
 }
 
 namespace {

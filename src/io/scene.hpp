@@ -16,7 +16,7 @@ enum class ParamType { Real, Integer, Choice, Boolean };
 
 // One row of the parameter table. Ranges are inclusive unless the *_open flag is set.
 struct ParamSpec {
-  std::string key;            // "section.key"
+  std::string key;  // "section.key"
   ParamType type;
   std::string default_value;  // as written in a scene file
   double min = 0, max = 0;    // Real/Integer only

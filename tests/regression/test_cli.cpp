@@ -17,7 +17,8 @@ void expect_one_error_line(const test::ProcessResult& r, std::initializer_list<s
   const auto lines = r.err_lines();
   ASSERT_EQ(lines.size(), 1u) << r.err;
   EXPECT_EQ(lines[0].rfind("bkquake: error: ", 0), 0u) << lines[0];
-  for (const auto& p : parts) EXPECT_NE(lines[0].find(p), std::string::npos) << lines[0] << " lacks " << p;
+  for (const auto& p : parts)
+    EXPECT_NE(lines[0].find(p), std::string::npos) << lines[0] << " lacks " << p;
 }
 
 TEST(Cli, Version) {

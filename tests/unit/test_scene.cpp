@@ -24,17 +24,19 @@ std::string error_of(F&& f) {
   return "";
 }
 
-#define EXPECT_ERROR_HAS(stmt, ...)                                            \
-  do {                                                                         \
-    const std::string msg_ = error_of([&] { stmt; });                          \
-    ASSERT_FALSE(msg_.empty()) << "expected a bkq::Error from: " #stmt;        \
-    for (const std::string& part_ : std::initializer_list<std::string>{__VA_ARGS__})                          \
-      EXPECT_NE(msg_.find(part_), std::string::npos)                           \
-          << "message '" << msg_ << "' lacks '" << part_ << "'";               \
-    EXPECT_EQ(msg_.find('\n'), std::string::npos) << "not one line: " << msg_; \
+#define EXPECT_ERROR_HAS(stmt, ...)                                                  \
+  do {                                                                               \
+    const std::string msg_ = error_of([&] { stmt; });                                \
+    ASSERT_FALSE(msg_.empty()) << "expected a bkq::Error from: " #stmt;              \
+    for (const std::string& part_ : std::initializer_list<std::string>{__VA_ARGS__}) \
+      EXPECT_NE(msg_.find(part_), std::string::npos)                                 \
+          << "message '" << msg_ << "' lacks '" << part_ << "'";                     \
+    EXPECT_EQ(msg_.find('\n'), std::string::npos) << "not one line: " << msg_;       \
   } while (0)
 
-Scene from(const std::string& text) { return Scene::from_text(text, "x.ini"); }
+Scene from(const std::string& text) {
+  return Scene::from_text(text, "x.ini");
+}
 
 TEST(SceneTable, EveryKeyDeclaredOnceWithDocAndSection) {
   std::set<std::string> keys;
@@ -44,10 +46,10 @@ TEST(SceneTable, EveryKeyDeclaredOnceWithDocAndSection) {
     EXPECT_FALSE(p.doc.empty()) << p.key;
     EXPECT_EQ(find_param(p.key), &p);
   }
-  for (const char* k : {"model.blocks", "model.l", "friction.law", "friction.alpha",
-                        "friction.sigma", "drive.mode", "drive.speed", "run.events",
-                        "run.transient_events", "run.duration", "run.seed", "integrator.scheme",
-                        "integrator.dt", "output.every", "integrator.tolerance"})
+  for (const char* k :
+       {"model.blocks", "model.l", "friction.law", "friction.alpha", "friction.sigma", "drive.mode",
+        "drive.speed", "run.events", "run.transient_events", "run.duration", "run.seed",
+        "integrator.scheme", "integrator.dt", "output.every", "integrator.tolerance"})
     EXPECT_NE(find_param(k), nullptr) << "contract key missing: " << k;
   EXPECT_EQ(find_param("model.nope"), nullptr);
 }
@@ -83,8 +85,9 @@ TEST(Scene, Defaults) {
 }
 
 TEST(Scene, FileThenOverridesInOrder) {
-  Scene s = from("# a comment\n[model]\nblocks = 50\nl = 3\n\n[friction]\nalpha = 1\n"
-                 "[output]\nblocks = yes\n[stats]\nmu_min = -2.5\n");
+  Scene s = from(
+      "# a comment\n[model]\nblocks = 50\nl = 3\n\n[friction]\nalpha = 1\n"
+      "[output]\nblocks = yes\n[stats]\nmu_min = -2.5\n");
   EXPECT_EQ(s.origin, "x.ini");
   EXPECT_EQ(s.integer("model.blocks"), 50);
   EXPECT_TRUE(s.is_set("model.blocks"));
@@ -166,7 +169,8 @@ TEST(Scene, UnknownKeysSuggestTheNearest) {
 
 TEST(Scene, MalformedInput) {
   Scene s;
-  EXPECT_ERROR_HAS(s.apply_override("model.blocks"), "--set", "section.key=value", "'model.blocks'");
+  EXPECT_ERROR_HAS(s.apply_override("model.blocks"), "--set", "section.key=value",
+                   "'model.blocks'");
   EXPECT_ERROR_HAS(s.apply_override("=5"), "--set", "'=5'");
   EXPECT_ERROR_HAS(from("[model]\nblocks = 5\nblocks = 6\n"), "model.blocks", "more than once",
                    "x.ini");
@@ -187,8 +191,8 @@ TEST(Scene, FromFile) {
   const Scene s = Scene::from_file(path);
   EXPECT_EQ(s.integer("run.events"), 12);
   EXPECT_EQ(s.origin, path);
-  EXPECT_ERROR_HAS(Scene::from_file(dir.write("b.ini", "[run]\nevents = x\n")), "run.events",
-                   "'x'", "(in " + dir.file("b.ini") + ")");
+  EXPECT_ERROR_HAS(Scene::from_file(dir.write("b.ini", "[run]\nevents = x\n")), "run.events", "'x'",
+                   "(in " + dir.file("b.ini") + ")");
 }
 
 TEST(SceneValidate, ParameterisationOnlyKeys) {
@@ -245,9 +249,10 @@ TEST(SceneIni, DumpDefaultsReadsBackToDefaults) {
 }
 
 TEST(SceneIni, RoundTripOfAnEditedScene) {
-  Scene s = from("[model]\nkind = bkp\nparameterisation = thesis\npad_mass = 50\n"
-                 "[drive]\nmode = continuous\nschedule = ramp\nramp_to = 0.5\n"
-                 "[stats]\nmu_max = 4.25\n[output]\nblocks = on\n");
+  Scene s = from(
+      "[model]\nkind = bkp\nparameterisation = thesis\npad_mass = 50\n"
+      "[drive]\nmode = continuous\nschedule = ramp\nramp_to = 0.5\n"
+      "[stats]\nmu_max = 4.25\n[output]\nblocks = on\n");
   s.apply_override("model.damping_ratio=0.1");
   s.apply_override("run.seed=42");
   const std::string ini = s.to_ini({"provenance line"});
