@@ -25,7 +25,7 @@ if (($# == 0)); then
   # Interim default: until the event-driven engine lands, a short continuously driven
   # run of the thesis scene. Once it lands, drop this `set --` line so that plain
   # `bkquake run` runs its built-in default (the Carlson-Langer reference, event-driven,
-  # the same as data/scenes/carlson-langer.ini).
-  set -- data/scenes/thesis.ini --set run.duration=200 --out runs/thesis
+  # the same as data/scenes/carlson-langer.ini). --force: ./run.sh twice simply redoes it.
+  set -- data/scenes/thesis.ini --set run.duration=200 --out runs/thesis --force
 fi
 exec build/bkquake run "$@"
