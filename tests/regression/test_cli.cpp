@@ -47,6 +47,19 @@ TEST(Cli, UnknownCommandAndOption) {
   expect_one_error_line(run_bkquake({"run", "--set"}), {"--set"});
 }
 
+TEST(Cli, NoCommandPrintsUsageAndFails) {
+  const auto r = run_bkquake({});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("Usage:"), std::string::npos);
+}
+
+TEST(Cli, ResumeAndForceExcludeEachOther) {
+  test::TempDir tmp;
+  expect_one_error_line(run_bkquake({"run", "--resume", "--force", "--out", tmp.file("o")}),
+                        {"--resume", "--force"});
+  expect_one_error_line(run_bkquake({"run", "a.ini", "b.ini"}), {"at most one scene"});
+}
+
 TEST(Cli, DumpDefaultsParsesBackToDefaults) {
   const auto r = run_bkquake({"run", "--dump-defaults"});
   ASSERT_EQ(r.status, 0) << r.err;
