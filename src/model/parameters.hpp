@@ -11,7 +11,8 @@ class Scene;
 
 enum class ModelKind { BK, BKP, OneDof };
 enum class Boundary { Free, Periodic };
-enum class FrictionLaw { Thesis, Clst91, Cl89 };
+// None is frictionless (verification runs only: every block slides freely).
+enum class FrictionLaw { Thesis, Clst91, Cl89, None };
 
 struct ModelParams {
   ModelKind kind = ModelKind::BK;

@@ -1,0 +1,58 @@
+// Stick and slip transitions between steps (the Crossing rule of stepper.hpp), shared by
+// the continuous driver and the event relaxation. One pass over the ranges:
+//  - a sliding block whose relative velocity changed sign during the step (or reached 0;
+//    for clst91, became <= 0 since it may not slide backwards) is stuck with zero
+//    velocity if friction can hold its spring force at the new position; otherwise it
+//    keeps sliding (backslip laws) or stays at zero velocity, still sliding (clst91);
+//  - a stuck block whose spring force exceeds the static threshold breaks loose with
+//    zero relative velocity; `on_release(j)` is told.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/chain.hpp"
+
+namespace bkq {
+
+struct ContactScan {
+  int sliding = 0;        // blocks sliding after the pass
+  double max_speed = 0;   // largest |relative velocity| among them
+};
+
+template <class OnRelease>
+ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor,
+                            Ranges ranges, bool crossing_rule, OnRelease&& on_release) {
+  const Friction& fr = forces.friction();
+  double* w = st.w.data();
+  double* wd = st.wd.data();
+  double* mob = st.mobile.data();
+  ContactScan out;
+  for (const Range& r : ranges) {
+    for (int j = r.lo; j < r.hi; ++j) {
+      if (mob[j] != 0.0) {
+        if (crossing_rule) {
+          const double y0 = wd_old[j], y1 = wd[j];
+          const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || (y1 == 0.0 && y0 != 0.0)) : y1 <= 0.0;
+          if (crossed) {
+            if (fr.holds(forces.spring_force(w, j, anchor))) {
+              wd[j] = 0.0;
+              mob[j] = 0.0;
+              continue;
+            }
+            if (!fr.backslip) wd[j] = 0.0;
+          }
+        }
+        ++out.sliding;
+        out.max_speed = std::max(out.max_speed, std::abs(wd[j]));
+      } else if (fr.breaks(forces.spring_force(w, j, anchor))) {
+        mob[j] = 1.0;
+        ++out.sliding;
+        on_release(j);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace bkq

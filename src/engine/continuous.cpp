@@ -1,0 +1,116 @@
+// Continuous driving; see continuous.hpp.
+#include "engine/continuous.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/contacts.hpp"
+
+namespace bkq {
+
+ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper, const Substrate& substrate,
+                                   ChainState state, double dt)
+    : forces_(forces), stepper_(stepper), substrate_(substrate), st_(std::move(state)), dt_(dt) {
+  const int n = forces.n();
+  all_ = Range{0, n};
+  wd_old_.assign(n, 0.0);
+  w_start_.assign(n, 0.0);
+  slid_.assign(n, 0);
+  st_.recompute_sum_w();
+  // Blocks loaded beyond the threshold at the start break loose before the first step.
+  const SubstrateState sub = substrate_.at(st_.t);
+  const double anchor = sub.s + (forces.params().pad_moves() ? st_.x : 0.0);
+  const ContactScan scan = settle_contacts(forces_, st_, wd_old_.data(), anchor, Ranges(&all_, 1), false,
+                                           [](int) {});
+  sliding_ = scan.sliding;
+  if (sliding_ > 0) start_episode(-1);
+}
+
+double ContinuousDriver::pad_friction() const {
+  const ModelParams& p = forces_.params();
+  // With the pad held the steppers do not keep sum_w, so sum it here (output time only).
+  double sum_w = st_.sum_w, x = 0;
+  if (p.pad_moves()) {
+    x = st_.x;
+  } else {
+    sum_w = 0;
+    for (double w : st_.w) sum_w += w;
+  }
+  return p.k_p * (sum_w - p.n * substrate().s - p.n * x);
+}
+
+void ContinuousDriver::start_episode(int trigger) {
+  in_episode_ = true;
+  episode_ = EventRecord{};
+  episode_.event = ++episodes_;
+  episode_.load = substrate().s;
+  episode_.trigger = trigger;
+  episode_t0_ = st_.t;
+  episode_x0_ = st_.x;
+  std::copy(st_.w.begin(), st_.w.end(), w_start_.begin());
+  std::fill(slid_.begin(), slid_.end(), 0);
+  for (int j = 0; j < forces_.n(); ++j)
+    if (st_.mobile[j] != 0.0) slid_[j] = 1;
+}
+
+void ContinuousDriver::step() {
+  const Ranges ranges(&all_, 1);
+  const double t0 = st_.t;
+  // A schedule step changes the substrate speed abruptly: sliding blocks keep their lab
+  // velocity, stuck ones stay stuck.
+  const double jump = substrate_.speed_jump(t0, t0 + dt_);
+  std::copy(st_.wd.begin(), st_.wd.end(), wd_old_.begin());
+  stepper_.step(forces_, substrate_, st_, dt_, ranges);
+  if (jump != 0.0)
+    for (int j = 0; j < forces_.n(); ++j)
+      if (st_.mobile[j] != 0.0) st_.wd[j] += jump;
+
+  const SubstrateState sub = substrate_.at(st_.t);
+  const double anchor = sub.s + (forces_.params().pad_moves() ? st_.x : 0.0);
+  int first_release = -1;
+  const ContactScan scan = settle_contacts(
+      forces_, st_, wd_old_.data(), anchor, ranges, stepper_.stick_rule() == StickRule::Crossing,
+      [&](int j) {
+        if (first_release < 0) first_release = j;
+        if (in_episode_) slid_[j] = 1;
+      });
+  const bool was_sliding = sliding_ > 0;
+  sliding_ = scan.sliding;
+  if (!was_sliding && sliding_ > 0) {
+    start_episode(first_release);
+    // w_start_ was taken after the step; the released blocks had not moved yet.
+  }
+  if (in_episode_) {
+    episode_.max_speed = std::max(episode_.max_speed, scan.max_speed);
+    if (sliding_ == 0) {
+      in_episode_ = false;
+      EventRecord e = episode_;
+      double moment = 0;
+      int count = 0, first = -1, last = -1;
+      for (int j = 0; j < forces_.n(); ++j) {
+        if (!slid_[j]) continue;
+        moment += st_.w[j] - w_start_[j];
+        ++count;
+        if (first < 0) first = j;
+        last = j;
+      }
+      e.blocks = count;
+      e.first_block = first;
+      e.last_block = last;
+      e.moment = moment;
+      e.magnitude = moment > 0 ? std::log(moment) : std::nan("");
+      e.duration = st_.t - episode_t0_;
+      e.pad_displacement = forces_.params().pad_moves() ? st_.x - episode_x0_ : 0.0;
+      if (e.trigger < 0) e.trigger = first;
+      finished_ = e;
+    }
+  }
+}
+
+std::optional<EventRecord> ContinuousDriver::finished_episode() {
+  std::optional<EventRecord> e;
+  std::swap(e, finished_);
+  return e;
+}
+
+}  // namespace bkq

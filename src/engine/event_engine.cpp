@@ -1,0 +1,295 @@
+// The event-driven engine; see event_engine.hpp for the algorithm and the definition of
+// the end of an event.
+#include "engine/event_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/contacts.hpp"
+#include "io/error.hpp"
+#include "model/damped_oscillator.hpp"
+
+namespace bkq {
+
+namespace {
+// Ranges are re-fitted to the sliding blocks every this many steps.
+constexpr int kShrinkEvery = 16;
+// The pad's sum of block positions is re-summed from scratch every this many events.
+constexpr int kResumEvery = 1024;
+}  // namespace
+
+EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt, ChainState state)
+    : forces_(forces), stepper_(stepper), dt_(dt), st_(std::move(state)), pad_(forces.params().pad_moves()),
+      n_(forces.n()) {
+  if (forces.params().law == FrictionLaw::None)
+    throw Error("friction.law: 'none' cannot drive events (nothing ever sticks); use drive.mode = continuous");
+  covered_.assign(n_, 0);
+  need_.assign(n_, 0);
+  slipped_.assign(n_, 0);
+  w_before_.assign(n_, 0.0);
+  wd_old_.assign(n_, 0.0);
+  std::fill(st_.mobile.begin(), st_.mobile.end(), 0.0);
+  std::fill(st_.wd.begin(), st_.wd.end(), 0.0);
+  st_.xd = 0;
+  st_.recompute_sum_w();
+  if (pad_) st_.x = forces_.pad_equilibrium(st_.sum_w, st_.s);
+  rebuild_tree();
+}
+
+void EventEngine::rebuild_tree() {
+  tree_.reset(n_);
+  for (int j = 0; j < n_; ++j) tree_.set(j, forces_.local_force(st_.w.data(), j));
+}
+
+double EventEngine::worst_stuck_excess() const {
+  const double a = anchor(), thr = forces_.friction().threshold;
+  double worst = -HUGE_VAL;
+  for (int j = 0; j < n_; ++j) {
+    if (st_.mobile[j] != 0.0) continue;
+    const double f = forces_.spring_force(st_.w.data(), j, a);
+    worst = std::max(worst, (forces_.friction().backslip ? std::abs(f) : f) - thr);
+  }
+  return worst;
+}
+
+void EventEngine::add_to_ranges(int k) {
+  // Ranges stay sorted and disjoint; adjacent ones merge.
+  auto it = std::lower_bound(ranges_.begin(), ranges_.end(), k, [](const Range& r, int v) { return r.hi < v; });
+  if (it != ranges_.end() && it->lo <= k && k < it->hi) return;
+  if (it != ranges_.end() && it->hi == k) {
+    it->hi = k + 1;
+    auto next = it + 1;
+    if (next != ranges_.end() && next->lo == it->hi) {
+      it->hi = next->hi;
+      ranges_.erase(next);
+    }
+    return;
+  }
+  if (it != ranges_.end() && it->lo == k + 1) {
+    it->lo = k;
+    return;
+  }
+  ranges_.insert(it, Range{k, k + 1});
+}
+
+void EventEngine::cover(int j) {
+  // A sliding block and its neighbours must all be integrated (the kernels read j±1).
+  const bool periodic = forces_.params().boundary == Boundary::Periodic;
+  for (int d = -1; d <= 1; ++d) {
+    int k = j + d;
+    if (k < 0 || k >= n_) {
+      if (!periodic) continue;
+      k = (k + n_) % n_;
+    }
+    if (covered_[k]) continue;
+    covered_[k] = 1;
+    tree_.remove(k);
+    add_to_ranges(k);
+  }
+}
+
+void EventEngine::release(int j) {
+  st_.mobile[j] = 1.0;
+  st_.wd[j] = 0.0;
+  if (!slipped_[j]) {
+    slipped_[j] = 1;
+    slipped_list_.push_back(j);
+    w_before_[j] = st_.w[j];
+  }
+  cover(j);
+}
+
+void EventEngine::shrink_ranges() {
+  const bool periodic = forces_.params().boundary == Boundary::Periodic;
+  for (const Range& r : ranges_)
+    for (int j = r.lo; j < r.hi; ++j) {
+      if (st_.mobile[j] == 0.0) continue;
+      need_[j] = 1;
+      if (j > 0) need_[j - 1] = 1;
+      else if (periodic) need_[n_ - 1] = 1;
+      if (j < n_ - 1) need_[j + 1] = 1;
+      else if (periodic) need_[0] = 1;
+    }
+  std::vector<Range> kept;
+  kept.reserve(ranges_.size());
+  const double* w = st_.w.data();
+  for (const Range& r : ranges_) {
+    int start = -1;
+    for (int j = r.lo; j < r.hi; ++j) {
+      if (need_[j]) {
+        need_[j] = 0;
+        if (start < 0) start = j;
+        continue;
+      }
+      if (start >= 0) kept.push_back(Range{start, j}), start = -1;
+      covered_[j] = 0;
+      tree_.set(j, forces_.local_force(w, j));
+    }
+    if (start >= 0) kept.push_back(Range{start, r.hi});
+  }
+  ranges_.swap(kept);
+}
+
+void EventEngine::uncover_all() {
+  const double* w = st_.w.data();
+  for (const Range& r : ranges_)
+    for (int j = r.lo; j < r.hi; ++j) {
+      covered_[j] = 0;
+      tree_.set(j, forces_.local_force(w, j));
+    }
+  ranges_.clear();
+}
+
+bool EventEngine::query_tree_failures() {
+  // Stuck, uncovered blocks feel only the pad's motion; ask the tree who broke.
+  const double thr = forces_.friction().threshold, kp = forces_.params().k_p;
+  const bool backslip = forces_.friction().backslip;
+  bool any = false;
+  for (;;) {
+    const double a = anchor();
+    if (tree_.max() + kp * a > thr) {
+      release(tree_.argmax());
+    } else if (backslip && tree_.min() + kp * a < -thr) {
+      release(tree_.argmin());
+    } else {
+      break;
+    }
+    ++sliding_;
+    any = true;
+  }
+  return any;
+}
+
+bool EventEngine::pad_phase() {
+  // Every block is stuck: m_x xi'' + c_p xi' + K xi = 0 about the rest position.
+  uncover_all();
+  const ModelParams& p = forces_.params();
+  const double thr = forces_.friction().threshold;
+  const double K = p.k_p0 + p.n * p.k_p;
+  const double x_eq = forces_.pad_equilibrium(st_.sum_w, st_.s);
+  const DampedOscillator osc(p.m_x, p.c_p, K, st_.x - x_eq, st_.xd);
+  // Block j breaks when x crosses hi (or lo, for laws with backslip).
+  const double hi = (thr - tree_.max()) / p.k_p - st_.s;
+  const double lo = forces_.friction().backslip ? (-thr - tree_.min()) / p.k_p - st_.s : -HUGE_VAL;
+  const double margin = std::min(hi - x_eq, x_eq - lo);
+  auto breaks = [&](double t) {
+    const double x = x_eq + osc.position(t);
+    return x > hi || x < lo;
+  };
+  const double dt = osc.resolution();
+  double t = 0;
+  // Walk the closed-form solution until its envelope can no longer reach either level.
+  for (std::int64_t i = 0; osc.bound_after(t) >= margin && i < 10'000'000; ++i) {
+    if (!breaks(t + dt)) {
+      t += dt;
+      continue;
+    }
+    double a = t, b = t + dt;
+    for (int k = 0; k < 200 && b - a > 1e-13 * (1.0 + b); ++k) {
+      const double m = 0.5 * (a + b);
+      (breaks(m) ? b : a) = m;
+    }
+    st_.x = x_eq + osc.position(b);
+    st_.xd = osc.velocity(b);
+    st_.t += b;
+    return query_tree_failures();
+  }
+  st_.x = x_eq;
+  st_.xd = 0;
+  return false;
+}
+
+void EventEngine::check_finite() const {
+  for (const Range& r : ranges_)
+    for (int j = r.lo; j < r.hi; ++j)
+      if (!std::isfinite(st_.w[j]) || !std::isfinite(st_.wd[j])) {
+        char msg[300];
+        std::snprintf(msg, sizeof msg,
+                      "non-finite state at block %d, time %.9g into event %lld: the integration is unstable "
+                      "(reduce integrator.dt)",
+                      j, st_.t, static_cast<long long>(counters_.events + 1));
+        throw Error(msg);
+      }
+}
+
+EventRecord EventEngine::next_event() {
+  const ModelParams& p = forces_.params();
+  const double thr = forces_.friction().threshold;
+
+  // Load: jump the substrate until the most loaded block sits at the threshold.
+  if (pad_ && counters_.events % kResumEvery == 0) st_.recompute_sum_w();
+  const int trigger = tree_.argmax();
+  const double f_max = tree_.max() + p.k_p * anchor();
+  const double ds = std::max(0.0, (thr - f_max) / p.loading_rate());
+  st_.s += ds;
+  if (pad_) st_.x = forces_.pad_equilibrium(st_.sum_w, st_.s);
+
+  EventRecord e;
+  e.event = ++counters_.events;
+  e.load = st_.s;
+  e.trigger = trigger;
+  const double x0 = st_.x;
+  st_.t = 0;
+  max_speed_ = 0;
+  last_stick_time_ = 0;
+  sliding_ = 1;
+  release(trigger);
+
+  const Substrate frozen = Substrate::frozen(st_.s);
+  const bool crossing = stepper_.stick_rule() == StickRule::Crossing;
+  std::int64_t steps = 0;
+  for (;;) {
+    while (sliding_ > 0) {
+      for (const Range& r : ranges_)
+        std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old_.begin() + r.lo);
+      stepper_.step(forces_, frozen, st_, dt_, ranges_);
+      ++steps;
+      for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
+      released_now_.clear();
+      const ContactScan scan = settle_contacts(forces_, st_, wd_old_.data(), anchor(), ranges_, crossing,
+                                               [&](int j) { released_now_.push_back(j); });
+      counters_.sliding_block_steps += scan.sliding;
+      sliding_ = scan.sliding;
+      for (int j : released_now_) release(j);
+      if (pad_) query_tree_failures();
+      if (!(scan.max_speed <= max_speed_)) {
+        if (!std::isfinite(scan.max_speed)) check_finite();
+        max_speed_ = scan.max_speed;
+      }
+      if (sliding_ == 0) last_stick_time_ = st_.t;
+      if (steps % kShrinkEvery == 0) shrink_ranges();
+      if (steps > max_steps_per_event) {
+        char msg[300];
+        std::snprintf(msg, sizeof msg,
+                      "event %lld did not end after %lld steps (time %.6g): check integrator.dt and the scene",
+                      static_cast<long long>(e.event), static_cast<long long>(steps), st_.t);
+        throw Error(msg);
+      }
+    }
+    if (!pad_ || !pad_phase()) break;
+  }
+  counters_.steps += steps;
+  uncover_all();
+
+  double moment = 0;
+  int first = n_, last = -1;
+  for (int j : slipped_list_) {
+    moment += st_.w[j] - w_before_[j];
+    first = std::min(first, j);
+    last = std::max(last, j);
+    slipped_[j] = 0;
+  }
+  e.blocks = static_cast<int>(slipped_list_.size());
+  slipped_list_.clear();
+  e.first_block = first;
+  e.last_block = last;
+  e.moment = moment;
+  e.magnitude = moment > 0 ? std::log(moment) : std::nan("");
+  e.duration = last_stick_time_;
+  e.max_speed = max_speed_;
+  e.pad_displacement = pad_ ? st_.x - x0 : 0.0;
+  return e;
+}
+
+}  // namespace bkq

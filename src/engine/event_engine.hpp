@@ -1,0 +1,92 @@
+// The event-driven earthquake engine (SPEC §2): a quasistatic loader and a dynamic
+// relaxation with the full BK–Pad equations.
+//
+// Loading. Between events every block is stuck and the pad is at rest, so each stuck
+// block's spring force grows at the same rate per unit substrate displacement
+// (ModelParams::loading_rate). The loader asks the ForceTree for the largest force and
+// jumps the substrate so that block sits exactly at the threshold; no steps are spent.
+//
+// Relaxation. The substrate is frozen. The scene's stepper advances only the sliding
+// blocks plus one stuck block on either side (the "covered" ranges); those neighbours
+// are checked after every step and join when their force exceeds the threshold. Stuck
+// blocks elsewhere only feel the pad, uniformly, so with a moving pad the ForceTree is
+// asked each step whether any of them has failed. When every block is stuck the pad is a
+// damped linear oscillator; it is advanced in closed form to the first instant it pushes
+// a stuck block over the threshold (located by bisection to ~1e-13 in time; that block
+// then joins the same event), or, if no block can fail any more, to its rest position.
+//
+// End of an event: every block stuck (by the stepper's stick rule) and the pad at rest —
+// exactly at rest, since the pad's remaining free oscillation is removed in closed form
+// once its amplitude can no longer break any block (with an undamped pad, zeta = 0, this
+// discards the pad's free oscillation between events). The duration is the time from the
+// trigger until the last block re-stuck.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/force_tree.hpp"
+#include "integrate/stepper.hpp"
+#include "io/catalog.hpp"
+#include "model/chain.hpp"
+
+namespace bkq {
+
+struct EngineCounters {
+  std::int64_t events = 0;
+  std::int64_t steps = 0;                // relaxation steps
+  std::int64_t block_steps = 0;          // blocks advanced, summed over steps
+  std::int64_t sliding_block_steps = 0;  // of which sliding
+};
+
+class EventEngine {
+ public:
+  EventEngine(const ChainForces& forces, Stepper& stepper, double dt, ChainState state);
+
+  // Load to the next failure and relax it; returns the event (numbered from 1).
+  EventRecord next_event();
+
+  const ChainState& state() const { return st_; }
+  const EngineCounters& counters() const { return counters_; }
+  double load() const { return st_.s; }
+  // Largest spring force among stuck blocks beyond the threshold (<= 0 when all hold).
+  double worst_stuck_excess() const;
+  // Give up on an event after this many steps (a runaway means dt or the scene is wrong).
+  std::int64_t max_steps_per_event = 200'000'000;
+
+ private:
+  double anchor() const { return st_.s + (pad_ ? st_.x : 0.0); }
+  void rebuild_tree();
+  void release(int j);
+  void cover(int j);
+  void add_to_ranges(int k);
+  void shrink_ranges();
+  void uncover_all();
+  bool query_tree_failures();
+  bool pad_phase();  // true if a block failed while the pad swung
+  void check_finite() const;
+
+  const ChainForces& forces_;
+  Stepper& stepper_;
+  double dt_;
+  ChainState st_;
+  bool pad_;
+  int n_;
+
+  ForceTree tree_;
+  std::vector<Range> ranges_;
+  std::vector<unsigned char> covered_, need_;
+  std::vector<double> wd_old_;
+  std::vector<int> released_now_;
+
+  // Per-event bookkeeping.
+  std::vector<unsigned char> slipped_;
+  std::vector<int> slipped_list_;
+  std::vector<double> w_before_;
+  double max_speed_ = 0, last_stick_time_ = 0;
+  int sliding_ = 0;
+
+  EngineCounters counters_;
+};
+
+}  // namespace bkq

@@ -1,0 +1,47 @@
+// integrator.scheme keyword -> stepper type, and the time-step stability check.
+#include <cstdio>
+
+#include "integrate/rk2.hpp"
+#include "integrate/rk4.hpp"
+#include "integrate/stepper.hpp"
+#include "integrate/verlet.hpp"
+#include "io/error.hpp"
+
+namespace bkq {
+
+void ExplicitStepper::resize(int n) {
+  for (auto* v : {&ws_, &wds_, &a_, &acc_w_, &acc_v_}) v->assign(n, 0.0);
+}
+
+const std::vector<std::string>& stepper_keywords() {
+  static const std::vector<std::string> k{"rk2", "rk4", "verlet"};
+  return k;
+}
+
+std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n) {
+  if (scheme == "rk2") return std::make_unique<Rk2>(n);
+  if (scheme == "rk4") return std::make_unique<Rk4>(n);
+  if (scheme == "verlet") return std::make_unique<Verlet>(n);
+  std::string valid;
+  for (const auto& k : stepper_keywords()) valid += (valid.empty() ? "" : "|") + k;
+  throw Error("integrator.scheme: '" + scheme + "' is not available; expected one of " + valid);
+}
+
+double stability_limit(const Stepper& stepper, const ModelParams& p) {
+  return stepper.stability_constant() / p.max_angular_frequency();
+}
+
+void check_time_step(const Stepper& stepper, const ModelParams& p, double dt) {
+  const double limit = stability_limit(stepper, p);
+  if (dt > limit) {
+    char msg[400];
+    std::snprintf(msg, sizeof msg,
+                  "integrator.dt: %g is above the stability limit %.6g of %s for this scene "
+                  "(omega_max = %.6g, %s accepts omega_max*dt <= %g)",
+                  dt, limit, std::string(stepper.name()).c_str(), p.max_angular_frequency(),
+                  std::string(stepper.name()).c_str(), stepper.stability_constant());
+    throw Error(msg);
+  }
+}
+
+}  // namespace bkq

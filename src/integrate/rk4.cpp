@@ -1,0 +1,78 @@
+// Classical RK4 on (w, w', x, x'); see rk4.hpp. The stage sums of positions and
+// velocities are accumulated in acc_w_/acc_v_ so each stage is one pass over the ranges.
+#include "integrate/rk4.hpp"
+
+namespace bkq {
+
+void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+  const bool pad = forces.params().pad_moves();
+  const double h = dt, h2 = 0.5 * dt;
+  double* w = st.w.data();
+  double* wd = st.wd.data();
+  const double* mob = st.mobile.data();
+  double* ws = ws_.data();
+  double* wds = wds_.data();
+  double* a = a_.data();
+  double* cw = acc_w_.data();
+  double* cv = acc_v_.data();
+
+  // Stage 1 at (w, w').
+  double ax = evaluate(forces, sub.at(st.t), w, wd, mob, st.x, st.xd, st.sum_w, ranges, a);
+  double dsum = 0;
+  for (const Range& r : ranges) {
+    for (int j = r.lo; j < r.hi; ++j) {
+      cw[j] = wd[j];
+      cv[j] = a[j];
+      ws[j] = w[j] + h2 * wd[j];
+      wds[j] = wd[j] + h2 * a[j];
+    }
+    if (pad)
+      for (int j = r.lo; j < r.hi; ++j) dsum += wd[j];
+  }
+  double cx = st.xd, cxd = ax;
+  double xs = st.x + h2 * st.xd, xds = st.xd + h2 * ax, sum_s = st.sum_w + h2 * dsum;
+
+  // Stages 2 and 3 at the midpoint; their weights are 2.
+  for (int stage = 2; stage <= 3; ++stage) {
+    const double c = stage == 2 ? h2 : h;
+    ax = evaluate(forces, sub.at(st.t + h2), ws, wds, mob, xs, xds, sum_s, ranges, a);
+    dsum = 0;
+    for (const Range& r : ranges) {
+      for (int j = r.lo; j < r.hi; ++j) {
+        cw[j] += 2.0 * wds[j];
+        cv[j] += 2.0 * a[j];
+        ws[j] = w[j] + c * wds[j];
+        wds[j] = wd[j] + c * a[j];
+      }
+      if (pad)
+        for (int j = r.lo; j < r.hi; ++j) dsum += ws[j] - w[j];
+    }
+    cx += 2.0 * xds;
+    cxd += 2.0 * ax;
+    xs = st.x + c * xds;
+    xds = st.xd + c * ax;
+    sum_s = st.sum_w + dsum;
+  }
+
+  // Stage 4 at the end of the step.
+  ax = evaluate(forces, sub.at(st.t + h), ws, wds, mob, xs, xds, sum_s, ranges, a);
+  const double h6 = h / 6.0;
+  dsum = 0;
+  for (const Range& r : ranges) {
+    for (int j = r.lo; j < r.hi; ++j) {
+      const double dw = h6 * (cw[j] + wds[j]);
+      w[j] += dw;
+      wd[j] += h6 * (cv[j] + a[j]);
+    }
+    if (pad)
+      for (int j = r.lo; j < r.hi; ++j) dsum += h6 * (cw[j] + wds[j]);
+  }
+  if (pad) {
+    st.x += h6 * (cx + xds);
+    st.xd += h6 * (cxd + ax);
+    st.sum_w += dsum;
+  }
+  st.t += dt;
+}
+
+}  // namespace bkq

@@ -1,0 +1,70 @@
+// The interface every time stepper implements, and the registry that maps the scene
+// keyword (integrator.scheme) to a stepper. A stepper advances the blocks in the given
+// ranges and the pad (when it moves) by one step with the stick flags frozen; what
+// happens at stick and slip transitions is its `stick_rule()`:
+//   Crossing   the driver applies it after the step: a sliding block whose velocity
+//              relative to the substrate changed sign (or reached 0) during the step is
+//              stuck with zero velocity if friction can hold its spring force; otherwise it
+//              keeps sliding (backslip) or, for clst91, stays at zero velocity. A stuck
+//              block breaks loose at the start of the next step once its spring force
+//              exceeds the threshold. The transition is thus resolved to within one step:
+//              across transitions every fixed-step scheme is first order.
+//   Projection the stepper itself projects friction onto its admissible set (theta-method).
+//   Located    the stepper locates each transition on its dense output (adaptive).
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "model/chain.hpp"
+#include "model/substrate.hpp"
+
+namespace bkq {
+
+enum class StickRule { Crossing, Projection, Located };
+
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  virtual std::string_view name() const = 0;
+  // Global order of accuracy in smooth phases (no transition inside the step).
+  virtual int order() const = 0;
+  // Largest omega*dt accepted for an undamped linear mode of angular frequency omega
+  // (HUGE_VAL for unconditionally stable schemes).
+  virtual double stability_constant() const = 0;
+  virtual StickRule stick_rule() const { return StickRule::Crossing; }
+  virtual void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+                    Ranges ranges) = 0;
+};
+
+// Keyword -> stepper; an unknown keyword throws bkq::Error listing the valid ones.
+std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n_blocks);
+const std::vector<std::string>& stepper_keywords();
+
+// Largest stable dt for this stepper on this model: stability_constant / omega_max.
+double stability_limit(const Stepper& stepper, const ModelParams& p);
+// Throws bkq::Error ("integrator.dt: ... above the stability limit ...") when dt is too big.
+void check_time_step(const Stepper& stepper, const ModelParams& p, double dt);
+
+// Shared machinery of the explicit steppers: scratch arrays and the evaluation of all
+// accelerations (blocks in the ranges and the pad) at one stage.
+class ExplicitStepper : public Stepper {
+ protected:
+  explicit ExplicitStepper(int n) { resize(n); }
+  void resize(int n);
+  // Accelerations at a stage; returns the pad's (0 when the pad is held).
+  double evaluate(const ChainForces& forces, const SubstrateState& sub, const double* w, const double* wd,
+                  const double* mobile, double x, double xd, double sum_w, Ranges ranges, double* a) const {
+    const bool pad = forces.params().pad_moves();
+    forces.block_accelerations(w, wd, mobile, sub.s + (pad ? x : 0.0), sub, ranges, a);
+    return pad ? forces.pad_acceleration(x, xd, sum_w, sub.s) : 0.0;
+  }
+  // Scratch: stage positions/velocities, accelerations and RK accumulators (length N,
+  // zero-initialised so entries outside the ranges stay finite).
+  std::vector<double> ws_, wds_, a_, acc_w_, acc_v_;
+};
+
+}  // namespace bkq

@@ -1,0 +1,51 @@
+// Velocity Verlet with a velocity-corrected closing kick; see verlet.hpp.
+#include "integrate/verlet.hpp"
+
+namespace bkq {
+
+void Verlet::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+  const ModelParams& p = forces.params();
+  const bool pad = p.pad_moves();
+  const bool velocity_dependent =
+      p.law != FrictionLaw::None || p.c_u != 0 || (pad && p.c_p != 0);
+  const double h = dt, h2 = 0.5 * dt;
+  double* w = st.w.data();
+  double* wd = st.wd.data();
+  const double* mob = st.mobile.data();
+  double* wh = wds_.data();  // half-step velocity
+  double* wp = acc_v_.data();  // predicted end velocity
+  double* a = a_.data();
+
+  // Kick and drift: w(t+h) = w + h (w' + h/2 a).
+  const double ax0 = evaluate(forces, sub.at(st.t), w, wd, mob, st.x, st.xd, st.sum_w, ranges, a);
+  double dsum = 0;
+  for (const Range& r : ranges) {
+    for (int j = r.lo; j < r.hi; ++j) {
+      wh[j] = wd[j] + h2 * a[j];
+      w[j] += h * wh[j];
+    }
+    if (pad)
+      for (int j = r.lo; j < r.hi; ++j) dsum += h * wh[j];
+  }
+  const double xh = st.xd + h2 * ax0;
+  if (pad) {
+    st.x += h * xh;
+    st.sum_w += dsum;
+  }
+  const SubstrateState end = sub.at(st.t + h);
+
+  // Closing kick.
+  double ax1 = evaluate(forces, end, w, wh, mob, st.x, xh, st.sum_w, ranges, a);
+  double xp = xh + h2 * ax1;
+  if (velocity_dependent) {
+    for (const Range& r : ranges)
+      for (int j = r.lo; j < r.hi; ++j) wp[j] = wh[j] + h2 * a[j];
+    ax1 = evaluate(forces, end, w, wp, mob, st.x, xp, st.sum_w, ranges, a);
+  }
+  for (const Range& r : ranges)
+    for (int j = r.lo; j < r.hi; ++j) wd[j] = wh[j] + h2 * a[j];
+  if (pad) st.xd = xh + h2 * ax1;
+  st.t += dt;
+}
+
+}  // namespace bkq

@@ -1,0 +1,145 @@
+// Forces of the BK–Pad chain (thesis eq. 3.1) in the substrate frame; see chain.hpp.
+#include "model/chain.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bkq {
+
+double ChainState::recompute_sum_w() {
+  double s = 0;
+  for (double v : w) s += v;
+  sum_w = s;
+  return s;
+}
+
+ChainForces::ChainForces(const ModelParams& p) : p_(p), friction_(p), inv_m_(1.0 / p.m_u) {
+  kernel_ = select_kernel(false);
+  kernel_inertial_ = select_kernel(true);
+}
+
+double ChainForces::neighbour_force(const double* w, int j) const {
+  const int n = p_.n;
+  if (n < 2 || p_.k_c == 0) return 0.0;
+  if (p_.boundary == Boundary::Periodic) {
+    const double left = w[j == 0 ? n - 1 : j - 1];
+    const double right = w[j == n - 1 ? 0 : j + 1];
+    return p_.k_c * (left - 2.0 * w[j] + right);
+  }
+  // Free ends: a missing neighbour contributes no spring.
+  double f = 0;
+  if (j > 0) f += w[j - 1] - w[j];
+  if (j < n - 1) f += w[j + 1] - w[j];
+  return p_.k_c * f;
+}
+
+template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
+double ChainForces::acceleration_at(const double* w, double y, double anchor, const SubstrateState& sub,
+                                    int j) const {
+  const double f = spring_force(w, j, anchor);
+  double acc = f * inv_m_;
+  if constexpr (Law == FrictionLaw::None) {
+  } else if constexpr (Law == FrictionLaw::Clst91) {
+    acc -= friction_.magnitude(std::max(y, 0.0));
+  } else {
+    acc -= std::copysign(friction_.magnitude(std::abs(y)), y != 0.0 ? y : f);
+  }
+  if constexpr (Damper) acc -= p_.c_u * inv_m_ * (y - sub.v);
+  if constexpr (Inertial) acc += sub.a;
+  return acc;
+}
+
+template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
+void ChainForces::kernel(const ChainForces& self, const double* w, const double* wd, const double* mobile,
+                         double anchor, const SubstrateState& sub, int lo, int hi, double* a) {
+  const int n = self.p_.n;
+  // The chain ends (and the periodic wrap) go through the scalar path.
+  if (lo == 0 && hi > 0) {
+    a[0] = mobile[0] * self.acceleration_at<Law, Neighbours, Damper, Inertial>(w, wd[0], anchor, sub, 0);
+    lo = 1;
+  }
+  if (hi == n && hi > lo) {
+    a[n - 1] = mobile[n - 1] *
+               self.acceleration_at<Law, Neighbours, Damper, Inertial>(w, wd[n - 1], anchor, sub, n - 1);
+    hi = n - 1;
+  }
+  const double kc = self.p_.k_c, kp = self.p_.k_p, inv_m = self.inv_m_;
+  const double k0 = self.friction_.kinetic0, inv_scale = self.friction_.inv_scale;
+  const double damp = self.p_.c_u * inv_m, v = sub.v, a_s = sub.a;
+  // Interior blocks: branch-free so the compiler vectorises it.
+  for (int j = lo; j < hi; ++j) {
+    double f = kp * (anchor - w[j]);
+    if constexpr (Neighbours) f += kc * (w[j - 1] - 2.0 * w[j] + w[j + 1]);
+    const double y = wd[j];
+    double acc = f * inv_m;
+    if constexpr (Law == FrictionLaw::None) {
+    } else if constexpr (Law == FrictionLaw::Clst91) {
+      acc -= k0 / (1.0 + std::max(y, 0.0) * inv_scale);
+    } else {
+      acc -= std::copysign(k0 / (1.0 + std::abs(y) * inv_scale), y != 0.0 ? y : f);
+    }
+    if constexpr (Damper) acc -= damp * (y - v);
+    if constexpr (Inertial) acc += a_s;
+    a[j] = mobile[j] * acc;
+  }
+}
+
+ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
+  const bool nb = p_.has_neighbours();
+  const bool damper = p_.c_u != 0;
+  // Expand the runtime switches into the instantiation that computes only what is on.
+  auto pick = [&]<FrictionLaw L>() -> Kernel {
+    if (inertial) {
+      if (nb) return damper ? &kernel<L, true, true, true> : &kernel<L, true, false, true>;
+      return damper ? &kernel<L, false, true, true> : &kernel<L, false, false, true>;
+    }
+    if (nb) return damper ? &kernel<L, true, true, false> : &kernel<L, true, false, false>;
+    return damper ? &kernel<L, false, true, false> : &kernel<L, false, false, false>;
+  };
+  switch (p_.law) {
+    case FrictionLaw::Thesis: return pick.template operator()<FrictionLaw::Thesis>();
+    case FrictionLaw::Clst91: return pick.template operator()<FrictionLaw::Clst91>();
+    case FrictionLaw::Cl89: return pick.template operator()<FrictionLaw::Cl89>();
+    case FrictionLaw::None: return pick.template operator()<FrictionLaw::None>();
+  }
+  return nullptr;
+}
+
+void ChainForces::block_accelerations(const double* w, const double* wd, const double* mobile, double anchor,
+                                      const SubstrateState& sub, Ranges ranges, double* a) const {
+  const Kernel k = sub.a != 0.0 ? kernel_inertial_ : kernel_;
+  for (const Range& r : ranges) k(*this, w, wd, mobile, anchor, sub, r.lo, r.hi, a);
+}
+
+double ChainForces::spring_energy(const ChainState& st) const {
+  const int n = p_.n;
+  const double anchor = st.s + (p_.pad_moves() ? st.x : 0.0);
+  double e_c = 0, e_p = 0;
+  for (int j = 0; j < n; ++j) {
+    const double d = st.w[j] - anchor;
+    e_p += d * d;
+  }
+  if (p_.has_neighbours()) {
+    for (int j = 0; j + 1 < n; ++j) {
+      const double d = st.w[j + 1] - st.w[j];
+      e_c += d * d;
+    }
+    if (p_.boundary == Boundary::Periodic && n > 2) {
+      const double d = st.w[0] - st.w[n - 1];
+      e_c += d * d;
+    }
+  }
+  double e = 0.5 * p_.k_c * e_c + 0.5 * p_.k_p * e_p;
+  if (p_.pad_moves()) e += 0.5 * p_.k_p0 * st.x * st.x;
+  return e;
+}
+
+double ChainForces::kinetic_energy(const ChainState& st, double v) const {
+  double e = 0;
+  for (double y : st.wd) e += (y - v) * (y - v);
+  e *= 0.5 * p_.m_u;
+  if (p_.pad_moves()) e += 0.5 * p_.m_x * st.xd * st.xd;
+  return e;
+}
+
+}  // namespace bkq

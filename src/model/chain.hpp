@@ -1,0 +1,109 @@
+// The BK–Pad equations of motion (thesis eq. 3.1), written in the frame of the substrate:
+// w_j = u_j + s, where s is the substrate displacement. Then the friction argument
+// v + u'_j is simply w'_j, a stuck block has w'_j = 0 exactly, and loading the chain is
+// a change of s alone. The pulling springs pull towards the "anchor" s + x (pad at x).
+//
+//   m_u w''_j = k_c (w_{j-1} - 2 w_j + w_{j+1}) - k_p (w_j - s - x) - m_u phi(w'_j)
+//               [- c_u (w'_j - v)  1DOF damper]  [+ m_u a_s  substrate acceleration]
+//   m_x x''   = -c_p x' + k_p (sum_j w_j - N s - N x) - k_p0 x
+//
+// Only the terms a scene switches on are compiled into the kernel that runs (templates
+// on the friction law, neighbour springs, damper and substrate acceleration).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "model/friction.hpp"
+#include "model/parameters.hpp"
+
+namespace bkq {
+
+// A half-open range [lo, hi) of block indices that a stepper advances.
+struct Range {
+  int lo = 0, hi = 0;
+};
+using Ranges = std::span<const Range>;
+
+// Everything that evolves. Stick flags live in `mobile` (1 = sliding, 0 = stuck) as
+// doubles so the kernels can multiply by them without branching.
+struct ChainState {
+  std::vector<double> w, wd;  // block position and velocity in the substrate frame
+  std::vector<double> mobile;
+  double x = 0, xd = 0;  // pad position and velocity (lab frame)
+  double s = 0;          // substrate displacement
+  double t = 0;          // time
+  double sum_w = 0;      // sum of w over all blocks (kept up to date when the pad moves)
+
+  void resize(int n) {
+    w.assign(n, 0.0);
+    wd.assign(n, 0.0);
+    mobile.assign(n, 0.0);
+  }
+  int n() const { return static_cast<int>(w.size()); }
+  double recompute_sum_w();
+};
+
+// What the substrate does at one instant (frozen in the event-driven relaxation).
+struct SubstrateState {
+  double s = 0;  // displacement
+  double v = 0;  // speed
+  double a = 0;  // acceleration (non-zero during a ramp)
+};
+
+class ChainForces {
+ public:
+  explicit ChainForces(const ModelParams& p);
+
+  const ModelParams& params() const { return p_; }
+  const Friction& friction() const { return friction_; }
+  int n() const { return p_.n; }
+
+  // Spring force on block j (neighbours and pulling spring), the force friction must hold.
+  double spring_force(const double* w, int j, double anchor) const {
+    return neighbour_force(w, j) - p_.k_p * (w[j] - anchor);
+  }
+  // k_c (w_{j-1} - 2 w_j + w_{j+1}) with the scene's boundary (free ends: no spring).
+  double neighbour_force(const double* w, int j) const;
+  // The part of the spring force that does not depend on the anchor:
+  // g_j = neighbour_force - k_p w_j, so that f_j = g_j + k_p anchor.
+  double local_force(const double* w, int j) const { return neighbour_force(w, j) - p_.k_p * w[j]; }
+
+  // Block accelerations a[j] for every j in `ranges`; stuck blocks get exactly 0.
+  void block_accelerations(const double* w, const double* wd, const double* mobile, double anchor,
+                           const SubstrateState& sub, Ranges ranges, double* a) const;
+
+  // Pad acceleration given the sum of w over all blocks.
+  double pad_acceleration(double x, double xd, double sum_w, double s) const {
+    return (-p_.c_p * xd + p_.k_p * (sum_w - p_.n * s - p_.n * x) - p_.k_p0 * x) / p_.m_x;
+  }
+  // Pad position at rest with every block stuck (quasi-static balance of its springs).
+  double pad_equilibrium(double sum_w, double s) const {
+    return p_.k_p * (sum_w - p_.n * s) / (p_.k_p0 + p_.n * p_.k_p);
+  }
+
+  // Energy stored in the springs (neighbour, pulling, caliper) and kinetic energy in the
+  // lab frame (u' = w' - v); used by tests and the energy balance.
+  double spring_energy(const ChainState& st) const;
+  double kinetic_energy(const ChainState& st, double v) const;
+
+ private:
+  using Kernel = void (*)(const ChainForces&, const double*, const double*, const double*, double,
+                          const SubstrateState&, int, int, double*);
+  template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
+  static void kernel(const ChainForces& self, const double* w, const double* wd, const double* mobile,
+                     double anchor, const SubstrateState& sub, int lo, int hi, double* a);
+  template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
+  double acceleration_at(const double* w, double wd, double anchor, const SubstrateState& sub,
+                         int j) const;
+  Kernel select_kernel(bool inertial) const;
+
+  ModelParams p_;
+  Friction friction_;
+  double inv_m_ = 1;
+  Kernel kernel_ = nullptr;
+  Kernel kernel_inertial_ = nullptr;
+};
+
+}  // namespace bkq

@@ -1,0 +1,45 @@
+// The three friction laws phi(y) of SPEC §1, y the velocity of a block relative to the
+// substrate. Sliding friction only: at y = 0 friction is set-valued (whatever holds the
+// block, up to the threshold F0), which the engine enforces through stick flags.
+//   thesis (eq. 3.5):  F0 (1-s)/(1 + |y|/((1-s) v_c)) sgn y      backslip allowed
+//   clst91 (eq. 2.9):  F0 (1-s)/(1 + y/((1-s) v_c)),  y > 0 only  backslip forbidden
+//   cl89   (eq. 2.3):  F0 sgn y/(1 + |y|/v_c)                    backslip allowed
+//   none:              0 (frictionless; for verification against analytic solutions)
+#pragma once
+
+#include <cmath>
+
+#include "model/parameters.hpp"
+
+namespace bkq {
+
+struct Friction {
+  double kinetic0 = 1;   // limit of |phi| as y -> 0 while sliding
+  double inv_scale = 0;  // 1/(velocity scale of the weakening); 0 = flat law
+  double threshold = 1;  // static threshold on the spring force, F0 m_u
+  bool backslip = true;  // may a block slide against the substrate (y < 0)?
+
+  explicit Friction(const ModelParams& p)
+      : threshold(p.threshold()), backslip(p.law != FrictionLaw::Clst91) {
+    if (p.law == FrictionLaw::None) {
+      kinetic0 = 0;
+      threshold = -1;  // nothing holds a block: it never sticks
+    } else if (p.law == FrictionLaw::Cl89) {
+      kinetic0 = p.F0;
+      inv_scale = std::isfinite(p.v_c) ? 1.0 / p.v_c : 0.0;
+    } else {
+      kinetic0 = p.F0 * (1.0 - p.sigma);
+      inv_scale = std::isfinite(p.v_c) ? 1.0 / ((1.0 - p.sigma) * p.v_c) : 0.0;
+    }
+  }
+
+  // |phi(y)| for a sliding block (per unit mass).
+  double magnitude(double abs_y) const { return kinetic0 / (1.0 + abs_y * inv_scale); }
+
+  // Would a stuck block with spring force f break loose?
+  bool breaks(double f) const { return backslip ? std::abs(f) > threshold : f > threshold; }
+  // Can a block whose velocity has just reached zero stay stuck under spring force f?
+  bool holds(double f) const { return !breaks(f); }
+};
+
+}  // namespace bkq
