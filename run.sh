@@ -22,10 +22,9 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
 
 if (($# == 0)); then
-  # Interim default: until the event-driven engine lands, a short continuously driven
-  # run of the thesis scene. Once it lands, drop this `set --` line so that plain
-  # `bkquake run` runs its built-in default (the Carlson-Langer reference, event-driven,
-  # the same as data/scenes/carlson-langer.ini). --force: ./run.sh twice simply redoes it.
-  set -- data/scenes/thesis.ini --set run.duration=200 --out runs/thesis --force
+  # The default run: bkquake's built-in default scene (the Carlson-Langer reference,
+  # event-driven, the same as data/scenes/carlson-langer.ini). --force so that running
+  # ./run.sh again simply redoes it instead of refusing to overwrite the finished run.
+  set -- --out runs/default --force
 fi
 exec build/bkquake run "$@"
