@@ -213,7 +213,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     double best = kInf;
     bool any = false;
     for (std::int64_t k = h.first_bin(); k < k_hi; ++k) {
-      if (h.count_range(k, k_hi) < opt.min_tail) break;
+      if (h.count_range(k, k_hi) < opt.min_tail || k_hi - k + 1 < opt.min_window_bins) break;
       int populated = 0;
       for (std::int64_t j = k; j <= k_hi && populated < 2; ++j) populated += h.count(j) > 0;
       if (populated < 2) break;
@@ -226,8 +226,9 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       }
     }
     if (!any)
-      f.notes.push_back("fewer than " + std::to_string(opt.min_tail) +
-                        " events above every candidate: window starts at the first bin");
+      f.notes.push_back("no candidate window with >= " + std::to_string(opt.min_tail) +
+                        " events and >= " + std::to_string(opt.min_window_bins) +
+                        " bins: window starts at the first bin");
   }
   if (k_hi < k_lo)
     throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) +
@@ -305,20 +306,28 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       f.notes.push_back("two-power-law fit skipped: fewer than 6 populated bins above mu_min");
   }
 
-  // Large-event excess over the fitted line R = A e^{-b mu}.
+  // Large-event excess over the fitted line R = A e^{-b mu}. Inside a truncated window
+  // the line is normalised to the window's events, so the scan stops at mu_max there.
   if (std::isfinite(f.b_mle)) {
-    for (std::int64_t k = h.last_bin(); k >= k_lo; --k) {
+    const std::int64_t floor_k = f.truncated ? k_hi + 1 : k_lo;
+    auto significant = [&](std::int64_t k) {
       const auto r = h.R(k);
       const double expected = std::exp(f.ln_A - f.b_mle * h.mu_low(k));
-      if (r <= 0 || !(static_cast<double>(r) > expected)) break;
-      // P(X >= r | expected) for Poisson X is the regularised lower incomplete gamma P(r, expected).
-      const double tail = boost::math::gamma_p(static_cast<double>(r), expected);
-      if (!(tail < opt.excess_tail_probability)) break;
+      if (r <= 0 || !(static_cast<double>(r) > expected)) return false;
+      // P(X >= r) for Poisson X of mean `expected` is the regularised lower incomplete
+      // gamma function P(r, expected).
+      return boost::math::gamma_p(static_cast<double>(r), expected) < opt.excess_tail_probability;
+    };
+    // Skip isolated non-significant bins at the very top (a single largest event), then
+    // take the contiguous significant run downwards.
+    std::int64_t k = h.last_bin();
+    while (k >= floor_k && !significant(k)) --k;
+    for (; k >= floor_k && significant(k); --k) {
       f.excess_found = true;
       f.excess_mu = h.mu_low(k);
-      f.excess_observed = r;
-      f.excess_expected = expected;
-      f.excess_count = static_cast<double>(r) - expected;
+      f.excess_observed = h.R(k);
+      f.excess_expected = std::exp(f.ln_A - f.b_mle * h.mu_low(k));
+      f.excess_count = static_cast<double>(f.excess_observed) - f.excess_expected;
     }
   }
   return f;

@@ -21,7 +21,8 @@
 //            formal one from the weighted residuals; cumulative counts are correlated, so
 //            it is optimistic.
 //  * window: when mu_min is not given it is chosen as in Clauset, Shalizi & Newman (2009):
-//            every bin edge with >= min_tail events above it is a candidate, b_mle is
+//            every bin edge with >= min_tail events above it and >= min_window_bins bins
+//            up to mu_max is a candidate, b_mle is
 //            fitted above it, and the candidate with the smallest Kolmogorov-Smirnov
 //            distance between the empirical and fitted (binned, geometric) survival
 //            functions wins. mu_max defaults to the upper edge of the largest populated
@@ -32,11 +33,14 @@
 //            each with its own constant (A at M~, A' at the upper cutoff M*), on the bins
 //            from mu_min to the largest populated bin; the crossover bin edge is scanned
 //            and the split with the smallest weighted (Poisson) residual wins.
-//  * excess of large events: scanning down from the largest populated bin, the bins
-//            whose observed R exceeds the fitted line R = A e^{-b mu} (b = b_mle, A from
-//            the window count) by more than 2 sigma in the Poisson sense (one-sided tail
-//            probability < 2.275 %); excess_mu is the lowest edge of that contiguous run
-//            and excess_count = R_obs - R_fit there.
+//  * excess of large events: a bin edge mu is in excess when the observed R(mu) exceeds
+//            the fitted line R = A e^{-b mu} (b = b_mle, A from the window count) by more
+//            than 2 sigma in the Poisson sense (one-sided tail probability < 2.275 %).
+//            Scanning down from the largest populated bin (skipping non-significant
+//            isolated top bins), excess_mu is the lowest edge of the contiguous run of
+//            edges in excess and excess_count = R_obs - R_fit there. With an explicit
+//            mu_max the scan stops at mu_max (inside the window the line is normalised to
+//            the window's own events).
 #pragma once
 
 #include <cstdint>
@@ -51,6 +55,9 @@ namespace bkq {
 
 struct GrFitOptions {
   std::int64_t min_tail = 50;  // CSN: fewest events above a candidate mu_min
+  // CSN: fewest bins in a candidate window (10 bins of 0.2 = a factor e^2 in moment). Keeps
+  // the scan from settling on the bump of large delocalised events at the top.
+  std::int64_t min_window_bins = 10;
   double excess_tail_probability = 0.02275;  // one-sided 2 sigma
 };
 
