@@ -18,11 +18,15 @@ const char* kUsage =
 Usage:
   bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume] [--force]
   bkquake run --dump-defaults      print a commented scene with every key at its default
+  bkquake fit CATALOG.csv [--mu-min A] [--mu-max B] [--bin-width W] [--blocks N] [--json OUT]
+  bkquake merge RUN_DIR... --out DIR
   bkquake --help | --version
 
 Commands:
   run     simulate a scene (event-driven or continuously driven) and write
           scene.ini, catalog.csv, histogram.csv, summary.json (+ timeseries.csv)
+  fit     fit the Gutenberg-Richter law R = A exp(-b mu) to an event catalogue
+  merge   merge the histograms of runs of the same scene and fit the result
 
 Examples:
   bkquake run                                    the Carlson-Langer reference, event-driven
@@ -53,6 +57,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (command == "run") return bkq::cmd_run(args);
+    if (command == "fit") return bkq::cmd_fit(args);
+    if (command == "merge") return bkq::cmd_merge(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {
     std::cerr << "bkquake: error: " << e.what() << "\n";
