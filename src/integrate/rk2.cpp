@@ -6,11 +6,11 @@ namespace bkq {
 void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
   const bool pad = forces.params().pad_moves();
   const double h = dt, h2 = 0.5 * dt;
-  double* w = st.w.data();
-  double* wd = st.wd.data();
-  double* ws = ws_.data();
-  double* wds = wds_.data();
-  double* a = a_.data();
+  double* __restrict w = st.w.data();
+  double* __restrict wd = st.wd.data();
+  double* __restrict ws = ws_.data();
+  double* __restrict wds = wds_.data();
+  double* __restrict a = a_.data();
 
   const double ax1 =
       evaluate(forces, sub.at(st.t), w, wd, st.mobile.data(), st.x, st.xd, st.sum_w, ranges, a);

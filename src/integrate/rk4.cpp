@@ -7,14 +7,14 @@ namespace bkq {
 void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
   const bool pad = forces.params().pad_moves();
   const double h = dt, h2 = 0.5 * dt;
-  double* w = st.w.data();
-  double* wd = st.wd.data();
-  const double* mob = st.mobile.data();
-  double* ws = ws_.data();
-  double* wds = wds_.data();
-  double* a = a_.data();
-  double* cw = acc_w_.data();
-  double* cv = acc_v_.data();
+  double* __restrict w = st.w.data();
+  double* __restrict wd = st.wd.data();
+  const double* __restrict mob = st.mobile.data();
+  double* __restrict ws = ws_.data();
+  double* __restrict wds = wds_.data();
+  double* __restrict a = a_.data();
+  double* __restrict cw = acc_w_.data();
+  double* __restrict cv = acc_v_.data();
 
   // Stage 1 at (w, w').
   double ax = evaluate(forces, sub.at(st.t), w, wd, mob, st.x, st.xd, st.sum_w, ranges, a);

@@ -9,12 +9,12 @@ void Verlet::step(const ChainForces& forces, const Substrate& sub, ChainState& s
   const bool velocity_dependent =
       p.law != FrictionLaw::None || p.c_u != 0 || (pad && p.c_p != 0);
   const double h = dt, h2 = 0.5 * dt;
-  double* w = st.w.data();
-  double* wd = st.wd.data();
-  const double* mob = st.mobile.data();
-  double* wh = wds_.data();  // half-step velocity
-  double* wp = acc_v_.data();  // predicted end velocity
-  double* a = a_.data();
+  double* __restrict w = st.w.data();
+  double* __restrict wd = st.wd.data();
+  const double* __restrict mob = st.mobile.data();
+  double* __restrict wh = wds_.data();  // half-step velocity
+  double* __restrict wp = acc_v_.data();  // predicted end velocity
+  double* __restrict a = a_.data();
 
   // Kick and drift: w(t+h) = w + h (w' + h/2 a).
   const double ax0 = evaluate(forces, sub.at(st.t), w, wd, mob, st.x, st.xd, st.sum_w, ranges, a);

@@ -114,9 +114,10 @@ std::vector<ParamSpec> make_table() {
            "coupling scaling s_c: k_c = s_c k_p0 N (thesis only)"),
 
       // --- friction: the law phi(y) of SPEC §1 ---
-      choice("friction.law", "clst91", {"thesis", "clst91", "cl89"},
+      choice("friction.law", "clst91", {"thesis", "clst91", "cl89", "none"},
              "thesis (eq. 3.5, backslip allowed), clst91 (Carlson et al. 1991 eq. 2.9, no "
-             "backslip), cl89 (Carlson-Langer 1989 eq. 2.3)"),
+             "backslip), cl89 (Carlson-Langer 1989 eq. 2.3), none (frictionless, continuous "
+             "verification runs only)"),
       real("friction.F0", "1", '(', 0, kInf, ')', "force/mass",
            "static threshold per unit block mass F0 (thesis only)"),
       real("friction.sigma", "0.01", '[', 0, 1, ')', "",

@@ -50,8 +50,9 @@ double ChainForces::acceleration_at(const double* w, double y, double anchor, co
 }
 
 template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
-void ChainForces::kernel(const ChainForces& self, const double* w, const double* wd, const double* mobile,
-                         double anchor, const SubstrateState& sub, int lo, int hi, double* a) {
+void ChainForces::kernel(const ChainForces& self, const double* __restrict w, const double* __restrict wd,
+                         const double* __restrict mobile, double anchor, const SubstrateState& sub, int lo, int hi,
+                         double* __restrict a) {
   const int n = self.p_.n;
   // The chain ends (and the periodic wrap) go through the scalar path.
   if (lo == 0 && hi > 0) {

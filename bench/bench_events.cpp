@@ -1,0 +1,46 @@
+// Event-driven engine throughput on the carlson-langer scene (l = 10, alpha = 2.5,
+// sigma = 0.01, clst91, RK4 at dt = 0.01) at N = 100, 1000 and 10^4: events per second,
+// block-steps and sliding-block-steps per second, and nanoseconds per sliding-block-step
+// (the engine's work should scale with the event, not the chain).
+#include <benchmark/benchmark.h>
+
+#include "engine/event_engine.hpp"
+#include "engine/initial_state.hpp"
+#include "integrate/stepper.hpp"
+#include "io/scene.hpp"
+#include "model/chain.hpp"
+
+namespace {
+
+void BM_Events(benchmark::State& state, const char* kind) {
+  const int n = static_cast<int>(state.range(0));
+  bkq::Scene scene;
+  scene.set("model.blocks", std::to_string(n));
+  scene.set("model.kind", kind);
+  scene.validate();
+  const bkq::ModelParams p = bkq::model_from_scene(scene);
+  const bkq::ChainForces forces(p);
+  auto stepper = bkq::make_stepper("rk4", n);
+  bkq::EventEngine engine(forces, *stepper, 0.01, bkq::initial_state(forces, 7, 0.01, true));
+  // Past the transient: ten loading cycles' worth of events per block.
+  for (int i = 0; i < 20 * n; ++i) engine.next_event();
+  const bkq::EngineCounters c0 = engine.counters();
+  for (auto _ : state) benchmark::DoNotOptimize(engine.next_event());
+  const bkq::EngineCounters& c = engine.counters();
+  const double events = static_cast<double>(c.events - c0.events);
+  const double sliding = static_cast<double>(c.sliding_block_steps - c0.sliding_block_steps);
+  state.counters["events"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
+  state.counters["block_steps"] =
+      benchmark::Counter(static_cast<double>(c.block_steps - c0.block_steps), benchmark::Counter::kIsRate);
+  state.counters["sliding_block_steps"] = benchmark::Counter(sliding, benchmark::Counter::kIsRate);
+  state.counters["ns_per_sliding_block_step"] =
+      benchmark::Counter(sliding * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["sliding_share"] = sliding / static_cast<double>(c.block_steps - c0.block_steps);
+}
+
+BENCHMARK_CAPTURE(BM_Events, bk, "bk")->Arg(100)->Arg(1000)->Arg(10000)->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_Events, bkp, "bkp")->Arg(100)->Arg(1000)->MinTime(1.0);
+
+}  // namespace
+
+BENCHMARK_MAIN();
