@@ -146,7 +146,10 @@ std::string gr_fit_table(const GrFit& f) {
        (f.truncated ? ", truncated at mu_max" : "") + "\n";
   t += "bin width         " + fixed(f.bin_width, 3) + "\n";
   t += "b  binned MLE     " + pm(f.b_mle, f.b_mle_err) + "   (Tinti & Mulargia 1987; Shi & Bolt error)\n";
-  t += "b  unbinned MLE   " + pm(f.b_aki, f.b_aki_err) + "   (Aki 1965)\n";
+  if (std::isnan(f.b_aki))
+    t += "b  unbinned MLE   n/a (needs the magnitudes themselves, not a histogram)\n";
+  else
+    t += "b  unbinned MLE   " + pm(f.b_aki, f.b_aki_err) + "   (Aki 1965)\n";
   t += "b  least squares  " + pm(f.b_lsq, f.b_lsq_err) + "   (slope of ln R, weights R)\n";
   t += "KS distance       " + fixed(f.ks_distance) + "\n";
   if (f.two_law_ok)
@@ -158,7 +161,7 @@ std::string gr_fit_table(const GrFit& f) {
   if (f.excess_found)
     t += "large-event excess above mu = " + fixed(f.excess_mu, 3) + ": " +
          std::to_string(f.excess_observed) + " observed, " + fixed(f.excess_expected, 1) +
-         " expected, excess " + fixed(f.excess_count, 1) + "\n";
+         " expected; up to " + fixed(f.excess_count, 1) + " events beyond the line\n";
   else
     t += "large-event excess none (> 2 sigma Poisson)\n";
   for (const auto& n : f.notes) t += "note: " + n + "\n";

@@ -327,7 +327,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       f.excess_mu = h.mu_low(k);
       f.excess_observed = h.R(k);
       f.excess_expected = std::exp(f.ln_A - f.b_mle * h.mu_low(k));
-      f.excess_count = static_cast<double>(f.excess_observed) - f.excess_expected;
+      f.excess_count = std::max(f.excess_count,
+                                static_cast<double>(f.excess_observed) - f.excess_expected);
     }
   }
   return f;

@@ -38,7 +38,10 @@
 //            than 2 sigma in the Poisson sense (one-sided tail probability < 2.275 %).
 //            Scanning down from the largest populated bin (skipping non-significant
 //            isolated top bins), excess_mu is the lowest edge of the contiguous run of
-//            edges in excess and excess_count = R_obs - R_fit there. With an explicit
+//            edges in excess; excess_observed/expected are R_obs and R_fit there and
+//            excess_count is the largest R_obs - R_fit over the run (when the fit window
+//            includes the excess, b is pulled down and the difference at the onset
+//            understates the number of excess events). With an explicit
 //            mu_max the scan stops at mu_max (inside the window the line is normalised to
 //            the window's own events).
 #pragma once
@@ -98,7 +101,7 @@ struct GrFit {
   double excess_mu = 0;
   std::int64_t excess_observed = 0;
   double excess_expected = 0;
-  double excess_count = 0;       // observed - expected at excess_mu
+  double excess_count = 0;       // largest observed - expected over the excess run
   std::vector<std::string> notes;
 };
 

@@ -1,0 +1,95 @@
+"""Small loader for bkquake run folders.
+
+A run folder holds scene.ini (the effective scene), catalog.csv (one row per event),
+histogram.csv (mu_low,mu_high,count,D,R,D_rate,R_rate) and summary.json. These helpers
+read them into plain Python/numpy structures; column names come from the header lines,
+so the loaders follow the schema rather than a fixed column order.
+
+Needs numpy: use Debian's /usr/bin/python3 (the python3 first on PATH may lack it).
+"""
+
+import configparser
+import json
+import os
+
+import numpy as np
+
+
+def _path(run_dir, name):
+    return os.path.join(run_dir, name)
+
+
+def read_csv_columns(path):
+    """Reads a headed numeric CSV into a dict name -> numpy array (float64)."""
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+    if not header or header == [""]:
+        raise ValueError(f"{path}: empty file, expected a header line")
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    if data.size == 0:
+        return {name: np.empty(0) for name in header}
+    if data.shape[1] != len(header):
+        raise ValueError(f"{path}: {data.shape[1]} columns, header names {len(header)}")
+    return {name: data[:, i] for i, name in enumerate(header)}
+
+
+def load_histogram(run_dir):
+    """histogram.csv as a dict of arrays (mu_low, mu_high, count, D, R, D_rate, R_rate)."""
+    return read_csv_columns(_path(run_dir, "histogram.csv"))
+
+
+def load_catalog(run_dir):
+    """catalog.csv as a dict of arrays, one entry per column of the header."""
+    return read_csv_columns(_path(run_dir, "catalog.csv"))
+
+
+def load_summary(run_dir):
+    """summary.json as a dict ({} when the file is missing)."""
+    p = _path(run_dir, "summary.json")
+    if not os.path.exists(p):
+        return {}
+    with open(p) as f:
+        return json.load(f)
+
+
+def load_scene(run_dir):
+    """scene.ini as {section: {key: value-string}} ({} when the file is missing)."""
+    p = _path(run_dir, "scene.ini")
+    if not os.path.exists(p):
+        return {}
+    cp = configparser.ConfigParser(inline_comment_prefixes=(";", "#"), interpolation=None)
+    with open(p) as f:
+        text = f.read()
+    # Keys written before the first [section] (provenance) go to a pseudo-section.
+    cp.read_string("[_top]\n" + text)
+    return {s: dict(cp[s]) for s in cp.sections()}
+
+
+def fit_window(summary):
+    """(b, mu_min, mu_max) of the Gutenberg-Richter fit recorded in summary.json, or None.
+
+    Accepts the run summary ("b_mle" + "fit_window": {mu_min, mu_max}) and the summary of
+    `bkquake merge` ("b_mle", "mu_min", "mu_max", "fit": {...}).
+    """
+    b = summary.get("b_mle")
+    if b is None and isinstance(summary.get("fit"), dict):
+        b = summary["fit"].get("b_mle")
+    window = summary.get("fit_window") or summary.get("fit") or summary
+    lo, hi = window.get("mu_min"), window.get("mu_max")
+    if b is None or lo is None or hi is None:
+        return None
+    return float(b), float(lo), float(hi)
+
+
+def label(run_dir, scene=None):
+    """A legend label: alpha and N from scene.ini when present, else the folder name."""
+    scene = load_scene(run_dir) if scene is None else scene
+    parts = []
+    alpha = scene.get("friction", {}).get("alpha")
+    blocks = scene.get("model", {}).get("blocks")
+    if alpha is not None:
+        parts.append(f"alpha = {alpha}")
+    if blocks is not None:
+        parts.append(f"N = {blocks}")
+    name = os.path.basename(os.path.normpath(run_dir))
+    return f"{name}: " + ", ".join(parts) if parts else name
