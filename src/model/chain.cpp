@@ -18,21 +18,6 @@ ChainForces::ChainForces(const ModelParams& p) : p_(p), friction_(p), inv_m_(1.0
   kernel_inertial_ = select_kernel(true);
 }
 
-double ChainForces::neighbour_force(const double* w, int j) const {
-  const int n = p_.n;
-  if (n < 2 || p_.k_c == 0) return 0.0;
-  if (p_.boundary == Boundary::Periodic) {
-    const double left = w[j == 0 ? n - 1 : j - 1];
-    const double right = w[j == n - 1 ? 0 : j + 1];
-    return p_.k_c * (left - 2.0 * w[j] + right);
-  }
-  // Free ends: a missing neighbour contributes no spring.
-  double f = 0;
-  if (j > 0) f += w[j - 1] - w[j];
-  if (j < n - 1) f += w[j + 1] - w[j];
-  return p_.k_c * f;
-}
-
 template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
 double ChainForces::acceleration_at(const double* w, double y, double anchor, const SubstrateState& sub,
                                     int j) const {

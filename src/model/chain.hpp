@@ -65,7 +65,20 @@ class ChainForces {
     return neighbour_force(w, j) - p_.k_p * (w[j] - anchor);
   }
   // k_c (w_{j-1} - 2 w_j + w_{j+1}) with the scene's boundary (free ends: no spring).
-  double neighbour_force(const double* w, int j) const;
+  double neighbour_force(const double* w, int j) const {
+    const int n = p_.n;
+    if (n < 2 || p_.k_c == 0) return 0.0;
+    if (p_.boundary == Boundary::Periodic) {
+      const double left = w[j == 0 ? n - 1 : j - 1];
+      const double right = w[j == n - 1 ? 0 : j + 1];
+      return p_.k_c * (left - 2.0 * w[j] + right);
+    }
+    // Free ends: a missing neighbour contributes no spring.
+    double f = 0;
+    if (j > 0) f += w[j - 1] - w[j];
+    if (j < n - 1) f += w[j + 1] - w[j];
+    return p_.k_c * f;
+  }
   // The part of the spring force that does not depend on the anchor:
   // g_j = neighbour_force - k_p w_j, so that f_j = g_j + k_p anchor.
   double local_force(const double* w, int j) const { return neighbour_force(w, j) - p_.k_p * w[j]; }
