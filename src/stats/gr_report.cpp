@@ -110,6 +110,7 @@ JsonObject gr_fit_json(const GrFit& f) {
       .add("mu_min", f.mu_min)
       .add("mu_max", f.mu_max)
       .add("window_auto", f.window_auto)
+      .add("mu_max_auto", f.mu_max_auto)
       .add("truncated", f.truncated)
       .add("n_in_window", f.n_in_window)
       .add("b_mle", f.b_mle)
@@ -142,7 +143,8 @@ std::string gr_fit_table(const GrFit& f) {
   t += "events            " + std::to_string(f.n_total) + "\n";
   t += "window            [" + fixed(f.mu_min, 3) + ", " + fixed(f.mu_max, 3) + ")  " +
        std::to_string(f.n_in_window) + " events, " +
-       (f.window_auto ? "mu_min by KS scan (Clauset et al. 2009)" : "mu_min given") +
+       (f.window_auto ? (f.mu_max_auto ? "mu_min and mu_max by KS scan" : "mu_min by KS scan (Clauset et al. 2009)")
+                      : (f.mu_max_auto ? "mu_min given, mu_max by KS scan" : "mu_min given")) +
        (f.truncated ? ", truncated at mu_max" : "") + "\n";
   t += "bin width         " + fixed(f.bin_width, 3) + "\n";
   t += "b  binned MLE     " + pm(f.b_mle, f.b_mle_err) + "   (Tinti & Mulargia 1987; Shi & Bolt error)\n";

@@ -182,6 +182,33 @@ double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::i
   return d;
 }
 
+double tail_excess_p(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi, double b,
+                     bool truncated) {
+  const double w = h.bin_width();
+  const std::int64_t n = h.count_range(k_lo, k_hi);
+  if (n == 0 || !std::isfinite(b)) return kNaN;
+  const double J = static_cast<double>(k_hi - k_lo + 1);
+  double p_min = 1;
+  std::int64_t above = 0;  // events in bins k..k_hi
+  for (std::int64_t k = k_hi; k > k_lo; --k) {
+    above += h.count(k);
+    if (above == 0) continue;
+    const double i = static_cast<double>(k - k_lo);
+    double s_fit;
+    if (!truncated) {
+      s_fit = std::exp(-b * w * i);
+    } else if (std::fabs(b * w * J) < 1e-12) {
+      s_fit = (J - i) / J;
+    } else {
+      s_fit = (std::exp(-b * w * i) - std::exp(-b * w * J)) / -std::expm1(-b * w * J);
+    }
+    const double expected = static_cast<double>(n) * s_fit;
+    if (static_cast<double>(above) <= expected) continue;
+    p_min = std::min(p_min, expected > 0 ? boost::math::gamma_p(static_cast<double>(above), expected) : 0.0);
+  }
+  return p_min;
+}
+
 GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
                     std::optional<double> mu_max, const GrFitOptions& opt) {
   GrFit f;
@@ -192,44 +219,93 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   const double w = h.bin_width();
   constexpr double eps = 1e-9;
 
-  std::int64_t k_hi = h.last_bin();
+  // Explicit limits, snapped inward to whole bins.
+  std::optional<std::int64_t> k_hi_given, k_lo_given;
   if (mu_max) {
-    k_hi = static_cast<std::int64_t>(std::floor(*mu_max / w + eps)) - 1;
-    f.truncated = true;
-    if (std::fabs(h.mu_high(k_hi) - *mu_max) > eps * std::max(1.0, std::fabs(*mu_max)))
+    k_hi_given = static_cast<std::int64_t>(std::floor(*mu_max / w + eps)) - 1;
+    if (std::fabs(h.mu_high(*k_hi_given) - *mu_max) > eps * std::max(1.0, std::fabs(*mu_max)))
       f.notes.push_back("mu_max " + fmt(*mu_max) + " snapped down to the bin edge " +
-                        fmt(h.mu_high(k_hi)));
+                        fmt(h.mu_high(*k_hi_given)));
   }
-  std::int64_t k_lo;
   if (mu_min) {
-    k_lo = static_cast<std::int64_t>(std::ceil(*mu_min / w - eps));
-    if (std::fabs(h.mu_low(k_lo) - *mu_min) > eps * std::max(1.0, std::fabs(*mu_min)))
+    k_lo_given = static_cast<std::int64_t>(std::ceil(*mu_min / w - eps));
+    if (std::fabs(h.mu_low(*k_lo_given) - *mu_min) > eps * std::max(1.0, std::fabs(*mu_min)))
       f.notes.push_back("mu_min " + fmt(*mu_min) + " snapped up to the bin edge " +
-                        fmt(h.mu_low(k_lo)));
-  } else {
-    // Clauset, Shalizi & Newman 2009: minimise the KS distance over candidate mu_min.
-    f.window_auto = true;
-    k_lo = h.first_bin();
-    double best = kInf;
-    bool any = false;
-    for (std::int64_t k = h.first_bin(); k < k_hi; ++k) {
-      if (h.count_range(k, k_hi) < opt.min_tail || k_hi - k + 1 < opt.min_window_bins) break;
-      int populated = 0;
-      for (std::int64_t j = k; j <= k_hi && populated < 2; ++j) populated += h.count(j) > 0;
-      if (populated < 2) break;
-      const BEstimate e = binned_mle(h, k, k_hi, f.truncated);
-      const double d = ks_distance_binned(h, k, k_hi, e.b, f.truncated);
-      if (std::isfinite(d) && d < best) {
-        best = d;
-        k_lo = k;
-        any = true;
+                        fmt(h.mu_low(*k_lo_given)));
+  }
+  // The likelihood is truncated at mu_max when mu_max was given, or when the automatic
+  // window ends below the largest populated bin (events above it are left out).
+  auto truncated_at = [&](std::int64_t top) { return mu_max.has_value() || top < h.last_bin(); };
+
+  std::int64_t k_lo = k_lo_given.value_or(h.first_bin());
+  std::int64_t k_hi = k_hi_given.value_or(h.last_bin());
+  f.window_auto = !mu_min;
+  f.mu_max_auto = !mu_max;
+  if (!mu_min || !mu_max) {
+    // Candidate windows: both ends on populated bins (unless given), >= min_window_bins
+    // bins, >= min_tail events, >= 2 populated bins; b_mle and the KS distance on each.
+    struct Candidate {
+      std::int64_t lo, hi, n;
+      double d;
+      bool tail_ok;
+    };
+    std::vector<Candidate> cands;
+    const std::int64_t lo_first = k_lo_given.value_or(h.first_bin());
+    const std::int64_t lo_last = k_lo_given.value_or(h.last_bin());
+    const std::int64_t hi_first = k_hi_given.value_or(h.first_bin());
+    const std::int64_t hi_last = k_hi_given.value_or(h.last_bin());
+    for (std::int64_t lo = lo_first; lo <= lo_last; ++lo) {
+      if (!k_lo_given && h.count(lo) == 0) continue;
+      for (std::int64_t hi = std::max(hi_first, lo + opt.min_window_bins - 1); hi <= hi_last; ++hi) {
+        if (!k_hi_given && h.count(hi) == 0) continue;
+        const std::int64_t n = h.count_range(lo, hi);
+        if (n < opt.min_tail) continue;
+        int populated = 0;
+        for (std::int64_t j = lo; j <= hi && populated < 2; ++j) populated += h.count(j) > 0;
+        if (populated < 2) continue;
+        const bool tr = truncated_at(hi);
+        const BEstimate e = binned_mle(h, lo, hi, tr);
+        const double d = ks_distance_binned(h, lo, hi, e.b, tr);
+        if (!std::isfinite(d)) continue;
+        const double p = tail_excess_p(h, lo, hi, e.b, tr);
+        const bool tail_ok = p >= opt.window_excess_alpha / static_cast<double>(hi - lo);
+        cands.push_back({lo, hi, n, d, tail_ok});
       }
     }
-    if (!any)
+    if (cands.empty()) {
       f.notes.push_back("no candidate window with >= " + std::to_string(opt.min_tail) +
                         " events and >= " + std::to_string(opt.min_window_bins) +
-                        " bins: window starts at the first bin");
+                        " bins: window spans the populated range");
+    } else if (mu_max) {
+      // Upper end fixed: Clauset, Shalizi & Newman 2009, the smallest KS distance wins.
+      const auto best = std::min_element(cands.begin(), cands.end(),
+                                         [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
+      k_lo = best->lo;
+    } else {
+      // Upper end free: the widest window whose KS distance is within
+      // ks_tolerance / sqrt(n_window) of the best one (ties: more events, then smaller d).
+      // Windows whose upper tail holds a significant excess over their own fit are out,
+      // unless every candidate has one.
+      const bool any_tail_ok =
+          std::any_of(cands.begin(), cands.end(), [](const Candidate& c) { return c.tail_ok; });
+      if (!any_tail_ok)
+        f.notes.push_back("every candidate window shows an excess of large events over its own fit");
+      double d_best = kInf;
+      for (const auto& c : cands)
+        if (c.tail_ok || !any_tail_ok) d_best = std::min(d_best, c.d);
+      const Candidate* pick = nullptr;
+      for (const auto& c : cands) {
+        if (any_tail_ok && !c.tail_ok) continue;
+        if (c.d > d_best + opt.ks_tolerance / std::sqrt(static_cast<double>(c.n))) continue;
+        if (!pick || c.hi - c.lo > pick->hi - pick->lo ||
+            (c.hi - c.lo == pick->hi - pick->lo && (c.n > pick->n || (c.n == pick->n && c.d < pick->d))))
+          pick = &c;
+      }
+      k_lo = pick->lo;
+      k_hi = pick->hi;
+    }
   }
+  f.truncated = truncated_at(k_hi);
   if (k_hi < k_lo)
     throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) +
                 ") is empty");

@@ -20,14 +20,32 @@
 //            window (weights R, the Poisson inverse variance of ln R). Its error is the
 //            formal one from the weighted residuals; cumulative counts are correlated, so
 //            it is optimistic.
-//  * window: when mu_min is not given it is chosen as in Clauset, Shalizi & Newman (2009):
-//            every bin edge with >= min_tail events above it and >= min_window_bins bins
-//            up to mu_max is a candidate, b_mle is
-//            fitted above it, and the candidate with the smallest Kolmogorov-Smirnov
-//            distance between the empirical and fitted (binned, geometric) survival
-//            functions wins. mu_max defaults to the upper edge of the largest populated
-//            bin and the likelihood is then left untruncated (the sample maximum is not
-//            a physical cut-off); an explicit mu_max truncates the likelihood.
+//  * window: candidate windows run between bin edges, hold >= min_tail events, span
+//            >= min_window_bins bins and >= 2 populated bins; a limit that is not given
+//            sits on a populated bin (the window starts at an event and ends at the upper
+//            edge of its largest event). On each, b_mle is fitted and the Kolmogorov-
+//            Smirnov distance d between the empirical and fitted (binned, geometric)
+//            survival functions is taken. The likelihood is truncated at mu_max when
+//            mu_max is given or the window ends below the largest populated bin (events
+//            above are left out); a window up to the largest event is left untruncated
+//            (the sample maximum is not a physical cut-off).
+//            - mu_max given, mu_min free: Clauset, Shalizi & Newman (2009), the mu_min
+//              with the smallest d wins.
+//            - mu_max free (mu_min free or given): both ends are scanned. The smallest d
+//              alone would favour narrow windows low down (many events, nearly straight),
+//              and d is blind to the top of the window, where few events sit. So
+//              (1) a window is out when its own upper tail is in excess of its fit: at
+//              some interior edge the window's events at or above it are more than the
+//              fit predicts at one-sided Poisson probability < window_excess_alpha /
+//              (interior edges) (Bonferroni); this is what keeps the bump of large
+//              delocalised events (SPEC 4) out, since a truncated fit across it has too
+//              many events at the top; (2) among the rest, windows whose d is within
+//              ks_tolerance / sqrt(n_window) of the smallest (a fraction of the typical
+//              KS fluctuation of an exact model, ~0.8 / sqrt(n)) are near-ties, and the
+//              widest (most bins; then most events; then smallest d) wins: the scaling
+//              region as wide as the data allow. When every candidate fails (1), (2) runs
+//              on all of them and a note says so. Cost: O(bins^3), trivial at <= ~100 bins.
+//            window_auto / mu_max_auto record which ends were scanned.
 //  * two power laws (thesis eq. 2.10, Carlson et al. 1991): ln D(mu) is fitted by two
 //            straight lines, slope -b1 below the crossover mu~ = ln M~ and -b2 above it,
 //            each with its own constant (A at M~, A' at the upper cutoff M*), on the bins
@@ -62,6 +80,13 @@ struct GrFitOptions {
   // the scan from settling on the bump of large delocalised events at the top.
   std::int64_t min_window_bins = 10;
   double excess_tail_probability = 0.02275;  // one-sided 2 sigma
+  // Automatic mu_max: a window is a near-tie of the best one when its KS distance is
+  // within ks_tolerance / sqrt(n_window) of the smallest; the widest near-tie wins.
+  double ks_tolerance = 0.5;
+  // Automatic mu_max: a window is rejected when some edge inside it has more events above
+  // it (up to mu_max) than its own fit predicts, at one-sided Poisson probability below
+  // window_excess_alpha / (number of interior edges) (Bonferroni).
+  double window_excess_alpha = 0.05;
 };
 
 struct GrFit {
@@ -71,7 +96,10 @@ struct GrFit {
   double mu_min = 0;
   double mu_max = 0;
   bool window_auto = false;   // mu_min chosen by the KS scan
-  bool truncated = false;     // mu_max was given: truncated likelihoods
+  bool mu_max_auto = false;   // mu_max chosen by the KS scan (not given)
+  // Truncated likelihoods: mu_max was given, or the automatic window ends below the
+  // largest populated bin.
+  bool truncated = false;
   std::int64_t n_in_window = 0;
   // Binned MLE (Tinti & Mulargia 1987) and its error.
   double b_mle = 0;
@@ -122,6 +150,12 @@ BEstimate binned_mle(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
 // fitted geometric one with exponent b.
 double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi,
                           double b, bool truncated);
+
+// Smallest one-sided Poisson probability P(X >= observed) over the interior edges of bins
+// k_lo..k_hi, X of mean n_window times the fitted survival function at the edge and
+// "observed" the window's events at or above the edge; 1 when no edge is in excess.
+double tail_excess_p(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi, double b,
+                     bool truncated);
 
 // Full fit of a histogram. Window limits are snapped inward to whole bins. b_aki is filled
 // from the histogram's sums only when the window covers every event and the sums are exact;

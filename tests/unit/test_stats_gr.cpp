@@ -149,9 +149,11 @@ TEST(GrFit, AutomaticWindowIgnoresTheBumpOfLargeEvents) {
   for (int i = 0; i < 200; ++i) mu.push_back(11.0 + 0.3 * uniform(rng));
   const GrFit f = fit_magnitudes(mu, 0.2, std::nullopt, std::nullopt);
   EXPECT_LT(f.mu_min, 2.0);
-  // The default window runs up to the largest event, so the 1 % bump pulls b_mle down
-  // (to ~0.92 here): that is what --mu-max is for. The crossover and excess see the bump.
-  EXPECT_LT(f.b_mle, 1.0);
+  // mu_max is chosen too: the window stops below the bump (which would pull b_mle down to
+  // ~0.92) and b is recovered. The crossover and excess still see the bump.
+  EXPECT_TRUE(f.mu_max_auto);
+  EXPECT_LE(f.mu_max, 11.0 + 1e-9);
+  EXPECT_NEAR(f.b_mle, 1.0, 3 * f.b_mle_err);
   ASSERT_TRUE(f.two_law_ok);
   EXPECT_NEAR(f.two_law_mu_cross, 11.0, 0.2 + 1e-9);
   ASSERT_TRUE(f.excess_found);

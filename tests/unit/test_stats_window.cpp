@@ -1,0 +1,94 @@
+// Automatic fit window (both ends): a bump of large events above a truncated exponential
+// is left out of the window and b is recovered; on a pure exponential the window spans
+// (almost) the whole sample; a given mu_max still fixes the upper end.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "stats/gutenberg_richter.hpp"
+
+namespace bkq {
+namespace {
+
+double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+// Exponential with slope b truncated to [lo, hi), by inversion.
+double truncated_exponential(std::mt19937_64& rng, double b, double lo, double hi) {
+  const double c = -std::expm1(-b * (hi - lo));
+  return lo - std::log1p(-c * uniform(rng)) / b;
+}
+
+class WindowBump : public ::testing::TestWithParam<std::uint64_t> {};
+
+TEST_P(WindowBump, AutomaticWindowExcludesTheBumpAndRecoversB) {
+  std::mt19937_64 rng(GetParam());
+  std::vector<double> mu;
+  for (int i = 0; i < 20000; ++i) mu.push_back(truncated_exponential(rng, 1.0, 0.0, 6.0));
+  for (int i = 0; i < 300; ++i) mu.push_back(7.0 + uniform(rng));  // bump at mu = 7-8
+  const GrFit f = fit_magnitudes(mu, 0.2, std::nullopt, std::nullopt);
+  EXPECT_TRUE(f.window_auto);
+  EXPECT_TRUE(f.mu_max_auto);
+  EXPECT_TRUE(f.truncated);
+  EXPECT_LE(f.mu_max, 6.2 + 1e-9);
+  EXPECT_GE(f.mu_max, 4.0 - 1e-9);
+  EXPECT_LE(f.mu_min, 0.6 + 1e-9);
+  EXPECT_NEAR(f.b_mle, 1.0, 3 * f.b_mle_err);
+  EXPECT_NEAR(f.b_aki, 1.0, 3 * f.b_aki_err);
+  // The bump lies above the window and is reported as an excess.
+  ASSERT_TRUE(f.excess_found);
+  EXPECT_GE(f.excess_mu, f.mu_max - 1e-9);
+  EXPECT_LE(f.excess_mu, 7.0 + 1e-9);
+  EXPECT_NEAR(f.excess_count, 300, 30);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, WindowBump, ::testing::Values(1u, 2u, 3u, 4u, 5u));
+
+class WindowPure : public ::testing::TestWithParam<std::uint64_t> {};
+
+TEST_P(WindowPure, AutomaticWindowCoversAPureExponential) {
+  std::mt19937_64 rng(GetParam());
+  std::vector<double> mu(20000);
+  for (auto& m : mu) m = -std::log1p(-uniform(rng));  // b = 1 above 0
+  const GrFit f = fit_magnitudes(mu, 0.2, std::nullopt, std::nullopt);
+  EXPECT_TRUE(f.mu_max_auto);
+  EXPECT_LE(f.mu_min, 0.6 + 1e-9);
+  // Most of the range and almost all the events (the top bins hold a handful).
+  const double range = *std::max_element(mu.begin(), mu.end());
+  EXPECT_GE(f.mu_max - f.mu_min, 0.75 * range);
+  const auto above_min = std::count_if(mu.begin(), mu.end(), [&](double m) { return m >= f.mu_min; });
+  EXPECT_GE(static_cast<double>(f.n_in_window), 0.99 * static_cast<double>(above_min));
+  EXPECT_NEAR(f.b_mle, 1.0, 3 * f.b_mle_err);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, WindowPure, ::testing::Values(1u, 2u, 3u, 4u, 5u));
+
+TEST(Window, GivenMuMinScansOnlyMuMax) {
+  std::mt19937_64 rng(6);
+  std::vector<double> mu;
+  for (int i = 0; i < 20000; ++i) mu.push_back(truncated_exponential(rng, 1.0, 0.0, 6.0));
+  for (int i = 0; i < 300; ++i) mu.push_back(7.0 + uniform(rng));
+  const GrFit f = fit_magnitudes(mu, 0.2, 0.4, std::nullopt);
+  EXPECT_FALSE(f.window_auto);
+  EXPECT_TRUE(f.mu_max_auto);
+  EXPECT_DOUBLE_EQ(f.mu_min, 0.4);
+  EXPECT_LE(f.mu_max, 6.2 + 1e-9);
+  EXPECT_NEAR(f.b_mle, 1.0, 3 * f.b_mle_err);
+}
+
+TEST(Window, GivenMuMaxIsKept) {
+  std::mt19937_64 rng(7);
+  std::vector<double> mu;
+  for (int i = 0; i < 20000; ++i) mu.push_back(truncated_exponential(rng, 1.0, 0.0, 6.0));
+  for (int i = 0; i < 300; ++i) mu.push_back(7.0 + uniform(rng));
+  const GrFit f = fit_magnitudes(mu, 0.2, std::nullopt, 8.0);
+  EXPECT_FALSE(f.mu_max_auto);
+  EXPECT_TRUE(f.truncated);
+  EXPECT_DOUBLE_EQ(f.mu_max, 8.0);
+  EXPECT_LT(f.b_mle, 1.0);  // the bump is inside the given window and pulls b down
+}
+
+}  // namespace
+}  // namespace bkq
