@@ -1,9 +1,10 @@
 // Stick and slip transitions between steps (the Crossing rule of stepper.hpp), shared by
 // the continuous driver and the event relaxation. One pass over the ranges:
-//  - a sliding block whose relative velocity changed sign during the step (or reached 0;
-//    for clst91, became <= 0 since it may not slide backwards) is stuck with zero
+//  - a sliding block whose relative velocity changed sign during the step (or is exactly
+//    0; for clst91, became <= 0 since it may not slide backwards) is stuck with zero
 //    velocity if friction can hold its spring force at the new position; otherwise it
-//    keeps sliding (backslip laws) or stays at zero velocity, still sliding (clst91);
+//    keeps sliding the other way (backslip laws) or stays at zero velocity, still sliding
+//    (clst91); a sliding block's direction of sliding is updated to its new velocity;
 //  - a stuck block whose spring force exceeds the static threshold breaks loose with
 //    zero relative velocity; `on_release(j)` is told.
 #pragma once
@@ -33,7 +34,7 @@ ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const dou
       if (mob[j] != 0.0) {
         if (crossing_rule) {
           const double y0 = wd_old[j], y1 = wd[j];
-          const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || (y1 == 0.0 && y0 != 0.0)) : y1 <= 0.0;
+          const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || y1 == 0.0) : y1 <= 0.0;
           if (crossed) {
             if (fr.holds(forces.spring_force(w, j, anchor))) {
               wd[j] = 0.0;
@@ -43,12 +44,17 @@ ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const dou
             if (!fr.backslip) wd[j] = 0.0;
           }
         }
+        if (wd[j] != 0.0) st.dir[j] = std::copysign(1.0, wd[j]);
         ++out.sliding;
         out.max_speed = std::max(out.max_speed, std::abs(wd[j]));
-      } else if (fr.breaks(forces.spring_force(w, j, anchor))) {
-        mob[j] = 1.0;
-        ++out.sliding;
-        on_release(j);
+      } else {
+        const double f = forces.spring_force(w, j, anchor);
+        if (fr.breaks(f)) {
+          mob[j] = 1.0;
+          st.dir[j] = std::copysign(1.0, f);  // it starts sliding the way its spring pulls
+          ++out.sliding;
+          on_release(j);
+        }
       }
     }
   }

@@ -63,7 +63,10 @@ void ContinuousDriver::step() {
   stepper_.step(forces_, substrate_, st_, dt_, ranges);
   if (jump != 0.0)
     for (int j = 0; j < forces_.n(); ++j)
-      if (st_.mobile[j] != 0.0) st_.wd[j] += jump;
+      if (st_.mobile[j] != 0.0) {
+        st_.wd[j] += jump;
+        if (st_.wd[j] != 0.0) st_.dir[j] = std::copysign(1.0, st_.wd[j]);
+      }
 
   const SubstrateState sub = substrate_.at(st_.t);
   const double anchor = sub.s + (forces_.params().pad_moves() ? st_.x : 0.0);

@@ -22,8 +22,7 @@ constexpr int kResumEvery = 1024;
 EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt, ChainState state)
     : forces_(forces), stepper_(stepper), dt_(dt), st_(std::move(state)), pad_(forces.params().pad_moves()),
       n_(forces.n()) {
-  if (forces.params().law == FrictionLaw::None)
-    throw Error("friction.law: 'none' cannot drive events (nothing ever sticks); use drive.mode = continuous");
+  check_model(forces.params());
   covered_.assign(n_, 0);
   need_.assign(n_, 0);
   slipped_.assign(n_, 0);
@@ -35,6 +34,20 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
   st_.recompute_sum_w();
   if (pad_) st_.x = forces_.pad_equilibrium(st_.sum_w, st_.s);
   rebuild_tree();
+}
+
+void EventEngine::check_model(const ModelParams& p) {
+  if (p.law == FrictionLaw::None)
+    throw Error("friction.law: 'none' cannot drive events (nothing ever sticks); use drive.mode = continuous");
+  // The loader puts the failing block exactly at the threshold; without a drop from static
+  // to kinetic friction the net force there is zero and the block never moves (the v -> 0
+  // limit is singular, which is why Carlson et al. 1991 introduced sigma).
+  if (p.law == FrictionLaw::Cl89)
+    throw Error("friction.law: 'cl89' has no drop from static to kinetic friction, so event-driven runs "
+                "never start an event; use thesis or clst91 with friction.sigma > 0, or drive.mode = continuous");
+  if (p.sigma <= 0)
+    throw Error("friction.sigma: 0 leaves no drop from static to kinetic friction, so event-driven runs never "
+                "start an event; event-driven mode needs friction.sigma in (0, 1)");
 }
 
 void EventEngine::rebuild_tree() {
@@ -92,6 +105,7 @@ void EventEngine::cover(int j) {
 void EventEngine::release(int j) {
   st_.mobile[j] = 1.0;
   st_.wd[j] = 0.0;
+  st_.dir[j] = std::copysign(1.0, forces_.spring_force(st_.w.data(), j, anchor()));
   if (!slipped_[j]) {
     slipped_[j] = 1;
     slipped_list_.push_back(j);
@@ -193,7 +207,11 @@ bool EventEngine::pad_phase() {
     st_.x = x_eq + osc.position(b);
     st_.xd = osc.velocity(b);
     st_.t += b;
-    return query_tree_failures();
+    // The located block fails now, even if at b its force rounds to the threshold itself.
+    release(x_eq + osc.position(b) > hi ? tree_.argmax() : tree_.argmin());
+    ++sliding_;
+    query_tree_failures();
+    return true;
   }
   st_.x = x_eq;
   st_.xd = 0;

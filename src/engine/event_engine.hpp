@@ -49,6 +49,9 @@ class EventEngine {
   const ChainState& state() const { return st_; }
   const EngineCounters& counters() const { return counters_; }
   double load() const { return st_.s; }
+  // Throws bkq::Error when the model cannot be driven event by event (no friction, or no
+  // drop from static to kinetic friction).
+  static void check_model(const ModelParams& p);
   // Largest spring force among stuck blocks beyond the threshold (<= 0 when all hold).
   double worst_stuck_excess() const;
   // Give up on an event after this many steps (a runaway means dt or the scene is wrong).

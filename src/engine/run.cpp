@@ -264,6 +264,7 @@ int run_scene(const RunRequest& req) {
   const double dt = scene.real("integrator.dt");
   check_time_step(*stepper, p, dt);
   if (req.resume) throw Error("--resume: checkpoints are not implemented yet");
+  if (scene.choice("drive.mode") == "events") EventEngine::check_model(p);
 
   const OutputFolder out(req.out_dir, req.force, req.resume);
   // A folder with summary.json is a finished run; overwriting one starts by unmarking it.

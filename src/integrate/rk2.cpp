@@ -13,7 +13,7 @@ void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   double* __restrict a = a_.data();
 
   const double ax1 =
-      evaluate(forces, sub.at(st.t), w, wd, st.mobile.data(), st.x, st.xd, st.sum_w, ranges, a);
+      evaluate(forces, sub.at(st.t), w, wd, st, st.x, st.xd, st.sum_w, ranges, a);
   double dsum = 0;
   for (const Range& r : ranges) {
     for (int j = r.lo; j < r.hi; ++j) {
@@ -24,7 +24,7 @@ void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
       for (int j = r.lo; j < r.hi; ++j) dsum += wd[j];
   }
   const double xm = st.x + h2 * st.xd, xdm = st.xd + h2 * ax1;
-  const double ax2 = evaluate(forces, sub.at(st.t + h2), ws, wds, st.mobile.data(), xm, xdm,
+  const double ax2 = evaluate(forces, sub.at(st.t + h2), ws, wds, st, xm, xdm,
                               st.sum_w + h2 * dsum, ranges, a);
   dsum = 0;
   for (const Range& r : ranges) {

@@ -3,7 +3,7 @@
 // Order 2 in smooth phases; two force evaluations per step. Stability: not A-stable on
 // the imaginary axis — an undamped mode of frequency omega grows by
 // sqrt(1 + (omega dt)^4/4) per step, i.e. by about exp(pi (omega dt)^3/4) per period. We
-// accept omega_max dt <= 0.5, where the fastest undamped mode grows by < 10% per period
+// accept omega_max dt <= 0.5, where the fastest undamped mode grows by about 10% per period
 // (friction and dampers remove far more than that in every run we ship).
 // Stick rule: Crossing (see stepper.hpp).
 #pragma once

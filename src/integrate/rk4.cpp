@@ -9,7 +9,6 @@ void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   const double h = dt, h2 = 0.5 * dt;
   double* __restrict w = st.w.data();
   double* __restrict wd = st.wd.data();
-  const double* __restrict mob = st.mobile.data();
   double* __restrict ws = ws_.data();
   double* __restrict wds = wds_.data();
   double* __restrict a = a_.data();
@@ -17,7 +16,7 @@ void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   double* __restrict cv = acc_v_.data();
 
   // Stage 1 at (w, w').
-  double ax = evaluate(forces, sub.at(st.t), w, wd, mob, st.x, st.xd, st.sum_w, ranges, a);
+  double ax = evaluate(forces, sub.at(st.t), w, wd, st, st.x, st.xd, st.sum_w, ranges, a);
   double dsum = 0;
   for (const Range& r : ranges) {
     for (int j = r.lo; j < r.hi; ++j) {
@@ -35,7 +34,7 @@ void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   // Stages 2 and 3 at the midpoint; their weights are 2.
   for (int stage = 2; stage <= 3; ++stage) {
     const double c = stage == 2 ? h2 : h;
-    ax = evaluate(forces, sub.at(st.t + h2), ws, wds, mob, xs, xds, sum_s, ranges, a);
+    ax = evaluate(forces, sub.at(st.t + h2), ws, wds, st, xs, xds, sum_s, ranges, a);
     dsum = 0;
     for (const Range& r : ranges) {
       for (int j = r.lo; j < r.hi; ++j) {
@@ -55,7 +54,7 @@ void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   }
 
   // Stage 4 at the end of the step.
-  ax = evaluate(forces, sub.at(st.t + h), ws, wds, mob, xs, xds, sum_s, ranges, a);
+  ax = evaluate(forces, sub.at(st.t + h), ws, wds, st, xs, xds, sum_s, ranges, a);
   const double h6 = h / 6.0;
   dsum = 0;
   for (const Range& r : ranges) {

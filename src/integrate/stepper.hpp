@@ -2,10 +2,14 @@
 // keyword (integrator.scheme) to a stepper. A stepper advances the blocks in the given
 // ranges and the pad (when it moves) by one step with the stick flags frozen; what
 // happens at stick and slip transitions is its `stick_rule()`:
-//   Crossing   the driver applies it after the step: a sliding block whose velocity
-//              relative to the substrate changed sign (or reached 0) during the step is
+//   Crossing   within a step the stick flags and each sliding block's direction of
+//              sliding are frozen (friction keeps opposing the motion the block had at the
+//              start of the step, so a block decelerating through zero really crosses it).
+//              The driver applies the rule after the step: a sliding block whose velocity
+//              relative to the substrate changed sign (or is exactly 0) during the step is
 //              stuck with zero velocity if friction can hold its spring force; otherwise it
-//              keeps sliding (backslip) or, for clst91, stays at zero velocity. A stuck
+//              keeps sliding the other way (backslip) or, for clst91, stays at zero
+//              velocity. A stuck
 //              block breaks loose at the start of the next step once its spring force
 //              exceeds the threshold. The transition is thus resolved to within one step:
 //              across transitions every fixed-step scheme is first order.
@@ -57,9 +61,9 @@ class ExplicitStepper : public Stepper {
   void resize(int n);
   // Accelerations at a stage; returns the pad's (0 when the pad is held).
   double evaluate(const ChainForces& forces, const SubstrateState& sub, const double* w, const double* wd,
-                  const double* mobile, double x, double xd, double sum_w, Ranges ranges, double* a) const {
+                  const ChainState& st, double x, double xd, double sum_w, Ranges ranges, double* a) const {
     const bool pad = forces.params().pad_moves();
-    forces.block_accelerations(w, wd, mobile, sub.s + (pad ? x : 0.0), sub, ranges, a);
+    forces.block_accelerations(w, wd, st.mobile.data(), st.dir.data(), sub.s + (pad ? x : 0.0), sub, ranges, a);
     return pad ? forces.pad_acceleration(x, xd, sum_w, sub.s) : 0.0;
   }
   // Scratch: stage positions/velocities, accelerations and RK accumulators (length N,

@@ -11,13 +11,12 @@ void Verlet::step(const ChainForces& forces, const Substrate& sub, ChainState& s
   const double h = dt, h2 = 0.5 * dt;
   double* __restrict w = st.w.data();
   double* __restrict wd = st.wd.data();
-  const double* __restrict mob = st.mobile.data();
   double* __restrict wh = wds_.data();  // half-step velocity
   double* __restrict wp = acc_v_.data();  // predicted end velocity
   double* __restrict a = a_.data();
 
   // Kick and drift: w(t+h) = w + h (w' + h/2 a).
-  const double ax0 = evaluate(forces, sub.at(st.t), w, wd, mob, st.x, st.xd, st.sum_w, ranges, a);
+  const double ax0 = evaluate(forces, sub.at(st.t), w, wd, st, st.x, st.xd, st.sum_w, ranges, a);
   double dsum = 0;
   for (const Range& r : ranges) {
     for (int j = r.lo; j < r.hi; ++j) {
@@ -35,12 +34,12 @@ void Verlet::step(const ChainForces& forces, const Substrate& sub, ChainState& s
   const SubstrateState end = sub.at(st.t + h);
 
   // Closing kick.
-  double ax1 = evaluate(forces, end, w, wh, mob, st.x, xh, st.sum_w, ranges, a);
+  double ax1 = evaluate(forces, end, w, wh, st, st.x, xh, st.sum_w, ranges, a);
   double xp = xh + h2 * ax1;
   if (velocity_dependent) {
     for (const Range& r : ranges)
       for (int j = r.lo; j < r.hi; ++j) wp[j] = wh[j] + h2 * a[j];
-    ax1 = evaluate(forces, end, w, wp, mob, st.x, xp, st.sum_w, ranges, a);
+    ax1 = evaluate(forces, end, w, wp, st, st.x, xp, st.sum_w, ranges, a);
   }
   for (const Range& r : ranges)
     for (int j = r.lo; j < r.hi; ++j) wd[j] = wh[j] + h2 * a[j];

@@ -19,15 +19,15 @@ ChainForces::ChainForces(const ModelParams& p) : p_(p), friction_(p), inv_m_(1.0
 }
 
 template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
-double ChainForces::acceleration_at(const double* w, double y, double anchor, const SubstrateState& sub,
-                                    int j) const {
+double ChainForces::acceleration_at(const double* w, double y, double dir, double anchor,
+                                    const SubstrateState& sub, int j) const {
   const double f = spring_force(w, j, anchor);
   double acc = f * inv_m_;
   if constexpr (Law == FrictionLaw::None) {
   } else if constexpr (Law == FrictionLaw::Clst91) {
     acc -= friction_.magnitude(std::max(y, 0.0));
   } else {
-    acc -= std::copysign(friction_.magnitude(std::abs(y)), y != 0.0 ? y : f);
+    acc -= std::copysign(friction_.magnitude(std::abs(y)), dir);
   }
   if constexpr (Damper) acc -= p_.c_u * inv_m_ * (y - sub.v);
   if constexpr (Inertial) acc += sub.a;
@@ -36,17 +36,18 @@ double ChainForces::acceleration_at(const double* w, double y, double anchor, co
 
 template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
 void ChainForces::kernel(const ChainForces& self, const double* __restrict w, const double* __restrict wd,
-                         const double* __restrict mobile, double anchor, const SubstrateState& sub, int lo, int hi,
-                         double* __restrict a) {
+                         const double* __restrict mobile, const double* __restrict dir, double anchor,
+                         const SubstrateState& sub, int lo, int hi, double* __restrict a) {
   const int n = self.p_.n;
   // The chain ends (and the periodic wrap) go through the scalar path.
   if (lo == 0 && hi > 0) {
-    a[0] = mobile[0] * self.acceleration_at<Law, Neighbours, Damper, Inertial>(w, wd[0], anchor, sub, 0);
+    a[0] = mobile[0] * self.acceleration_at<Law, Neighbours, Damper, Inertial>(w, wd[0], dir[0], anchor, sub, 0);
     lo = 1;
   }
   if (hi == n && hi > lo) {
     a[n - 1] = mobile[n - 1] *
-               self.acceleration_at<Law, Neighbours, Damper, Inertial>(w, wd[n - 1], anchor, sub, n - 1);
+               self.acceleration_at<Law, Neighbours, Damper, Inertial>(w, wd[n - 1], dir[n - 1], anchor, sub,
+                                                                       n - 1);
     hi = n - 1;
   }
   const double kc = self.p_.k_c, kp = self.p_.k_p, inv_m = self.inv_m_;
@@ -62,7 +63,7 @@ void ChainForces::kernel(const ChainForces& self, const double* __restrict w, co
     } else if constexpr (Law == FrictionLaw::Clst91) {
       acc -= k0 / (1.0 + std::max(y, 0.0) * inv_scale);
     } else {
-      acc -= std::copysign(k0 / (1.0 + std::abs(y) * inv_scale), y != 0.0 ? y : f);
+      acc -= std::copysign(k0 / (1.0 + std::abs(y) * inv_scale), dir[j]);
     }
     if constexpr (Damper) acc -= damp * (y - v);
     if constexpr (Inertial) acc += a_s;
@@ -91,10 +92,10 @@ ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
   return nullptr;
 }
 
-void ChainForces::block_accelerations(const double* w, const double* wd, const double* mobile, double anchor,
-                                      const SubstrateState& sub, Ranges ranges, double* a) const {
+void ChainForces::block_accelerations(const double* w, const double* wd, const double* mobile, const double* dir,
+                                      double anchor, const SubstrateState& sub, Ranges ranges, double* a) const {
   const Kernel k = sub.a != 0.0 ? kernel_inertial_ : kernel_;
-  for (const Range& r : ranges) k(*this, w, wd, mobile, anchor, sub, r.lo, r.hi, a);
+  for (const Range& r : ranges) k(*this, w, wd, mobile, dir, anchor, sub, r.lo, r.hi, a);
 }
 
 double ChainForces::spring_energy(const ChainState& st) const {

@@ -27,10 +27,14 @@ struct Range {
 using Ranges = std::span<const Range>;
 
 // Everything that evolves. Stick flags live in `mobile` (1 = sliding, 0 = stuck) as
-// doubles so the kernels can multiply by them without branching.
+// doubles so the kernels can multiply by them without branching. `dir` is the direction
+// each sliding block slides in (+1/-1): like the stick flags it is frozen over a step, so
+// friction keeps opposing the motion the block had at the start of the step even when its
+// velocity passes through zero inside the step (the stick rule then sees the crossing).
 struct ChainState {
   std::vector<double> w, wd;  // block position and velocity in the substrate frame
   std::vector<double> mobile;
+  std::vector<double> dir;
   double x = 0, xd = 0;  // pad position and velocity (lab frame)
   double s = 0;          // substrate displacement
   double t = 0;          // time
@@ -40,6 +44,7 @@ struct ChainState {
     w.assign(n, 0.0);
     wd.assign(n, 0.0);
     mobile.assign(n, 0.0);
+    dir.assign(n, 1.0);
   }
   int n() const { return static_cast<int>(w.size()); }
   double recompute_sum_w();
@@ -84,8 +89,8 @@ class ChainForces {
   double local_force(const double* w, int j) const { return neighbour_force(w, j) - p_.k_p * w[j]; }
 
   // Block accelerations a[j] for every j in `ranges`; stuck blocks get exactly 0.
-  void block_accelerations(const double* w, const double* wd, const double* mobile, double anchor,
-                           const SubstrateState& sub, Ranges ranges, double* a) const;
+  void block_accelerations(const double* w, const double* wd, const double* mobile, const double* dir,
+                           double anchor, const SubstrateState& sub, Ranges ranges, double* a) const;
 
   // Pad acceleration given the sum of w over all blocks.
   double pad_acceleration(double x, double xd, double sum_w, double s) const {
@@ -102,13 +107,13 @@ class ChainForces {
   double kinetic_energy(const ChainState& st, double v) const;
 
  private:
-  using Kernel = void (*)(const ChainForces&, const double*, const double*, const double*, double,
-                          const SubstrateState&, int, int, double*);
+  using Kernel = void (*)(const ChainForces&, const double*, const double*, const double*, const double*,
+                          double, const SubstrateState&, int, int, double*);
   template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
   static void kernel(const ChainForces& self, const double* w, const double* wd, const double* mobile,
-                     double anchor, const SubstrateState& sub, int lo, int hi, double* a);
+                     const double* dir, double anchor, const SubstrateState& sub, int lo, int hi, double* a);
   template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
-  double acceleration_at(const double* w, double wd, double anchor, const SubstrateState& sub,
+  double acceleration_at(const double* w, double wd, double dir, double anchor, const SubstrateState& sub,
                          int j) const;
   Kernel select_kernel(bool inertial) const;
 

@@ -114,16 +114,11 @@ TEST(StickRule, MomentIsTheClosedFormAtTheStickingStepForEveryStepper) {
 // With the thesis law (backslip allowed) the velocity changes sign at t = pi; the spring
 // force 1 - 2 sigma is within [-F0, F0], so the block must stick there as well.
 //
-// Known bug: it does not. Friction sgn(y) is evaluated at the stage velocities of the
-// step, so in the step where the velocity should cross zero a late stage sees y < 0,
-// friction flips to +F0(1 - sigma) and the step ends with y > 0 again: the sign change
-// the Crossing rule looks for (contacts.hpp, y0 * y1 < 0) never shows, and the block
-// creeps on. Measured: rk4 moment 0.67 (33x the 2 sigma) and duration 630 at dt = 0.004,
-// no end within 2e6 steps at dt = 0.001; rk2 and verlet go wrong at some dt too (rk2
-// dt = 0.004: moment 0.0287, duration 5.3). clst91 is immune (friction is clamped at y <= 0).
+// Within a step the direction of sliding is frozen (stepper.hpp, Crossing), so friction
+// keeps opposing the forward motion while the velocity passes through zero and the rule
+// sees the crossing. (Before that, RK stages flipped the sign of friction at y < 0 and the
+// block crept on: rk4 at dt = 0.004 slid 0.67 instead of 0.02.)
 TEST(StickRule, BackslipLawSticksAtTheTurningPoint) {
-  GTEST_SKIP() << "known bug: thesis-law blocks never re-stick (RK stages flip the sign of friction; "
-                  "contacts.hpp crossing test misses it)";
   for (const char* scheme : {"rk2", "rk4", "verlet"}) {
     for (double dt : {0.004, 0.002, 0.001, 0.0005}) {
       ModelParams p = single_block();

@@ -18,6 +18,7 @@
 
 #include "../cli_helpers.hpp"
 #include "engine/event_engine.hpp"
+#include "io/error.hpp"
 #include "engine/initial_state.hpp"
 #include "integrate/stepper.hpp"
 #include "io/catalog.hpp"
@@ -201,31 +202,31 @@ void expect_rest_after_every_event(const Settings& settings, bool check_pad) {
 TEST(EventPhysics, EveryBlockStuckBelowThresholdAfterEveryEventBk) { expect_rest_after_every_event(kBk50, false); }
 TEST(EventPhysics, EveryBlockStuckBelowThresholdAfterEveryEventBkp) { expect_rest_after_every_event(kBkp50, false); }
 
-// Known bug: in event_engine.cpp pad_phase() the bisection stops the pad where x(b) > hi,
-// hi = (thr - tree.max)/k_p - s, but query_tree_failures() then tests
-// tree.max + k_p (s + x) > thr, which at that point rounds to exactly thr: no block is
-// released, pad_phase() returns false and the event ends with the pad mid-swing
-// (x != x_eq, xd != 0; next_event() later resets x but not xd). Here the first is event
-// 620 (xd = 2.96e-6, worst_stuck_excess() == 0 exactly); 159 of 20000 events with xd up
-// to 2.3e-3.
+// The pad phase releases the block it located even when, at the located instant, its
+// force rounds to exactly the threshold (before, the event could end with the pad
+// mid-swing: 159 of 20000 events here).
 TEST(EventPhysics, PadAtRestAfterEveryEventBkp) {
-  GTEST_SKIP() << "known bug: pad_phase() ends events with the pad moving when the block it pushes "
-                  "sits exactly at the threshold (event_engine.cpp, pad_phase/query_tree_failures)";
   expect_rest_after_every_event(kBkp50, true);
 }
 
-// Known bug: cl89 has no static-kinetic drop, so the trigger loaded to exactly the
-// threshold F0 m_u feels zero net force at y = 0+; it stays "sliding" at zero velocity,
-// and the backslip crossing test of contacts.hpp (y0 * y1 < 0 || (y1 == 0 && y0 != 0))
-// never re-sticks a block whose velocity was 0 before and after the step: the event never
-// ends. `bkquake run --set friction.law=cl89 --set model.blocks=50` stops with "event 9
-// did not end after 200000001 steps".
-TEST(EventPhysics, Cl89EventsEnd) {
-  GTEST_SKIP() << "known bug: cl89 event never ends (trigger at threshold, zero net force, "
-                  "contacts.hpp never re-sticks a block at rest)";
-  Sim sim(make_scene({{"model.blocks", "50"}, {"friction.law", "cl89"}}));
-  sim.engine.max_steps_per_event = 200'000;
-  for (int i = 0; i < 200; ++i) ASSERT_NO_THROW(sim.engine.next_event()) << "event " << i + 1;
+// Without a drop from static to kinetic friction (cl89, or sigma = 0) the block the loader
+// puts exactly at the threshold feels no net force and never moves: event-driven mode
+// refuses such scenes with a message naming the key, instead of running forever.
+TEST(EventPhysics, EventModeRefusesFrictionWithoutStaticKineticDrop) {
+  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
+           {"friction.law", "cl89"}, {"friction.sigma", "0"}}) {
+    const Scene scene = make_scene({{"model.blocks", "50"}, {key, value}});
+    try {
+      EventEngine::check_model(model_from_scene(scene));
+      ADD_FAILURE() << key << " = " << value << " accepted";
+    } catch (const bkq::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
+  // A tiny drop is enough: events start and end.
+  Sim sim(make_scene({{"model.blocks", "50"}, {"friction.sigma", "1e-6"}}));
+  sim.engine.max_steps_per_event = 2'000'000;
+  for (int i = 0; i < 50; ++i) ASSERT_NO_THROW(sim.engine.next_event()) << "event " << i + 1;
   EXPECT_LE(sim.engine.worst_stuck_excess(), 1e-9);
 }
 
