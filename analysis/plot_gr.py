@@ -58,7 +58,8 @@ def main(argv=None):
             if r[at] > 0 and np.isfinite(r[at]):
                 mu = np.linspace(lo, hi, 50)
                 ax_r.plot(mu, r[at] * np.exp(-b * (mu - h["mu_low"][at])), "-", color=colour,
-                          label=f"b = {b:.3f}, [{lo:g}, {hi:g})")
+                          label=f"b = {b:.3f} ± {summary.get('b_mle_err', float('nan')):.3f}, "
+                                f"[{lo:g}, {hi:g})")
     unit = " per unit load per block" if args.rates else ""
     ax_d.set(yscale="log", xlabel="magnitude mu = ln M", ylabel=f"D(mu){unit}",
              title="D(mu): events per unit magnitude")
