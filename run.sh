@@ -3,7 +3,7 @@
 # With arguments they go to `bkquake run` as they are: ./run.sh SCENE --set k=v --out DIR.
 set -euo pipefail
 cd "$(dirname "$0")"
-scripts/build.sh
+scripts/build.sh  # apt-get installs any missing Debian package, then cmake builds into build/
 
 if (($# == 0)); then
   # The default run: bkquake's built-in default scene (the Carlson-Langer reference,

@@ -3,7 +3,7 @@
 # test suite with ctest; extra arguments go to ctest (e.g. -R Scene).
 set -euo pipefail
 cd "$(dirname "$0")"
-scripts/build.sh
+scripts/build.sh  # apt-get installs any missing Debian package, then cmake builds into build/
 
 cd build
 ctest --output-on-failure -j2 "$@"
