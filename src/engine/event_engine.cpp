@@ -208,7 +208,7 @@ bool EventEngine::pad_phase() {
     st_.xd = osc.velocity(b);
     st_.t += b;
     // The located block fails now, even if at b its force rounds to the threshold itself.
-    release(x_eq + osc.position(b) > hi ? tree_.argmax() : tree_.argmin());
+    release(st_.x > hi ? tree_.argmax() : tree_.argmin());
     ++sliding_;
     query_tree_failures();
     return true;

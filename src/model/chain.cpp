@@ -18,10 +18,8 @@ ChainForces::ChainForces(const ModelParams& p) : p_(p), friction_(p), inv_m_(1.0
   kernel_inertial_ = select_kernel(true);
 }
 
-template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
-double ChainForces::acceleration_at(const double* w, double y, double dir, double anchor,
-                                    const SubstrateState& sub, int j) const {
-  const double f = spring_force(w, j, anchor);
+template <FrictionLaw Law, bool Damper, bool Inertial>
+double ChainForces::acceleration(double f, double y, double dir, const SubstrateState& sub) const {
   double acc = f * inv_m_;
   if constexpr (Law == FrictionLaw::None) {
   } else if constexpr (Law == FrictionLaw::Clst91) {
@@ -40,34 +38,23 @@ void ChainForces::kernel(const ChainForces& self, const double* __restrict w, co
                          const SubstrateState& sub, int lo, int hi, double* __restrict a) {
   const int n = self.p_.n;
   // The chain ends (and the periodic wrap) go through the scalar path.
+  auto at = [&](int j, double f) {
+    a[j] = mobile[j] * self.acceleration<Law, Damper, Inertial>(f, wd[j], dir[j], sub);
+  };
   if (lo == 0 && hi > 0) {
-    a[0] = mobile[0] * self.acceleration_at<Law, Neighbours, Damper, Inertial>(w, wd[0], dir[0], anchor, sub, 0);
+    at(0, self.spring_force(w, 0, anchor));
     lo = 1;
   }
   if (hi == n && hi > lo) {
-    a[n - 1] = mobile[n - 1] *
-               self.acceleration_at<Law, Neighbours, Damper, Inertial>(w, wd[n - 1], dir[n - 1], anchor, sub,
-                                                                       n - 1);
+    at(n - 1, self.spring_force(w, n - 1, anchor));
     hi = n - 1;
   }
-  const double kc = self.p_.k_c, kp = self.p_.k_p, inv_m = self.inv_m_;
-  const double k0 = self.friction_.kinetic0, inv_scale = self.friction_.inv_scale;
-  const double damp = self.p_.c_u * inv_m, v = sub.v, a_s = sub.a;
+  const double kc = self.p_.k_c, kp = self.p_.k_p;
   // Interior blocks: branch-free so the compiler vectorises it.
   for (int j = lo; j < hi; ++j) {
     double f = kp * (anchor - w[j]);
     if constexpr (Neighbours) f += kc * (w[j - 1] - 2.0 * w[j] + w[j + 1]);
-    const double y = wd[j];
-    double acc = f * inv_m;
-    if constexpr (Law == FrictionLaw::None) {
-    } else if constexpr (Law == FrictionLaw::Clst91) {
-      acc -= k0 / (1.0 + std::max(y, 0.0) * inv_scale);
-    } else {
-      acc -= std::copysign(k0 / (1.0 + std::abs(y) * inv_scale), dir[j]);
-    }
-    if constexpr (Damper) acc -= damp * (y - v);
-    if constexpr (Inertial) acc += a_s;
-    a[j] = mobile[j] * acc;
+    at(j, f);
   }
 }
 

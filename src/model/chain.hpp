@@ -112,9 +112,9 @@ class ChainForces {
   template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
   static void kernel(const ChainForces& self, const double* w, const double* wd, const double* mobile,
                      const double* dir, double anchor, const SubstrateState& sub, int lo, int hi, double* a);
-  template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
-  double acceleration_at(const double* w, double wd, double dir, double anchor, const SubstrateState& sub,
-                         int j) const;
+  // Acceleration of a sliding block with spring force f and relative velocity y.
+  template <FrictionLaw Law, bool Damper, bool Inertial>
+  double acceleration(double f, double y, double dir, const SubstrateState& sub) const;
   Kernel select_kernel(bool inertial) const;
 
   ModelParams p_;
