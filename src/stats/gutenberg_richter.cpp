@@ -157,6 +157,14 @@ BEstimate binned_mle(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
   return estimate(model, n, mean, var_sum);
 }
 
+// Fitted fraction of a window's events at or above bin i (of J bins, width w) for the
+// binned exponential law, truncated at the window's top when `truncated`.
+static double fitted_survival(double b, double w, double i, double J, bool truncated) {
+  if (!truncated) return std::exp(-b * w * i);
+  if (std::fabs(b * w * J) < 1e-12) return (J - i) / J;
+  return (std::exp(-b * w * i) - std::exp(-b * w * J)) / -std::expm1(-b * w * J);
+}
+
 double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi,
                           double b, bool truncated) {
   const double w = h.bin_width();
@@ -169,14 +177,7 @@ double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::i
     above -= h.count(j - 1);
     const double s_emp = static_cast<double>(above) / static_cast<double>(n);
     const double i = static_cast<double>(j - k_lo);
-    double s_fit;
-    if (!truncated) {
-      s_fit = std::exp(-b * w * i);
-    } else if (std::fabs(b * w * J) < 1e-12) {
-      s_fit = (J - i) / J;
-    } else {
-      s_fit = (std::exp(-b * w * i) - std::exp(-b * w * J)) / -std::expm1(-b * w * J);
-    }
+    const double s_fit = fitted_survival(b, w, i, J, truncated);
     d = std::max(d, std::fabs(s_emp - s_fit));
   }
   return d;
@@ -194,14 +195,7 @@ double tail_excess_p(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
     above += h.count(k);
     if (above == 0) continue;
     const double i = static_cast<double>(k - k_lo);
-    double s_fit;
-    if (!truncated) {
-      s_fit = std::exp(-b * w * i);
-    } else if (std::fabs(b * w * J) < 1e-12) {
-      s_fit = (J - i) / J;
-    } else {
-      s_fit = (std::exp(-b * w * i) - std::exp(-b * w * J)) / -std::expm1(-b * w * J);
-    }
+    const double s_fit = fitted_survival(b, w, i, J, truncated);
     const double expected = static_cast<double>(n) * s_fit;
     if (static_cast<double>(above) <= expected) continue;
     p_min = std::min(p_min, expected > 0 ? boost::math::gamma_p(static_cast<double>(above), expected) : 0.0);
