@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "engine/contacts.hpp"
 #include "io/error.hpp"
@@ -33,6 +34,20 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
   st_.xd = 0;
   st_.recompute_sum_w();
   if (pad_) st_.x = forces_.pad_equilibrium(st_.sum_w, st_.s);
+  rebuild_tree();
+}
+
+EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt, const EngineSnapshot& saved)
+    : forces_(forces), stepper_(stepper), dt_(dt), st_(saved.state), pad_(forces.params().pad_moves()),
+      n_(forces.n()), counters_(saved.counters) {
+  check_model(forces.params());
+  if (st_.n() != n_)
+    throw Error("checkpoint: it holds " + std::to_string(st_.n()) + " blocks, the scene has " + std::to_string(n_));
+  covered_.assign(n_, 0);
+  need_.assign(n_, 0);
+  slipped_.assign(n_, 0);
+  w_before_.assign(n_, 0.0);
+  wd_old_.assign(n_, 0.0);
   rebuild_tree();
 }
 

@@ -39,9 +39,23 @@ struct EngineCounters {
   std::int64_t sliding_block_steps = 0;  // of which sliding
 };
 
+// What an engine needs to continue exactly where it stopped: the state between two
+// events (every block stuck, pad at rest) and the counters. Everything else the engine
+// holds (the force tree, the covered ranges) is rebuilt from it bit for bit.
+struct EngineSnapshot {
+  ChainState state;
+  EngineCounters counters;
+};
+
 class EventEngine {
  public:
+  // A fresh start: all blocks stuck, velocities zeroed, the pad put at its static balance.
   EventEngine(const ChainForces& forces, Stepper& stepper, double dt, ChainState state);
+  // Continue from a snapshot taken between events; nothing is recomputed, so the events
+  // that follow are the same, bit for bit, as those of the engine that was snapshotted.
+  EventEngine(const ChainForces& forces, Stepper& stepper, double dt, const EngineSnapshot& saved);
+
+  EngineSnapshot snapshot() const { return EngineSnapshot{st_, counters_}; }
 
   // Load to the next failure and relax it; returns the event (numbered from 1).
   EventRecord next_event();
