@@ -7,6 +7,9 @@
 //    (clst91); a sliding block's direction of sliding is updated to its new velocity;
 //  - a stuck block whose spring force exceeds the static threshold breaks loose with
 //    zero relative velocity; `on_release(j)` is told.
+// Optionally (a non-null `work`) it adds up the power sliding blocks dissipate in friction
+// (and the 1DOF damper) at the two ends of the step, with each block's direction frozen
+// as in the step: the caller turns the sum into work by the trapezoidal rule.
 #pragma once
 
 #include <algorithm>
@@ -23,8 +26,10 @@ struct ContactScan {
 
 template <class OnRelease>
 ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor,
-                            Ranges ranges, bool crossing_rule, OnRelease&& on_release) {
+                            Ranges ranges, bool crossing_rule, OnRelease&& on_release,
+                            double* power_sum = nullptr) {
   const Friction& fr = forces.friction();
+  const double damper = forces.params().c_u / forces.params().m_u;
   double* w = st.w.data();
   double* wd = st.wd.data();
   double* mob = st.mobile.data();
@@ -32,6 +37,10 @@ ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const dou
   for (const Range& r : ranges) {
     for (int j = r.lo; j < r.hi; ++j) {
       if (mob[j] != 0.0) {
+        if (power_sum) {
+          const double y0 = wd_old[j], y1 = wd[j];
+          *power_sum += fr.power(y0, st.dir[j]) + fr.power(y1, st.dir[j]) + damper * (y0 * y0 + y1 * y1);
+        }
         if (crossing_rule) {
           const double y0 = wd_old[j], y1 = wd[j];
           const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || y1 == 0.0) : y1 <= 0.0;

@@ -29,6 +29,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
   slipped_.assign(n_, 0);
   w_before_.assign(n_, 0.0);
   wd_old_.assign(n_, 0.0);
+  mobile_old_.assign(n_, 0.0);
   std::fill(st_.mobile.begin(), st_.mobile.end(), 0.0);
   std::fill(st_.wd.begin(), st_.wd.end(), 0.0);
   st_.xd = 0;
@@ -48,6 +49,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
   slipped_.assign(n_, 0);
   w_before_.assign(n_, 0.0);
   wd_old_.assign(n_, 0.0);
+  mobile_old_.assign(n_, 0.0);
   rebuild_tree();
 }
 
@@ -207,6 +209,9 @@ bool EventEngine::pad_phase() {
     return x > hi || x < lo;
   };
   const double dt = osc.resolution();
+  // The pad's energy about its rest position; what it loses here is the damper's work.
+  auto pad_energy = [&](double xi, double v) { return 0.5 * (p.m_x * v * v + K * xi * xi); };
+  const double e_start = pad_energy(st_.x - x_eq, st_.xd);
   double t = 0;
   // Walk the closed-form solution until its envelope can no longer reach either level.
   for (std::int64_t i = 0; osc.bound_after(t) >= margin && i < 10'000'000; ++i) {
@@ -222,6 +227,7 @@ bool EventEngine::pad_phase() {
     st_.x = x_eq + osc.position(b);
     st_.xd = osc.velocity(b);
     st_.t += b;
+    dissipated_ += e_start - pad_energy(osc.position(b), st_.xd);
     // The located block fails now, even if at b its force rounds to the threshold itself.
     release(st_.x > hi ? tree_.argmax() : tree_.argmin());
     ++sliding_;
@@ -230,7 +236,61 @@ bool EventEngine::pad_phase() {
   }
   st_.x = x_eq;
   st_.xd = 0;
+  dissipated_ += e_start;
   return false;
+}
+
+void EventEngine::note_released_in_step() {
+  released_now_.clear();
+  for (const Range& r : ranges_)
+    for (int j = r.lo; j < r.hi; ++j)
+      if (st_.mobile[j] != 0.0 && mobile_old_[j] == 0.0) released_now_.push_back(j);
+  for (int j : released_now_) {
+    if (!slipped_[j]) {
+      slipped_[j] = 1;
+      slipped_list_.push_back(j);
+      w_before_[j] = st_.w[j];  // it was stuck until inside the step: moved little
+    }
+    cover(j);
+  }
+}
+
+double EventEngine::stored_energy_change(double x0) const {
+  const ModelParams& p = forces_.params();
+  const double* w = st_.w.data();
+  auto before = [&](int k) { return slipped_[k] ? w_before_[k] : w[k]; };
+  const double s = st_.s, x1 = pad_ ? st_.x : 0.0;
+  x0 = pad_ ? x0 : 0.0;
+  double e_pull = 0, e_bond = 0, sum_slipped = 0;
+  const bool periodic = p.boundary == Boundary::Periodic && n_ > 2;
+  const bool bonds = p.has_neighbours();
+  for (int j : slipped_list_) {
+    const double d1 = w[j] - s - x1, d0 = before(j) - s - x0;
+    e_pull += d1 * d1 - d0 * d0;
+    sum_slipped += w[j];
+    if (!bonds) continue;
+    // Each bond once: the one to the right always, the one to the left only when that
+    // neighbour did not slip (else it is counted as that neighbour's right bond).
+    const int right = j + 1 < n_ ? j + 1 : (periodic ? 0 : -1);
+    const int left = j > 0 ? j - 1 : (periodic ? n_ - 1 : -1);
+    if (right >= 0) {
+      const double d1b = w[right] - w[j], d0b = before(right) - before(j);
+      e_bond += d1b * d1b - d0b * d0b;
+    }
+    if (left >= 0 && !slipped_[left]) {
+      const double d1b = w[j] - w[left], d0b = before(j) - before(left);
+      e_bond += d1b * d1b - d0b * d0b;
+    }
+  }
+  double de = 0.5 * p.k_p * e_pull + 0.5 * p.k_c * e_bond;
+  if (pad_) {
+    // Blocks that did not slip only see the anchor move from s + x0 to s + x1.
+    const double others = static_cast<double>(n_ - static_cast<int>(slipped_list_.size()));
+    const double sum_others = st_.sum_w - sum_slipped - others * s;
+    de += 0.5 * p.k_p * (x0 - x1) * (2.0 * sum_others - others * (x0 + x1));
+    de += 0.5 * p.k_p0 * (x1 * x1 - x0 * x0);
+  }
+  return de;
 }
 
 void EventEngine::check_finite() const {
@@ -271,17 +331,27 @@ EventRecord EventEngine::next_event() {
 
   const Substrate frozen = Substrate::frozen(st_.s);
   const bool crossing = stepper_.stick_rule() == StickRule::Crossing;
+  const double half_dt_m = 0.5 * dt_ * p.m_u, half_dt_cp = 0.5 * dt_ * p.c_p;
+  dissipated_ = 0;
   std::int64_t steps = 0;
   for (;;) {
     while (sliding_ > 0) {
-      for (const Range& r : ranges_)
+      for (const Range& r : ranges_) {
         std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old_.begin() + r.lo);
+        if (!crossing) std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi, mobile_old_.begin() + r.lo);
+      }
+      const double xd_old = st_.xd;
       stepper_.step(forces_, frozen, st_, dt_, ranges_);
       ++steps;
       for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
+      if (!crossing) note_released_in_step();
       released_now_.clear();
-      const ContactScan scan = settle_contacts(forces_, st_, wd_old_.data(), anchor(), ranges_, crossing,
-                                               [&](int j) { released_now_.push_back(j); });
+      double power = 0;
+      const ContactScan scan = settle_contacts(
+          forces_, st_, wd_old_.data(), anchor(), ranges_, crossing, [&](int j) { released_now_.push_back(j); },
+          &power);
+      dissipated_ += half_dt_m * power;
+      if (pad_) dissipated_ += half_dt_cp * (xd_old * xd_old + st_.xd * st_.xd);
       counters_.sliding_block_steps += scan.sliding;
       sliding_ = scan.sliding;
       for (int j : released_now_) release(j);
@@ -305,6 +375,7 @@ EventRecord EventEngine::next_event() {
   counters_.steps += steps;
   uncover_all();
 
+  const double stored_change = stored_energy_change(x0);
   double moment = 0;
   int first = n_, last = -1;
   for (int j : slipped_list_) {
@@ -322,6 +393,7 @@ EventRecord EventEngine::next_event() {
   e.duration = last_stick_time_;
   e.max_speed = max_speed_;
   e.pad_displacement = pad_ ? st_.x - x0 : 0.0;
+  e.energy_residual = dissipated_ > 0 ? (stored_change + dissipated_) / dissipated_ : 0.0;
   return e;
 }
 

@@ -20,6 +20,19 @@
 // once its amplitude can no longer break any block (with an undamped pad, zeta = 0, this
 // discards the pad's free oscillation between events). The duration is the time from the
 // trigger until the last block re-stuck.
+//
+// Energy balance of an event (EventRecord::energy_residual). Loading happens before the
+// event, so over the relaxation nothing does work on the chain: the energy stored in the
+// springs can only go into friction and the dampers, and the chain is at rest at both
+// ends. The engine accumulates W, the work done against friction (and the 1DOF damper),
+// by the trapezoidal rule on each step, plus the pad damper's (trapezoidal while blocks
+// slide; exact in the closed-form pad phase, where the pad's energy lost is the damper's
+// work, and where the free oscillation removed at the end counts as dissipated — for an
+// undamped pad that energy is discarded, not dissipated). The change of stored energy
+// dE is computed from the blocks that slipped and the pad alone (O(event), not O(N)).
+// The residual is (dE + W)/W: zero for an exact integration; with the crossing rule its
+// size is set by the step (the quadrature is second order and a re-sticking block's last
+// step leaves an O(dt) kinetic remainder that the rule zeroes).
 #pragma once
 
 #include <cstdint>
@@ -81,6 +94,9 @@ class EventEngine {
   void uncover_all();
   bool query_tree_failures();
   bool pad_phase();  // true if a block failed while the pad swung
+  void note_released_in_step();  // bookkeeping for blocks a Projection/Located stepper released
+  // Change of the energy stored in the springs since the event started (pad at x0 then).
+  double stored_energy_change(double x0) const;
   void check_finite() const;
 
   const ChainForces& forces_;
@@ -93,7 +109,7 @@ class EventEngine {
   ForceTree tree_;
   std::vector<Range> ranges_;
   std::vector<unsigned char> covered_, need_;
-  std::vector<double> wd_old_;
+  std::vector<double> wd_old_, mobile_old_;
   std::vector<int> released_now_;
 
   // Per-event bookkeeping.
@@ -101,6 +117,7 @@ class EventEngine {
   std::vector<int> slipped_list_;
   std::vector<double> w_before_;
   double max_speed_ = 0, last_stick_time_ = 0;
+  double dissipated_ = 0;  // work done against friction and dampers during the event
   int sliding_ = 0;
 
   EngineCounters counters_;

@@ -21,7 +21,7 @@ struct EventRecord {
   double pad_displacement = 0;// change of pad position over the event (0 for BK)
   int first_block = 0;        // lowest index that slipped
   int last_block = 0;         // highest index that slipped
-  double energy_residual = 0; // energy balance residual (issue 6; 0 until computed)
+  double energy_residual = 0; // (dE_stored + W_dissipated)/W_dissipated; see event_engine.hpp
 };
 
 struct ColumnSpec {

@@ -7,6 +7,7 @@
 //   none:              0 (frictionless; for verification against analytic solutions)
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "model/parameters.hpp"
@@ -35,6 +36,13 @@ struct Friction {
 
   // |phi(y)| for a sliding block (per unit mass).
   double magnitude(double abs_y) const { return kinetic0 / (1.0 + abs_y * inv_scale); }
+
+  // Power dissipated per unit mass by a block sliding in direction `dir` at relative
+  // velocity y (friction frozen to oppose `dir`, as within a step): phi(y) * y.
+  double power(double y, double dir) const {
+    if (!backslip) return magnitude(std::max(y, 0.0)) * y;  // clst91 always opposes y > 0
+    return magnitude(std::abs(y)) * dir * y;
+  }
 
   // Would a stuck block with spring force f break loose?
   bool breaks(double f) const { return backslip ? std::abs(f) > threshold : f > threshold; }
