@@ -21,7 +21,7 @@ namespace bkq {
 
 struct ContactScan {
   int sliding = 0;        // blocks sliding after the pass
-  double max_speed = 0;   // largest |relative velocity| among them
+  double max_speed = 0;   // largest |relative velocity| among them; NaN if any is NaN
 };
 
 template <class OnRelease>
@@ -55,7 +55,9 @@ ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const dou
         }
         if (wd[j] != 0.0) st.dir[j] = std::copysign(1.0, wd[j]);
         ++out.sliding;
-        out.max_speed = std::max(out.max_speed, std::abs(wd[j]));
+        // A non-finite velocity must survive into max_speed (std::max would drop a NaN).
+        const double speed = std::abs(wd[j]);
+        if (!(speed <= out.max_speed) && out.max_speed == out.max_speed) out.max_speed = speed;
       } else {
         const double f = forces.spring_force(w, j, anchor);
         if (fr.breaks(f)) {

@@ -120,6 +120,7 @@ void EventEngine::cover(int j) {
 }
 
 void EventEngine::release(int j) {
+  ++counters_.releases;
   st_.mobile[j] = 1.0;
   st_.wd[j] = 0.0;
   st_.dir[j] = std::copysign(1.0, forces_.spring_force(st_.w.data(), j, anchor()));
@@ -246,6 +247,7 @@ void EventEngine::note_released_in_step() {
     for (int j = r.lo; j < r.hi; ++j)
       if (st_.mobile[j] != 0.0 && mobile_old_[j] == 0.0) released_now_.push_back(j);
   for (int j : released_now_) {
+    ++counters_.releases;
     if (!slipped_[j]) {
       slipped_[j] = 1;
       slipped_list_.push_back(j);

@@ -50,6 +50,7 @@ struct EngineCounters {
   std::int64_t steps = 0;                // relaxation steps
   std::int64_t block_steps = 0;          // blocks advanced, summed over steps
   std::int64_t sliding_block_steps = 0;  // of which sliding
+  std::int64_t releases = 0;             // stuck -> sliding transitions (chattering shows here)
 };
 
 // What an engine needs to continue exactly where it stopped: the state between two

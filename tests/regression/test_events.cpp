@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "../cli_helpers.hpp"
+#include "../scene_sim.hpp"
 #include "engine/event_engine.hpp"
 #include "io/error.hpp"
 #include "engine/initial_state.hpp"
@@ -30,38 +31,9 @@
 namespace bkq {
 namespace {
 
-using Settings = std::vector<std::pair<std::string, std::string>>;
-
-Scene make_scene(const Settings& settings) {
-  Scene scene;
-  for (const auto& [k, v] : settings) scene.set(k, v);
-  scene.validate();
-  return scene;
-}
-
-// A scene's model, stepper and engine, set up the way `bkquake run` does it.
-struct Sim {
-  explicit Sim(const Scene& scene)
-      : p(model_from_scene(scene)),
-        forces(p),
-        stepper(make_stepper(scene.choice("integrator.scheme"), p.n)),
-        engine(forces, *stepper, checked_dt(scene),
-               initial_state(forces, static_cast<std::uint64_t>(scene.integer("run.seed")),
-                             scene.real("run.initial_disorder"), true)) {}
-  double checked_dt(const Scene& scene) const {
-    const double dt = scene.real("integrator.dt");
-    check_time_step(*stepper, p, dt);
-    return dt;
-  }
-  void run(int events) {
-    for (int i = 0; i < events; ++i) engine.next_event();
-  }
-
-  ModelParams p;
-  ChainForces forces;
-  std::unique_ptr<Stepper> stepper;
-  EventEngine engine;
-};
+using test::make_scene;
+using test::Settings;
+using test::Sim;
 
 const Settings kBk50 = {{"model.blocks", "50"}};
 const Settings kBkp50 = {{"model.blocks", "50"}, {"model.kind", "bkp"}};
