@@ -22,7 +22,7 @@ constexpr int kResumEvery = 1024;
 
 EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt, ChainState state)
     : forces_(forces), stepper_(stepper), dt_(dt), st_(std::move(state)), pad_(forces.params().pad_moves()),
-      n_(forces.n()) {
+      n_(forces.n()), margin_(stepper.stick_rule() == StickRule::Located ? 2 : 1) {
   check_model(forces.params());
   covered_.assign(n_, 0);
   need_.assign(n_, 0);
@@ -30,6 +30,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
   w_before_.assign(n_, 0.0);
   wd_old_.assign(n_, 0.0);
   mobile_old_.assign(n_, 0.0);
+  w_old_.assign(n_, 0.0);
   std::fill(st_.mobile.begin(), st_.mobile.end(), 0.0);
   std::fill(st_.wd.begin(), st_.wd.end(), 0.0);
   st_.xd = 0;
@@ -40,7 +41,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
 
 EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt, const EngineSnapshot& saved)
     : forces_(forces), stepper_(stepper), dt_(dt), st_(saved.state), pad_(forces.params().pad_moves()),
-      n_(forces.n()), counters_(saved.counters) {
+      n_(forces.n()), margin_(stepper.stick_rule() == StickRule::Located ? 2 : 1), counters_(saved.counters) {
   check_model(forces.params());
   if (st_.n() != n_)
     throw Error("checkpoint: it holds " + std::to_string(st_.n()) + " blocks, the scene has " + std::to_string(n_));
@@ -50,6 +51,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
   w_before_.assign(n_, 0.0);
   wd_old_.assign(n_, 0.0);
   mobile_old_.assign(n_, 0.0);
+  w_old_.assign(n_, 0.0);
   rebuild_tree();
 }
 
@@ -104,13 +106,14 @@ void EventEngine::add_to_ranges(int k) {
 }
 
 void EventEngine::cover(int j) {
-  // A sliding block and its neighbours must all be integrated (the kernels read j±1).
+  // A sliding block and `margin_` neighbours on each side are integrated (the kernels
+  // read j±1; a stepper that locates releases inside its step needs the next block too).
   const bool periodic = forces_.params().boundary == Boundary::Periodic;
-  for (int d = -1; d <= 1; ++d) {
+  for (int d = -margin_; d <= margin_; ++d) {
     int k = j + d;
     if (k < 0 || k >= n_) {
       if (!periodic) continue;
-      k = (k + n_) % n_;
+      k = ((k % n_) + n_) % n_;
     }
     if (covered_[k]) continue;
     covered_[k] = 1;
@@ -137,11 +140,11 @@ void EventEngine::shrink_ranges() {
   for (const Range& r : ranges_)
     for (int j = r.lo; j < r.hi; ++j) {
       if (st_.mobile[j] == 0.0) continue;
-      need_[j] = 1;
-      if (j > 0) need_[j - 1] = 1;
-      else if (periodic) need_[n_ - 1] = 1;
-      if (j < n_ - 1) need_[j + 1] = 1;
-      else if (periodic) need_[0] = 1;
+      for (int d = -margin_; d <= margin_; ++d) {
+        const int k = j + d;
+        if (k >= 0 && k < n_) need_[k] = 1;
+        else if (periodic) need_[((k % n_) + n_) % n_] = 1;
+      }
     }
   std::vector<Range> kept;
   kept.reserve(ranges_.size());
@@ -251,7 +254,7 @@ void EventEngine::note_released_in_step() {
     if (!slipped_[j]) {
       slipped_[j] = 1;
       slipped_list_.push_back(j);
-      w_before_[j] = st_.w[j];  // it was stuck until inside the step: moved little
+      w_before_[j] = w_old_[j];  // stuck, so unmoved, until it broke loose inside the step
     }
     cover(j);
   }
@@ -340,7 +343,10 @@ EventRecord EventEngine::next_event() {
     while (sliding_ > 0) {
       for (const Range& r : ranges_) {
         std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old_.begin() + r.lo);
-        if (!crossing) std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi, mobile_old_.begin() + r.lo);
+        if (!crossing) {
+          std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi, mobile_old_.begin() + r.lo);
+          std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, w_old_.begin() + r.lo);
+        }
       }
       const double xd_old = st_.xd;
       stepper_.step(forces_, frozen, st_, dt_, ranges_);

@@ -8,7 +8,10 @@
 //
 // Relaxation. The substrate is frozen. The scene's stepper advances only the sliding
 // blocks plus one stuck block on either side (the "covered" ranges); those neighbours
-// are checked after every step and join when their force exceeds the threshold. Stuck
+// are checked after every step and join when their force exceeds the threshold. With an
+// event-locating stepper two stuck blocks are covered on each side: it locates a
+// neighbour's release inside its step, and that neighbour's own neighbour must then be
+// integrated too (one further release within the same step is only seen at its end). Stuck
 // blocks elsewhere only feel the pad, uniformly, so with a moving pad the ForceTree is
 // asked each step whether any of them has failed. When every block is stuck the pad is a
 // damped linear oscillator; it is advanced in closed form to the first instant it pushes
@@ -106,11 +109,12 @@ class EventEngine {
   ChainState st_;
   bool pad_;
   int n_;
+  int margin_;  // stuck neighbours integrated on each side of a sliding block
 
   ForceTree tree_;
   std::vector<Range> ranges_;
   std::vector<unsigned char> covered_, need_;
-  std::vector<double> wd_old_, mobile_old_;
+  std::vector<double> wd_old_, mobile_old_, w_old_;  // at the start of a step
   std::vector<int> released_now_;
 
   // Per-event bookkeeping.
