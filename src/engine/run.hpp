@@ -16,7 +16,9 @@ struct RunRequest {
   bool quiet = false;
 };
 
-// Runs the scene; returns the process exit status. Throws bkq::Error on bad input.
+// Runs the scene; returns the process exit status: 0 when finished, 130 or 143 when an
+// event run was stopped by SIGINT or SIGTERM (after writing a checkpoint). Throws
+// bkq::Error on bad input, on a refused --resume and on a failed write.
 int run_scene(const RunRequest& request);
 
 }  // namespace bkq

@@ -71,7 +71,7 @@ std::string OutputFolder::path(const std::string& name) const {
   return (fs::path(dir_) / name).string();
 }
 
-void write_file_atomic(const std::string& path, const std::string& content) {
+std::string write_temp_beside(const std::string& path, const std::string& content) {
   std::string tmp =
       (fs::path(folder_of(path)) / (fs::path(path).filename().string() + ".tmp-XXXXXX")).string();
   const int fd = ::mkstemp(tmp.data());
@@ -81,11 +81,34 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   // mkstemp creates 0600; outputs are ordinary files, readable like any other.
   if (!err && ::fchmod(fd, 0644) != 0) err = errno;
   if (::close(fd) != 0 && !err) err = errno;
-  if (!err && std::rename(tmp.c_str(), path.c_str()) != 0) err = errno;
   if (err) {
     ::unlink(tmp.c_str());
     throw Error("cannot write '" + path + "': " + reason(err));
   }
+  return tmp;
+}
+
+void rename_file(const std::string& from, const std::string& to) {
+  if (std::rename(from.c_str(), to.c_str()) != 0)
+    throw Error("cannot rename '" + from + "' to '" + to + "': " + reason(errno));
+}
+
+void write_file_atomic(const std::string& path, const std::string& content) {
+  const std::string tmp = write_temp_beside(path, content);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw Error("cannot write '" + path + "': " + reason(err));
+  }
+}
+
+void sync_folder(const std::string& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) throw Error("cannot open folder '" + dir + "': " + reason(errno));
+  // Some file systems cannot sync a folder (EINVAL); their renames are as durable as they get.
+  const int err = ::fsync(fd) != 0 && errno != EINVAL ? errno : 0;
+  ::close(fd);
+  if (err) throw Error("cannot sync folder '" + dir + "': " + reason(err));
 }
 
 std::string utc_now_iso() {
@@ -165,6 +188,15 @@ void CsvStream::flush() {
   check(std::fflush(file_) == 0, "write");
   unflushed_ = 0;
   last_flush_ = std::chrono::steady_clock::now();
+}
+
+std::uint64_t CsvStream::sync() {
+  if (!file_) throw Error("cannot sync '" + path_ + "': the file is closed");
+  flush();
+  check(::fsync(::fileno(file_)) == 0 || errno == EINVAL, "sync");
+  struct stat st {};
+  check(::fstat(::fileno(file_), &st) == 0, "stat");
+  return static_cast<std::uint64_t>(st.st_size);
 }
 
 void CsvStream::close() {

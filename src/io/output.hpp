@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -33,6 +34,14 @@ class OutputFolder {
 // Writes `content` to a temporary file in the same folder, fsyncs it and renames it over
 // `path`. Throws bkq::Error naming the file and the system's reason.
 void write_file_atomic(const std::string& path, const std::string& content);
+// The first half of write_file_atomic: writes `content` to a new temporary file beside
+// `path` (same folder, so renaming it over `path` is atomic), fsynced and readable;
+// returns its name. Throws bkq::Error naming `path`; nothing is left behind on failure.
+std::string write_temp_beside(const std::string& path, const std::string& content);
+// Renames `from` over `to`; throws bkq::Error naming both.
+void rename_file(const std::string& from, const std::string& to);
+// fsyncs a folder, so that renames in it survive a power cut.
+void sync_folder(const std::string& dir);
 
 // "bkquake 0.1.0 (git abc123)", "seed 20261121", "scene <origin>", "scene hash <hex>",
 // "written 2026-11-21T10:54:00Z": the provenance carried by every output.
@@ -57,6 +66,9 @@ class CsvStream {
   // Appends one line (no newline in `line`).
   void row(const std::string& line);
   void flush();
+  // Flushes and syncs to disk; returns the file's size, so a checkpoint can record how much
+  // of the file belongs to it. Throws on failure.
+  std::uint64_t sync();
   // Flushes, syncs to disk and closes; throws on failure. Idempotent.
   void close();
 

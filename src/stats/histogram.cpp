@@ -147,6 +147,34 @@ void MagnitudeHistogram::write_csv(const std::filesystem::path& path) const {
   if (!f) throw Error(path.string() + ": write failed");
 }
 
+MagnitudeHistogram::State MagnitudeHistogram::state() const {
+  return State{w_,      k0_,     counts_,        n_,          sum_q_, sum_q2_,
+               min_mu_, max_mu_, exact_moments_, total_load_, blocks_};
+}
+
+MagnitudeHistogram MagnitudeHistogram::from_state(const State& s) {
+  MagnitudeHistogram h(s.bin_width);
+  std::int64_t total = 0;
+  for (std::int64_t c : s.counts) {
+    if (c < 0) throw Error("magnitude histogram: negative bin count " + std::to_string(c));
+    total += c;
+  }
+  if (total != s.events || static_cast<std::int64_t>(s.counts.size()) > kMaxBins)
+    throw Error("magnitude histogram: " + std::to_string(s.counts.size()) + " bins holding " +
+                std::to_string(total) + " events, expected " + std::to_string(s.events));
+  h.k0_ = s.first_bin;
+  h.counts_ = s.counts;
+  h.n_ = s.events;
+  h.sum_q_ = s.sum_q;
+  h.sum_q2_ = s.sum_q2;
+  h.min_mu_ = s.min_mu;
+  h.max_mu_ = s.max_mu;
+  h.exact_moments_ = s.exact_moments;
+  h.total_load_ = s.total_load;
+  h.blocks_ = s.blocks;
+  return h;
+}
+
 MagnitudeHistogram MagnitudeHistogram::read_csv(const std::filesystem::path& path,
                                                 double total_load, int blocks,
                                                 double bin_width) {

@@ -79,6 +79,23 @@ class MagnitudeHistogram {
 
   bool operator==(const MagnitudeHistogram& o) const = default;
 
+  // The complete internal state, for checkpoints (src/io/checkpoint.hpp):
+  // from_state(h.state()) == h, so a resumed run ends with the same histogram.csv.
+  struct State {
+    double bin_width = kDefaultBinWidth;
+    std::int64_t first_bin = 0;
+    std::vector<std::int64_t> counts;
+    std::int64_t events = 0;
+    __int128 sum_q = 0, sum_q2 = 0;
+    double min_mu = 0, max_mu = 0;
+    bool exact_moments = true;
+    double total_load = 0;
+    int blocks = 0;
+  };
+  State state() const;
+  // Throws bkq::Error when the state is inconsistent (bin width, counts against events).
+  static MagnitudeHistogram from_state(const State& s);
+
  private:
   void add_count(std::int64_t k, std::int64_t c);
 

@@ -1,0 +1,412 @@
+// Checkpoint encoding, validation and the two-file rotation (see checkpoint.hpp).
+#include "io/checkpoint.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "bkquake_version.hpp"
+#include "io/error.hpp"
+#include "io/output.hpp"
+#include "io/scene.hpp"
+
+namespace bkq {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kMagic[8] = {'B', 'K', 'Q', 'C', 'K', 'P', 'T', '\n'};
+constexpr std::uint32_t kFormatVersion = 1;
+constexpr std::size_t kHeadBytes = sizeof kMagic + 4 + 8;  // magic, format version, length
+constexpr std::size_t kSumBytes = 8;
+
+// A new field in these structs must be added to the format (and kFormatVersion raised).
+static_assert(sizeof(EngineCounters) == 5 * sizeof(std::int64_t),
+              "EngineCounters changed: update the checkpoint");
+static_assert(sizeof(ChainState) == 4 * sizeof(std::vector<double>) + 5 * sizeof(double),
+              "ChainState changed: update the checkpoint");
+
+std::uint64_t fnv1a64(const char* data, std::size_t n) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+class Writer {
+ public:
+  void u64(std::uint64_t v) {
+    for (int b = 0; b < 8; ++b) out_.push_back(static_cast<char>(v >> (8 * b)));
+  }
+  void u32(std::uint32_t v) {
+    for (int b = 0; b < 4; ++b) out_.push_back(static_cast<char>(v >> (8 * b)));
+  }
+  void i64(std::int64_t v) { u64(static_cast<std::uint64_t>(v)); }
+  void i128(__int128 v) {
+    u64(static_cast<std::uint64_t>(v));
+    u64(static_cast<std::uint64_t>(static_cast<unsigned __int128>(v) >> 64));
+  }
+  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+  void str(const std::string& s) {
+    u64(s.size());
+    out_ += s;
+  }
+  void f64s(const std::vector<double>& v) {
+    u64(v.size());
+    for (double x : v) f64(x);
+  }
+  void i64s(const std::vector<std::int64_t>& v) {
+    u64(v.size());
+    for (std::int64_t x : v) i64(x);
+  }
+  std::string& bytes() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& bytes, std::size_t begin, std::size_t end, const std::string& origin)
+      : b_(bytes), pos_(begin), end_(end), origin_(origin) {}
+  std::uint64_t u64() {
+    need(8);
+    std::uint64_t v = 0;
+    for (int b = 0; b < 8; ++b)
+      v |= static_cast<std::uint64_t>(static_cast<unsigned char>(b_[pos_ + b])) << (8 * b);
+    pos_ += 8;
+    return v;
+  }
+  std::uint32_t u32() {
+    need(4);
+    std::uint32_t v = 0;
+    for (int b = 0; b < 4; ++b)
+      v |= static_cast<std::uint32_t>(static_cast<unsigned char>(b_[pos_ + b])) << (8 * b);
+    pos_ += 4;
+    return v;
+  }
+  std::int64_t i64() { return static_cast<std::int64_t>(u64()); }
+  __int128 i128() {
+    const std::uint64_t lo = u64();
+    const std::uint64_t hi = u64();
+    return static_cast<__int128>((static_cast<unsigned __int128>(hi) << 64) | lo);
+  }
+  double f64() { return std::bit_cast<double>(u64()); }
+  std::string str() {
+    const std::size_t n = count(1);
+    std::string s = b_.substr(pos_, n);
+    pos_ += n;
+    return s;
+  }
+  std::vector<double> f64s() {
+    std::vector<double> v(count(8));
+    for (double& x : v) x = f64();
+    return v;
+  }
+  std::vector<std::int64_t> i64s() {
+    std::vector<std::int64_t> v(count(8));
+    for (std::int64_t& x : v) x = i64();
+    return v;
+  }
+  bool done() const { return pos_ == end_; }
+
+ private:
+  // A length prefix, checked against what is left so a bad one cannot allocate wildly.
+  std::size_t count(std::size_t element_bytes) {
+    const std::uint64_t n = u64();
+    if (n > (end_ - pos_) / element_bytes) fail();
+    return static_cast<std::size_t>(n);
+  }
+  void need(std::size_t n) {
+    if (end_ - pos_ < n) fail();
+  }
+  [[noreturn]] void fail() const {
+    throw Error("checkpoint '" + origin_ + "' is malformed: a field runs past the end of its data");
+  }
+
+  const std::string& b_;
+  std::size_t pos_, end_;
+  const std::string& origin_;
+};
+
+void put(Writer& w, const EngineCounters& c) {
+  w.i64(c.events);
+  w.i64(c.steps);
+  w.i64(c.block_steps);
+  w.i64(c.sliding_block_steps);
+  w.i64(c.releases);
+}
+
+EngineCounters get_counters(Reader& r) {
+  EngineCounters c;
+  c.events = r.i64();
+  c.steps = r.i64();
+  c.block_steps = r.i64();
+  c.sliding_block_steps = r.i64();
+  c.releases = r.i64();
+  return c;
+}
+
+std::string read_whole(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot read checkpoint '" + path + "': " + std::strerror(errno));
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw Error("cannot read checkpoint '" + path + "': read error");
+  return bytes;
+}
+
+}  // namespace
+
+std::string encode_checkpoint(const Checkpoint& c) {
+  Writer w;
+  w.str(c.version);
+  w.str(c.git_revision);
+  w.u64(c.scene_hash);
+  w.str(c.scene_ini);
+  w.u64(c.seed);
+
+  const RunProgress& p = c.progress;
+  w.i64(p.transient_done);
+  w.i64(p.events_done);
+  w.u64(p.catalog_bytes);
+  w.f64(p.load0);
+  put(w, p.counters0);
+  w.f64(p.moment_sum);
+  w.i64(p.nonpositive);
+  w.f64(p.wall_events);
+  w.f64(p.wall_total);
+  w.i64(p.resumes);
+
+  const ChainState& st = c.engine.state;
+  w.f64s(st.w);
+  w.f64s(st.wd);
+  w.f64s(st.mobile);
+  w.f64s(st.dir);
+  w.f64(st.x);
+  w.f64(st.xd);
+  w.f64(st.s);
+  w.f64(st.t);
+  w.f64(st.sum_w);
+  put(w, c.engine.counters);
+
+  const MagnitudeHistogram::State& h = c.histogram;
+  w.f64(h.bin_width);
+  w.i64(h.first_bin);
+  w.i64s(h.counts);
+  w.i64(h.events);
+  w.i128(h.sum_q);
+  w.i128(h.sum_q2);
+  w.f64(h.min_mu);
+  w.f64(h.max_mu);
+  w.u32(h.exact_moments ? 1 : 0);
+  w.f64(h.total_load);
+  w.i64(h.blocks);
+
+  Writer file;
+  file.bytes().append(kMagic, sizeof kMagic);
+  file.u32(kFormatVersion);
+  file.u64(w.bytes().size());
+  file.bytes() += w.bytes();
+  file.u64(fnv1a64(file.bytes().data(), file.bytes().size()));
+  return std::move(file.bytes());
+}
+
+Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin) {
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw Error("'" + origin +
+                "' is not a bkquake checkpoint (it does not start with the checkpoint magic)");
+  if (bytes.size() < kHeadBytes + kSumBytes)
+    throw Error("checkpoint '" + origin + "' is truncated: " + std::to_string(bytes.size()) +
+                " bytes");
+  Reader head(bytes, sizeof kMagic, kHeadBytes, origin);
+  const std::uint32_t format = head.u32();
+  if (format != kFormatVersion)
+    throw Error("checkpoint '" + origin + "' has format version " + std::to_string(format) +
+                "; this bkquake reads version " + std::to_string(kFormatVersion));
+  const std::uint64_t payload = head.u64();
+  if (payload != bytes.size() - kHeadBytes - kSumBytes)
+    throw Error("checkpoint '" + origin + "' is " +
+                (payload > bytes.size() ? "truncated" : "damaged") + ": " +
+                std::to_string(bytes.size()) + " bytes, its header announces " +
+                std::to_string(payload + kHeadBytes + kSumBytes));
+  const std::size_t end = kHeadBytes + static_cast<std::size_t>(payload);
+  const std::uint64_t stored = Reader(bytes, end, bytes.size(), origin).u64();
+  if (stored != fnv1a64(bytes.data(), end))
+    throw Error("checkpoint '" + origin + "' is damaged: checksum mismatch");
+
+  Reader r(bytes, kHeadBytes, end, origin);
+  Checkpoint c;
+  c.version = r.str();
+  c.git_revision = r.str();
+  c.scene_hash = r.u64();
+  c.scene_ini = r.str();
+  c.seed = r.u64();
+
+  RunProgress& p = c.progress;
+  p.transient_done = r.i64();
+  p.events_done = r.i64();
+  p.catalog_bytes = r.u64();
+  p.load0 = r.f64();
+  p.counters0 = get_counters(r);
+  p.moment_sum = r.f64();
+  p.nonpositive = r.i64();
+  p.wall_events = r.f64();
+  p.wall_total = r.f64();
+  p.resumes = r.i64();
+
+  ChainState& st = c.engine.state;
+  st.w = r.f64s();
+  st.wd = r.f64s();
+  st.mobile = r.f64s();
+  st.dir = r.f64s();
+  st.x = r.f64();
+  st.xd = r.f64();
+  st.s = r.f64();
+  st.t = r.f64();
+  st.sum_w = r.f64();
+  c.engine.counters = get_counters(r);
+
+  MagnitudeHistogram::State& h = c.histogram;
+  h.bin_width = r.f64();
+  h.first_bin = r.i64();
+  h.counts = r.i64s();
+  h.events = r.i64();
+  h.sum_q = r.i128();
+  h.sum_q2 = r.i128();
+  h.min_mu = r.f64();
+  h.max_mu = r.f64();
+  h.exact_moments = r.u32() != 0;
+  h.total_load = r.f64();
+  h.blocks = static_cast<int>(r.i64());
+
+  if (!r.done())
+    throw Error("checkpoint '" + origin + "' is malformed: unexpected bytes after the last field");
+  const std::size_t n = st.w.size();
+  if (st.wd.size() != n || st.mobile.size() != n || st.dir.size() != n)
+    throw Error("checkpoint '" + origin + "' is malformed: the chain arrays differ in length");
+  return c;
+}
+
+void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std::string& origin) {
+  if (c.version != kVersion)
+    throw Error("checkpoint '" + origin + "' was written by bkquake " + c.version +
+                ", this is bkquake " + kVersion +
+                ": the continuation would not be exact; rerun without --resume");
+  if (c.scene_hash == scene.hash()) return;
+  std::string diff;
+  try {
+    const Scene saved = Scene::from_text(c.scene_ini, origin);
+    int shown = 0;
+    for (const ParamSpec& p : parameter_table()) {
+      if (saved.text(p.key) == scene.text(p.key)) continue;
+      if (shown++ < 3) {
+        diff += shown > 1 ? "; " : "";
+        diff +=
+            p.key + " = " + saved.text(p.key) + " in the checkpoint, " + scene.text(p.key) + " now";
+      }
+    }
+    if (shown > 3) diff += "; and " + std::to_string(shown - 3) + " more";
+  } catch (const Error&) {
+    // A scene text this version cannot read back: the hashes alone must tell.
+  }
+  if (diff.empty())
+    diff = "scene hash " + std::to_string(c.scene_hash) + " in the checkpoint, " +
+           std::to_string(scene.hash()) + " now";
+  throw Error("checkpoint '" + origin + "' belongs to another scene (" + diff +
+              "); resume with the run's own scene.ini, or start a new run");
+}
+
+void check_csv_prefix(const std::string& path, const std::string& header, std::int64_t rows,
+                      std::uint64_t bytes) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) throw Error("cannot resume: '" + path + "': " + ec.message());
+  if (size < bytes)
+    throw Error("cannot resume: '" + path + "' has " + std::to_string(size) +
+                " bytes, the checkpoint expects at least " + std::to_string(bytes) +
+                " (the file was changed after the checkpoint)");
+  std::ifstream in(path, std::ios::binary);
+  std::string first;
+  if (!in || !std::getline(in, first) || first != header)
+    throw Error("cannot resume: '" + path + "' does not start with the header '" + header + "'");
+  in.seekg(0);
+  // Count line ends in the prefix: it must be the header and exactly `rows` whole rows.
+  std::int64_t lines = 0;
+  char last = '\n';
+  std::vector<char> buf(1 << 20);
+  for (std::uint64_t left = bytes; left > 0;) {
+    const auto n = static_cast<std::streamsize>(std::min<std::uint64_t>(left, buf.size()));
+    if (!in.read(buf.data(), n)) throw Error("cannot resume: read error on '" + path + "'");
+    for (std::streamsize i = 0; i < n; ++i) lines += buf[static_cast<std::size_t>(i)] == '\n';
+    last = buf[static_cast<std::size_t>(n - 1)];
+    left -= static_cast<std::uint64_t>(n);
+  }
+  if (lines != rows + 1 || last != '\n')
+    throw Error("cannot resume: the first " + std::to_string(bytes) + " bytes of '" + path +
+                "' hold " + std::to_string(lines) +
+                " lines, the checkpoint expects the header and " + std::to_string(rows) +
+                " rows (the file was changed after the checkpoint)");
+}
+
+CheckpointFiles::CheckpointFiles(std::string dir) : dir_(std::move(dir)) {}
+
+std::string CheckpointFiles::current() const {
+  return (fs::path(dir_) / "checkpoint.bin").string();
+}
+std::string CheckpointFiles::previous() const {
+  return (fs::path(dir_) / "checkpoint.prev.bin").string();
+}
+
+bool CheckpointFiles::exist() const {
+  std::error_code ec;
+  return fs::exists(current(), ec) || fs::exists(previous(), ec);
+}
+
+void CheckpointFiles::write(const Checkpoint& c) const {
+  const std::string tmp = write_temp_beside(current(), encode_checkpoint(c));
+  std::error_code ec;
+  try {
+    if (fs::exists(current(), ec)) rename_file(current(), previous());
+    rename_file(tmp, current());
+  } catch (const Error&) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+  sync_folder(dir_);
+}
+
+Checkpoint CheckpointFiles::read(std::string* from) const {
+  std::error_code ec;
+  std::string path = current();
+  if (!fs::exists(path, ec)) {
+    path = previous();
+    if (!fs::exists(path, ec))
+      throw Error("--resume: no checkpoint in '" + dir_ +
+                  "' (checkpoint.bin): nothing to continue; start the run without --resume");
+  }
+  if (from) *from = path;
+  try {
+    return decode_checkpoint(read_whole(path), path);
+  } catch (const Error& e) {
+    if (path == current() && fs::exists(previous(), ec))
+      throw Error(std::string(e.what()) + "; the checkpoint before it is '" + previous() +
+                  "': rename it to checkpoint.bin to resume from there");
+    throw;
+  }
+}
+
+void CheckpointFiles::remove() const {
+  std::error_code ec;
+  fs::remove(current(), ec);
+  fs::remove(previous(), ec);
+}
+
+}  // namespace bkq

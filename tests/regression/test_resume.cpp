@@ -1,0 +1,496 @@
+// Long event runs lose nothing: a run stopped by SIGTERM, SIGINT or SIGKILL and continued
+// with --resume writes exactly the catalog.csv and histogram.csv of a run that never
+// stopped; refused resumes (another scene, a damaged checkpoint, no checkpoint, a finished
+// run) change no file; and the checkpoint format round-trips every value exactly and
+// detects truncation and any changed byte. The program runs as a subprocess; the signals
+// are sent once catalog.csv has grown to a given size, so they land mid-run without timing.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "../cli_helpers.hpp"
+#include "bkquake_version.hpp"
+#include "io/catalog.hpp"
+#include "io/checkpoint.hpp"
+#include "io/error.hpp"
+#include "io/scene.hpp"
+#include "stats/histogram.hpp"
+
+namespace bkq {
+namespace {
+
+namespace fs = std::filesystem;
+using test::read_file;
+using test::run_bkquake;
+
+// 2e5 events of a 50-block Carlson-Langer chain: about a second; a checkpoint every 2e4.
+const std::vector<std::string> kScene = {
+    "--set",  "model.blocks=50",          "--set", "run.events=200000",
+    "--set",  "run.transient_events=100", "--set", "run.checkpoint_events=20000",
+    "--quiet"};
+
+// `bkquake run` with the scene's options and `more`.
+std::vector<std::string> run_args(const std::vector<std::string>& scene,
+                                  const std::vector<std::string>& more) {
+  std::vector<std::string> a = {"run"};
+  a.insert(a.end(), scene.begin(), scene.end());
+  a.insert(a.end(), more.begin(), more.end());
+  return a;
+}
+
+std::uintmax_t size_of(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t n = fs::file_size(path, ec);
+  return ec ? 0 : n;
+}
+
+std::int64_t lines_of(const std::string& path) {
+  const std::string s = read_file(path);
+  return static_cast<std::int64_t>(std::count(s.begin(), s.end(), '\n'));
+}
+
+// Every file of a folder with its bytes: "nothing changed" is equality of two of these.
+std::map<std::string, std::string> folder_bytes(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    files[entry.path().filename().string()] = read_file(entry.path().string());
+  return files;
+}
+
+struct Stopped {
+  int status = -1;  // exit status, 128 + signal when killed by one
+  std::string err;  // stderr
+};
+
+// Starts bkquake with `bkquake_args`, waits until `watch` has at least `min_bytes`, sends `sig`
+// and waits for the exit. stdout and stderr go to files beside `dir`'s parent.
+Stopped run_and_signal(const std::vector<std::string>& bkquake_args, const std::string& watch,
+                       std::uintmax_t min_bytes, int sig, const std::string& log) {
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    std::vector<std::string> all = bkquake_args;
+    std::vector<char*> argv{const_cast<char*>(BKQUAKE_BINARY)};
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(BKQUAKE_BINARY, argv.data());
+    ::_exit(127);
+  }
+  Stopped r;
+  int wstatus = 0;
+  bool signalled = false;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (true) {
+    const pid_t done = ::waitpid(pid, &wstatus, WNOHANG);
+    if (done == pid) break;
+    if (!signalled && size_of(watch) >= min_bytes) {
+      ::kill(pid, sig);
+      signalled = true;
+    }
+    if (std::chrono::steady_clock::now() > give_up) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &wstatus, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  r.status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
+  r.err = read_file(log);
+  return r;
+}
+
+void expect_refused(const test::ProcessResult& r, std::initializer_list<std::string> parts) {
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << r.err;
+  for (const auto& p : parts)
+    EXPECT_NE(lines[0].find(p), std::string::npos) << lines[0] << " lacks " << p;
+}
+
+class Resume : public ::testing::Test {
+ protected:
+  // The straight run every interrupted one is compared with.
+  static void SetUpTestSuite() {
+    straight_ = new test::TempDir;
+    const auto r = run_bkquake(run_args(kScene, {"--out", straight_->file("out")}));
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  static void TearDownTestSuite() {
+    delete straight_;
+    straight_ = nullptr;
+  }
+  static std::string straight(const std::string& name) { return straight_->file("out/" + name); }
+
+  // A run of kScene stopped by `sig` once catalog.csv holds `fraction` of its final size.
+  Stopped interrupt(const std::string& out, int sig, double fraction) {
+    const auto min_bytes = static_cast<std::uintmax_t>(
+        fraction * static_cast<double>(size_of(straight("catalog.csv"))));
+    return run_and_signal(run_args(kScene, {"--out", out}), out + "/catalog.csv", min_bytes, sig,
+                          tmp_.file("log.txt"));
+  }
+
+  void expect_same_results(const std::string& out) {
+    EXPECT_TRUE(read_file(out + "/catalog.csv") == read_file(straight("catalog.csv")));
+    EXPECT_EQ(read_file(out + "/histogram.csv"), read_file(straight("histogram.csv")));
+    EXPECT_TRUE(fs::exists(out + "/summary.json"));
+    EXPECT_FALSE(CheckpointFiles(out).exist()) << "a finished run keeps no checkpoint";
+  }
+
+  static test::TempDir* straight_;
+  test::TempDir tmp_;
+};
+
+test::TempDir* Resume::straight_ = nullptr;
+
+TEST_F(Resume, SigtermMidRunThenResumeIsByteIdentical) {
+  const std::string out = tmp_.file("out");
+  const Stopped s = interrupt(out, SIGTERM, 0.4);
+  ASSERT_EQ(s.status, 143) << s.err;
+  EXPECT_NE(s.err.find("stopped by SIGTERM"), std::string::npos) << s.err;
+  EXPECT_NE(s.err.find(out + "/checkpoint.bin"), std::string::npos) << s.err;
+  EXPECT_NE(s.err.find("--resume"), std::string::npos) << s.err;
+  EXPECT_FALSE(fs::exists(out + "/summary.json"));
+  // The current event was finished and the catalog flushed: it ends at the checkpoint.
+  const Checkpoint c = CheckpointFiles(out).read();
+  EXPECT_GT(c.progress.events_done, 0);
+  EXPECT_LT(c.progress.events_done, 200000);
+  EXPECT_EQ(lines_of(out + "/catalog.csv"), c.progress.events_done + 1);
+  EXPECT_EQ(size_of(out + "/catalog.csv"), c.progress.catalog_bytes);
+
+  const auto r = run_bkquake(run_args(kScene, {"--out", out, "--resume"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("resuming"), std::string::npos) << r.out;
+  expect_same_results(out);
+  EXPECT_NE(read_file(out + "/summary.json").find("\"resumes\": 1"), std::string::npos);
+}
+
+TEST_F(Resume, SigintStopsWith130AndTheRunsOwnSceneIniResumesIt) {
+  const std::string out = tmp_.file("out");
+  const Stopped s = interrupt(out, SIGINT, 0.2);
+  ASSERT_EQ(s.status, 130) << s.err;
+  EXPECT_NE(s.err.find("stopped by SIGINT"), std::string::npos) << s.err;
+  const Checkpoint c = CheckpointFiles(out).read();
+  EXPECT_EQ(lines_of(out + "/catalog.csv"), c.progress.events_done + 1);
+  // The stop message tells to resume with the folder's scene.ini: that is the same scene.
+  const auto r = run_bkquake({"run", out + "/scene.ini", "--out", out, "--resume", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_same_results(out);
+}
+
+TEST_F(Resume, SigkillResumesFromThePeriodicCheckpointAndDropsLaterRows) {
+  const std::string out = tmp_.file("out");
+  const Stopped s = interrupt(out, SIGKILL, 0.6);
+  ASSERT_EQ(s.status, 128 + SIGKILL) << s.err;
+  const CheckpointFiles files(out);
+  ASSERT_TRUE(fs::exists(files.current()));
+  ASSERT_TRUE(fs::exists(files.previous())) << "the checkpoint before the newest is kept";
+  const Checkpoint c = files.read();
+  const Checkpoint prev = decode_checkpoint(read_file(files.previous()), files.previous());
+  EXPECT_EQ(c.progress.events_done - prev.progress.events_done, 20000);
+  EXPECT_EQ((c.progress.events_done + 100) % 20000, 0) << "checkpoints every 20000 engine events";
+  EXPECT_GT(size_of(out + "/catalog.csv"), c.progress.catalog_bytes) << "rows after the checkpoint";
+
+  const auto r = run_bkquake(run_args(kScene, {"--out", out, "--resume"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_same_results(out);
+}
+
+TEST_F(Resume, CrashBetweenTheTwoRenamesResumesFromThePreviousCheckpoint) {
+  const std::string out = tmp_.file("out");
+  ASSERT_EQ(interrupt(out, SIGKILL, 0.6).status, 128 + SIGKILL);
+  const CheckpointFiles files(out);
+  fs::remove(files.current());
+  ASSERT_TRUE(fs::exists(files.previous()));
+  const auto r = run_bkquake(run_args(kScene, {"--out", out, "--resume"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("checkpoint.prev.bin"), std::string::npos) << r.out;
+  expect_same_results(out);
+}
+
+TEST_F(Resume, StoppedDuringTheTransient) {
+  // The transient writes no rows, so wait for its first checkpoint instead.
+  const std::vector<std::string> scene = {"--set",  "model.blocks=50",
+                                          "--set",  "run.events=2000",
+                                          "--set",  "run.transient_events=80000",
+                                          "--set",  "run.checkpoint_events=5000",
+                                          "--quiet"};
+  const std::string a = tmp_.file("a"), b = tmp_.file("b");
+  ASSERT_EQ(run_bkquake(run_args(scene, {"--out", a})).status, 0);
+  const Stopped s = run_and_signal(run_args(scene, {"--out", b}), b + "/checkpoint.bin", 1, SIGTERM,
+                                   tmp_.file("log.txt"));
+  ASSERT_EQ(s.status, 143) << s.err;
+  const Checkpoint c = CheckpointFiles(b).read();
+  EXPECT_LT(c.progress.transient_done, 80000) << "the signal should land in the transient";
+  EXPECT_EQ(c.progress.events_done, 0);
+  const auto r = run_bkquake(run_args(scene, {"--out", b, "--resume"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(read_file(b + "/catalog.csv") == read_file(a + "/catalog.csv"));
+  EXPECT_EQ(read_file(b + "/histogram.csv"), read_file(a + "/histogram.csv"));
+}
+
+TEST_F(Resume, AnotherSceneIsRefusedAndNothingChanges) {
+  const std::string out = tmp_.file("out");
+  ASSERT_EQ(interrupt(out, SIGTERM, 0.05).status, 143);
+  const auto before = folder_bytes(out);
+  expect_refused(
+      run_bkquake(run_args(kScene, {"--out", out, "--resume", "--set", "friction.alpha=2"})),
+      {"another scene", "friction.alpha = 2.5 in the checkpoint, 2 now"});
+  EXPECT_TRUE(folder_bytes(out) == before);
+}
+
+TEST_F(Resume, DamagedOrTruncatedCheckpointIsRefusedAndNothingChanges) {
+  const std::string out = tmp_.file("out");
+  ASSERT_EQ(interrupt(out, SIGTERM, 0.05).status, 143);
+  const std::string ckpt = out + "/checkpoint.bin";
+  const std::string good = read_file(ckpt);
+
+  std::string flipped = good;
+  flipped[flipped.size() / 2] ^= 0x01;
+  tmp_.write("out/checkpoint.bin", flipped);
+  auto before = folder_bytes(out);
+  expect_refused(run_bkquake(run_args(kScene, {"--out", out, "--resume"})),
+                 {ckpt, "damaged", "checksum"});
+  EXPECT_TRUE(folder_bytes(out) == before);
+
+  tmp_.write("out/checkpoint.bin", good.substr(0, good.size() - 100));
+  before = folder_bytes(out);
+  expect_refused(run_bkquake(run_args(kScene, {"--out", out, "--resume"})), {ckpt, "truncated"});
+  EXPECT_TRUE(folder_bytes(out) == before);
+}
+
+TEST_F(Resume, CatalogShorterThanItsCheckpointIsRefused) {
+  const std::string out = tmp_.file("out");
+  ASSERT_EQ(interrupt(out, SIGTERM, 0.05).status, 143);
+  const std::string catalog = read_file(out + "/catalog.csv");
+  tmp_.write("out/catalog.csv", catalog.substr(0, catalog.size() - 10));
+  const auto before = folder_bytes(out);
+  expect_refused(run_bkquake(run_args(kScene, {"--out", out, "--resume"})),
+                 {"catalog.csv", "changed after the checkpoint"});
+  EXPECT_TRUE(folder_bytes(out) == before);
+}
+
+TEST_F(Resume, WithoutACheckpointIsRefused) {
+  const std::string out = tmp_.file("out");
+  fs::create_directories(out);
+  tmp_.write("out/catalog.csv", catalog_header() + "\n");
+  const auto before = folder_bytes(out);
+  expect_refused(run_bkquake(run_args(kScene, {"--out", out, "--resume"})),
+                 {"--resume", "no checkpoint", out});
+  EXPECT_TRUE(folder_bytes(out) == before);
+}
+
+TEST_F(Resume, FinishedAndInterruptedRunsAreNotOverwrittenWithoutForce) {
+  const std::string done = straight_->file("out");
+  const auto finished = folder_bytes(done);
+  expect_refused(run_bkquake(run_args(kScene, {"--out", done})), {"finished run", "--force"});
+  expect_refused(run_bkquake(run_args(kScene, {"--out", done, "--resume"})),
+                 {"--resume", "finished run", "nothing to continue"});
+  EXPECT_TRUE(folder_bytes(done) == finished);
+
+  const std::string out = tmp_.file("out");
+  ASSERT_EQ(interrupt(out, SIGTERM, 0.05).status, 143);
+  const auto interrupted = folder_bytes(out);
+  expect_refused(run_bkquake(run_args(kScene, {"--out", out})),
+                 {"interrupted run", "--resume", "--force"});
+  EXPECT_TRUE(folder_bytes(out) == interrupted);
+
+  // --force starts over: the old checkpoints go with the old run.
+  const auto r =
+      run_bkquake(run_args(kScene, {"--out", out, "--force", "--set", "run.events=1000"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(CheckpointFiles(out).exist());
+  EXPECT_EQ(lines_of(out + "/catalog.csv"), 1001);
+}
+
+TEST_F(Resume, ContinuousRunsRefuseResume) {
+  const std::string out = tmp_.file("out");
+  expect_refused(run_bkquake({"run", "--set", "drive.mode=continuous", "--out", out, "--resume"}),
+                 {"--resume", "continuous"});
+}
+
+// ---- the checkpoint format ----
+
+Checkpoint sample_checkpoint() {
+  Checkpoint c;
+  c.version = kVersion;
+  c.git_revision = "abc123";
+  const Scene scene;
+  c.scene_hash = scene.hash();
+  c.scene_ini = scene.to_ini();
+  c.seed = 20261121;
+  c.progress.transient_done = 1000;
+  c.progress.events_done = 123456;
+  c.progress.catalog_bytes = 9876543210ull;
+  c.progress.load0 = 1.0 / 3.0;
+  c.progress.counters0 = {1000, 2, 3, 4, 5};
+  c.progress.moment_sum = 1e300;
+  c.progress.nonpositive = 7;
+  c.progress.wall_events = 12.5;
+  c.progress.wall_total = 13.25;
+  c.progress.resumes = 2;
+  ChainState& st = c.engine.state;
+  st.resize(5);
+  st.w = {0.1, -0.0, std::numeric_limits<double>::denorm_min(), -1e-300, 7.0 / 9.0};
+  st.dir = {1, -1, 1, 1, -1};
+  st.x = std::nextafter(1.0, 2.0);
+  st.xd = 0;
+  st.s = 123.456;
+  st.t = 1e9;
+  st.sum_w = -2.5;
+  c.engine.counters = {124456, 99, 98, 97, 96};
+  MagnitudeHistogram h(0.2);
+  for (double mu : {-3.1, -2.05, 0.0, 0.3, 4.99, 0.31}) h.add(mu);
+  h.set_loading(3.5, 5);
+  c.histogram = h.state();
+  return c;
+}
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+void expect_equal(const Checkpoint& a, const Checkpoint& b) {
+  EXPECT_EQ(a.version, b.version);
+  EXPECT_EQ(a.git_revision, b.git_revision);
+  EXPECT_EQ(a.scene_hash, b.scene_hash);
+  EXPECT_EQ(a.scene_ini, b.scene_ini);
+  EXPECT_EQ(a.seed, b.seed);
+  const RunProgress &p = a.progress, &q = b.progress;
+  EXPECT_EQ(p.transient_done, q.transient_done);
+  EXPECT_EQ(p.events_done, q.events_done);
+  EXPECT_EQ(p.catalog_bytes, q.catalog_bytes);
+  EXPECT_TRUE(same_bits(p.load0, q.load0));
+  EXPECT_EQ(p.counters0.events, q.counters0.events);
+  EXPECT_EQ(p.counters0.releases, q.counters0.releases);
+  EXPECT_TRUE(same_bits(p.moment_sum, q.moment_sum));
+  EXPECT_EQ(p.nonpositive, q.nonpositive);
+  EXPECT_TRUE(same_bits(p.wall_events, q.wall_events));
+  EXPECT_TRUE(same_bits(p.wall_total, q.wall_total));
+  EXPECT_EQ(p.resumes, q.resumes);
+  const ChainState &s = a.engine.state, &t = b.engine.state;
+  ASSERT_EQ(s.n(), t.n());
+  for (int j = 0; j < s.n(); ++j) {
+    EXPECT_TRUE(same_bits(s.w[j], t.w[j])) << j;
+    EXPECT_TRUE(same_bits(s.wd[j], t.wd[j])) << j;
+    EXPECT_TRUE(same_bits(s.mobile[j], t.mobile[j])) << j;
+    EXPECT_TRUE(same_bits(s.dir[j], t.dir[j])) << j;
+  }
+  for (auto [u, v] :
+       {std::pair{s.x, t.x}, {s.xd, t.xd}, {s.s, t.s}, {s.t, t.t}, {s.sum_w, t.sum_w}})
+    EXPECT_TRUE(same_bits(u, v));
+  EXPECT_EQ(a.engine.counters.events, b.engine.counters.events);
+  EXPECT_EQ(a.engine.counters.steps, b.engine.counters.steps);
+  EXPECT_EQ(a.engine.counters.block_steps, b.engine.counters.block_steps);
+  EXPECT_EQ(a.engine.counters.sliding_block_steps, b.engine.counters.sliding_block_steps);
+  EXPECT_EQ(a.engine.counters.releases, b.engine.counters.releases);
+  EXPECT_TRUE(MagnitudeHistogram::from_state(a.histogram) ==
+              MagnitudeHistogram::from_state(b.histogram));
+}
+
+TEST(Checkpoint, RoundTripIsExact) {
+  const Checkpoint c = sample_checkpoint();
+  const std::string bytes = encode_checkpoint(c);
+  expect_equal(decode_checkpoint(bytes, "mem"), c);
+  EXPECT_EQ(encode_checkpoint(decode_checkpoint(bytes, "mem")), bytes);
+}
+
+TEST(Checkpoint, HistogramStateRoundTripsAndIsChecked) {
+  MagnitudeHistogram h(0.25);
+  for (double mu : {-1.0, 2.2, 2.3, 7.9}) h.add(mu);
+  h.set_loading(2.0, 10);
+  EXPECT_TRUE(MagnitudeHistogram::from_state(h.state()) == h);
+  EXPECT_EQ(MagnitudeHistogram::from_state(h.state()).csv(), h.csv());
+  MagnitudeHistogram::State bad = h.state();
+  bad.events += 1;
+  EXPECT_THROW(MagnitudeHistogram::from_state(bad), Error);
+}
+
+TEST(Checkpoint, EveryTruncationAndEveryChangedByteIsDetected) {
+  const std::string bytes = encode_checkpoint(sample_checkpoint());
+  for (std::size_t n = 0; n < bytes.size(); n += 7)
+    EXPECT_THROW(decode_checkpoint(bytes.substr(0, n), "cut"), Error) << n;
+  EXPECT_THROW(decode_checkpoint(bytes + "x", "long"), Error);
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    std::string changed = bytes;
+    changed[i] ^= 0x10;
+    EXPECT_THROW(decode_checkpoint(changed, "flip"), Error) << "byte " << i;
+  }
+}
+
+TEST(Checkpoint, OtherVersionOrSceneIsRefusedNamingTheDifference) {
+  Checkpoint c = sample_checkpoint();
+  const Scene scene;
+  EXPECT_NO_THROW(check_checkpoint_matches(c, scene, "ck"));
+  Scene other;
+  other.set("friction.sigma", "0.02");
+  other.set("model.blocks", "64");
+  try {
+    check_checkpoint_matches(c, other, "ck");
+    ADD_FAILURE() << "another scene was accepted";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("friction.sigma = 0.01 in the checkpoint, 0.02 now"), std::string::npos) << m;
+    EXPECT_NE(m.find("model.blocks = 100 in the checkpoint, 64 now"), std::string::npos) << m;
+  }
+  c.version = "0.0.1";
+  try {
+    check_checkpoint_matches(c, scene, "ck");
+    ADD_FAILURE() << "another version was accepted";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("bkquake 0.0.1"), std::string::npos) << m;
+    EXPECT_NE(m.find(std::string("this is bkquake ") + kVersion), std::string::npos) << m;
+  }
+}
+
+TEST(Checkpoint, FilesRotateAndTheOldOneSurvives) {
+  test::TempDir tmp;
+  const CheckpointFiles files(tmp.path().string());
+  EXPECT_FALSE(files.exist());
+  EXPECT_THROW(files.read(), Error);
+  Checkpoint c = sample_checkpoint();
+  files.write(c);
+  EXPECT_FALSE(fs::exists(files.previous()));
+  c.progress.events_done += 1;
+  files.write(c);
+  std::string from;
+  EXPECT_EQ(files.read(&from).progress.events_done, 123457);
+  EXPECT_EQ(from, files.current());
+  EXPECT_EQ(decode_checkpoint(read_file(files.previous()), "prev").progress.events_done, 123456);
+  // Only the two checkpoints are left: no temporary files.
+  EXPECT_EQ(std::distance(fs::directory_iterator(tmp.path()), fs::directory_iterator()), 2);
+  files.remove();
+  EXPECT_FALSE(files.exist());
+}
+
+TEST(Checkpoint, CsvPrefixMustHoldExactlyTheRows) {
+  test::TempDir tmp;
+  const std::string csv = tmp.write("c.csv", "a,b\n1,2\n3,4\n5,");
+  EXPECT_NO_THROW(check_csv_prefix(csv, "a,b", 2, 12));
+  EXPECT_NO_THROW(check_csv_prefix(csv, "a,b", 1, 8));
+  EXPECT_THROW(check_csv_prefix(csv, "a,b", 2, 8), Error);   // one row, not two
+  EXPECT_THROW(check_csv_prefix(csv, "a,b", 1, 10), Error);  // ends mid-row
+  EXPECT_THROW(check_csv_prefix(csv, "a,b", 3, 20), Error);  // file too short
+  EXPECT_THROW(check_csv_prefix(csv, "x,y", 2, 12), Error);  // other header
+  EXPECT_THROW(check_csv_prefix(tmp.file("missing.csv"), "a,b", 0, 4), Error);
+}
+
+}  // namespace
+}  // namespace bkq
