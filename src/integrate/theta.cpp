@@ -1,0 +1,331 @@
+// The theta-method with set-valued friction; see theta.hpp for the scheme, the stick rule
+// and the contact solver.
+#include "integrate/theta.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "io/error.hpp"
+
+namespace bkq {
+
+namespace {
+// Newton on the weakening friction has converged when s |a - a_hat| <= this (the friction
+// error is then ~ F0 (s da)^2, far below rounding of the step's impulses).
+constexpr double kNewtonTolerance = 1e-6;
+constexpr int kMaxSweeps = 100000;
+constexpr double kSweepTolerance = 1e-14;
+}  // namespace
+
+Theta::Theta(int n_blocks) { resize(n_blocks); }
+
+void Theta::resize(int n) {
+  n_ = n;
+  for (auto* v : {&v0_, &vn_, &impulse0_, &force_pred_, &diag0_, &a_hat_, &z_, &cp_, &q_}) v->assign(n, 0.0);
+  start_.assign(n, 0);
+  status_.assign(n, 0);
+  segments_.clear();
+  segments_.reserve(n + 1);
+}
+
+void Theta::build_segments(const ModelParams& p, Ranges ranges) {
+  segments_.clear();
+  for (const Range& r : ranges)
+    if (r.hi > r.lo) segments_.push_back(Segment{r.lo, r.hi - r.lo, false});
+  std::sort(segments_.begin(), segments_.end(), [](const Segment& a, const Segment& b) { return a.lo < b.lo; });
+  // Adjacent ranges are one segment: their blocks are coupled and both move.
+  std::size_t k = 0;
+  for (std::size_t i = 1; i < segments_.size(); ++i) {
+    if (segments_[k].lo + segments_[k].len == segments_[i].lo)
+      segments_[k].len += segments_[i].len;
+    else
+      segments_[++k] = segments_[i];
+  }
+  if (!segments_.empty()) segments_.resize(k + 1);
+  if (p.boundary != Boundary::Periodic || segments_.empty()) return;
+  Segment& first = segments_.front();
+  Segment& last = segments_.back();
+  if (segments_.size() == 1 && first.len == n_) {
+    first.cyclic = n_ >= 3;  // a pair is a plain 2x2 system with a doubled spring
+  } else if (segments_.size() > 1 && first.lo == 0 && last.lo + last.len == n_) {
+    // Blocks n-1 and 0 are neighbours: the runs through the wrap are one segment.
+    first = Segment{last.lo, last.len + first.len, false};
+    segments_.pop_back();
+  }
+}
+
+double Theta::neighbour_velocities(int j) const {
+  if (!neighbours_) return 0.0;
+  if (periodic_) return vn_[j == 0 ? n_ - 1 : j - 1] + vn_[j == n_ - 1 ? 0 : j + 1];
+  return (j > 0 ? vn_[j - 1] : 0.0) + (j < n_ - 1 ? vn_[j + 1] : 0.0);
+}
+
+void Theta::prepare(const ChainForces& forces, const Substrate& sub, const ChainState& st, double dt) {
+  const ModelParams& p = forces.params();
+  const Friction& fr = forces.friction();
+  const SubstrateState s0 = sub.at(st.t), s1 = sub.at(st.t + dt);
+  m_ = p.m_u;
+  b_ = 0.5 * dt;
+  neighbours_ = p.has_neighbours();
+  periodic_ = p.boundary == Boundary::Periodic;
+  kc_ = neighbours_ ? p.k_c : 0.0;
+  kp_ = p.k_p;
+  link_ = b_ * b_ * (periodic_ && n_ == 2 ? 2.0 * kc_ : kc_);
+  frictionless_ = p.law == FrictionLaw::None;
+  backslip_ = fr.backslip;
+  thr_ = fr.threshold;
+  k0_ = fr.kinetic0;
+  s_ = fr.inv_scale;
+  pad_ = p.pad_moves();
+  if (b_ * k0_ * s_ >= 1.0) {
+    char msg[300];
+    std::snprintf(msg, sizeof msg,
+                  "integrator.dt: %g is too large for theta with this velocity-weakening friction: the sliding "
+                  "speed is unique only for dt < 2 v_c/F0 = %.6g",
+                  dt, 2.0 / (k0_ * s_));
+    throw Error(msg);
+  }
+
+  const double* w = st.w.data();
+  const double x0 = pad_ ? st.x : 0.0;
+  const double x_pred = pad_ ? st.x + b_ * st.xd : 0.0;  // x+ without the new velocity's half
+  const double anchor0 = s0.s + x0, anchor_pred = s1.s + x_pred;
+  for_each_block([&](int j) {
+    const bool stuck = !frictionless_ && st.mobile[j] == 0.0;
+    start_[j] = stuck ? 0 : (backslip_ && st.dir[j] < 0.0 ? -1 : 1);
+    v0_[j] = stuck ? 0.0 : st.wd[j];
+  });
+  double sum_v0 = 0;
+  for_each_block([&](int j) {
+    const double v = v0_[j];
+    // L at the start, and L+ with the new velocities left out (w+ = w + b v here).
+    const double L = forces.spring_force(w, j, anchor0) - p.c_u * (v - s0.v) + m_ * s0.a;
+    const double L_pred = forces.spring_force(w, j, anchor_pred) +
+                          b_ * (forces.neighbour_force(v0_.data(), j) - p.k_p * v) + p.c_u * s1.v + m_ * s1.a;
+    double r = 0;  // friction at the start of the step
+    const int d = start_[j];
+    if (d == 0) {
+      r = std::clamp(-L, -thr_, backslip_ ? thr_ : HUGE_VAL);
+    } else {
+      r = -m_ * d * fr.magnitude(std::max(d * v, 0.0));
+    }
+    const int nb = !neighbours_ ? 0 : periodic_ ? 2 : (j > 0) + (j < n_ - 1);
+    impulse0_[j] = m_ * v + b_ * (L + r);
+    force_pred_[j] = L_pred;
+    diag0_[j] = m_ + b_ * p.c_u + b_ * b_ * (p.k_p + nb * p.k_c);
+    status_[j] = static_cast<std::int8_t>(d);
+    // Linearise friction about the speed predicted from the start's acceleration.
+    a_hat_[j] = d == 0 ? 0.0 : std::max(d * (v + 2.0 * b_ * (L + r) / m_), 0.0);
+    vn_[j] = v;
+    sum_v0 += v;
+  });
+
+  pad_col_ = 0;
+  xdn_ = st.xd;
+  if (pad_) {
+    // m_x (xd+ - xd) = b (X + X+), X the pad force; X+ with the new velocities left out.
+    const double X = p.m_x * forces.pad_acceleration(st.x, st.xd, st.sum_w, s0.s);
+    const double X_pred = p.k_p * (st.sum_w + b_ * sum_v0 - p.n * s1.s - p.n * x_pred) - p.k_p0 * x_pred;
+    pad_col_ = b_ * b_ * kp_;
+    pad_diag_ = p.m_x + b_ * p.c_p + b_ * b_ * (p.n * p.k_p + p.k_p0);
+    pad_rhs_ = p.m_x * st.xd + b_ * (X + X_pred);
+  }
+}
+
+Theta::Load Theta::load(int j) const {
+  double f = force_pred_[j] + b_ * kc_ * neighbour_velocities(j);
+  if (pad_) f += b_ * kp_ * xdn_;
+  return Load{impulse0_[j] + b_ * f, f};
+}
+
+int Theta::decide(int j, Load l) const {
+  if (frictionless_) return l.c < 0.0 ? -1 : 1;
+  // Sliding in direction e has a speed > 0 iff e c > b m k0; stuck, friction must hold f.
+  const double kinetic = b_ * m_ * k0_;
+  const bool holds = backslip_ ? std::abs(l.f) <= thr_ : l.f <= thr_;
+  const int d = start_[j];
+  if (d != 0 && d * l.c > kinetic) return d;  // keeps sliding
+  if (holds) return 0;                         // stays stuck, or stops and sticks
+  // Friction cannot hold the block: it slides the way it is pulled, if momentum allows
+  // (a block stopping while pulled back beyond the threshold in the same step is left
+  // stuck for this step; it breaks loose at the next).
+  const int e = l.f > 0.0 ? 1 : -1;
+  if ((backslip_ || e > 0) && e * l.c > kinetic) return e;
+  return 0;
+}
+
+double Theta::slide_speed(int j, double c, int d) const {
+  const double target = d * c, D = diag0_[j], bmk = b_ * m_ * k0_;
+  // The root with friction at its largest, k0, is a lower bound; Newton on the convex,
+  // increasing D a + b m k0/(1 + a s) - target then converges from the right.
+  double a = std::max((target - bmk) / D, 0.0);
+  if (s_ == 0.0) return a;
+  for (int it = 0; it < 100; ++it) {
+    const double q = 1.0 / (1.0 + a * s_);
+    const double da = (D * a + bmk * q - target) / (D - bmk * s_ * q * q);
+    a = std::max(a - da, 0.0);
+    if (std::abs(da) <= 1e-15 * a) break;
+  }
+  return a;
+}
+
+void Theta::solve_segment(const Segment& g, double& sum_y, double& sum_z) {
+  // Row of a sliding block: (D - b gamma) v_j - link (v_{j-1} + v_{j+1}) - pad_col xd
+  //   = m v + b (L + r) + b (L_pred + rho),
+  // with friction linearised as r+ = rho + gamma v about a_hat; a stuck block's row is v_j = 0.
+  // Three right-hand sides share the Thomas factorisation: rhs (y), the pad column (z) and,
+  // for a cyclic segment, the Sherman–Morrison vector u (q).
+  const int len = g.len;
+  double corner_top = 0, corner_bottom = 0, gamma_sm = 1;
+  double cp_prev = 0, y_prev = 0, z_prev = 0, q_prev = 0;
+  for (int i = 0; i < len; ++i) {
+    const int j = block(g, i);
+    double diag = 1, rhs = 0, col = 0, off = 0;
+    if (status_[j] != 0) {
+      const double a = a_hat_[j], d = status_[j];
+      const double q = 1.0 / (1.0 + a * s_);
+      const double k = k0_ * q, dk = -k0_ * s_ * q * q;
+      const double rho = -m_ * d * (k - a * dk), gamma = -m_ * dk;
+      diag = diag0_[j] - b_ * gamma;
+      rhs = impulse0_[j] + b_ * (force_pred_[j] + rho);
+      col = pad_col_;
+      off = -link_;
+    }
+    const double lower = i > 0 ? off : 0.0, upper = i < len - 1 ? off : 0.0;
+    double u = 0;
+    if (g.cyclic && i == 0) {
+      corner_top = off;  // T[0][len-1]
+      gamma_sm = -diag;
+      diag -= gamma_sm;
+      u = gamma_sm;
+    }
+    if (g.cyclic && i == len - 1) {
+      corner_bottom = off;  // T[len-1][0]
+      diag -= corner_top * corner_bottom / gamma_sm;
+      u = corner_bottom;
+    }
+    const double inv = 1.0 / (diag - lower * cp_prev);
+    cp_prev = cp_[j] = upper * inv;
+    y_prev = vn_[j] = (rhs - lower * y_prev) * inv;
+    z_prev = z_[j] = (col - lower * z_prev) * inv;
+    if (g.cyclic) q_prev = q_[j] = (u - lower * q_prev) * inv;
+  }
+  for (int i = len - 2; i >= 0; --i) {
+    const int j = block(g, i), next = block(g, i + 1);
+    vn_[j] -= cp_[j] * vn_[next];
+    z_[j] -= cp_[j] * z_[next];
+    if (g.cyclic) q_[j] -= cp_[j] * q_[next];
+  }
+  if (g.cyclic) {
+    const int first = block(g, 0), last = block(g, len - 1);
+    const double ratio = corner_top / gamma_sm;
+    const double denom = 1.0 + q_[first] + ratio * q_[last];
+    const double fy = (vn_[first] + ratio * vn_[last]) / denom;
+    const double fz = (z_[first] + ratio * z_[last]) / denom;
+    for (int i = 0; i < len; ++i) {
+      const int j = block(g, i);
+      vn_[j] -= fy * q_[j];
+      z_[j] -= fz * q_[j];
+    }
+  }
+  for (int i = 0; i < len; ++i) {
+    const int j = block(g, i);
+    if (status_[j] == 0) vn_[j] = z_[j] = 0.0;  // exactly, whatever the correction rounded to
+    sum_y += vn_[j];
+    sum_z += z_[j];
+  }
+}
+
+void Theta::solve_linear() {
+  double sum_y = 0, sum_z = 0;
+  for (const Segment& g : segments_) solve_segment(g, sum_y, sum_z);
+  if (!pad_) return;
+  // Schur complement of the pad's row: pad_diag xd - pad_col sum v = pad_rhs, v = y + z xd.
+  xdn_ = (pad_rhs_ + pad_col_ * sum_y) / (pad_diag_ - pad_col_ * sum_z);
+  for_each_block([&](int j) { vn_[j] += z_[j] * xdn_; });
+}
+
+bool Theta::solve_active_set() {
+  for (int it = 0; it < max_active_set_; ++it) {
+    solve_linear();
+    if (frictionless_) return true;
+    bool settled = true;
+    for_each_block([&](int j) {
+      const Load l = load(j);
+      const int state = decide(j, l);
+      if (state != status_[j]) {
+        settled = false;
+        status_[j] = static_cast<std::int8_t>(state);
+        a_hat_[j] = state == 0 ? 0.0 : slide_speed(j, l.c, state);
+        return;
+      }
+      if (state == 0) return;
+      const double a = state * vn_[j];
+      if (!(a > 0.0) || s_ * std::abs(a - a_hat_[j]) > kNewtonTolerance) settled = false;
+      a_hat_[j] = a > 0.0 ? a : slide_speed(j, l.c, state);
+    });
+    if (settled) return true;
+  }
+  return false;
+}
+
+void Theta::solve_gauss_seidel() {
+  for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+    double change = 0, scale = 0, sum = 0;
+    for_each_block([&](int j) {
+      const Load l = load(j);
+      const int state = decide(j, l);
+      const double v = state == 0 ? 0.0 : state * slide_speed(j, l.c, state);
+      change = std::max(change, std::abs(v - vn_[j]));
+      scale = std::max(scale, std::abs(v));
+      status_[j] = static_cast<std::int8_t>(state);
+      vn_[j] = v;
+      sum += v;
+    });
+    if (pad_) {
+      const double xd = (pad_rhs_ + pad_col_ * sum) / pad_diag_;
+      change = std::max(change, std::abs(xd - xdn_));
+      scale = std::max(scale, std::abs(xd));
+      xdn_ = xd;
+    }
+    if (change <= kSweepTolerance * scale) return;
+  }
+}
+
+void Theta::finish(ChainState& st, double dt) {
+  double dsum = 0;
+  for_each_block([&](int j) {
+    const double v = status_[j] == 0 ? 0.0 : vn_[j];
+    const double dw = b_ * (v0_[j] + v);
+    st.w[j] += dw;
+    dsum += dw;
+    if (frictionless_) {
+      st.mobile[j] = 1.0;
+      if (v != 0.0) st.dir[j] = std::copysign(1.0, v);
+    } else if (v == 0.0) {
+      st.mobile[j] = 0.0;  // a sliding speed that rounded to zero: the block stops here
+    } else {
+      st.mobile[j] = 1.0;
+      st.dir[j] = status_[j];
+    }
+    st.wd[j] = v;
+    v0_[j] = vn_[j] = 0.0;
+  });
+  if (pad_) {
+    st.x += b_ * (st.xd + xdn_);
+    st.xd = xdn_;
+    st.sum_w += dsum;
+  }
+  st.t += dt;
+}
+
+void Theta::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+  const ModelParams& p = forces.params();
+  if (p.n != n_) resize(p.n);
+  build_segments(p, ranges);
+  prepare(forces, sub, st, dt);
+  if (!solve_active_set()) solve_gauss_seidel();
+  finish(st, dt);
+}
+
+}  // namespace bkq
