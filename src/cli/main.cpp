@@ -20,6 +20,7 @@ Usage:
   bkquake run --dump-defaults      print a commented scene with every key at its default
   bkquake fit CATALOG.csv [--mu-min A] [--mu-max B] [--bin-width W] [--blocks N] [--json OUT]
   bkquake merge RUN_DIR... --out DIR
+  bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]
   bkquake --help | --version
 
 Commands:
@@ -27,6 +28,7 @@ Commands:
           scene.ini, catalog.csv, histogram.csv, summary.json (+ timeseries.csv)
   fit     fit the Gutenberg-Richter law R = A exp(-b mu) to an event catalogue
   merge   merge the histograms of runs of the same scene and fit the result
+  accuracy  work-precision study: error against time per event for every scheme and dt
 
 Examples:
   bkquake run                                    the Carlson-Langer reference, event-driven
@@ -59,6 +61,7 @@ int main(int argc, char** argv) {
     if (command == "run") return bkq::cmd_run(args);
     if (command == "fit") return bkq::cmd_fit(args);
     if (command == "merge") return bkq::cmd_merge(args);
+    if (command == "accuracy") return bkq::cmd_accuracy(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {
     std::cerr << "bkquake: error: " << e.what() << "\n";

@@ -245,19 +245,27 @@ bool EventEngine::pad_phase() {
 }
 
 void EventEngine::note_released_in_step() {
+  // The stepper's own list first (it knows blocks that broke loose and stuck again inside
+  // the step, and where they were), then any block whose flag went from stuck to sliding.
   released_now_.clear();
+  for (const Stepper::Release& r : stepper_.releases_in_step()) {
+    if (!slipped_[r.block]) {
+      slipped_[r.block] = 1;
+      slipped_list_.push_back(r.block);
+      w_before_[r.block] = r.w;
+    }
+    released_now_.push_back(r.block);
+  }
   for (const Range& r : ranges_)
     for (int j = r.lo; j < r.hi; ++j)
-      if (st_.mobile[j] != 0.0 && mobile_old_[j] == 0.0) released_now_.push_back(j);
-  for (int j : released_now_) {
-    ++counters_.releases;
-    if (!slipped_[j]) {
-      slipped_[j] = 1;
-      slipped_list_.push_back(j);
-      w_before_[j] = w_old_[j];  // stuck, so unmoved, until it broke loose inside the step
-    }
-    cover(j);
-  }
+      if (st_.mobile[j] != 0.0 && mobile_old_[j] == 0.0 && !slipped_[j]) {
+        slipped_[j] = 1;
+        slipped_list_.push_back(j);
+        w_before_[j] = w_old_[j];  // stuck, so unmoved, until it broke loose inside the step
+        released_now_.push_back(j);
+      }
+  counters_.releases += static_cast<std::int64_t>(released_now_.size());
+  for (int j : released_now_) cover(j);
 }
 
 double EventEngine::stored_energy_change(double x0) const {
@@ -368,7 +376,11 @@ EventRecord EventEngine::next_event() {
         if (!std::isfinite(scan.max_speed)) check_finite();
         max_speed_ = scan.max_speed;
       }
-      if (sliding_ == 0) last_stick_time_ = st_.t;
+      if (sliding_ == 0) {
+        // A stepper that located the last re-stick inside the step knows when it was.
+        const double located = stepper_.located_stick_time();
+        last_stick_time_ = located > st_.t - dt_ && located <= st_.t ? located : st_.t;
+      }
       if (steps % kShrinkEvery == 0) shrink_ranges();
       if (steps > max_steps_per_event) {
         char msg[300];

@@ -63,12 +63,6 @@ namespace bkq {
 
 class Adaptive final : public Stepper {
  public:
-  // A stuck block that broke loose inside the last step(), with its position then.
-  struct Release {
-    int block;
-    double w;
-  };
-
   // tolerance: the local error tolerance, in (0, 1); throws bkq::Error otherwise.
   Adaptive(int n_blocks, double tolerance);
 
@@ -93,9 +87,11 @@ class Adaptive final : public Stepper {
   // Time of the most recent located re-stick (NaN before the first): the end of a slip
   // to within the bisection bracket, where the driver only sees the macro step's end.
   double last_stick_time() const { return last_stick_time_; }
+  double located_stick_time() const override { return last_stick_time_; }
   // Blocks released inside the last step(), each once (at its first release), in order:
   // a block may have slipped and stuck again before the driver looks at the flags.
   std::span<const Release> releases() const { return releases_; }
+  std::span<const Release> releases_in_step() const override { return releases_; }
 
  private:
   // Stage S (0-based, 1..6; stage 0 is first_stage) from the stages before it: positions

@@ -1,9 +1,11 @@
 // integrator.scheme keyword -> stepper type, and the time-step stability check.
 #include <cstdio>
 
+#include "integrate/adaptive.hpp"
 #include "integrate/rk2.hpp"
 #include "integrate/rk4.hpp"
 #include "integrate/stepper.hpp"
+#include "integrate/theta.hpp"
 #include "integrate/verlet.hpp"
 #include "io/error.hpp"
 
@@ -14,14 +16,16 @@ void ExplicitStepper::resize(int n) {
 }
 
 const std::vector<std::string>& stepper_keywords() {
-  static const std::vector<std::string> k{"rk2", "rk4", "verlet"};
+  static const std::vector<std::string> k{"rk2", "rk4", "verlet", "theta", "adaptive"};
   return k;
 }
 
-std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n) {
+std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n, double tolerance) {
   if (scheme == "rk2") return std::make_unique<Rk2>(n);
   if (scheme == "rk4") return std::make_unique<Rk4>(n);
   if (scheme == "verlet") return std::make_unique<Verlet>(n);
+  if (scheme == "theta") return std::make_unique<Theta>(n);
+  if (scheme == "adaptive") return std::make_unique<Adaptive>(n, tolerance);
   std::string valid;
   for (const auto& k : stepper_keywords()) valid += (valid.empty() ? "" : "|") + k;
   throw Error("integrator.scheme: '" + scheme + "' is not available; expected one of " + valid);

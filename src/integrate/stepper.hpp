@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,12 +41,24 @@ class Stepper {
   // (HUGE_VAL for unconditionally stable schemes).
   virtual double stability_constant() const = 0;
   virtual StickRule stick_rule() const { return StickRule::Crossing; }
+  // Steppers that resolve transitions themselves (Projection, Located) may report what
+  // happened inside their last step(), which the driver cannot see from the flags after it:
+  // the blocks that broke loose (each once, with its position then; a block may have
+  // stuck again before the step ended) and the time of the most recent located re-stick
+  // (NaN when none was located: the driver then takes the end of the step).
+  struct Release {
+    int block;
+    double w;
+  };
+  virtual std::span<const Release> releases_in_step() const { return {}; }
+  virtual double located_stick_time() const { return std::nan(""); }
   virtual void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                     Ranges ranges) = 0;
 };
 
 // Keyword -> stepper; an unknown keyword throws bkq::Error listing the valid ones.
-std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n_blocks);
+// `tolerance` is the local error tolerance of the adaptive scheme (integrator.tolerance).
+std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n_blocks, double tolerance = 1e-8);
 const std::vector<std::string>& stepper_keywords();
 
 // Largest stable dt for this stepper on this model: stability_constant / omega_max.

@@ -1,0 +1,293 @@
+// The work–precision study; see accuracy.hpp.
+#include "engine/accuracy.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "engine/event_engine.hpp"
+#include "engine/initial_state.hpp"
+#include "integrate/adaptive.hpp"
+#include "integrate/stepper.hpp"
+#include "io/error.hpp"
+#include "io/json.hpp"
+#include "model/chain.hpp"
+#include "stats/gutenberg_richter.hpp"
+#include "stats/histogram.hpp"
+
+namespace bkq {
+
+namespace {
+
+// An event that needs more steps than this is reported as failed rather than waited for.
+constexpr std::int64_t kMaxStepsPerEvent = 20'000'000;
+// Macro step of the per-event reference (see sample_states).
+constexpr double kReferenceMacroStep = 1e-3;
+
+struct Reference {
+  double moment = 0, duration = 0;
+};
+
+struct LongRun {
+  MagnitudeHistogram hist;
+  double seconds_per_event = 0, steps_per_event = 0;
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+double relative_error(double value, double reference) {
+  return reference != 0 ? std::abs(value - reference) / std::abs(reference) : std::abs(value);
+}
+
+class Study {
+ public:
+  Study(const Scene& scene, const AccuracyOptions& opt)
+      : scene_(scene), opt_(opt), p_(model_from_scene(scene)), forces_(p_), dt_(scene.real("integrator.dt")),
+        seed_(static_cast<std::uint64_t>(scene.integer("run.seed"))),
+        transient_(scene.integer("run.transient_events")), bin_width_(scene.real("stats.bin_width")) {
+    EventEngine::check_model(p_);
+  }
+
+  // Pre-event states sampled from a run of the scene's own stepper, and the reference
+  // relaxation of the event that follows each.
+  void sample_states() {
+    const auto stepper = make_stepper(scene_.choice("integrator.scheme"), p_.n, scene_.real("integrator.tolerance"));
+    check_time_step(*stepper, p_, dt_);
+    EventEngine engine(forces_, *stepper, dt_, start(seed_));
+    for (std::int64_t i = 0; i < transient_; ++i) engine.next_event();
+    for (int k = 0; k < opt_.samples; ++k) {
+      for (int i = 0; i < opt_.sample_spacing; ++i) engine.next_event();
+      states_.push_back(engine.snapshot());
+    }
+    // The engine checks stuck blocks outside the integrated ranges once per macro step;
+    // a short macro step keeps that lag out of the reference.
+    Adaptive reference(p_.n, opt_.reference_tolerance);
+    for (const EngineSnapshot& s : states_) {
+      EventEngine e(forces_, reference, std::min(dt_, kReferenceMacroStep), s);
+      const EventRecord r = e.next_event();
+      references_.push_back({r.moment, r.duration});
+    }
+  }
+
+  // The reference long run and the noise floor (the reference from another seed).
+  std::vector<AccuracyPoint> reference_rows(AccuracyStudy& study) {
+    Adaptive reference(p_.n, opt_.long_reference_tolerance);
+    reference_run_ = long_run(reference, dt_, seed_);
+    const GrFit fit = fit_histogram(reference_run_.hist, std::nullopt, std::nullopt);
+    study.mu_min = fit.mu_min;
+    study.mu_max = fit.mu_max;
+    window_min_ = fit.mu_min;  // every other run's b is fitted on this window
+    window_max_ = fit.mu_max;
+    b_reference_ = fit.b_mle;
+
+    AccuracyPoint ref;
+    ref.scheme = "reference";
+    ref.dt = dt_;
+    ref.tolerance = opt_.long_reference_tolerance;
+    ref.note = "long-run reference";
+    ref.b = b_reference_;
+    ref.seconds_per_event = reference_run_.seconds_per_event;
+    ref.steps_per_event = reference_run_.steps_per_event;
+
+    Adaptive other(p_.n, opt_.long_reference_tolerance);
+    LongRun floor_run = long_run(other, dt_, seed_ + opt_.other_seed_offset);
+    AccuracyPoint floor = ref;
+    floor.scheme = "noise-floor";
+    floor.note = "reference from seed + " + std::to_string(opt_.other_seed_offset);
+    fill_statistics(floor, floor_run);
+    return {ref, floor};
+  }
+
+  AccuracyPoint measure(const std::string& scheme, double dt, double tolerance) {
+    AccuracyPoint pt;
+    pt.scheme = scheme;
+    pt.dt = dt;
+    pt.tolerance = scheme == "adaptive" ? tolerance : 0.0;
+    auto stepper = make_stepper(scheme, p_.n, tolerance > 0 ? tolerance : 1e-8);
+    const double limit = stability_limit(*stepper, p_);
+    if (dt > limit) {
+      pt.status = "unstable";
+      char note[80];
+      std::snprintf(note, sizeof note, "dt above the stability limit %.4g", limit);
+      pt.note = note;
+      return pt;
+    }
+    try {
+      std::vector<double> dm, dd;
+      for (std::size_t k = 0; k < states_.size(); ++k) {
+        EventEngine e(forces_, *stepper, dt, states_[k]);
+        e.max_steps_per_event = kMaxStepsPerEvent;
+        const EventRecord r = e.next_event();
+        dm.push_back(relative_error(r.moment, references_[k].moment));
+        dd.push_back(relative_error(r.duration, references_[k].duration));
+      }
+      pt.sampled = static_cast<int>(dm.size());
+      pt.moment_error_median = median(dm);
+      pt.duration_error_median = median(dd);
+      pt.moment_error_max = dm.empty() ? 0 : *std::max_element(dm.begin(), dm.end());
+      pt.duration_error_max = dd.empty() ? 0 : *std::max_element(dd.begin(), dd.end());
+      LongRun run = long_run(*stepper, dt, seed_);
+      fill_statistics(pt, run);
+    } catch (const Error& err) {
+      pt.status = "failed";
+      pt.note = err.what();
+    }
+    return pt;
+  }
+
+ private:
+  ChainState start(std::uint64_t seed) const {
+    return initial_state(forces_, seed, scene_.real("run.initial_disorder"), true);
+  }
+
+  LongRun long_run(Stepper& stepper, double dt, std::uint64_t seed) {
+    EventEngine engine(forces_, stepper, dt, start(seed));
+    engine.max_steps_per_event = kMaxStepsPerEvent;
+    for (std::int64_t i = 0; i < transient_; ++i) engine.next_event();
+    LongRun run{MagnitudeHistogram(bin_width_), 0, 0};
+    const double load0 = engine.load();
+    const std::int64_t steps0 = engine.counters().steps;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (std::int64_t i = 0; i < opt_.long_events; ++i) {
+      const EventRecord e = engine.next_event();
+      if (e.moment > 0) run.hist.add(e.magnitude);
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    run.hist.set_loading(engine.load() - load0, p_.n);
+    const double events = static_cast<double>(std::max<std::int64_t>(opt_.long_events, 1));
+    run.seconds_per_event = wall / events;
+    run.steps_per_event = static_cast<double>(engine.counters().steps - steps0) / events;
+    return run;
+  }
+
+  void fill_statistics(AccuracyPoint& pt, LongRun& run) {
+    pt.ks_distance = ks_binned(run.hist, reference_run_.hist);
+    try {
+      pt.b = fit_histogram(run.hist, window_min_, window_max_).b_mle;
+      pt.b_shift = pt.b - b_reference_;
+    } catch (const Error& err) {
+      pt.b = pt.b_shift = std::nan("");
+      pt.note = std::string("b not fitted: ") + err.what();
+    }
+    pt.seconds_per_event = run.seconds_per_event;
+    pt.steps_per_event = run.steps_per_event;
+  }
+  const Scene& scene_;
+  const AccuracyOptions& opt_;
+  ModelParams p_;
+  ChainForces forces_;
+  double dt_;
+  std::uint64_t seed_;
+  std::int64_t transient_;
+  double bin_width_;
+  std::vector<EngineSnapshot> states_;
+  std::vector<Reference> references_;
+  LongRun reference_run_{MagnitudeHistogram(), 0, 0};
+  double b_reference_ = 0;
+  std::optional<double> window_min_, window_max_;
+};
+
+}  // namespace
+
+double ks_binned(const MagnitudeHistogram& a, const MagnitudeHistogram& b) {
+  if (a.empty() || b.empty()) return 1.0;
+  const double na = static_cast<double>(a.events()), nb = static_cast<double>(b.events());
+  double d = 0;
+  std::int64_t ca = 0, cb = 0;
+  for (std::int64_t k = std::min(a.first_bin(), b.first_bin()); k <= std::max(a.last_bin(), b.last_bin()); ++k) {
+    ca += a.count(k);
+    cb += b.count(k);
+    d = std::max(d, std::abs(static_cast<double>(ca) / na - static_cast<double>(cb) / nb));
+  }
+  return d;
+}
+
+AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
+                           const std::function<void(const AccuracyPoint&)>& report) {
+  AccuracyStudy study;
+  Study s(scene, options);
+  s.sample_states();
+  for (AccuracyPoint& row : s.reference_rows(study)) {
+    if (report) report(row);
+    study.points.push_back(std::move(row));
+  }
+  for (const std::string& scheme : options.schemes) {
+    if (scheme == "adaptive") {
+      for (double tol : options.tolerances) {
+        study.points.push_back(s.measure(scheme, scene.real("integrator.dt"), tol));
+        if (report) report(study.points.back());
+      }
+      continue;
+    }
+    for (double dt : options.dts) {
+      study.points.push_back(s.measure(scheme, dt, 0.0));
+      if (report) report(study.points.back());
+    }
+  }
+  return study;
+}
+
+namespace {
+std::string csv_field(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+}  // namespace
+
+std::string accuracy_csv(const AccuracyStudy& study) {
+  std::string out =
+      "scheme,dt,tolerance,status,sampled_events,moment_error_median,moment_error_max,duration_error_median,"
+      "duration_error_max,ks_distance,b,b_shift,seconds_per_event,steps_per_event,note\n";
+  for (const AccuracyPoint& p : study.points) {
+    out += p.scheme + ',' + format_real(p.dt) + ',' + format_real(p.tolerance) + ',' + p.status + ',' +
+           std::to_string(p.sampled);
+    // Blank where nothing was measured: not run, or (reference rows) no per-event errors.
+    const bool ran = p.status == "ok", per_event = ran && p.sampled > 0;
+    for (double v : {p.moment_error_median, p.moment_error_max, p.duration_error_median, p.duration_error_max})
+      out += ',' + (per_event ? format_real(v) : std::string());
+    for (double v : {p.ks_distance, p.b, p.b_shift, p.seconds_per_event, p.steps_per_event})
+      out += ',' + (ran ? format_real(v) : std::string());
+    out += ',' + csv_field(p.note) + '\n';
+  }
+  return out;
+}
+
+std::string accuracy_table(const AccuracyStudy& study) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-11s %8s %8s %11s %11s %9s %8s %11s %9s  %s\n", "scheme", "dt", "tol",
+                "dM/M med", "dT/T med", "KS", "db", "s/event", "steps/ev", "status");
+  out += line;
+  for (const AccuracyPoint& p : study.points) {
+    if (p.status != "ok") {
+      std::snprintf(line, sizeof line, "%-11s %8.3g %8s %11s %11s %9s %8s %11s %9s  %s (%s)\n", p.scheme.c_str(), p.dt,
+                    p.tolerance > 0 ? format_real(p.tolerance).c_str() : "-", "", "", "", "", "", "",
+                    p.status.c_str(), p.note.c_str());
+    } else {
+      char dm[32] = "-", dd[32] = "-";
+      if (p.sampled > 0) {
+        std::snprintf(dm, sizeof dm, "%.3g", p.moment_error_median);
+        std::snprintf(dd, sizeof dd, "%.3g", p.duration_error_median);
+      }
+      std::snprintf(line, sizeof line, "%-11s %8.3g %8s %11s %11s %9.4f %+8.4f %11.3g %9.4g  ok\n", p.scheme.c_str(),
+                    p.dt, p.tolerance > 0 ? format_real(p.tolerance).c_str() : "-", dm, dd, p.ks_distance, p.b_shift,
+                    p.seconds_per_event, p.steps_per_event);
+    }
+    out += line;
+  }
+  std::snprintf(line, sizeof line, "b fitted on mu in [%.2f, %.2f) (the reference run's automatic window)\n",
+                study.mu_min, study.mu_max);
+  out += line;
+  return out;
+}
+
+}  // namespace bkq

@@ -1,0 +1,104 @@
+// The work–precision study (engine/accuracy.hpp, `bkquake accuracy`) on a small chain:
+// errors shrink with dt and with the scheme's order, the adaptive reference beats the
+// fixed-step schemes, a dt above the stability limit is kept and marked, the table and
+// accuracy.csv carry every point, and the command refuses bad options.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "../cli_helpers.hpp"
+#include "../scene_sim.hpp"
+#include "engine/accuracy.hpp"
+
+namespace bkq {
+namespace {
+
+const AccuracyPoint& point(const AccuracyStudy& s, const std::string& scheme, double dt, double tol = 0) {
+  for (const AccuracyPoint& p : s.points)
+    if (p.scheme == scheme && p.dt == dt && p.tolerance == tol) return p;
+  throw std::runtime_error("no point " + scheme);
+}
+
+TEST(Accuracy, SmallStudyOrdersTheSchemesAndKeepsUnstablePoints) {
+  const Scene scene = test::make_scene({{"model.blocks", "30"}, {"run.transient_events", "300"}});
+  AccuracyOptions opt;
+  opt.schemes = {"rk2", "rk4", "theta", "adaptive"};
+  opt.dts = {0.05, 0.02, 0.005};
+  opt.tolerances = {1e-8};
+  opt.samples = 12;
+  opt.sample_spacing = 10;
+  opt.long_events = 400;
+  const AccuracyStudy study = run_accuracy(scene, opt);
+  ASSERT_EQ(study.points.size(), 2u + 3 * 3 + 1);
+  EXPECT_EQ(study.points[0].scheme, "reference");
+  EXPECT_EQ(study.points[0].ks_distance, 0.0);
+  EXPECT_EQ(study.points[1].scheme, "noise-floor");
+  EXPECT_GT(study.points[1].ks_distance, 0.0);  // another seed: a different sample
+
+  // rk2 at dt 0.05 is beyond its limit (0.5 / omega_max = 0.025): kept, marked, not run.
+  const AccuracyPoint& rk2_big = point(study, "rk2", 0.05);
+  EXPECT_EQ(rk2_big.status, "unstable");
+  EXPECT_NE(rk2_big.note.find("stability limit"), std::string::npos);
+  EXPECT_EQ(rk2_big.sampled, 0);
+
+  for (const char* scheme : {"rk2", "rk4", "theta"}) {
+    const AccuracyPoint& coarse = point(study, scheme, 0.02);
+    const AccuracyPoint& fine = point(study, scheme, 0.005);
+    ASSERT_EQ(coarse.status, "ok") << scheme << ": " << coarse.note;
+    ASSERT_EQ(fine.status, "ok") << scheme << ": " << fine.note;
+    EXPECT_EQ(fine.sampled, 12);
+    // Smaller dt: smaller per-event error, more time per event.
+    EXPECT_LT(fine.moment_error_median, coarse.moment_error_median) << scheme;
+    EXPECT_GT(fine.steps_per_event, 2 * coarse.steps_per_event) << scheme;
+  }
+  const AccuracyPoint& adaptive = point(study, "adaptive", scene.real("integrator.dt"), 1e-8);
+  ASSERT_EQ(adaptive.status, "ok") << adaptive.note;
+  EXPECT_LT(adaptive.moment_error_median, point(study, "rk4", 0.005).moment_error_median);
+  EXPECT_LT(adaptive.moment_error_max, 1e-4);
+
+  const std::string csv = accuracy_csv(study);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), study.points.size() + 1);
+  EXPECT_EQ(csv.rfind("scheme,dt,tolerance,status,", 0), 0u);
+  EXPECT_NE(accuracy_table(study).find("unstable"), std::string::npos);
+}
+
+TEST(Accuracy, BinnedKolmogorovSmirnovDistance) {
+  MagnitudeHistogram a(0.5), b(0.5);
+  for (double mu : {-1.0, -0.2, 0.3, 1.1}) a.add(mu);
+  EXPECT_EQ(ks_binned(a, a), 0.0);
+  for (double mu : {1.2, 1.3, 1.4, 1.6}) b.add(mu);
+  // Three of a's four events lie below all of b's.
+  EXPECT_DOUBLE_EQ(ks_binned(a, b), 0.75);
+}
+
+TEST(AccuracyProgram, RefusesBadOptionsAndWritesTheTable) {
+  test::TempDir dir;
+  const auto bad = test::run_process(BKQUAKE_BINARY, {"accuracy", "--schemes", "rk4,euler", "--out", dir.path().string()});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("euler"), std::string::npos) << bad.err;
+  const auto bad_dt = test::run_process(BKQUAKE_BINARY, {"accuracy", "--dt", "0.01,-1", "--out", dir.path().string()});
+  EXPECT_EQ(bad_dt.status, 2);
+  EXPECT_NE(bad_dt.err.find("--dt"), std::string::npos) << bad_dt.err;
+
+  const std::vector<std::string> args = {"accuracy",      "--set",     "model.blocks=20", "--schemes", "rk4",
+                                         "--dt",          "0.01",      "--samples",       "3",         "--long-events",
+                                         "200",           "--quiet",   "--out",           dir.path().string()};
+  const auto ok = test::run_process(BKQUAKE_BINARY, args);
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  EXPECT_NE(ok.out.find("rk4"), std::string::npos);
+  std::ifstream csv(dir.file("accuracy.csv"));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("scheme,dt,", 0), 0u);
+  EXPECT_TRUE(std::ifstream(dir.file("scene.ini")).good());
+  // A second run does not overwrite the table without --force.
+  const auto again = test::run_process(BKQUAKE_BINARY, args);
+  EXPECT_EQ(again.status, 2);
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+}
+
+}  // namespace
+}  // namespace bkq
