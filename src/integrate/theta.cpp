@@ -10,9 +10,14 @@
 namespace bkq {
 
 namespace {
-// Newton on the weakening friction has converged when s |a - a_hat| <= this (the friction
-// error is then ~ F0 (s da)^2, far below rounding of the step's impulses).
-constexpr double kNewtonTolerance = 1e-6;
+// The iteration on the weakening friction has converged when s |a - a_hat| <= this: the
+// sliding speeds are then within ~1e-10/s of the solution (a chord step contracts the
+// error at least as fast as its update shrinks) and friction within ~1e-10 of itself.
+constexpr double kSpeedTolerance = 1e-10;
+// Chord steps (reusing a factorisation made with another friction slope) before refactoring.
+constexpr int kMaxChordSteps = 3;
+// Projected Gauss–Seidel stops when a sweep changes no velocity by more than this relative
+// amount (or after kMaxSweeps, keeping the last sweep: every block consistent with its law).
 constexpr int kMaxSweeps = 100000;
 constexpr double kSweepTolerance = 1e-14;
 }  // namespace
@@ -21,11 +26,16 @@ Theta::Theta(int n_blocks) { resize(n_blocks); }
 
 void Theta::resize(int n) {
   n_ = n;
-  for (auto* v : {&v0_, &vn_, &impulse0_, &force_pred_, &diag0_, &a_hat_, &z_, &cp_, &q_}) v->assign(n, 0.0);
+  for (auto* v : {&v0_, &vn_, &impulse0_, &force_pred_, &diag0_, &a_hat_, &z_, &cp_, &q_, &inv_, &gamma_f_, &diag_f_})
+    v->assign(n, 0.0);
   start_.assign(n, 0);
   status_.assign(n, 0);
+  status_f_.assign(n, 0);
   segments_.clear();
   segments_.reserve(n + 1);
+  segments_f_.clear();
+  segments_f_.reserve(n + 1);
+  factored_ = false;
 }
 
 void Theta::build_segments(const ModelParams& p, Ranges ranges) {
@@ -130,6 +140,10 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
     pad_diag_ = p.m_x + b_ * p.c_p + b_ * b_ * (p.n * p.k_p + p.k_p0);
     pad_rhs_ = p.m_x * st.xd + b_ * (X + X_pred);
   }
+  // The last factorisation serves this step if the matrix is the same but for friction slopes.
+  factored_ = factored_ && segments_ == segments_f_ && link_ == link_f_ && pad_col_ == pad_col_f_ &&
+              pad_diag_ == pad_diag_f_;
+  for_each_block([&](int j) { factored_ = factored_ && diag0_[j] == diag_f_[j] && status_[j] == status_f_[j]; });
 }
 
 Theta::Load Theta::load(int j) const {
@@ -146,9 +160,9 @@ int Theta::decide(int j, Load l) const {
   const int d = start_[j];
   if (d != 0 && d * l.c > kinetic) return d;  // keeps sliding
   if (holds) return 0;                         // stays stuck, or stops and sticks
-  // Friction cannot hold the block: it slides the way it is pulled, if momentum allows
-  // (a block stopping while pulled back beyond the threshold in the same step is left
-  // stuck for this step; it breaks loose at the next).
+  // Friction cannot hold the block: it slides the way it is pulled, if the step's momentum
+  // allows a speed that way (when it does not, the pull reversed while the block was
+  // stopping: it is left stuck for this step and breaks loose at the next).
   const int e = l.f > 0.0 ? 1 : -1;
   if ((backslip_ || e > 0) && e * l.c > kinetic) return e;
   return 0;
@@ -169,14 +183,16 @@ double Theta::slide_speed(int j, double c, int d) const {
   return a;
 }
 
-void Theta::solve_segment(const Segment& g, double& sum_y, double& sum_z) {
+void Theta::solve_segment(const Segment& g, bool refactor, double& sum_y) {
   // Row of a sliding block: (D - b gamma) v_j - link (v_{j-1} + v_{j+1}) - pad_col xd
   //   = m v + b (L + r) + b (L_pred + rho),
   // with friction linearised as r+ = rho + gamma v about a_hat; a stuck block's row is v_j = 0.
-  // Three right-hand sides share the Thomas factorisation: rhs (y), the pad column (z) and,
-  // for a cyclic segment, the Sherman–Morrison vector u (q).
+  // Refactoring, three right-hand sides share the Thomas factorisation: rhs (y), the pad
+  // column (z) and, for a cyclic segment, the Sherman–Morrison vector u (q). Otherwise
+  // only y is solved, with the slope gamma_f the factorisation was made with and the
+  // difference, applied to the current iterate, on the right (a chord step).
   const int len = g.len;
-  double corner_top = 0, corner_bottom = 0, gamma_sm = 1;
+  double corner_top = 0, gamma_sm = 1;
   double cp_prev = 0, y_prev = 0, z_prev = 0, q_prev = 0;
   for (int i = 0; i < len; ++i) {
     const int j = block(g, i);
@@ -186,68 +202,108 @@ void Theta::solve_segment(const Segment& g, double& sum_y, double& sum_z) {
       const double q = 1.0 / (1.0 + a * s_);
       const double k = k0_ * q, dk = -k0_ * s_ * q * q;
       const double rho = -m_ * d * (k - a * dk), gamma = -m_ * dk;
-      diag = diag0_[j] - b_ * gamma;
       rhs = impulse0_[j] + b_ * (force_pred_[j] + rho);
-      col = pad_col_;
       off = -link_;
+      if (refactor) {
+        gamma_f_[j] = gamma;
+        diag = diag0_[j] - b_ * gamma;
+        col = pad_col_;
+      } else {
+        rhs += b_ * (gamma - gamma_f_[j]) * vn_[j];
+      }
     }
-    const double lower = i > 0 ? off : 0.0, upper = i < len - 1 ? off : 0.0;
-    double u = 0;
-    if (g.cyclic && i == 0) {
-      corner_top = off;  // T[0][len-1]
-      gamma_sm = -diag;
-      diag -= gamma_sm;
-      u = gamma_sm;
+    const double lower = i > 0 ? off : 0.0;
+    double inv = 0;
+    if (refactor) {
+      const double upper = i < len - 1 ? off : 0.0;
+      double u = 0;
+      if (g.cyclic && i == 0) {
+        corner_top = off;  // T[0][len-1]
+        gamma_sm = -diag;
+        diag -= gamma_sm;
+        u = gamma_sm;
+      }
+      if (g.cyclic && i == len - 1) {
+        diag -= corner_top * off / gamma_sm;  // off = T[len-1][0]
+        u = off;
+      }
+      inv = inv_[j] = 1.0 / (diag - lower * cp_prev);
+      cp_prev = cp_[j] = upper * inv;
+      z_prev = z_[j] = (col - lower * z_prev) * inv;
+      if (g.cyclic) q_prev = q_[j] = (u - lower * q_prev) * inv;
+    } else {
+      inv = inv_[j];
     }
-    if (g.cyclic && i == len - 1) {
-      corner_bottom = off;  // T[len-1][0]
-      diag -= corner_top * corner_bottom / gamma_sm;
-      u = corner_bottom;
-    }
-    const double inv = 1.0 / (diag - lower * cp_prev);
-    cp_prev = cp_[j] = upper * inv;
     y_prev = vn_[j] = (rhs - lower * y_prev) * inv;
-    z_prev = z_[j] = (col - lower * z_prev) * inv;
-    if (g.cyclic) q_prev = q_[j] = (u - lower * q_prev) * inv;
   }
+  // Back substitution, carrying the next entry in registers; stuck rows come out exactly 0
+  // (zero right-hand side and coupling), except through the cyclic correction.
+  const int last = block(g, len - 1);
+  double y_next = vn_[last], z_next = z_[last], q_next = q_[last];
+  double sy = y_next, sz = z_next;
   for (int i = len - 2; i >= 0; --i) {
-    const int j = block(g, i), next = block(g, i + 1);
-    vn_[j] -= cp_[j] * vn_[next];
-    z_[j] -= cp_[j] * z_[next];
-    if (g.cyclic) q_[j] -= cp_[j] * q_[next];
+    const int j = block(g, i);
+    y_next = vn_[j] -= cp_[j] * y_next;
+    sy += y_next;
+    if (!refactor) continue;
+    z_next = z_[j] -= cp_[j] * z_next;
+    sz += z_next;
+    if (g.cyclic) q_next = q_[j] -= cp_[j] * q_next;
   }
-  if (g.cyclic) {
-    const int first = block(g, 0), last = block(g, len - 1);
-    const double ratio = corner_top / gamma_sm;
-    const double denom = 1.0 + q_[first] + ratio * q_[last];
-    const double fy = (vn_[first] + ratio * vn_[last]) / denom;
-    const double fz = (z_[first] + ratio * z_[last]) / denom;
-    for (int i = 0; i < len; ++i) {
-      const int j = block(g, i);
-      vn_[j] -= fy * q_[j];
-      z_[j] -= fz * q_[j];
-    }
+  if (!g.cyclic) {
+    sum_y += sy;
+    if (refactor) sum_z_ += sz;
+    return;
   }
+  // Sherman–Morrison: T^-1 b = A^-1 b - (v.A^-1 b)/(1 + v.q) q, with v = (1, 0.., corner/gamma).
+  const int first = block(g, 0);
+  if (refactor) {
+    sm_ratio_ = corner_top / gamma_sm;
+    sm_denom_ = 1.0 + q_[first] + sm_ratio_ * q_[last];
+    const double fz = (z_[first] + sm_ratio_ * z_[last]) / sm_denom_;
+    for (int i = 0; i < len; ++i) z_[block(g, i)] -= fz * q_[block(g, i)];
+  }
+  const double fy = (vn_[first] + sm_ratio_ * vn_[last]) / sm_denom_;
   for (int i = 0; i < len; ++i) {
     const int j = block(g, i);
-    if (status_[j] == 0) vn_[j] = z_[j] = 0.0;  // exactly, whatever the correction rounded to
+    vn_[j] -= fy * q_[j];
+    if (status_[j] == 0) {
+      vn_[j] = 0.0;  // exactly, whatever the correction rounded to
+      if (refactor) z_[j] = 0.0;
+    }
     sum_y += vn_[j];
-    sum_z += z_[j];
+    if (refactor) sum_z_ += z_[j];
   }
 }
 
-void Theta::solve_linear() {
-  double sum_y = 0, sum_z = 0;
-  for (const Segment& g : segments_) solve_segment(g, sum_y, sum_z);
+void Theta::solve_linear(bool refactor) {
+  double sum_y = 0;
+  if (refactor) sum_z_ = 0;
+  for (const Segment& g : segments_) solve_segment(g, refactor, sum_y);
+  if (refactor) {
+    // Remember what the factorisation was made of, to reuse it while that holds.
+    factored_ = true;
+    segments_f_ = segments_;
+    link_f_ = link_;
+    pad_col_f_ = pad_col_;
+    pad_diag_f_ = pad_diag_;
+    for_each_block([&](int j) {
+      diag_f_[j] = diag0_[j];
+      status_f_[j] = status_[j];
+    });
+  }
   if (!pad_) return;
   // Schur complement of the pad's row: pad_diag xd - pad_col sum v = pad_rhs, v = y + z xd.
-  xdn_ = (pad_rhs_ + pad_col_ * sum_y) / (pad_diag_ - pad_col_ * sum_z);
+  xdn_ = (pad_rhs_ + pad_col_ * sum_y) / (pad_diag_ - pad_col_ * sum_z_);
   for_each_block([&](int j) { vn_[j] += z_[j] * xdn_; });
 }
 
 bool Theta::solve_active_set() {
+  int chord_steps = 0;
   for (int it = 0; it < max_active_set_; ++it) {
-    solve_linear();
+    const bool refactor = !factored_ || chord_steps >= kMaxChordSteps;
+    solve_linear(refactor);
+    chord_steps = refactor ? 0 : chord_steps + 1;
     if (frictionless_) return true;
     bool settled = true;
     for_each_block([&](int j) {
@@ -255,13 +311,14 @@ bool Theta::solve_active_set() {
       const int state = decide(j, l);
       if (state != status_[j]) {
         settled = false;
+        factored_ = false;
         status_[j] = static_cast<std::int8_t>(state);
         a_hat_[j] = state == 0 ? 0.0 : slide_speed(j, l.c, state);
         return;
       }
       if (state == 0) return;
       const double a = state * vn_[j];
-      if (!(a > 0.0) || s_ * std::abs(a - a_hat_[j]) > kNewtonTolerance) settled = false;
+      if (!(a > 0.0) || s_ * std::abs(a - a_hat_[j]) > kSpeedTolerance) settled = false;
       a_hat_[j] = a > 0.0 ? a : slide_speed(j, l.c, state);
     });
     if (settled) return true;

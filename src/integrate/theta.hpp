@@ -34,9 +34,14 @@
 //   - a block sliding in direction d keeps sliding while its sliding solution keeps
 //     d v+ > 0; if that would reach or cross zero it sticks when friction can hold f+ —
 //     in particular whenever f+ lies in the band (1 - sigma) F0 .. F0 — and otherwise
-//     slides back (backslip laws; never clst91). When it is pulled back beyond the
-//     threshold but its momentum does not allow a backward speed within the step, it is
-//     left stuck for this step and breaks loose at the next.
+//     slides back (backslip laws; never clst91).
+// When friction cannot hold f+ but the step's momentum allows no sliding speed the way the
+// block is pulled (the pull reversed while it was stopping), the block is left stuck for
+// this step with a force beyond the threshold and breaks loose at the next step (the
+// engine's settle_contacts releases it first). Where the discrete contact problem has two
+// solutions (a block at the threshold whose breaking drags a sliding neighbour that pulls
+// it over), the active set and the Gauss–Seidel fallback may pick different ones; both
+// satisfy the law.
 // Stick is exact: a stuck block ends the step with v+ = 0 exactly (mobile = 0, wd = 0)
 // and does not move while it stays stuck; there is no threshold velocity and no
 // chattering. The stepper applies the whole rule itself (StickRule::Projection).
@@ -45,10 +50,14 @@
 // Newton's method on the velocity-weakening friction at the same time: guess every
 // block's state (stuck, or sliding with phi linearised about its current speed), solve
 // the linear system, re-decide each block from c_j and f+ by the rule above, re-linearise,
-// repeat until no state changes and every sliding speed has converged (s |dv| <= 1e-6,
-// s the weakening rate, i.e. a friction error ~1e-12 relative). Typically two solves
-// (one for a flat law, one more at each stick/slip change). If that has not settled
-// after set_max_active_set_iterations() rounds (default 50) it falls back to projected
+// repeat until no state changes and every sliding speed has converged (s |dv| <= 1e-10,
+// s the weakening rate: friction then within ~1e-10 of itself). The factorisation of the
+// linear system is kept while its blocks' states, the ranges and dt stay the same: later
+// iterations and steps only substitute, with the change of the friction slopes carried on
+// the right-hand side (a chord step; refactored after three of them without settling).
+// So a step in a smooth phase costs one or two substitutions, O(range) without divisions,
+// and each stick/slip change a refactorisation. If the iteration has not settled after
+// set_max_active_set_iterations() rounds (default 50) it falls back to projected
 // (nonlinear) Gauss–Seidel: each block solves its scalar problem exactly in turn, the pad
 // after each sweep, to a relative change of 1e-14; the system is diagonally dominant, so
 // that converges.
@@ -95,6 +104,7 @@ class Theta final : public Stepper {
   struct Segment {
     int lo = 0, len = 0;
     bool cyclic = false;
+    bool operator==(const Segment&) const = default;
   };
 
   void resize(int n);
@@ -102,8 +112,8 @@ class Theta final : public Stepper {
   void prepare(const ChainForces& forces, const Substrate& sub, const ChainState& st, double dt);
   bool solve_active_set();
   void solve_gauss_seidel();
-  void solve_linear();
-  void solve_segment(const Segment& g, double& sum_y, double& sum_z);
+  void solve_linear(bool refactor);
+  void solve_segment(const Segment& g, bool refactor, double& sum_y);
   void finish(ChainState& st, double dt);
 
   // Row j's right-hand side c_j and the block's force at the end of the step if it is
@@ -139,7 +149,14 @@ class Theta final : public Stepper {
   std::vector<double> force_pred_;  // L at the end with the new velocities left out
   std::vector<double> diag0_;  // D_j
   std::vector<double> a_hat_;  // sliding speed the friction is linearised about
-  std::vector<double> z_, cp_, q_;  // solver scratch: pad column, Thomas factors, cyclic correction
+  // The factorisation of the linear system (kept across iterations and steps while the
+  // matrix stays the same but for the friction slopes gamma_f it was made with): pad
+  // column z = T^-1 e, Thomas factors, cyclic correction q = A^-1 u.
+  std::vector<double> z_, cp_, inv_, q_, gamma_f_, diag_f_;
+  std::vector<std::int8_t> status_f_;
+  std::vector<Segment> segments_f_;
+  bool factored_ = false;
+  double link_f_ = 0, pad_col_f_ = 0, pad_diag_f_ = 0, sum_z_ = 0, sm_ratio_ = 0, sm_denom_ = 1;
   std::vector<std::int8_t> start_;   // state at the start: 0 stuck, +-1 sliding
   std::vector<std::int8_t> status_;  // state at the end (current guess)
 
