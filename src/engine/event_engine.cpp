@@ -258,10 +258,13 @@ void EventEngine::note_released_in_step() {
   }
   for (const Range& r : ranges_)
     for (int j = r.lo; j < r.hi; ++j)
-      if (st_.mobile[j] != 0.0 && mobile_old_[j] == 0.0 && !slipped_[j]) {
-        slipped_[j] = 1;
-        slipped_list_.push_back(j);
-        w_before_[j] = w_old_[j];  // stuck, so unmoved, until it broke loose inside the step
+      if (st_.mobile[j] != 0.0 && mobile_old_[j] == 0.0) {
+        // It may have slipped earlier in the event: cover it again all the same.
+        if (!slipped_[j]) {
+          slipped_[j] = 1;
+          slipped_list_.push_back(j);
+          w_before_[j] = w_old_[j];  // stuck, so unmoved, until it broke loose inside the step
+        }
         released_now_.push_back(j);
       }
   counters_.releases += static_cast<std::int64_t>(released_now_.size());
