@@ -299,7 +299,7 @@ void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std
   if (c.version != kVersion)
     throw Error("checkpoint '" + origin + "' was written by bkquake " + c.version +
                 ", this is bkquake " + kVersion +
-                ": the continuation would not be exact; rerun without --resume");
+                ": the continuation would not be exact; start over with --force");
   if (c.scene_hash == scene.hash()) return;
   std::string diff;
   try {
@@ -321,7 +321,7 @@ void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std
     diff = "scene hash " + std::to_string(c.scene_hash) + " in the checkpoint, " +
            std::to_string(scene.hash()) + " now";
   throw Error("checkpoint '" + origin + "' belongs to another scene (" + diff +
-              "); resume with the run's own scene.ini, or start a new run");
+              "); resume with the run's own scene.ini, or start over with --force");
 }
 
 void check_csv_prefix(const std::string& path, const std::string& header, std::int64_t rows,
@@ -407,6 +407,10 @@ void CheckpointFiles::remove() const {
   std::error_code ec;
   fs::remove(current(), ec);
   fs::remove(previous(), ec);
+  // Temporary files of a write cut short by a second signal or a crash.
+  const std::string stem = fs::path(current()).filename().string() + ".tmp-";
+  for (const auto& entry : fs::directory_iterator(dir_, ec))
+    if (entry.path().filename().string().rfind(stem, 0) == 0) fs::remove(entry.path(), ec);
 }
 
 }  // namespace bkq

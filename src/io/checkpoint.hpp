@@ -91,6 +91,7 @@ class CheckpointFiles {
   // when a crash came between the renames. Throws bkq::Error when there is none or when
   // checkpoint.bin is damaged (then naming checkpoint.prev.bin, if there is one).
   Checkpoint read(std::string* from = nullptr) const;
+  // Deletes both checkpoints and any temporary file left by an interrupted write.
   void remove() const;
 
  private:

@@ -476,8 +476,10 @@ TEST(Checkpoint, FilesRotateAndTheOldOneSurvives) {
   EXPECT_EQ(decode_checkpoint(read_file(files.previous()), "prev").progress.events_done, 123456);
   // Only the two checkpoints are left: no temporary files.
   EXPECT_EQ(std::distance(fs::directory_iterator(tmp.path()), fs::directory_iterator()), 2);
+  tmp.write("checkpoint.bin.tmp-abc123", "left by a write cut short");
   files.remove();
   EXPECT_FALSE(files.exist());
+  EXPECT_TRUE(fs::is_empty(tmp.path()));
 }
 
 TEST(Checkpoint, CsvPrefixMustHoldExactlyTheRows) {
