@@ -66,6 +66,10 @@ Substrate substrate_from_scene(const Scene& scene) {
   return Substrate::constant(scene.real("drive.speed"));
 }
 
+std::unique_ptr<Stepper> stepper_from_scene(const Scene& scene, int n) {
+  return make_stepper(scene.choice("integrator.scheme"), n, scene.real("integrator.tolerance"));
+}
+
 // SIGINT and SIGTERM during an event run. The first asks the run to stop after the current
 // event (checkpoint, flush, exit 128 + signal); a second one exits at once, leaving the
 // last checkpoint intact (checkpoints are renamed into place atomically).
@@ -200,8 +204,7 @@ class EventRun {
   // bit for bit. That costs at most one checkpoint interval. Returns the note for the error.
   std::string save_before_failure(std::int64_t events_done) {
     try {
-      const std::unique_ptr<Stepper> stepper =
-          make_stepper(scene_.choice("integrator.scheme"), forces_.n());
+      const std::unique_ptr<Stepper> stepper = stepper_from_scene(scene_, forces_.n());
       EventEngine replay(forces_, *stepper, dt_, last_saved_);
       while (replay.counters().events < events_done) replay.next_event();
       save(replay.snapshot());
@@ -444,7 +447,7 @@ int run_scene(const RunRequest& req) {
   const Scene& scene = req.scene;
   const ModelParams p = model_from_scene(scene);
   const ChainForces forces(p);
-  const std::unique_ptr<Stepper> stepper = make_stepper(scene.choice("integrator.scheme"), p.n);
+  const std::unique_ptr<Stepper> stepper = stepper_from_scene(scene, p.n);
   const double dt = scene.real("integrator.dt");
   check_time_step(*stepper, p, dt);
   const bool events = scene.choice("drive.mode") == "events";
