@@ -388,7 +388,8 @@ EventRecord EventEngine::next_event() {
       if (steps > max_steps_per_event) {
         char msg[300];
         std::snprintf(msg, sizeof msg,
-                      "event %lld did not end after %lld steps (time %.6g): check integrator.dt and the scene",
+                      "event %lld did not end after %lld steps (time %.6g): check integrator.dt and the scene "
+                      "(the bound is run.max_steps_per_event)",
                       static_cast<long long>(e.event), static_cast<long long>(steps), st_.t);
         throw Error(msg);
       }

@@ -134,6 +134,7 @@ class EventRun {
           initial_state(forces, seed(), scene_.real("run.initial_disorder"), true));
       if (transient_ == 0) begin_recording();
     }
+    engine_->max_steps_per_event = scene_.integer("run.max_steps_per_event");
     last_saved_ = engine_->snapshot();
     wall_total0_ = prog_.wall_total;
     wall_events0_ = prog_.wall_events;
@@ -206,6 +207,7 @@ class EventRun {
     try {
       const std::unique_ptr<Stepper> stepper = stepper_from_scene(scene_, forces_.n());
       EventEngine replay(forces_, *stepper, dt_, last_saved_);
+      replay.max_steps_per_event = engine_->max_steps_per_event;
       while (replay.counters().events < events_done) replay.next_event();
       save(replay.snapshot());
       return "; the state before this event is saved in '" + files_.current() + "'";

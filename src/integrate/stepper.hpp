@@ -40,6 +40,14 @@ class Stepper {
   // Largest omega*dt accepted for an undamped linear mode of angular frequency omega
   // (HUGE_VAL for unconditionally stable schemes).
   virtual double stability_constant() const = 0;
+  // Largest dt this stepper accepts on this model, and why (for the error message). By
+  // default the linear stability limit stability_constant / omega_max; a stepper with a
+  // further bound (theta: a unique sliding speed under weakening friction) overrides it.
+  struct TimeStepLimit {
+    double dt;
+    std::string why;
+  };
+  virtual TimeStepLimit time_step_limit(const ModelParams& p) const;
   virtual StickRule stick_rule() const { return StickRule::Crossing; }
   // Steppers that resolve transitions themselves (Projection, Located) may report what
   // happened inside their last step(), which the driver cannot see from the flags after it:

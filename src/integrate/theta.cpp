@@ -385,4 +385,13 @@ void Theta::step(const ChainForces& forces, const Substrate& sub, ChainState& st
   finish(st, dt);
 }
 
+Stepper::TimeStepLimit Theta::time_step_limit(const ModelParams& p) const {
+  const Friction fr(p);
+  const double slope = fr.kinetic0 * fr.inv_scale;  // steepest weakening, F0/v_c
+  if (slope <= 0) return {HUGE_VAL, "theta is unconditionally stable on the linear part"};
+  // Strictly below: step() needs dt * slope / 2 < 1.
+  return {std::nextafter(2.0 / slope, 0.0),
+          "theta: the sliding speed under velocity-weakening friction is unique only for dt < 2 v_c/F0"};
+}
+
 }  // namespace bkq

@@ -93,6 +93,8 @@ class Theta final : public Stepper {
   int order() const override { return 2; }
   double stability_constant() const override { return HUGE_VAL; }
   StickRule stick_rule() const override { return StickRule::Projection; }
+  // No linear limit; under velocity-weakening friction dt must stay below 2 v_c/F0.
+  TimeStepLimit time_step_limit(const ModelParams& p) const override;
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
 
   // Active-set rounds before falling back to projected Gauss–Seidel (0: Gauss–Seidel only).

@@ -496,3 +496,34 @@ TEST(Checkpoint, CsvPrefixMustHoldExactlyTheRows) {
 
 }  // namespace
 }  // namespace bkq
+
+namespace bkq {
+namespace {
+
+// A runaway event (here forced by a tiny run.max_steps_per_event) stops the run with a
+// message naming the event and saves the state before it: resuming from that checkpoint
+// replays the same event, which fails the same way, and the catalog keeps every row
+// before it.
+TEST(ResumeFailure, FailedEventSavesTheStateBeforeIt) {
+  test::TempDir tmp;
+  const std::string out = tmp.file("out");
+  const std::vector<std::string> scene = {"--set", "model.blocks=50", "--set", "run.transient_events=0",
+                                          "--set", "run.max_steps_per_event=200", "--quiet"};
+  const auto first = run_bkquake(run_args(scene, {"--out", out}));
+  ASSERT_EQ(first.status, 2) << first.err;
+  const auto at = first.err.find("event ");
+  ASSERT_NE(at, std::string::npos) << first.err;
+  const std::string failed_event = first.err.substr(at, first.err.find(' ', at + 6) - at);
+  EXPECT_NE(first.err.find("run.max_steps_per_event"), std::string::npos) << first.err;
+  EXPECT_NE(first.err.find(out + "/checkpoint.bin"), std::string::npos) << first.err;
+  const Checkpoint c = CheckpointFiles(out).read();
+  EXPECT_EQ("event " + std::to_string(c.progress.events_done + 1), failed_event);
+  EXPECT_EQ(lines_of(out + "/catalog.csv"), c.progress.events_done + 1);
+
+  const auto again = run_bkquake(run_args(scene, {"--out", out, "--resume"}));
+  EXPECT_EQ(again.status, 2) << again.err;
+  EXPECT_NE(again.err.find(failed_event + " did not end"), std::string::npos) << again.err;
+}
+
+}  // namespace
+}  // namespace bkq
