@@ -1,6 +1,7 @@
 // Dormand–Prince 5(4) with FSAL, dense output and located stick–slip transitions; see
 // adaptive.hpp. Every stage is one pass over the ranges; the dense output and the event
-// functions are evaluated per block, only when an event has fired over a step.
+// functions are evaluated per block, only when an event has fired over a step, and the
+// located transition is then polished with a few real steps (passes over the ranges).
 #include "integrate/adaptive.hpp"
 
 #include <algorithm>
@@ -34,8 +35,11 @@ constexpr double kD[7] = {-12715105075.0 / 11282082432,  0.0,
 
 // Step-size controller (Hairer, Nørsett & Wanner, §II.4).
 constexpr double kSafety = 0.9, kFacMin = 0.2, kFacMax = 10.0;
-// Transitions are bisected to a bracket of this times (|t| + h).
-constexpr double kBisection = 1e-13;
+// Transitions are bisected on the dense output, then polished on real steps, to this
+// times (|t| + h).
+constexpr double kLocate = 1e-13;
+// Real steps at most per polished transition (Newton takes two or three in practice).
+constexpr int kPolishSteps = 12;
 
 // The continuous extension at t0 + theta h of one component with ends y0, y1 and stage
 // derivatives k(0..6) (DOPRI5's CONTD5, 4th order).
@@ -267,9 +271,6 @@ double Adaptive::dense_wd(const ChainState& st, int j, double h, double theta) c
 double Adaptive::dense_x(const ChainState& st, double h, double theta) const {
   return dense(st.x, x1_, h, theta, [&](int l) { return pad_vel_[l]; });
 }
-double Adaptive::dense_xd(const ChainState& st, double h, double theta) const {
-  return dense(st.xd, xd1_, h, theta, [&](int l) { return pad_acc_[l]; });
-}
 
 bool Adaptive::fired_at_end(const ChainForces& forces, const Substrate& sub, const ChainState& st,
                             double t1, Ranges ranges) {
@@ -300,7 +301,7 @@ bool Adaptive::fired_at(const ChainForces& forces, const Substrate& sub, const C
 double Adaptive::locate(const ChainForces& forces, const Substrate& sub, const ChainState& st,
                         double h, int& who) {
   const double t0 = st.t;
-  const double bracket = kBisection * (std::abs(t0) + h) / h;
+  const double bracket = kLocate * (std::abs(t0) + h) / h;
   double best = 1.0;
   who = -1;
   for (int j : fired_) {
@@ -319,29 +320,68 @@ double Adaptive::locate(const ChainForces& forces, const Substrate& sub, const C
   return best;
 }
 
-void Adaptive::transit(const ChainForces& forces, const Substrate& sub, ChainState& st, double h,
-                       double theta, int who, Ranges ranges) {
+Adaptive::EventValue Adaptive::event_at_end(const ChainForces& forces, const Substrate& sub,
+                                            const ChainState& st, int j, double t1) {
+  if (st.mobile[j] != 0.0) {
+    const double d = st.dir[j];
+    return {d * vel_[6][j], d * acc_[6][j],
+            2.0 * DBL_EPSILON * (std::abs(st.wd[j]) + std::abs(vel_[6][j]))};
+  }
+  const ModelParams& p = forces.params();
+  const SubstrateState s1 = sub.at(t1);
+  const double anchor = s1.s + (p.pad_moves() ? x1_ : 0.0);
+  const double f = forces.spring_force(ws_.data(), j, anchor);
+  // The spring force is linear in (w, anchor): its rate is the same expression in their
+  // velocities (0 for the blocks outside the ranges, held over the step). Its rounding
+  // error grows with the size of the terms it sums, |w| (w = u + s carries the loading).
+  const int left = (j - 1 + n_) % n_, right = (j + 1) % n_;  // wrapped; unused at free ends
+  auto w = [&](int k) { return std::abs(in_ranges(k) ? ws_[k] : st.w[k]); };
+  const double size = p.k_c * (w(left) + 2.0 * w(j) + w(right)) + p.k_p * (w(j) + std::abs(anchor));
+  for (int k : {left, j, right}) wq_[k] = in_ranges(k) ? vel_[6][k] : 0.0;
+  const double df = forces.spring_force(wq_.data(), j, s1.v + (p.pad_moves() ? xd1_ : 0.0));
+  const Friction& fr = forces.friction();
+  const double side = fr.backslip && f < 0.0 ? -1.0 : 1.0;  // the threshold it nears
+  return {fr.threshold - side * f, -side * df, 2.0 * DBL_EPSILON * size};
+}
+
+double Adaptive::polish(const ChainForces& forces, const Substrate& sub, const ChainState& st,
+                        double h, double theta, int who, Ranges ranges) {
+  const double t0 = st.t;
+  const double converged = kLocate * (std::abs(t0) + h);
+  const bool sliding = st.mobile[who] != 0.0;
+  // The real steps bracket the crossing: not fired at t0, fired at t0 + h.
+  double lo = 0.0, hi = h, tau = theta * h, last = HUGE_VAL;
+  for (int k = 1;; ++k) {
+    attempt(forces, sub, st, tau, ranges);
+    ++polishing_;
+    const EventValue e = event_at_end(forces, sub, st, who, t0 + tau);
+    const bool fired = sliding ? e.g <= 0.0 : e.g < 0.0;
+    (fired ? hi : lo) = tau;
+    const double newton = -e.g / e.rate;  // not finite where the rate is 0
+    if (std::abs(e.g) <= e.noise || std::abs(newton) <= converged || hi - lo <= converged ||
+        k == kPolishSteps)
+      return tau;
+    if (const double next = tau + newton; next > lo && next < hi) {
+      // Newton converges quadratically; a correction no smaller than half the last one
+      // is rounding noise.
+      if (std::abs(newton) >= 0.5 * last) return tau;
+      tau = next;
+      last = std::abs(newton);
+    } else {
+      tau = 0.5 * (lo + hi);
+      last = HUGE_VAL;
+    }
+  }
+}
+
+void Adaptive::transit(const ChainForces& forces, const Substrate& sub, ChainState& st, int who,
+                       Ranges ranges) {
   const bool pad = forces.params().pad_moves();
   const Friction& fr = forces.friction();
-  const double t = st.t + theta * h;
-  double dsum = 0;
-  for (const Range& r : ranges)
-    for (int j = r.lo; j < r.hi; ++j) {
-      const double w = dense_w(st, j, h, theta), wd = dense_wd(st, j, h, theta);
-      dsum += w - st.w[j];
-      st.w[j] = w;
-      st.wd[j] = wd;
-    }
-  if (pad) {
-    const double x = dense_x(st, h, theta), xd = dense_xd(st, h, theta);
-    st.x = x;
-    st.xd = xd;
-    st.sum_w += dsum;
-  }
-  st.t = t;
+  const double t = st.t;
 
   // Every block whose event has fired by t changes state; the located one always does
-  // (its event may round to not-quite-fired at the bracket's end).
+  // (its event may be at a rounding level's distance short of firing).
   const double anchor = sub.at(t).s + (pad ? st.x : 0.0);
   for (const Range& r : ranges)
     for (int j = r.lo; j < r.hi; ++j) {
@@ -440,7 +480,9 @@ void Adaptive::step(const ChainForces& forces, const Substrate& sub, ChainState&
     if (located && fired_at_end(forces, sub, st, t1, ranges)) {
       int who = -1;
       const double theta = locate(forces, sub, st, h, who);
-      transit(forces, sub, st, h, theta, who, ranges);
+      const double tau = polish(forces, sub, st, h, theta, who, ranges);
+      commit(st, tau == h ? t1 : t0 + tau, pad, ranges);
+      transit(forces, sub, st, who, ranges);
       first_stage(forces, sub, st, ranges);  // the right-hand side jumps here: restart
     } else {
       commit(st, t1, pad, ranges);

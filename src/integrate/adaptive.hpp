@@ -30,20 +30,38 @@
 //   sliding block j:  g_j = dir_j w'_j, a transition once g_j <= 0 (it stopped or turned);
 //   stuck block j:    friction().breaks(f_j), f_j = spring_force(w, j, s + x) (the static
 //                     threshold, and -threshold for laws with backslip).
-// If any fired, each one's crossing instant is bisected on the dense output to a bracket
-// of 1e-13 (|t| + h); at the earliest the state is set to the dense output and every
-// block whose event function has fired there makes its transition:
+// If any fired, the earliest crossing is found in two stages:
+//   bracketing: each fired block's crossing is bisected on the dense output (cheap: per
+//     block) to 1e-13 (|t| + h), and the earliest, t*, taken. The dense output is only 4th
+//     order and not error-controlled: with h omega ~ 0.1 it puts a stick ~1e-6 late or early;
+//   polishing: Newton's method on that block's event function with real steps. A DP5 step
+//     from the step's start t0 to any t <= t0 + h ends on the 5th-order solution, its error
+//     no larger than the accepted step's. Starting at t*, each iterate is such a step, the
+//     event function's rate there (dir_j w''_j sliding, the spring force's rate stuck) gives
+//     the next t, kept inside the bracket [t0, t0 + h] that the real steps narrow (else
+//     bisected), until the correction is below 1e-13 (|t| + h), the event function is at
+//     its rounding level (for a stuck block, the rounding of spring forces summed from
+//     positions w = u + s of the size of the loading), or the corrections stop shrinking.
+//     Two or three real steps per transition (polishing_steps(); ~2.5 on the default scene).
+// The state is set to the last real step's end and every block whose event function has
+// fired there makes its transition:
 //   sliding -> stuck (mobile 0, w' = 0) if friction().holds(f); otherwise w' = 0 and it
 //              keeps sliding the way its spring pulls (dir = sign f): back the way it came
 //              (dir flips) for laws with backslip, forwards (dir = +1) for clst91;
 //   stuck -> sliding (mobile 1, w' = 0, dir = sign f).
 // Integration then restarts from that instant (the right-hand side jumps there). The
-// located instant is as accurate as the dense output divided by the event function's rate
-// of change (at tolerance 1e-10 a block decelerating at 0.01 sticks within 2e-9 of the
-// exact time, at a position within 1e-10; tests/numeric/test_adaptive.cpp). The
-// direction of a sliding block with non-zero velocity is taken from its velocity at the
-// start of step(), as settle_contacts keeps it. Frictionless scenes (law none) have no
-// transitions and locate nothing.
+// located instant is thus as accurate as the integration itself, whatever the step size:
+// its error is the trajectory's global error divided by the event function's rate of
+// change, plus rounding. At tolerance 1e-10 a single block decelerating at 0.01 sticks
+// within 1e-13 of the exact time in macro steps of 0.01 (2e-9 in one call for the whole
+// slip: the velocity's global error over the larger steps), and the first event of a
+// 2-block chain (k_c = 100) has the same moment and duration to 1e-13 in macro steps of
+// 1e-3 and 1e-4; in macro steps of 1e-2 they differ by the global error of steps that
+// long, 1e-9 and 3e-9 (tests/numeric/test_adaptive.cpp). A second block whose event
+// fires within the dense output's error of the located one makes its transition at the
+// polished instant too. The direction of a sliding block with non-zero velocity is taken
+// from its velocity at the start of step(), as settle_contacts keeps it. Frictionless
+// scenes (law none) have no transitions and locate nothing.
 //
 // Limitation: only blocks in the ranges are watched. A stuck block just outside them is
 // held fixed for the whole macro step and its threshold is checked by the driver only
@@ -83,9 +101,11 @@ class Adaptive final : public Stepper {
   std::int64_t accepted_steps() const { return accepted_; }
   std::int64_t rejected_steps() const { return rejected_; }
   std::int64_t located_transitions() const { return transitions_; }
-  void reset_counters() { accepted_ = rejected_ = transitions_ = 0; }
-  // Time of the most recent located re-stick (NaN before the first): the end of a slip
-  // to within the bisection bracket, where the driver only sees the macro step's end.
+  // Real steps taken to polish located transitions (not counted as accepted steps).
+  std::int64_t polishing_steps() const { return polishing_; }
+  void reset_counters() { accepted_ = rejected_ = transitions_ = polishing_ = 0; }
+  // Time of the most recent located re-stick (NaN before the first): the end of a slip,
+  // where the driver only sees the macro step's end.
   double last_stick_time() const { return last_stick_time_; }
   double located_stick_time() const override { return last_stick_time_; }
   // Blocks released inside the last step(), each once (at its first release), in order:
@@ -124,21 +144,32 @@ class Adaptive final : public Stepper {
   // Earliest crossing among the fired blocks, as a fraction of the step; `who` is its block.
   double locate(const ChainForces& forces, const Substrate& sub, const ChainState& st, double h,
                 int& who);
-  // Moves st to the dense output at t0 + theta h and applies the transitions there.
-  void transit(const ChainForces& forces, const Substrate& sub, ChainState& st, double h,
-               double theta, int who, Ranges ranges);
+  // Block j's event function at the end t1 of the step just attempted, signed to be positive
+  // before its transition (dir_j w'_j sliding; threshold - |f_j| stuck, threshold - f_j
+  // without backslip), its time derivative and the size of its rounding errors.
+  struct EventValue {
+    double g, rate, noise;
+  };
+  EventValue event_at_end(const ChainForces& forces, const Substrate& sub, const ChainState& st,
+                          int j, double t1);
+  // From the dense output's crossing theta h of block `who`, Newton's method on real steps
+  // from st.t; returns the final step length, whose attempt is left in the stage arrays.
+  double polish(const ChainForces& forces, const Substrate& sub, const ChainState& st, double h,
+                double theta, int who, Ranges ranges);
+  // Applies the transitions at the current state: `who`'s, and any other fired there.
+  void transit(const ChainForces& forces, const Substrate& sub, ChainState& st, int who,
+               Ranges ranges);
   bool in_ranges(int j) const { return mark_[j] == stamp_; }
   double dense_w(const ChainState& st, int j, double h, double theta) const;
   double dense_wd(const ChainState& st, int j, double h, double theta) const;
   double dense_x(const ChainState& st, double h, double theta) const;
-  double dense_xd(const ChainState& st, double h, double theta) const;
 
   double tol_;
   double fixed_h_ = 0;
   double h_ = 0;                    // next step size (0: guess one)
   double t_resume_ = std::nan("");  // where the previous call ended
   double last_stick_time_ = std::nan("");
-  std::int64_t accepted_ = 0, rejected_ = 0, transitions_ = 0;
+  std::int64_t accepted_ = 0, rejected_ = 0, transitions_ = 0, polishing_ = 0;
 
   int n_;
   std::vector<double> ws_;                  // stage positions (and the halo of the ranges)
@@ -146,7 +177,7 @@ class Adaptive final : public Stepper {
   std::array<std::vector<double>, 7> acc_;  // stage accelerations (the derivative of w')
   std::array<double, 7> pad_vel_{}, pad_acc_{};
   double x1_ = 0, xd1_ = 0, sum1_ = 0;        // the pad and sum_w at the end of the attempt
-  std::vector<double> wq_;                    // dense positions around one block (force events)
+  std::vector<double> wq_;                    // positions or velocities around one block
   std::vector<int> fired_;                    // blocks whose event fired over the step
   std::vector<std::uint64_t> mark_;           // mark_[j] == stamp_: j is in this call's ranges
   std::vector<std::uint64_t> released_mark_;  // released_mark_[j] == stamp_: j is in releases_
