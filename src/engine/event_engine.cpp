@@ -24,13 +24,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
     : forces_(forces), stepper_(stepper), dt_(dt), st_(std::move(state)), pad_(forces.params().pad_moves()),
       n_(forces.n()), margin_(stepper.stick_rule() == StickRule::Located ? 2 : 1) {
   check_model(forces.params());
-  covered_.assign(n_, 0);
-  need_.assign(n_, 0);
-  slipped_.assign(n_, 0);
-  w_before_.assign(n_, 0.0);
-  wd_old_.assign(n_, 0.0);
-  mobile_old_.assign(n_, 0.0);
-  w_old_.assign(n_, 0.0);
+  allocate_bookkeeping();
   std::fill(st_.mobile.begin(), st_.mobile.end(), 0.0);
   std::fill(st_.wd.begin(), st_.wd.end(), 0.0);
   st_.xd = 0;
@@ -45,6 +39,11 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
   check_model(forces.params());
   if (st_.n() != n_)
     throw Error("checkpoint: it holds " + std::to_string(st_.n()) + " blocks, the scene has " + std::to_string(n_));
+  allocate_bookkeeping();
+  rebuild_tree();
+}
+
+void EventEngine::allocate_bookkeeping() {
   covered_.assign(n_, 0);
   need_.assign(n_, 0);
   slipped_.assign(n_, 0);
@@ -52,7 +51,6 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
   wd_old_.assign(n_, 0.0);
   mobile_old_.assign(n_, 0.0);
   w_old_.assign(n_, 0.0);
-  rebuild_tree();
 }
 
 void EventEngine::check_model(const ModelParams& p) {

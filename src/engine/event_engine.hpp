@@ -90,6 +90,7 @@ class EventEngine {
 
  private:
   double anchor() const { return st_.s + (pad_ ? st_.x : 0.0); }
+  void allocate_bookkeeping();  // per-block flags and scratch, all clear
   void rebuild_tree();
   void release(int j);
   void cover(int j);
