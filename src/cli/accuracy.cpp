@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/scene_args.hpp"
 #include "engine/accuracy.hpp"
 #include "integrate/stepper.hpp"
 #include "io/error.hpp"
@@ -65,8 +66,8 @@ int cmd_accuracy(const std::vector<std::string>& args) {
   const AccuracyOptions defaults;
   po::options_description opts("bkquake accuracy [SCENE] [options]");
   // clang-format off
+  add_scene_options(opts);
   opts.add_options()
-    ("set", po::value<std::vector<std::string>>()->composing(), "section.key=value: override one scene key")
     ("out", po::value<std::string>()->default_value("accuracy"), "output folder")
     ("force", "overwrite an accuracy.csv already in the output folder")
     ("quiet", "no progress lines")
@@ -85,20 +86,7 @@ int cmd_accuracy(const std::vector<std::string>& args) {
                                  "tolerance of the reference long runs")
     ("help,h", "this help");
   // clang-format on
-  po::options_description hidden;
-  hidden.add_options()("scene", po::value<std::vector<std::string>>(), "scene file");
-  po::options_description all;
-  all.add(opts).add(hidden);
-  po::positional_options_description pos;
-  pos.add("scene", -1);
-  po::variables_map vm;
-  try {
-    const int style = po::command_line_style::unix_style & ~po::command_line_style::allow_guessing;
-    po::store(po::command_line_parser(args).options(all).positional(pos).style(style).run(), vm);
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw Error(std::string("accuracy: ") + e.what() + "; try 'bkquake accuracy --help'");
-  }
+  const po::variables_map vm = parse_scene_command_line("accuracy", args, opts);
   if (vm.count("help")) {
     std::cout << "Usage: bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]\n"
                  "Work-precision study of the scene's model, driven event by event: per-event errors\n"
@@ -107,13 +95,7 @@ int cmd_accuracy(const std::vector<std::string>& args) {
               << opts << "\n";
     return 0;
   }
-  std::vector<std::string> scenes;
-  if (vm.count("scene")) scenes = vm["scene"].as<std::vector<std::string>>();
-  if (scenes.size() > 1) throw Error("accuracy: expected at most one scene file");
-
-  Scene scene = scenes.empty() ? Scene() : Scene::from_file(scenes.front());
-  if (vm.count("set"))
-    for (const auto& assignment : vm["set"].as<std::vector<std::string>>()) scene.apply_override(assignment);
+  Scene scene = scene_from_command_line("accuracy", vm);
   // The study relaxes events one at a time, whatever mode the scene runs in.
   scene.set("drive.mode", "events", "bkquake accuracy");
   scene.validate();

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/scene_args.hpp"
 #include "engine/run.hpp"
 #include "io/error.hpp"
 #include "io/output.hpp"
@@ -16,29 +17,13 @@ namespace po = boost::program_options;
 
 int cmd_run(const std::vector<std::string>& args) {
   po::options_description opts("bkquake run [SCENE] [options]");
-  opts.add_options()("set", po::value<std::vector<std::string>>()->composing(),
-                     "section.key=value: override one scene key (repeatable, applied in order)")(
-      "out", po::value<std::string>()->default_value("out"), "output folder")(
+  add_scene_options(opts);
+  opts.add_options()("out", po::value<std::string>()->default_value("out"), "output folder")(
       "resume", "continue the run in the output folder from its checkpoint")(
       "force", "overwrite a finished run in the output folder")("quiet", "no progress output")(
       "dump-defaults", "print a commented scene with every key at its default, then exit")(
       "help,h", "this help");
-  po::options_description hidden;
-  hidden.add_options()("scene", po::value<std::vector<std::string>>(), "scene file");
-  po::options_description all;
-  all.add(opts).add(hidden);
-  po::positional_options_description pos;
-  pos.add("scene", -1);
-
-  po::variables_map vm;
-  try {
-    // No abbreviations: `--for` silently meaning --force would be a surprise.
-    const int style = po::command_line_style::unix_style & ~po::command_line_style::allow_guessing;
-    po::store(po::command_line_parser(args).options(all).positional(pos).style(style).run(), vm);
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw Error(std::string("run: ") + e.what() + "; try 'bkquake run --help'");
-  }
+  const po::variables_map vm = parse_scene_command_line("run", args, opts);
 
   if (vm.count("help")) {
     std::cout << "Usage: bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume]\n"
@@ -52,17 +37,8 @@ int cmd_run(const std::vector<std::string>& args) {
     return 0;
   }
 
-  std::vector<std::string> scenes;
-  if (vm.count("scene")) scenes = vm["scene"].as<std::vector<std::string>>();
-  if (scenes.size() > 1)
-    throw Error("run: expected at most one scene file, got " + std::to_string(scenes.size()) +
-                " ('" + scenes[0] + "', '" + scenes[1] + "', ...)");
-
   RunRequest request;
-  request.scene = scenes.empty() ? Scene() : Scene::from_file(scenes.front());
-  if (vm.count("set"))
-    for (const auto& assignment : vm["set"].as<std::vector<std::string>>())
-      request.scene.apply_override(assignment);
+  request.scene = scene_from_command_line("run", vm);
   request.scene.validate();
   request.out_dir = vm["out"].as<std::string>();
   request.resume = vm.count("resume") > 0;

@@ -1,0 +1,46 @@
+// The shared SCENE / --set command line; see scene_args.hpp.
+#include "cli/scene_args.hpp"
+
+#include "io/error.hpp"
+
+namespace bkq {
+
+namespace po = boost::program_options;
+
+void add_scene_options(po::options_description& opts) {
+  opts.add_options()("set", po::value<std::vector<std::string>>()->composing(),
+                     "section.key=value: override one scene key (repeatable, applied in order)");
+}
+
+po::variables_map parse_scene_command_line(const std::string& command, const std::vector<std::string>& args,
+                                           const po::options_description& opts) {
+  po::options_description hidden;
+  hidden.add_options()("scene", po::value<std::vector<std::string>>(), "scene file");
+  po::options_description all;
+  all.add(opts).add(hidden);
+  po::positional_options_description pos;
+  pos.add("scene", -1);
+  po::variables_map vm;
+  try {
+    const int style = po::command_line_style::unix_style & ~po::command_line_style::allow_guessing;
+    po::store(po::command_line_parser(args).options(all).positional(pos).style(style).run(), vm);
+    po::notify(vm);
+  } catch (const po::error& e) {
+    throw Error(command + ": " + e.what() + "; try 'bkquake " + command + " --help'");
+  }
+  return vm;
+}
+
+Scene scene_from_command_line(const std::string& command, const po::variables_map& vm) {
+  std::vector<std::string> scenes;
+  if (vm.count("scene")) scenes = vm["scene"].as<std::vector<std::string>>();
+  if (scenes.size() > 1)
+    throw Error(command + ": expected at most one scene file, got " + std::to_string(scenes.size()) + " ('" +
+                scenes[0] + "', '" + scenes[1] + "', ...)");
+  Scene scene = scenes.empty() ? Scene() : Scene::from_file(scenes.front());
+  if (vm.count("set"))
+    for (const auto& assignment : vm["set"].as<std::vector<std::string>>()) scene.apply_override(assignment);
+  return scene;
+}
+
+}  // namespace bkq

@@ -1,0 +1,27 @@
+// The command line that the commands simulating a scene (run, accuracy) share: one
+// optional SCENE file (the built-in default without it) and any number of
+// --set section.key=value overrides, applied in order after the file.
+#pragma once
+
+#include <boost/program_options.hpp>
+#include <string>
+#include <vector>
+
+#include "io/scene.hpp"
+
+namespace bkq {
+
+// Adds --set to a command's options.
+void add_scene_options(boost::program_options::options_description& opts);
+
+// Parses `args` with `opts` plus the positional SCENE, without abbreviations (`--for`
+// silently meaning --force would be a surprise). Errors read "<command>: ...".
+boost::program_options::variables_map parse_scene_command_line(
+    const std::string& command, const std::vector<std::string>& args,
+    const boost::program_options::options_description& opts);
+
+// The scene file (or the built-in default) with the --set overrides applied; the caller
+// validates it (after settings of its own, if any).
+Scene scene_from_command_line(const std::string& command, const boost::program_options::variables_map& vm);
+
+}  // namespace bkq
