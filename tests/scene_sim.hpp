@@ -51,4 +51,13 @@ struct Sim {
   EventEngine engine;
 };
 
+// Sum of the spring forces on all blocks (neighbour springs cancel with free ends).
+inline double total_spring_force(const Sim& sim) {
+  const ChainState& st = sim.engine.state();
+  const double anchor = st.s + (sim.p.pad_moves() ? st.x : 0.0);
+  double f = 0;
+  for (int j = 0; j < sim.p.n; ++j) f += sim.forces.spring_force(st.w.data(), j, anchor);
+  return f;
+}
+
 }  // namespace bkq::test

@@ -120,16 +120,19 @@ void EventEngine::cover(int j) {
   }
 }
 
+void EventEngine::note_slipped(int j, double w_at_release) {
+  if (slipped_[j]) return;  // only its first release in the event counts
+  slipped_[j] = 1;
+  slipped_list_.push_back(j);
+  w_before_[j] = w_at_release;
+}
+
 void EventEngine::release(int j) {
   ++counters_.releases;
   st_.mobile[j] = 1.0;
   st_.wd[j] = 0.0;
   st_.dir[j] = std::copysign(1.0, forces_.spring_force(st_.w.data(), j, anchor()));
-  if (!slipped_[j]) {
-    slipped_[j] = 1;
-    slipped_list_.push_back(j);
-    w_before_[j] = st_.w[j];
-  }
+  note_slipped(j, st_.w[j]);
   cover(j);
 }
 
@@ -247,22 +250,15 @@ void EventEngine::note_released_in_step() {
   // the step, and where they were), then any block whose flag went from stuck to sliding.
   released_now_.clear();
   for (const Stepper::Release& r : stepper_.releases_in_step()) {
-    if (!slipped_[r.block]) {
-      slipped_[r.block] = 1;
-      slipped_list_.push_back(r.block);
-      w_before_[r.block] = r.w;
-    }
+    note_slipped(r.block, r.w);
     released_now_.push_back(r.block);
   }
   for (const Range& r : ranges_)
     for (int j = r.lo; j < r.hi; ++j)
       if (st_.mobile[j] != 0.0 && mobile_old_[j] == 0.0) {
-        // It may have slipped earlier in the event: cover it again all the same.
-        if (!slipped_[j]) {
-          slipped_[j] = 1;
-          slipped_list_.push_back(j);
-          w_before_[j] = w_old_[j];  // stuck, so unmoved, until it broke loose inside the step
-        }
+        // Stuck, so unmoved, until it broke loose inside the step. It may have slipped
+        // earlier in the event: cover it again all the same.
+        note_slipped(j, w_old_[j]);
         released_now_.push_back(j);
       }
   counters_.releases += static_cast<std::int64_t>(released_now_.size());

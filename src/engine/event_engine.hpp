@@ -93,6 +93,8 @@ class EventEngine {
   void allocate_bookkeeping();  // per-block flags and scratch, all clear
   void rebuild_tree();
   void release(int j);
+  // Records block j as slipped in this event, at position w_at_release (first time only).
+  void note_slipped(int j, double w_at_release);
   void cover(int j);
   void add_to_ranges(int k);
   void shrink_ranges();

@@ -214,18 +214,13 @@ TEST(HardCases, UndampedAndOverdampedPad) {
     Sim sim(Settings{{"model.blocks", "50"}, {"model.kind", "bkp"}, {"model.damping_ratio", zeta}});
     run_transient(sim);
     const ChainState& st = sim.engine.state();
-    auto total_spring_force = [&] {
-      double f = 0;
-      for (int j = 0; j < sim.p.n; ++j) f += sim.forces.spring_force(st.w.data(), j, st.s + st.x);
-      return f;
-    };
-    const double s0 = st.s, x0 = st.x, f0 = total_spring_force();
+    const double s0 = st.s, x0 = st.x, f0 = test::total_spring_force(sim);
     const RunStats r = run_checked(sim, 2000, std::string("zeta ") + zeta);
     EXPECT_LT(r.worst_residual, 5e-3) << "zeta " << zeta;
     // Slip balance with a pad: the blocks follow the anchor s + x, less what their
     // springs store, N (ds + dx) - df/k_p, exactly.
     const double n = sim.p.n;
-    const double balance = n * (st.s - s0 + st.x - x0) - (total_spring_force() - f0) / sim.p.k_p;
+    const double balance = n * (st.s - s0 + st.x - x0) - (test::total_spring_force(sim) - f0) / sim.p.k_p;
     EXPECT_NEAR(r.moment_sum, balance, 1e-9 * r.moment_sum) << "zeta " << zeta;
     EXPECT_GT(r.moment_sum, 0.0);
   }

@@ -44,15 +44,6 @@ double sum_w(const ChainState& st) {
   return s;
 }
 
-// Sum of the spring forces of all blocks (neighbour springs cancel with free ends).
-double sum_spring_force(const Sim& sim) {
-  const ChainState& st = sim.engine.state();
-  const double anchor = st.s + (sim.p.pad_moves() ? st.x : 0.0);
-  double f = 0;
-  for (int j = 0; j < sim.p.n; ++j) f += sim.forces.spring_force(st.w.data(), j, anchor);
-  return f;
-}
-
 // ---- loading ----
 
 TEST(EventLoading, RateIsKpForBkAndReducedByThePadForBkp) {
@@ -213,12 +204,12 @@ void expect_moment_balance(const Settings& settings, int transient, int events, 
   Sim sim(make_scene(settings));
   sim.run(transient);
   const double s0 = sim.engine.load(), x0 = sim.engine.state().x;
-  const double f0 = sum_spring_force(sim), w0 = sum_w(sim.engine.state());
+  const double f0 = test::total_spring_force(sim), w0 = sum_w(sim.engine.state());
   double moments = 0;
   for (int i = 0; i < events; ++i) moments += sim.engine.next_event().moment;
   const double ds = sim.engine.load() - s0;
   const double dx = sim.p.pad_moves() ? sim.engine.state().x - x0 : 0.0;
-  const double df = sum_spring_force(sim) - f0;
+  const double df = test::total_spring_force(sim) - f0;
   const int n = sim.p.n;
   EXPECT_NEAR(moments, sum_w(sim.engine.state()) - w0, 1e-9 * moments);
   EXPECT_NEAR(moments, n * (ds + dx) - df / sim.p.k_p, 1e-9 * moments);
