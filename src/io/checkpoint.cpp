@@ -43,12 +43,8 @@ std::uint64_t fnv1a64(const char* data, std::size_t n) {
 
 class Writer {
  public:
-  void u64(std::uint64_t v) {
-    for (int b = 0; b < 8; ++b) out_.push_back(static_cast<char>(v >> (8 * b)));
-  }
-  void u32(std::uint32_t v) {
-    for (int b = 0; b < 4; ++b) out_.push_back(static_cast<char>(v >> (8 * b)));
-  }
+  void u64(std::uint64_t v) { little_endian(v); }
+  void u32(std::uint32_t v) { little_endian(v); }
   void i64(std::int64_t v) { u64(static_cast<std::uint64_t>(v)); }
   void i128(__int128 v) {
     u64(static_cast<std::uint64_t>(v));
@@ -70,6 +66,10 @@ class Writer {
   std::string& bytes() { return out_; }
 
  private:
+  template <class U>
+  void little_endian(U v) {
+    for (std::size_t b = 0; b < sizeof(U); ++b) out_.push_back(static_cast<char>(v >> (8 * b)));
+  }
   std::string out_;
 };
 
@@ -77,22 +77,8 @@ class Reader {
  public:
   Reader(const std::string& bytes, std::size_t begin, std::size_t end, const std::string& origin)
       : b_(bytes), pos_(begin), end_(end), origin_(origin) {}
-  std::uint64_t u64() {
-    need(8);
-    std::uint64_t v = 0;
-    for (int b = 0; b < 8; ++b)
-      v |= static_cast<std::uint64_t>(static_cast<unsigned char>(b_[pos_ + b])) << (8 * b);
-    pos_ += 8;
-    return v;
-  }
-  std::uint32_t u32() {
-    need(4);
-    std::uint32_t v = 0;
-    for (int b = 0; b < 4; ++b)
-      v |= static_cast<std::uint32_t>(static_cast<unsigned char>(b_[pos_ + b])) << (8 * b);
-    pos_ += 4;
-    return v;
-  }
+  std::uint64_t u64() { return little_endian<std::uint64_t>(); }
+  std::uint32_t u32() { return little_endian<std::uint32_t>(); }
   std::int64_t i64() { return static_cast<std::int64_t>(u64()); }
   __int128 i128() {
     const std::uint64_t lo = u64();
@@ -119,6 +105,15 @@ class Reader {
   bool done() const { return pos_ == end_; }
 
  private:
+  template <class U>
+  U little_endian() {
+    need(sizeof(U));
+    U v = 0;
+    for (std::size_t b = 0; b < sizeof(U); ++b)
+      v |= static_cast<U>(static_cast<unsigned char>(b_[pos_ + b])) << (8 * b);
+    pos_ += sizeof(U);
+    return v;
+  }
   // A length prefix, checked against what is left so a bad one cannot allocate wildly.
   std::size_t count(std::size_t element_bytes) {
     const std::uint64_t n = u64();
