@@ -8,6 +8,7 @@
 #include <string>
 
 #include "engine/contacts.hpp"
+#include "integrate/single_block.hpp"
 #include "io/error.hpp"
 #include "model/damped_oscillator.hpp"
 
@@ -303,6 +304,40 @@ double EventEngine::stored_energy_change(double x0) const {
   return de;
 }
 
+bool EventEngine::single_block_ready() const {
+  // One block sliding and covered by exactly its two stuck neighbours (an interior block:
+  // at a free or periodic end the covered blocks are not one range of three), the pad held.
+  if (!single_block_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || sliding_ != 1 ||
+      ranges_.size() != 1)
+    return false;
+  const Range& r = ranges_.front();
+  return r.hi - r.lo == 3 && st_.mobile[r.lo + 1] != 0.0;
+}
+
+bool EventEngine::relax_single_block(std::int64_t& steps, ContactScan& scan) {
+  SingleBlockRelaxation r;
+  r.block = ranges_.front().lo + 1;
+  r.anchor = anchor();
+  r.sub = SubstrateState{st_.s, 0.0, 0.0};
+  r.dt = dt_;
+  r.half_dt_m = 0.5 * dt_ * forces_.params().m_u;
+  // Stop at the step where the general path would give up on the event.
+  r.max_steps = max_steps_per_event + 1 - steps;
+  r.state = &st_;
+  r.dissipated = &dissipated_;
+  if (!stepper_.relax_single_block(forces_, r)) return false;
+  // The shrinks due inside the run changed nothing (the range is exactly the block and its
+  // two neighbours); the one due after the last step, if any, the caller does.
+  steps += r.steps;
+  single_block_steps_ += r.steps;
+  counters_.block_steps += 3 * r.steps;
+  counters_.sliding_block_steps += r.sliding_block_steps;
+  scan.sliding = r.sliding;
+  scan.max_speed = r.max_speed;
+  released_now_.assign(r.released, r.released + r.n_released);
+  return true;
+}
+
 void EventEngine::check_finite() const {
   for (const Range& r : ranges_)
     for (int j = r.lo; j < r.hi; ++j)
@@ -346,26 +381,31 @@ EventRecord EventEngine::next_event() {
   std::int64_t steps = 0;
   for (;;) {
     while (sliding_ > 0) {
-      for (const Range& r : ranges_) {
-        std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old_.begin() + r.lo);
-        if (!crossing) {
-          std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi, mobile_old_.begin() + r.lo);
-          std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, w_old_.begin() + r.lo);
+      ContactScan scan;
+      if (single_block_ready() && relax_single_block(steps, scan)) {
+        // Ran one or more steps of a block sliding alone; scan describes the last one.
+      } else {
+        for (const Range& r : ranges_) {
+          std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old_.begin() + r.lo);
+          if (!crossing) {
+            std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi, mobile_old_.begin() + r.lo);
+            std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, w_old_.begin() + r.lo);
+          }
         }
+        const double xd_old = st_.xd;
+        stepper_.step(forces_, frozen, st_, dt_, ranges_);
+        ++steps;
+        for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
+        if (!crossing) note_released_in_step();
+        released_now_.clear();
+        double power = 0;
+        scan = settle_contacts(
+            forces_, st_, wd_old_.data(), anchor(), ranges_, crossing, [&](int j) { released_now_.push_back(j); },
+            &power);
+        dissipated_ += half_dt_m * power;
+        if (pad_) dissipated_ += half_dt_cp * (xd_old * xd_old + st_.xd * st_.xd);
+        counters_.sliding_block_steps += scan.sliding;
       }
-      const double xd_old = st_.xd;
-      stepper_.step(forces_, frozen, st_, dt_, ranges_);
-      ++steps;
-      for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
-      if (!crossing) note_released_in_step();
-      released_now_.clear();
-      double power = 0;
-      const ContactScan scan = settle_contacts(
-          forces_, st_, wd_old_.data(), anchor(), ranges_, crossing, [&](int j) { released_now_.push_back(j); },
-          &power);
-      dissipated_ += half_dt_m * power;
-      if (pad_) dissipated_ += half_dt_cp * (xd_old * xd_old + st_.xd * st_.xd);
-      counters_.sliding_block_steps += scan.sliding;
       sliding_ = scan.sliding;
       for (int j : released_now_) release(j);
       if (pad_) query_tree_failures();

@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/contacts.hpp"
 #include "engine/force_tree.hpp"
 #include "integrate/stepper.hpp"
 #include "io/catalog.hpp"
@@ -87,6 +88,12 @@ class EventEngine {
   double worst_stuck_excess() const;
   // Give up on an event after this many steps (a runaway means dt or the scene is wrong).
   std::int64_t max_steps_per_event = 200'000'000;
+  // While one interior block slides alone (pad held, a Crossing stepper), step it with the
+  // stepper's scalar form (integrate/single_block.hpp): the same events bit for bit, about
+  // a third of the time. Off only to test exactly that.
+  bool single_block_path = true;
+  // Steps this engine took on that path (not part of snapshots).
+  std::int64_t single_block_steps() const { return single_block_steps_; }
 
  private:
   double anchor() const { return st_.s + (pad_ ? st_.x : 0.0); }
@@ -105,6 +112,9 @@ class EventEngine {
   // Change of the energy stored in the springs since the event started (pad at x0 then).
   double stored_energy_change(double x0) const;
   void check_finite() const;
+  bool single_block_ready() const;
+  // Steps while one block slides alone; false when the stepper has no scalar form.
+  bool relax_single_block(std::int64_t& steps, ContactScan& scan);
 
   const ChainForces& forces_;
   Stepper& stepper_;
@@ -129,6 +139,7 @@ class EventEngine {
   int sliding_ = 0;
 
   EngineCounters counters_;
+  std::int64_t single_block_steps_ = 0;
 };
 
 }  // namespace bkq

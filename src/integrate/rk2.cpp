@@ -1,6 +1,8 @@
 // Explicit midpoint rule; see rk2.hpp.
 #include "integrate/rk2.hpp"
 
+#include "integrate/single_block.hpp"
+
 namespace bkq {
 
 void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
@@ -41,6 +43,19 @@ void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
     st.sum_w += h * dsum;
   }
   st.t += dt;
+}
+
+bool Rk2::relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const {
+  // step() for one block, operation for operation.
+  run_single_block(forces, r, [](const auto& acceleration, double& w, double& wd, double h) {
+    const double h2 = 0.5 * h;
+    const double a1 = acceleration(w, wd);
+    const double ws = w + h2 * wd, wds = wd + h2 * a1;
+    const double a2 = acceleration(ws, wds);
+    w += h * wds;
+    wd += h * a2;
+  });
+  return true;
 }
 
 }  // namespace bkq

@@ -2,6 +2,8 @@
 // velocities are accumulated in acc_w_/acc_v_ so each stage is one pass over the ranges.
 #include "integrate/rk4.hpp"
 
+#include "integrate/single_block.hpp"
+
 namespace bkq {
 
 void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
@@ -72,6 +74,28 @@ void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
     st.sum_w += dsum;
   }
   st.t += dt;
+}
+
+bool Rk4::relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const {
+  // step() for one block, operation for operation (cw, cv are its stage sums).
+  run_single_block(forces, r, [](const auto& acceleration, double& w, double& wd, double h) {
+    const double h2 = 0.5 * h, h6 = h / 6.0;
+    double a = acceleration(w, wd);
+    double cw = wd, cv = a, ws = w + h2 * wd, wds = wd + h2 * a;
+    for (int stage = 2; stage <= 3; ++stage) {
+      const double c = stage == 2 ? h2 : h;
+      a = acceleration(ws, wds);
+      cw += 2.0 * wds;
+      cv += 2.0 * a;
+      ws = w + c * wds;
+      wds = wd + c * a;
+    }
+    a = acceleration(ws, wds);
+    const double dw = h6 * (cw + wds);
+    w += dw;
+    wd += h6 * (cv + a);
+  });
+  return true;
 }
 
 }  // namespace bkq

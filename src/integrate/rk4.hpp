@@ -14,6 +14,7 @@ class Rk4 final : public ExplicitStepper {
   int order() const override { return 4; }
   double stability_constant() const override { return 2.8; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
+  bool relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const override;
 };
 
 }  // namespace bkq

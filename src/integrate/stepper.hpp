@@ -29,6 +29,8 @@
 
 namespace bkq {
 
+struct SingleBlockRelaxation;
+
 enum class StickRule { Crossing, Projection, Located };
 
 class Stepper {
@@ -62,6 +64,10 @@ class Stepper {
   virtual double located_stick_time() const { return std::nan(""); }
   virtual void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                     Ranges ranges) = 0;
+  // Steps of one block sliding alone between neighbours that hold, with this scheme's
+  // scalar step (integrate/single_block.hpp); false when the stepper has no such form
+  // (the event engine then uses step()).
+  virtual bool relax_single_block(const ChainForces&, SingleBlockRelaxation&) const { return false; }
 };
 
 // Keyword -> stepper; an unknown keyword throws bkq::Error listing the valid ones.

@@ -1,6 +1,8 @@
 // Velocity Verlet with a velocity-corrected closing kick; see verlet.hpp.
 #include "integrate/verlet.hpp"
 
+#include "integrate/single_block.hpp"
+
 namespace bkq {
 
 void Verlet::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
@@ -45,6 +47,22 @@ void Verlet::step(const ChainForces& forces, const Substrate& sub, ChainState& s
     for (int j = r.lo; j < r.hi; ++j) wd[j] = wh[j] + h2 * a[j];
   if (pad) st.xd = xh + h2 * ax1;
   st.t += dt;
+}
+
+bool Verlet::relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const {
+  // step() for one block, operation for operation (the engine never holds a moving pad
+  // here, and event-driven friction always depends on velocity, but keep the test).
+  const ModelParams& p = forces.params();
+  const bool velocity_dependent = p.law != FrictionLaw::None || p.c_u != 0;
+  run_single_block(forces, r, [velocity_dependent](const auto& acceleration, double& w, double& wd, double h) {
+    const double h2 = 0.5 * h;
+    const double wh = wd + h2 * acceleration(w, wd);
+    w += h * wh;
+    double a = acceleration(w, wh);
+    if (velocity_dependent) a = acceleration(w, wh + h2 * a);
+    wd = wh + h2 * a;
+  });
+  return true;
 }
 
 }  // namespace bkq

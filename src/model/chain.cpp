@@ -18,20 +18,6 @@ ChainForces::ChainForces(const ModelParams& p) : p_(p), friction_(p), inv_m_(1.0
   kernel_inertial_ = select_kernel(true);
 }
 
-template <FrictionLaw Law, bool Damper, bool Inertial>
-double ChainForces::acceleration(double f, double y, double dir, const SubstrateState& sub) const {
-  double acc = f * inv_m_;
-  if constexpr (Law == FrictionLaw::None) {
-  } else if constexpr (Law == FrictionLaw::Clst91) {
-    acc -= friction_.magnitude(std::max(y, 0.0));
-  } else {
-    acc -= std::copysign(friction_.magnitude(std::abs(y)), dir);
-  }
-  if constexpr (Damper) acc -= p_.c_u * inv_m_ * (y - sub.v);
-  if constexpr (Inertial) acc += sub.a;
-  return acc;
-}
-
 template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
 void ChainForces::kernel(const ChainForces& self, const double* __restrict w, const double* __restrict wd,
                          const double* __restrict mobile, const double* __restrict dir, double anchor,
@@ -49,34 +35,14 @@ void ChainForces::kernel(const ChainForces& self, const double* __restrict w, co
     at(n - 1, self.spring_force(w, n - 1, anchor));
     hi = n - 1;
   }
-  const double kc = self.p_.k_c, kp = self.p_.k_p;
   // Interior blocks: branch-free so the compiler vectorises it.
-  for (int j = lo; j < hi; ++j) {
-    double f = kp * (anchor - w[j]);
-    if constexpr (Neighbours) f += kc * (w[j - 1] - 2.0 * w[j] + w[j + 1]);
-    at(j, f);
-  }
+  for (int j = lo; j < hi; ++j) at(j, self.interior_force<Neighbours>(w[j - 1], w[j], w[j + 1], anchor));
 }
 
 ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
-  const bool nb = p_.has_neighbours();
-  const bool damper = p_.c_u != 0;
-  // Expand the runtime switches into the instantiation that computes only what is on.
-  auto pick = [&]<FrictionLaw L>() -> Kernel {
-    if (inertial) {
-      if (nb) return damper ? &kernel<L, true, true, true> : &kernel<L, true, false, true>;
-      return damper ? &kernel<L, false, true, true> : &kernel<L, false, false, true>;
-    }
-    if (nb) return damper ? &kernel<L, true, true, false> : &kernel<L, true, false, false>;
-    return damper ? &kernel<L, false, true, false> : &kernel<L, false, false, false>;
-  };
-  switch (p_.law) {
-    case FrictionLaw::Thesis: return pick.template operator()<FrictionLaw::Thesis>();
-    case FrictionLaw::Clst91: return pick.template operator()<FrictionLaw::Clst91>();
-    case FrictionLaw::Cl89: return pick.template operator()<FrictionLaw::Cl89>();
-    case FrictionLaw::None: return pick.template operator()<FrictionLaw::None>();
-  }
-  return nullptr;
+  return with_switches([&]<FrictionLaw L, bool Nb, bool D>() -> Kernel {
+    return inertial ? &kernel<L, Nb, D, true> : &kernel<L, Nb, D, false>;
+  });
 }
 
 void ChainForces::block_accelerations(const double* w, const double* wd, const double* mobile, const double* dir,

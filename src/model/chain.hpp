@@ -11,6 +11,8 @@
 // on the friction law, neighbour springs, damper and substrate acceleration).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -88,6 +90,22 @@ class ChainForces {
   // g_j = neighbour_force - k_p w_j, so that f_j = g_j + k_p anchor.
   double local_force(const double* w, int j) const { return neighbour_force(w, j) - p_.k_p * w[j]; }
 
+  // Spring force on an interior block at w with neighbours at wl and wr (what the kernels
+  // compute; Neighbours = false when k_c = 0).
+  template <bool Neighbours>
+  double interior_force(double wl, double w, double wr, double anchor) const {
+    double f = p_.k_p * (anchor - w);
+    if constexpr (Neighbours) f += p_.k_c * (wl - 2.0 * w + wr);
+    return f;
+  }
+  // Acceleration of a sliding block with spring force f and relative velocity y.
+  template <FrictionLaw Law, bool Damper, bool Inertial>
+  double acceleration(double f, double y, double dir, const SubstrateState& sub) const;
+  // Calls `f.template operator()<Law, Neighbours, Damper>()` with the scene's switches as
+  // compile-time constants, so the code it instantiates computes only what is on.
+  template <class F>
+  decltype(auto) with_switches(F&& f) const;
+
   // Block accelerations a[j] for every j in `ranges`; stuck blocks get exactly 0.
   void block_accelerations(const double* w, const double* wd, const double* mobile, const double* dir,
                            double anchor, const SubstrateState& sub, Ranges ranges, double* a) const;
@@ -112,9 +130,6 @@ class ChainForces {
   template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
   static void kernel(const ChainForces& self, const double* w, const double* wd, const double* mobile,
                      const double* dir, double anchor, const SubstrateState& sub, int lo, int hi, double* a);
-  // Acceleration of a sliding block with spring force f and relative velocity y.
-  template <FrictionLaw Law, bool Damper, bool Inertial>
-  double acceleration(double f, double y, double dir, const SubstrateState& sub) const;
   Kernel select_kernel(bool inertial) const;
 
   ModelParams p_;
@@ -123,5 +138,36 @@ class ChainForces {
   Kernel kernel_ = nullptr;
   Kernel kernel_inertial_ = nullptr;
 };
+
+template <FrictionLaw Law, bool Damper, bool Inertial>
+double ChainForces::acceleration(double f, double y, double dir, const SubstrateState& sub) const {
+  double acc = f * inv_m_;
+  if constexpr (Law == FrictionLaw::None) {
+  } else if constexpr (Law == FrictionLaw::Clst91) {
+    acc -= friction_.magnitude(std::max(y, 0.0));
+  } else {
+    acc -= std::copysign(friction_.magnitude(std::abs(y)), dir);
+  }
+  if constexpr (Damper) acc -= p_.c_u * inv_m_ * (y - sub.v);
+  if constexpr (Inertial) acc += sub.a;
+  return acc;
+}
+
+template <class F>
+decltype(auto) ChainForces::with_switches(F&& f) const {
+  const bool nb = p_.has_neighbours();
+  const bool damper = p_.c_u != 0;
+  auto pick = [&]<FrictionLaw L>() -> decltype(auto) {
+    if (nb) return damper ? f.template operator()<L, true, true>() : f.template operator()<L, true, false>();
+    return damper ? f.template operator()<L, false, true>() : f.template operator()<L, false, false>();
+  };
+  switch (p_.law) {
+    case FrictionLaw::Thesis: return pick.template operator()<FrictionLaw::Thesis>();
+    case FrictionLaw::Clst91: return pick.template operator()<FrictionLaw::Clst91>();
+    case FrictionLaw::Cl89: return pick.template operator()<FrictionLaw::Cl89>();
+    case FrictionLaw::None: break;
+  }
+  return pick.template operator()<FrictionLaw::None>();
+}
 
 }  // namespace bkq

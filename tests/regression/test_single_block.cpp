@@ -1,0 +1,75 @@
+// The event engine's single-block path (integrate/single_block.hpp) is an optimisation
+// only: with it on and off the engine must produce the same events, counters and final
+// state bit for bit, for every explicit scheme and for the switches that change the
+// scalar code (friction law with and without backslip, no neighbour springs, periodic
+// ends; the 1DOF damper never reaches it, since that model has one block and no
+// neighbours). Each case also asserts that the path really carried a good
+// share of the steps, so the comparison is not vacuous.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "../scene_sim.hpp"
+
+namespace bkq {
+namespace {
+
+using test::Settings;
+using test::Sim;
+
+// Every field of the record, compared as bits (a NaN magnitude equals itself).
+std::vector<std::uint64_t> bits(const EventRecord& e) {
+  auto b = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  return {static_cast<std::uint64_t>(e.event), b(e.load), static_cast<std::uint64_t>(e.trigger),
+          static_cast<std::uint64_t>(e.blocks), b(e.moment), b(e.magnitude), b(e.duration), b(e.max_speed),
+          b(e.pad_displacement), static_cast<std::uint64_t>(e.first_block), static_cast<std::uint64_t>(e.last_block),
+          b(e.energy_residual)};
+}
+
+struct Case {
+  std::string name;
+  Settings settings;
+  double min_share;  // least fraction of all steps taken on the single-block path
+};
+
+class SingleBlockPath : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SingleBlockPath, SameEventsBitForBitAsTheGeneralPath) {
+  const std::string scheme = GetParam();
+  const std::vector<Case> cases = {
+      {"carlson-langer, clst91", {{"model.blocks", "40"}}, 0.3},
+      {"periodic", {{"model.blocks", "40"}, {"model.boundary", "periodic"}}, 0.3},
+      {"thesis friction (backslip)", {{"model.blocks", "40"}, {"friction.law", "thesis"}}, 0.2},
+      {"no neighbour springs", {{"model.blocks", "10"}, {"model.l", "0"}}, 0.7},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name + ", " + scheme);
+    Settings settings = c.settings;
+    settings.push_back({"integrator.scheme", scheme});
+    settings.push_back({"integrator.dt", "0.005"});
+    Sim fast(settings), general(settings);
+    general.engine.single_block_path = false;
+    for (int i = 0; i < 3000; ++i) {
+      const EventRecord a = fast.engine.next_event(), b = general.engine.next_event();
+      ASSERT_EQ(bits(a), bits(b)) << "event " << i + 1;
+    }
+    const EngineCounters& ca = fast.engine.counters();
+    const EngineCounters& cb = general.engine.counters();
+    EXPECT_EQ(ca.steps, cb.steps);
+    EXPECT_EQ(ca.block_steps, cb.block_steps);
+    EXPECT_EQ(ca.sliding_block_steps, cb.sliding_block_steps);
+    EXPECT_EQ(ca.releases, cb.releases);
+    EXPECT_EQ(fast.engine.state().w, general.engine.state().w);
+    EXPECT_EQ(fast.engine.state().s, general.engine.state().s);
+    EXPECT_EQ(general.engine.single_block_steps(), 0);
+    EXPECT_GT(static_cast<double>(fast.engine.single_block_steps()), c.min_share * static_cast<double>(ca.steps));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Schemes, SingleBlockPath, ::testing::Values("rk2", "rk4", "verlet"));
+
+}  // namespace
+}  // namespace bkq
