@@ -116,7 +116,9 @@ void EventEngine::cover(int j) {
     }
     if (covered_[k]) continue;
     covered_[k] = 1;
-    tree_.remove(k);
+    // The tree answers for uncovered blocks while the pad swings; with the pad held it is
+    // not asked during the event, and every covered block is put back when uncovered.
+    if (pad_) tree_.remove(k);
     add_to_ranges(k);
   }
 }
@@ -304,6 +306,13 @@ double EventEngine::stored_energy_change(double x0) const {
   return de;
 }
 
+bool EventEngine::held_ranges() const {
+  if (pad_ || !held_ranges_path) return false;
+  for (const Range& r : ranges_)
+    if (st_.mobile[r.lo] != 0.0 || st_.mobile[r.hi - 1] != 0.0) return false;
+  return true;
+}
+
 bool EventEngine::single_block_ready() const {
   // One block sliding and covered by exactly its two stuck neighbours (an interior block:
   // at a free or periodic end the covered blocks are not one range of three), the pad held.
@@ -393,7 +402,11 @@ EventRecord EventEngine::next_event() {
           }
         }
         const double xd_old = st_.xd;
-        stepper_.step(forces_, frozen, st_, dt_, ranges_);
+        if (held_ranges()) {
+          stepper_.step_held(forces_, frozen, st_, dt_, ranges_);
+        } else {
+          stepper_.step(forces_, frozen, st_, dt_, ranges_);
+        }
         ++steps;
         for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
         if (!crossing) note_released_in_step();

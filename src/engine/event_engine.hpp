@@ -92,7 +92,10 @@ class EventEngine {
   // stepper's scalar form (integrate/single_block.hpp): the same events bit for bit, about
   // a third of the time. Off only to test exactly that.
   bool single_block_path = true;
-  // Steps this engine took on that path (not part of snapshots).
+  // With the pad held and every covered range ending in stuck blocks, use the stepper's
+  // step_held() (again the same events bit for bit).
+  bool held_ranges_path = true;
+  // Steps this engine took on the single-block path (not part of snapshots).
   std::int64_t single_block_steps() const { return single_block_steps_; }
 
  private:
@@ -113,6 +116,7 @@ class EventEngine {
   double stored_energy_change(double x0) const;
   void check_finite() const;
   bool single_block_ready() const;
+  bool held_ranges() const;
   // Steps while one block slides alone; false when the stepper has no scalar form.
   bool relax_single_block(std::int64_t& steps, ContactScan& scan);
 

@@ -76,6 +76,63 @@ void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   st.t += dt;
 }
 
+void Rk4::step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+  forces.with_switches([&]<FrictionLaw Law, bool Neighbours, bool Damper>() {
+    const SubstrateState frozen = sub.at(st.t);
+    const double anchor = frozen.s + 0.0;  // as evaluate() forms it with the pad held
+    const double h = dt, h2 = 0.5 * dt, h6 = h / 6.0;
+    double* __restrict w = st.w.data();
+    double* __restrict wd = st.wd.data();
+    const double* __restrict mobile = st.mobile.data();
+    const double* __restrict dir = st.dir.data();
+    double* __restrict ws_a = ws_.data();
+    double* __restrict wds_a = wds_.data();
+    double* __restrict ws_b = ws2_.data();
+    double* __restrict wds_b = wds2_.data();
+    double* __restrict cw = acc_w_.data();
+    double* __restrict cv = acc_v_.data();
+    // The kernel's acceleration of block j at stage positions x and velocities v.
+    auto acceleration = [&](const double* __restrict x, const double* __restrict v, int j) {
+      return mobile[j] * forces.acceleration<Law, Damper, false>(
+                             forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j], dir[j],
+                             frozen);
+    };
+    for (const Range& r : ranges) {
+      const int lo = r.lo + 1, hi = r.hi - 1;  // the end blocks are stuck: their stage positions are w
+      ws_a[r.lo] = ws_b[r.lo] = w[r.lo];
+      ws_a[hi] = ws_b[hi] = w[hi];
+      for (int j = lo; j < hi; ++j) {
+        const double a = acceleration(w, wd, j);
+        cw[j] = wd[j];
+        cv[j] = a;
+        ws_a[j] = w[j] + h2 * wd[j];
+        wds_a[j] = wd[j] + h2 * a;
+      }
+      for (int j = lo; j < hi; ++j) {
+        const double a = acceleration(ws_a, wds_a, j);
+        cw[j] += 2.0 * wds_a[j];
+        cv[j] += 2.0 * a;
+        ws_b[j] = w[j] + h2 * wds_a[j];
+        wds_b[j] = wd[j] + h2 * a;
+      }
+      for (int j = lo; j < hi; ++j) {
+        const double a = acceleration(ws_b, wds_b, j);
+        cw[j] += 2.0 * wds_b[j];
+        cv[j] += 2.0 * a;
+        ws_a[j] = w[j] + h * wds_b[j];
+        wds_a[j] = wd[j] + h * a;
+      }
+      for (int j = lo; j < hi; ++j) {
+        const double a = acceleration(ws_a, wds_a, j);
+        const double dw = h6 * (cw[j] + wds_a[j]);
+        w[j] += dw;
+        wd[j] += h6 * (cv[j] + a);
+      }
+    }
+  });
+  st.t += dt;
+}
+
 bool Rk4::relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const {
   // step() for one block, operation for operation (cw, cv are its stage sums).
   run_single_block(forces, r, [](const auto& acceleration, double& w, double& wd, double h) {

@@ -3,6 +3,8 @@
 // we accept omega_max dt <= 2.8. Stick rule: Crossing (see stepper.hpp).
 #pragma once
 
+#include <vector>
+
 #include "integrate/stepper.hpp"
 
 namespace bkq {
@@ -14,7 +16,13 @@ class Rk4 final : public ExplicitStepper {
   int order() const override { return 4; }
   double stability_constant() const override { return 2.8; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
+  // One pass per stage over each range: forces, accelerations and stage sums together,
+  // with the stage positions and velocities double-buffered.
+  void step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
   bool relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const override;
+
+ private:
+  std::vector<double> ws2_ = std::vector<double>(ws_.size()), wds2_ = std::vector<double>(ws_.size());
 };
 
 }  // namespace bkq

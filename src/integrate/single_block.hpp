@@ -57,23 +57,29 @@ void run_single_block(const ChainForces& forces, SingleBlockRelaxation& r, Advan
     ChainState& st = *r.state;
     double* w_all = st.w.data();
     const int j = r.block;
-    const double wl = w_all[j - 1], wr = w_all[j + 1], anchor = r.anchor;
-    double w = w_all[j], y = st.wd[j], dir = st.dir[j];
+    const double wl = w_all[j - 1], wr = w_all[j + 1], anchor = r.anchor, dt = r.dt, half_dt_m = r.half_dt_m;
+    const SubstrateState sub = r.sub;
+    // Everything the loop carries lives in locals (written back once at the end), so the
+    // stores into the state cannot force reloads; the sums are formed in the same order.
+    double w = w_all[j], y = st.wd[j], dir = st.dir[j], t = st.t, dissipated = *r.dissipated;
+    double max_speed = r.max_speed;
+    std::int64_t steps = 0, sliding_block_steps = 0;
+    int sliding = 1, n_released = 0;
+    bool stuck = false;
     auto acceleration = [&](double ws, double ys) {
-      return forces.acceleration<Law, Damper, false>(forces.interior_force<Neighbours>(wl, ws, wr, anchor), ys,
-                                                     dir, r.sub);
+      return forces.acceleration<Law, Damper, false>(forces.interior_force<Neighbours>(wl, ws, wr, anchor), ys, dir,
+                                                     sub);
     };
-    for (;;) {
+    for (bool done = false; !done;) {
       const double y0 = y;
-      advance(acceleration, w, y, r.dt);
-      st.t += r.dt;
-      ++r.steps;
-      w_all[j] = w;
+      advance(acceleration, w, y, dt);
+      t += dt;
+      ++steps;
+      w_all[j] = w;  // the neighbours' spring forces below read it
       const double power = fr.power(y0, dir) + fr.power(y, dir) + damper * (y0 * y0 + y * y);
-      *r.dissipated += r.half_dt_m * power;
+      dissipated += half_dt_m * power;
 
       // The Crossing rule (settle_contacts) for the block, then its neighbours' holds.
-      bool stuck = false;
       const bool crossed = fr.backslip ? (y0 * y < 0.0 || y == 0.0) : y <= 0.0;
       if (crossed) {
         if (fr.holds(forces.spring_force(w_all, j, anchor))) {
@@ -83,24 +89,30 @@ void run_single_block(const ChainForces& forces, SingleBlockRelaxation& r, Advan
           y = 0.0;
         }
       }
-      st.wd[j] = y;
-      r.sliding = 0;
-      if (stuck) {
-        st.mobile[j] = 0.0;
-      } else {
+      sliding = 0;
+      if (!stuck) {
         if (y != 0.0) dir = std::copysign(1.0, y);
-        st.dir[j] = dir;
-        r.sliding = 1;
+        sliding = 1;
         const double speed = std::abs(y);
-        if (!(speed <= r.max_speed) && r.max_speed == r.max_speed) r.max_speed = speed;
+        if (!(speed <= max_speed) && max_speed == max_speed) max_speed = speed;
       }
-      r.n_released = 0;
+      n_released = 0;
       for (const int k : {j - 1, j + 1})
-        if (fr.breaks(forces.spring_force(w_all, k, anchor))) r.released[r.n_released++] = k;
-      r.sliding += r.n_released;
-      r.sliding_block_steps += r.sliding;
-      if (stuck || r.n_released > 0 || !std::isfinite(y) || r.steps >= r.max_steps) return;
+        if (fr.breaks(forces.spring_force(w_all, k, anchor))) r.released[n_released++] = k;
+      sliding += n_released;
+      sliding_block_steps += sliding;
+      done = stuck || n_released > 0 || !std::isfinite(y) || steps >= r.max_steps;
     }
+    st.wd[j] = y;
+    st.dir[j] = dir;
+    if (stuck) st.mobile[j] = 0.0;
+    st.t = t;
+    *r.dissipated = dissipated;
+    r.max_speed = max_speed;
+    r.steps = steps;
+    r.sliding_block_steps = sliding_block_steps;
+    r.sliding = sliding;
+    r.n_released = n_released;
   });
 }
 

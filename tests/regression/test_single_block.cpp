@@ -52,6 +52,7 @@ TEST_P(SingleBlockPath, SameEventsBitForBitAsTheGeneralPath) {
     settings.push_back({"integrator.dt", "0.005"});
     Sim fast(settings), general(settings);
     general.engine.single_block_path = false;
+    general.engine.held_ranges_path = false;
     for (int i = 0; i < 3000; ++i) {
       const EventRecord a = fast.engine.next_event(), b = general.engine.next_event();
       ASSERT_EQ(bits(a), bits(b)) << "event " << i + 1;
