@@ -76,58 +76,84 @@ void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   st.t += dt;
 }
 
+namespace {
+
+// The blocks held_stage() advances and what it reads: everything is a restrict parameter,
+// so the compiler knows the stores cannot change the model and vectorises the loop.
+struct HeldStage {
+  const double* mobile;
+  const double* dir;
+  double anchor;
+  SubstrateState frozen;
+};
+
+// One RK4 stage over the inner blocks [lo, hi) of a range with stuck ends, fused: the
+// kernel's acceleration at stage positions x and velocities v, then (first stage) the
+// stage sums cw, cv start, or (middle stages) they gain 2 x the stage, and the next
+// stage's positions and velocities w + c v, w' + c a go to x_out, v_out.
+template <FrictionLaw Law, bool Neighbours, bool Damper, bool First>
+void held_stage(const ChainForces& forces, const HeldStage& in, int lo, int hi, const double* __restrict w,
+                const double* __restrict wd, const double* __restrict x, const double* __restrict v, double c,
+                double* __restrict cw, double* __restrict cv, double* __restrict x_out, double* __restrict v_out) {
+  const double* __restrict mobile = in.mobile;
+  const double* __restrict dir = in.dir;
+  const double anchor = in.anchor;
+  const SubstrateState frozen = in.frozen;
+  for (int j = lo; j < hi; ++j) {
+    const double a = mobile[j] * forces.acceleration<Law, Damper, false>(
+                                     forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j],
+                                     dir[j], frozen);
+    if constexpr (First) {
+      cw[j] = v[j];
+      cv[j] = a;
+    } else {
+      cw[j] += 2.0 * v[j];
+      cv[j] += 2.0 * a;
+    }
+    x_out[j] = w[j] + c * v[j];
+    v_out[j] = wd[j] + c * a;
+  }
+}
+
+// The last stage: w += h/6 (cw + v), w' += h/6 (cv + a).
+template <FrictionLaw Law, bool Neighbours, bool Damper>
+void held_last_stage(const ChainForces& forces, const HeldStage& in, int lo, int hi, double* __restrict w,
+                     double* __restrict wd, const double* __restrict x, const double* __restrict v, double h6,
+                     const double* __restrict cw, const double* __restrict cv) {
+  const double* __restrict mobile = in.mobile;
+  const double* __restrict dir = in.dir;
+  const double anchor = in.anchor;
+  const SubstrateState frozen = in.frozen;
+  for (int j = lo; j < hi; ++j) {
+    const double a = mobile[j] * forces.acceleration<Law, Damper, false>(
+                                     forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j],
+                                     dir[j], frozen);
+    const double dw = h6 * (cw[j] + v[j]);
+    w[j] += dw;
+    wd[j] += h6 * (cv[j] + a);
+  }
+}
+
+}  // namespace
+
 void Rk4::step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+  // The stage positions and velocities alternate between (ws_, wds_) and (ws2_, wds2_).
+  const HeldStage in{st.mobile.data(), st.dir.data(), sub.at(st.t).s + 0.0 /* as evaluate() forms it */,
+                     sub.at(st.t)};
+  const double h = dt, h2 = 0.5 * dt, h6 = h / 6.0;
+  double* w = st.w.data();
+  double* wd = st.wd.data();
+  double *xa = ws_.data(), *va = wds_.data(), *xb = ws2_.data(), *vb = wds2_.data();
+  double *cw = acc_w_.data(), *cv = acc_v_.data();
   forces.with_switches([&]<FrictionLaw Law, bool Neighbours, bool Damper>() {
-    const SubstrateState frozen = sub.at(st.t);
-    const double anchor = frozen.s + 0.0;  // as evaluate() forms it with the pad held
-    const double h = dt, h2 = 0.5 * dt, h6 = h / 6.0;
-    double* __restrict w = st.w.data();
-    double* __restrict wd = st.wd.data();
-    const double* __restrict mobile = st.mobile.data();
-    const double* __restrict dir = st.dir.data();
-    double* __restrict ws_a = ws_.data();
-    double* __restrict wds_a = wds_.data();
-    double* __restrict ws_b = ws2_.data();
-    double* __restrict wds_b = wds2_.data();
-    double* __restrict cw = acc_w_.data();
-    double* __restrict cv = acc_v_.data();
-    // The kernel's acceleration of block j at stage positions x and velocities v.
-    auto acceleration = [&](const double* __restrict x, const double* __restrict v, int j) {
-      return mobile[j] * forces.acceleration<Law, Damper, false>(
-                             forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j], dir[j],
-                             frozen);
-    };
     for (const Range& r : ranges) {
       const int lo = r.lo + 1, hi = r.hi - 1;  // the end blocks are stuck: their stage positions are w
-      ws_a[r.lo] = ws_b[r.lo] = w[r.lo];
-      ws_a[hi] = ws_b[hi] = w[hi];
-      for (int j = lo; j < hi; ++j) {
-        const double a = acceleration(w, wd, j);
-        cw[j] = wd[j];
-        cv[j] = a;
-        ws_a[j] = w[j] + h2 * wd[j];
-        wds_a[j] = wd[j] + h2 * a;
-      }
-      for (int j = lo; j < hi; ++j) {
-        const double a = acceleration(ws_a, wds_a, j);
-        cw[j] += 2.0 * wds_a[j];
-        cv[j] += 2.0 * a;
-        ws_b[j] = w[j] + h2 * wds_a[j];
-        wds_b[j] = wd[j] + h2 * a;
-      }
-      for (int j = lo; j < hi; ++j) {
-        const double a = acceleration(ws_b, wds_b, j);
-        cw[j] += 2.0 * wds_b[j];
-        cv[j] += 2.0 * a;
-        ws_a[j] = w[j] + h * wds_b[j];
-        wds_a[j] = wd[j] + h * a;
-      }
-      for (int j = lo; j < hi; ++j) {
-        const double a = acceleration(ws_a, wds_a, j);
-        const double dw = h6 * (cw[j] + wds_a[j]);
-        w[j] += dw;
-        wd[j] += h6 * (cv[j] + a);
-      }
+      xa[r.lo] = xb[r.lo] = w[r.lo];
+      xa[hi] = xb[hi] = w[hi];
+      held_stage<Law, Neighbours, Damper, true>(forces, in, lo, hi, w, wd, w, wd, h2, cw, cv, xa, va);
+      held_stage<Law, Neighbours, Damper, false>(forces, in, lo, hi, w, wd, xa, va, h2, cw, cv, xb, vb);
+      held_stage<Law, Neighbours, Damper, false>(forces, in, lo, hi, w, wd, xb, vb, h, cw, cv, xa, va);
+      held_last_stage<Law, Neighbours, Damper>(forces, in, lo, hi, w, wd, xa, va, h6, cw, cv);
     }
   });
   st.t += dt;
