@@ -18,6 +18,12 @@
 // a stuck block over the threshold (located by bisection to ~1e-13 in time; that block
 // then joins the same event), or, if no block can fail any more, to its rest position.
 //
+// Two fast paths give the same events bit for bit (tests/regression/test_single_block.cpp):
+// while one interior block slides alone with the pad held (most events never involve a
+// second block) the stepper's scalar form steps it (integrate/single_block.hpp); and with
+// the pad held and every covered range ending in stuck blocks, the ranges cannot interact,
+// so the stepper may fuse its stages over each of them (Stepper::step_held).
+//
 // End of an event: every block stuck (by the stepper's stick rule) and the pad at rest —
 // exactly at rest, since the pad's remaining free oscillation is removed in closed form
 // once its amplitude can no longer break any block (with an undamped pad, zeta = 0, this
