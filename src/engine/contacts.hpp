@@ -10,9 +10,21 @@
 // Optionally (a non-null `work`) it adds up the power sliding blocks dissipate in friction
 // (and the 1DOF damper) at the two ends of the step, with each block's direction frozen
 // as in the step: the caller turns the sum into work by the trapezoidal rule.
+//
+// Speed. The rule is written twice, in two forms that must agree:
+//  - settle_block, one block with branches: for short ranges (the event relaxation's are
+//    mostly a few blocks), the chain ends, the releases, and any pass that adds up the
+//    power (an in-order sum, which does not vectorise);
+//  - settle_interior (contacts.cpp), a long run of interior blocks without branches, so
+//    that the compiler vectorises it. On a continuously driven chain most blocks slide, and
+//    branches on the stick flag or on the sign change mispredict wherever these change
+//    along the chain; this form has none. It does everything but the releases, which it
+//    only counts: the blocks that break loose are then found again in block order, so that
+//    `on_release` hears of them in the same order. Each block's transition depends only on
+//    the positions, which the pass does not change, so settling the blocks all at once is
+//    the same as settling them one after the other.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 
 #include "model/chain.hpp"
@@ -24,50 +36,99 @@ struct ContactScan {
   double max_speed = 0;   // largest |relative velocity| among them; NaN if any is NaN
 };
 
+namespace contacts_detail {
+
+// Ranges shorter than this go block by block (settle_block): below it the vector loop's
+// set-up costs more than the branches.
+inline constexpr int kMinInteriorRun = 32;
+
+// max_speed = max(max_speed, speed), except that a NaN, once in, stays: a non-finite
+// velocity must survive into max_speed (std::max would drop a NaN).
+inline void raise_max_speed(double& max_speed, double speed) {
+  if (!(speed <= max_speed) && max_speed == max_speed) max_speed = speed;
+}
+
+// What settle_interior found.
+struct InteriorPass {
+  int sliding = 0;        // blocks sliding after it, not counting the releases
+  double max_speed = 0;   // largest |relative velocity| among them; NaN if any is NaN
+  int breaks = 0;         // stuck blocks that break loose (left stuck for now)
+  int first_break = 0;    // the first of them (hi if none)
+};
+
+// Blocks lo..hi-1, none of them a chain end: every transition but the releases.
+InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int lo,
+                             int hi, bool crossing_rule);
+
+// Block j; adds to the count of sliding blocks, the speed maximum and the power sum.
+template <class OnRelease>
+void settle_block(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int j,
+                  bool crossing_rule, OnRelease& on_release, double* power_sum, ContactScan& out) {
+  const Friction& fr = forces.friction();
+  const double* w = st.w.data();
+  double* wd = st.wd.data();
+  double* mob = st.mobile.data();
+  if (mob[j] != 0.0) {
+    if (power_sum) {
+      const double y0 = wd_old[j], y1 = wd[j], damper = forces.params().c_u / forces.params().m_u;
+      *power_sum += fr.power(y0, st.dir[j]) + fr.power(y1, st.dir[j]) + damper * (y0 * y0 + y1 * y1);
+    }
+    if (crossing_rule) {
+      const double y0 = wd_old[j], y1 = wd[j];
+      const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || y1 == 0.0) : y1 <= 0.0;
+      if (crossed) {
+        if (fr.holds(forces.spring_force(w, j, anchor))) {
+          wd[j] = 0.0;
+          mob[j] = 0.0;
+          return;
+        }
+        if (!fr.backslip) wd[j] = 0.0;
+      }
+    }
+    if (wd[j] != 0.0) st.dir[j] = std::copysign(1.0, wd[j]);
+    ++out.sliding;
+    raise_max_speed(out.max_speed, std::abs(wd[j]));
+  } else {
+    const double f = forces.spring_force(w, j, anchor);
+    if (fr.breaks(f)) {
+      mob[j] = 1.0;
+      st.dir[j] = std::copysign(1.0, f);  // it starts sliding the way its spring pulls
+      ++out.sliding;
+      on_release(j);
+    }
+  }
+}
+
+}  // namespace contacts_detail
+
 template <class OnRelease>
 ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor,
                             Ranges ranges, bool crossing_rule, OnRelease&& on_release,
                             double* power_sum = nullptr) {
-  const Friction& fr = forces.friction();
-  const double damper = forces.params().c_u / forces.params().m_u;
-  double* w = st.w.data();
-  double* wd = st.wd.data();
-  double* mob = st.mobile.data();
+  using namespace contacts_detail;
   ContactScan out;
+  auto block = [&](int j) { settle_block(forces, st, wd_old, anchor, j, crossing_rule, on_release, power_sum, out); };
+  const int n = forces.n();
   for (const Range& r : ranges) {
-    for (int j = r.lo; j < r.hi; ++j) {
-      if (mob[j] != 0.0) {
-        if (power_sum) {
-          const double y0 = wd_old[j], y1 = wd[j];
-          *power_sum += fr.power(y0, st.dir[j]) + fr.power(y1, st.dir[j]) + damper * (y0 * y0 + y1 * y1);
-        }
-        if (crossing_rule) {
-          const double y0 = wd_old[j], y1 = wd[j];
-          const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || y1 == 0.0) : y1 <= 0.0;
-          if (crossed) {
-            if (fr.holds(forces.spring_force(w, j, anchor))) {
-              wd[j] = 0.0;
-              mob[j] = 0.0;
-              continue;
-            }
-            if (!fr.backslip) wd[j] = 0.0;
-          }
-        }
-        if (wd[j] != 0.0) st.dir[j] = std::copysign(1.0, wd[j]);
-        ++out.sliding;
-        // A non-finite velocity must survive into max_speed (std::max would drop a NaN).
-        const double speed = std::abs(wd[j]);
-        if (!(speed <= out.max_speed) && out.max_speed == out.max_speed) out.max_speed = speed;
-      } else {
-        const double f = forces.spring_force(w, j, anchor);
-        if (fr.breaks(f)) {
-          mob[j] = 1.0;
-          st.dir[j] = std::copysign(1.0, f);  // it starts sliding the way its spring pulls
-          ++out.sliding;
-          on_release(j);
-        }
-      }
+    if (r.hi - r.lo < kMinInteriorRun || power_sum) {
+      for (int j = r.lo; j < r.hi; ++j) block(j);
+      continue;
     }
+    int lo = r.lo, hi = r.hi;
+    if (lo == 0) block(lo++);
+    const bool last = hi == n;
+    if (last) --hi;
+    const InteriorPass pass = settle_interior(forces, st, wd_old, anchor, lo, hi, crossing_rule);
+    out.sliding += pass.sliding;
+    raise_max_speed(out.max_speed, pass.max_speed);
+    // The releases it left, in block order (a block it has just stuck cannot break loose:
+    // friction holds it).
+    for (int j = pass.first_break, left = pass.breaks; left > 0 && j < hi; ++j) {
+      if (st.mobile[j] != 0.0) continue;
+      block(j);
+      if (st.mobile[j] != 0.0) --left;
+    }
+    if (last) block(n - 1);
   }
   return out;
 }

@@ -1,0 +1,76 @@
+// The branch-free form of the contact rule over interior blocks; see contacts.hpp.
+#include "engine/contacts.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+
+namespace bkq::contacts_detail {
+namespace {
+
+// settle_block's rule for blocks lo..hi-1, but with the stuck blocks that break loose
+// only counted, `force(j)` giving the spring force on block j. Every condition is
+// computed for every block and combined into selects, so the loop has no branches and
+// vectorises. Backslip is the law's flag as a constant, so that Friction's tests on it
+// fold away.
+template <bool Backslip, class Force>
+InteriorPass settle_run(int lo, int hi, Force force, Friction fr, bool crossing_rule,
+                        const double* __restrict wd_old, double* __restrict wd, double* __restrict mob,
+                        double* __restrict dir) {
+  fr.backslip = Backslip;
+  int sliding = 0, breaks = 0, first_break = hi;
+  // The largest speed as an integer maximum over bit patterns: for doubles of positive
+  // sign the pattern grows with the value and a NaN lies above infinity, so a NaN speed
+  // survives into max_speed.
+  std::int64_t max_bits = 0;
+  for (int j = lo; j < hi; ++j) {
+    const double y0 = wd_old[j], y1 = wd[j], d = dir[j], m = mob[j], f = force(j);
+    const bool was_sliding = m != 0.0;
+    const bool crossed = crossing_rule & was_sliding & (Backslip ? (y0 * y1 < 0.0) | (y1 == 0.0) : y1 <= 0.0);
+    const bool stick = crossed & fr.holds(f);
+    const bool slides = was_sliding & !stick;
+    const double y = crossed & (stick | !Backslip) ? 0.0 : y1;
+    wd[j] = y;
+    mob[j] = stick ? 0.0 : m;
+    dir[j] = slides & (y != 0.0) ? std::copysign(1.0, y) : d;
+    sliding += slides ? 1 : 0;
+    // A block that does not slide enters the maximum with the complement of its bits,
+    // which is negative and so below the start value 0. (Written as a select between two
+    // values the compiler cannot order, it stays a plain maximum that vectorises.)
+    const std::int64_t bits = std::bit_cast<std::int64_t>(std::abs(y));
+    max_bits = std::max(max_bits, slides ? bits : ~bits);
+    const bool breaks_loose = !was_sliding & fr.breaks(f);
+    breaks += breaks_loose ? 1 : 0;
+    first_break = std::min(first_break, breaks_loose ? j : hi);
+  }
+  return InteriorPass{sliding, std::bit_cast<double>(max_bits), breaks, first_break};
+}
+
+// The spring force on interior blocks: spring_force's arithmetic for the scene's boundary
+// written out (the same operations, so the same bits) without its end tests.
+template <bool Backslip>
+InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int lo,
+                             int hi, bool crossing_rule) {
+  const ModelParams& p = forces.params();
+  const double kc = p.k_c, kp = p.k_p;
+  const double* w = st.w.data();
+  auto run = [&](auto force) {
+    return settle_run<Backslip>(lo, hi, force, forces.friction(), crossing_rule, wd_old, st.wd.data(),
+                                st.mobile.data(), st.dir.data());
+  };
+  if (!p.has_neighbours()) return run([=](int j) { return 0.0 - kp * (w[j] - anchor); });
+  if (p.boundary == Boundary::Periodic)
+    return run([=](int j) { return kc * (w[j - 1] - 2.0 * w[j] + w[j + 1]) - kp * (w[j] - anchor); });
+  // Free ends: neighbour_force's running sum starts from 0.
+  return run([=](int j) { return kc * ((0.0 + (w[j - 1] - w[j])) + (w[j + 1] - w[j])) - kp * (w[j] - anchor); });
+}
+
+}  // namespace
+
+InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int lo,
+                             int hi, bool crossing_rule) {
+  return forces.friction().backslip ? settle_interior<true>(forces, st, wd_old, anchor, lo, hi, crossing_rule)
+                                    : settle_interior<false>(forces, st, wd_old, anchor, lo, hi, crossing_rule);
+}
+
+}  // namespace bkq::contacts_detail
