@@ -71,7 +71,7 @@ void settle_block(const ChainForces& forces, ChainState& st, const double* wd_ol
   if (mob[j] != 0.0) {
     if (power_sum) {
       const double y0 = wd_old[j], y1 = wd[j], damper = forces.params().c_u / forces.params().m_u;
-      *power_sum += fr.power(y0, st.dir[j]) + fr.power(y1, st.dir[j]) + damper * (y0 * y0 + y1 * y1);
+      *power_sum += fr.step_power(y0, y1, st.dir[j], damper);
     }
     if (crossing_rule) {
       const double y0 = wd_old[j], y1 = wd[j];

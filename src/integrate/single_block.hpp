@@ -76,8 +76,7 @@ void run_single_block(const ChainForces& forces, SingleBlockRelaxation& r, Advan
       t += dt;
       ++steps;
       w_all[j] = w;  // the neighbours' spring forces below read it
-      const double power = fr.power(y0, dir) + fr.power(y, dir) + damper * (y0 * y0 + y * y);
-      dissipated += half_dt_m * power;
+      dissipated += half_dt_m * fr.step_power(y0, y, dir, damper);
 
       // The Crossing rule (settle_contacts) for the block, then its neighbours' holds.
       const bool crossed = fr.backslip ? (y0 * y < 0.0 || y == 0.0) : y <= 0.0;

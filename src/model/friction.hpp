@@ -37,11 +37,16 @@ struct Friction {
   // |phi(y)| for a sliding block (per unit mass).
   double magnitude(double abs_y) const { return kinetic0 / (1.0 + abs_y * inv_scale); }
 
-  // Power dissipated per unit mass by a block sliding in direction `dir` at relative
-  // velocity y (friction frozen to oppose `dir`, as within a step): phi(y) * y.
-  double power(double y, double dir) const {
-    if (!backslip) return magnitude(std::max(y, 0.0)) * y;  // clst91 always opposes y > 0
-    return magnitude(std::abs(y)) * dir * y;
+  // What the energy balance adds up for a sliding block over a step: the power dissipated
+  // per unit mass at the step's two ends, friction phi(y) y with phi frozen to oppose
+  // `dir` (clst91 always opposes y > 0) plus a block damper (c_u/m_u) y^2 (damper = 0
+  // without one). The sums are explicit fused multiply-adds: left to the compiler, which
+  // product it fuses depends on where the function is inlined, and the event engine's
+  // paths must agree bit for bit.
+  double step_power(double y0, double y1, double dir, double damper) const {
+    auto force = [&](double y) { return backslip ? magnitude(std::abs(y)) * dir : magnitude(std::max(y, 0.0)); };
+    const double friction = std::fma(force(y0), y0, force(y1) * y1);
+    return std::fma(damper, std::fma(y0, y0, y1 * y1), friction);
   }
 
   // Would a stuck block with spring force f break loose?
