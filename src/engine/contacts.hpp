@@ -42,12 +42,6 @@ namespace contacts_detail {
 // set-up costs more than the branches.
 inline constexpr int kMinInteriorRun = 32;
 
-// max_speed = max(max_speed, speed), except that a NaN, once in, stays: a non-finite
-// velocity must survive into max_speed (std::max would drop a NaN).
-inline void raise_max_speed(double& max_speed, double speed) {
-  if (!(speed <= max_speed) && max_speed == max_speed) max_speed = speed;
-}
-
 // What settle_interior found.
 struct InteriorPass {
   int sliding = 0;        // blocks sliding after it, not counting the releases
@@ -73,17 +67,10 @@ void settle_block(const ChainForces& forces, ChainState& st, const double* wd_ol
       const double y0 = wd_old[j], y1 = wd[j], damper = forces.params().c_u / forces.params().m_u;
       *power_sum += fr.step_power(y0, y1, st.dir[j], damper);
     }
-    if (crossing_rule) {
-      const double y0 = wd_old[j], y1 = wd[j];
-      const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || y1 == 0.0) : y1 <= 0.0;
-      if (crossed) {
-        if (fr.holds(forces.spring_force(w, j, anchor))) {
-          wd[j] = 0.0;
-          mob[j] = 0.0;
-          return;
-        }
-        if (!fr.backslip) wd[j] = 0.0;
-      }
+    if (crossing_rule && fr.stops(wd_old[j], wd[j], [&] { return forces.spring_force(w, j, anchor); })) {
+      wd[j] = 0.0;
+      mob[j] = 0.0;
+      return;
     }
     if (wd[j] != 0.0) st.dir[j] = std::copysign(1.0, wd[j]);
     ++out.sliding;

@@ -138,8 +138,8 @@ void held_last_stage(const ChainForces& forces, const HeldStage& in, int lo, int
 
 void Rk4::step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
   // The stage positions and velocities alternate between (ws_, wds_) and (ws2_, wds2_).
-  const HeldStage in{st.mobile.data(), st.dir.data(), sub.at(st.t).s + 0.0 /* as evaluate() forms it */,
-                     sub.at(st.t)};
+  const SubstrateState frozen = sub.at(st.t);
+  const HeldStage in{st.mobile.data(), st.dir.data(), frozen.s + 0.0 /* as evaluate() forms it */, frozen};
   const double h = dt, h2 = 0.5 * dt, h6 = h / 6.0;
   double* w = st.w.data();
   double* wd = st.wd.data();

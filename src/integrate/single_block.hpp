@@ -78,22 +78,16 @@ void run_single_block(const ChainForces& forces, SingleBlockRelaxation& r, Advan
       w_all[j] = w;  // the neighbours' spring forces below read it
       dissipated += half_dt_m * fr.step_power(y0, y, dir, damper);
 
-      // The Crossing rule (settle_contacts) for the block, then its neighbours' holds.
-      const bool crossed = fr.backslip ? (y0 * y < 0.0 || y == 0.0) : y <= 0.0;
-      if (crossed) {
-        if (fr.holds(forces.spring_force(w_all, j, anchor))) {
-          y = 0.0;
-          stuck = true;
-        } else if (!fr.backslip) {
-          y = 0.0;
-        }
-      }
+      // The Crossing rule (as settle_contacts applies it) for the block, then its
+      // neighbours' holds.
+      stuck = fr.stops(y0, y, [&] { return forces.spring_force(w_all, j, anchor); });
       sliding = 0;
-      if (!stuck) {
+      if (stuck) {
+        y = 0.0;
+      } else {
         if (y != 0.0) dir = std::copysign(1.0, y);
         sliding = 1;
-        const double speed = std::abs(y);
-        if (!(speed <= max_speed) && max_speed == max_speed) max_speed = speed;
+        raise_max_speed(max_speed, std::abs(y));
       }
       n_released = 0;
       for (const int k : {j - 1, j + 1})

@@ -28,6 +28,12 @@ struct Range {
 };
 using Ranges = std::span<const Range>;
 
+// max_speed = max(max_speed, speed), except that a NaN, once in, stays: a non-finite
+// velocity must survive into an event's largest speed (std::max would drop a NaN).
+inline void raise_max_speed(double& max_speed, double speed) {
+  if (!(speed <= max_speed) && max_speed == max_speed) max_speed = speed;
+}
+
 // Everything that evolves. Stick flags live in `mobile` (1 = sliding, 0 = stuck) as
 // doubles so the kernels can multiply by them without branching. `dir` is the direction
 // each sliding block slides in (+1/-1): like the stick flags it is frozen over a step, so
