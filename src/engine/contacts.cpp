@@ -74,3 +74,35 @@ InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const do
 }
 
 }  // namespace bkq::contacts_detail
+
+namespace bkq {
+namespace {
+
+template <bool Backslip>
+double range_power(Friction fr, double damper, const double* __restrict mobile, const double* __restrict dir,
+                   const double* __restrict y0, const double* __restrict y1, int lo, int hi) {
+  fr.backslip = Backslip;
+  double s[4] = {0.0, 0.0, 0.0, 0.0};
+  int j = lo;
+  for (; j + 4 <= hi; j += 4)
+    for (int k = 0; k < 4; ++k) s[k] += mobile[j + k] * fr.step_power(y0[j + k], y1[j + k], dir[j + k], damper);
+  for (int k = 0; j < hi; ++j, ++k) s[k] += mobile[j] * fr.step_power(y0[j], y1[j], dir[j], damper);
+  return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
+}  // namespace
+
+double dissipated_power(const ChainForces& forces, const ChainState& st, const double* wd_old, Ranges ranges) {
+  const Friction& fr = forces.friction();
+  const double damper = forces.params().c_u / forces.params().m_u;
+  const double* mobile = st.mobile.data();
+  const double* dir = st.dir.data();
+  const double* wd = st.wd.data();
+  double sum = 0;
+  for (const Range& r : ranges)
+    sum += fr.backslip ? range_power<true>(fr, damper, mobile, dir, wd_old, wd, r.lo, r.hi)
+                       : range_power<false>(fr, damper, mobile, dir, wd_old, wd, r.lo, r.hi);
+  return sum;
+}
+
+}  // namespace bkq

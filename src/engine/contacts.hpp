@@ -7,14 +7,14 @@
 //    (clst91); a sliding block's direction of sliding is updated to its new velocity;
 //  - a stuck block whose spring force exceeds the static threshold breaks loose with
 //    zero relative velocity; `on_release(j)` is told.
-// Optionally (a non-null `work`) it adds up the power sliding blocks dissipate in friction
-// (and the 1DOF damper) at the two ends of the step, with each block's direction frozen
-// as in the step: the caller turns the sum into work by the trapezoidal rule.
+// dissipated_power(), called before the pass, adds up the power the sliding blocks
+// dissipate in friction (and the 1DOF damper) at the two ends of the step, with each
+// block's direction frozen as in the step: the caller turns the sum into work by the
+// trapezoidal rule.
 //
 // Speed. The rule is written twice, in two forms that must agree:
 //  - settle_block, one block with branches: for short ranges (the event relaxation's are
-//    mostly a few blocks), the chain ends, the releases, and any pass that adds up the
-//    power (an in-order sum, which does not vectorise);
+//    mostly a few blocks), the chain ends and the releases;
 //  - settle_interior (contacts.cpp), a long run of interior blocks without branches, so
 //    that the compiler vectorises it. On a continuously driven chain most blocks slide, and
 //    branches on the stick flag or on the sign change mispredict wherever these change
@@ -54,19 +54,15 @@ struct InteriorPass {
 InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int lo,
                              int hi, bool crossing_rule);
 
-// Block j; adds to the count of sliding blocks, the speed maximum and the power sum.
+// Block j; adds to the count of sliding blocks and the speed maximum.
 template <class OnRelease>
 void settle_block(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int j,
-                  bool crossing_rule, OnRelease& on_release, double* power_sum, ContactScan& out) {
+                  bool crossing_rule, OnRelease& on_release, ContactScan& out) {
   const Friction& fr = forces.friction();
   const double* w = st.w.data();
   double* wd = st.wd.data();
   double* mob = st.mobile.data();
   if (mob[j] != 0.0) {
-    if (power_sum) {
-      const double y0 = wd_old[j], y1 = wd[j], damper = forces.params().c_u / forces.params().m_u;
-      *power_sum += fr.step_power(y0, y1, st.dir[j], damper);
-    }
     if (crossing_rule && fr.stops(wd_old[j], wd[j], [&] { return forces.spring_force(w, j, anchor); })) {
       wd[j] = 0.0;
       mob[j] = 0.0;
@@ -88,16 +84,22 @@ void settle_block(const ChainForces& forces, ChainState& st, const double* wd_ol
 
 }  // namespace contacts_detail
 
+// Friction::step_power summed over the blocks that slid through the step (stick flags
+// not yet settled; wd_old the velocities at its start, stuck blocks' exactly 0). The sum
+// runs in a fixed order that vectorises: within a range, four partial sums over the
+// blocks lo + 4i + k, added as (s0 + s1) + (s2 + s3); ranges in order. The cluster path
+// (integrate/cluster.hpp) forms the same sum.
+double dissipated_power(const ChainForces& forces, const ChainState& st, const double* wd_old, Ranges ranges);
+
 template <class OnRelease>
 ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor,
-                            Ranges ranges, bool crossing_rule, OnRelease&& on_release,
-                            double* power_sum = nullptr) {
+                            Ranges ranges, bool crossing_rule, OnRelease&& on_release) {
   using namespace contacts_detail;
   ContactScan out;
-  auto block = [&](int j) { settle_block(forces, st, wd_old, anchor, j, crossing_rule, on_release, power_sum, out); };
+  auto block = [&](int j) { settle_block(forces, st, wd_old, anchor, j, crossing_rule, on_release, out); };
   const int n = forces.n();
   for (const Range& r : ranges) {
-    if (r.hi - r.lo < kMinInteriorRun || power_sum) {
+    if (r.hi - r.lo < kMinInteriorRun) {
       for (int j = r.lo; j < r.hi; ++j) block(j);
       continue;
     }

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "engine/contacts.hpp"
-#include "integrate/single_block.hpp"
+#include "integrate/cluster.hpp"
 #include "io/error.hpp"
 #include "model/damped_oscillator.hpp"
 
@@ -313,37 +313,42 @@ bool EventEngine::held_ranges() const {
   return true;
 }
 
-bool EventEngine::single_block_ready() const {
-  // One block sliding and covered by exactly its two stuck neighbours (an interior block:
-  // at a free or periodic end the covered blocks are not one range of three), the pad held.
-  if (!single_block_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || sliding_ != 1 ||
-      ranges_.size() != 1)
-    return false;
+int EventEngine::cluster_size() const {
+  // One covered range with stuck ends (so every sliding block is inside it) and at most
+  // kMaxCluster blocks between them, the pad held.
+  if (!cluster_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1) return 0;
   const Range& r = ranges_.front();
-  return r.hi - r.lo == 3 && st_.mobile[r.lo + 1] != 0.0;
+  const int k = r.hi - r.lo - 2;
+  if (k < 1 || k > kMaxCluster || st_.mobile[r.lo] != 0.0 || st_.mobile[r.hi - 1] != 0.0) return 0;
+  return k;
 }
 
-bool EventEngine::relax_single_block(std::int64_t& steps, ContactScan& scan) {
-  SingleBlockRelaxation r;
-  r.block = ranges_.front().lo + 1;
+bool EventEngine::relax_cluster(int k, std::int64_t& steps, ContactScan& scan) {
+  ClusterRelaxation r;
+  r.lo = ranges_.front().lo;
+  r.k = k;
   r.anchor = anchor();
   r.sub = SubstrateState{st_.s, 0.0, 0.0};
   r.dt = dt_;
   r.half_dt_m = 0.5 * dt_ * forces_.params().m_u;
-  // Stop at the step where the general path would give up on the event.
+  // Stop at the step where the general path would give up on the event, and, with more
+  // than one interior block, at the next shrink (it may split the range). A lone sliding
+  // block keeps its range exactly as the shrink would leave it.
   r.max_steps = max_steps_per_event + 1 - steps;
+  if (k > 1) r.max_steps = std::min<std::int64_t>(r.max_steps, kShrinkEvery - steps % kShrinkEvery);
   r.state = &st_;
   r.dissipated = &dissipated_;
-  if (!stepper_.relax_single_block(forces_, r)) return false;
-  // The shrinks due inside the run changed nothing (the range is exactly the block and its
-  // two neighbours); the one due after the last step, if any, the caller does.
+  if (!stepper_.relax_cluster(forces_, r)) return false;
+  // A shrink due inside a lone block's run changed nothing; the one due after the last
+  // step, if any, the caller does.
   steps += r.steps;
-  single_block_steps_ += r.steps;
-  counters_.block_steps += 3 * r.steps;
+  cluster_steps_ += r.steps;
+  if (k > 1) multi_block_cluster_steps_ += r.steps;
+  counters_.block_steps += (k + 2) * r.steps;
   counters_.sliding_block_steps += r.sliding_block_steps;
   scan.sliding = r.sliding;
   scan.max_speed = r.max_speed;
-  released_now_.assign(r.released, r.released + r.n_released);
+  released_now_.assign(r.released.begin(), r.released.begin() + r.n_released);
   return true;
 }
 
@@ -391,8 +396,8 @@ EventRecord EventEngine::next_event() {
   for (;;) {
     while (sliding_ > 0) {
       ContactScan scan;
-      if (single_block_ready() && relax_single_block(steps, scan)) {
-        // Ran one or more steps of a block sliding alone; scan describes the last one.
+      if (const int k = cluster_size(); k > 0 && relax_cluster(k, steps, scan)) {
+        // Ran one or more steps of a cluster; scan describes the last one.
       } else {
         for (const Range& r : ranges_) {
           std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old_.begin() + r.lo);
@@ -411,11 +416,9 @@ EventRecord EventEngine::next_event() {
         for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
         if (!crossing) note_released_in_step();
         released_now_.clear();
-        double power = 0;
-        scan = settle_contacts(
-            forces_, st_, wd_old_.data(), anchor(), ranges_, crossing, [&](int j) { released_now_.push_back(j); },
-            &power);
-        dissipated_ += half_dt_m * power;
+        dissipated_ += half_dt_m * dissipated_power(forces_, st_, wd_old_.data(), ranges_);
+        scan = settle_contacts(forces_, st_, wd_old_.data(), anchor(), ranges_, crossing,
+                               [&](int j) { released_now_.push_back(j); });
         if (pad_) dissipated_ += half_dt_cp * (xd_old * xd_old + st_.xd * st_.xd);
         counters_.sliding_block_steps += scan.sliding;
       }

@@ -18,11 +18,13 @@
 // a stuck block over the threshold (located by bisection to ~1e-13 in time; that block
 // then joins the same event), or, if no block can fail any more, to its rest position.
 //
-// Two fast paths give the same events bit for bit (tests/regression/test_single_block.cpp):
-// while one interior block slides alone with the pad held (most events never involve a
-// second block) the stepper's scalar form steps it (integrate/single_block.hpp); and with
-// the pad held and every covered range ending in stuck blocks, the ranges cannot interact,
-// so the stepper may fuse its stages over each of them (Stepper::step_held).
+// Two fast paths give the same events bit for bit (tests/regression/test_cluster.cpp):
+// while the sliding blocks lie within one covered range of at most kMaxCluster interior
+// blocks with the pad held (most events never leave that shape) the stepper's
+// fixed-size form steps the range with its state in registers (integrate/cluster.hpp);
+// and with the pad held and every covered range ending in stuck blocks, the ranges
+// cannot interact, so the stepper may fuse its stages over each of them
+// (Stepper::step_held).
 //
 // End of an event: every block stuck (by the stepper's stick rule) and the pad at rest —
 // exactly at rest, since the pad's remaining free oscillation is removed in closed form
@@ -94,15 +96,18 @@ class EventEngine {
   double worst_stuck_excess() const;
   // Give up on an event after this many steps (a runaway means dt or the scene is wrong).
   std::int64_t max_steps_per_event = 200'000'000;
-  // While one interior block slides alone (pad held, a Crossing stepper), step it with the
-  // stepper's scalar form (integrate/single_block.hpp): the same events bit for bit, about
-  // a third of the time. Off only to test exactly that.
-  bool single_block_path = true;
+  // While the sliding blocks lie within one range of at most kMaxCluster interior blocks
+  // (pad held, a Crossing stepper), step it with the stepper's fixed-size form
+  // (integrate/cluster.hpp): the same events bit for bit, in less time. Off only to test
+  // exactly that.
+  bool cluster_path = true;
   // With the pad held and every covered range ending in stuck blocks, use the stepper's
   // step_held() (again the same events bit for bit).
   bool held_ranges_path = true;
-  // Steps this engine took on the single-block path (not part of snapshots).
-  std::int64_t single_block_steps() const { return single_block_steps_; }
+  // Steps this engine took on the cluster path, and those of them with more than one
+  // interior block (not part of snapshots).
+  std::int64_t cluster_steps() const { return cluster_steps_; }
+  std::int64_t multi_block_cluster_steps() const { return multi_block_cluster_steps_; }
 
  private:
   double anchor() const { return st_.s + (pad_ ? st_.x : 0.0); }
@@ -121,10 +126,10 @@ class EventEngine {
   // Change of the energy stored in the springs since the event started (pad at x0 then).
   double stored_energy_change(double x0) const;
   void check_finite() const;
-  bool single_block_ready() const;
+  int cluster_size() const;  // interior blocks of the one covered range, 0 if not a cluster
   bool held_ranges() const;
-  // Steps while one block slides alone; false when the stepper has no scalar form.
-  bool relax_single_block(std::int64_t& steps, ContactScan& scan);
+  // Steps a cluster of k interior blocks; false when the stepper has no fixed-size form.
+  bool relax_cluster(int k, std::int64_t& steps, ContactScan& scan);
 
   const ChainForces& forces_;
   Stepper& stepper_;
@@ -149,7 +154,7 @@ class EventEngine {
   int sliding_ = 0;
 
   EngineCounters counters_;
-  std::int64_t single_block_steps_ = 0;
+  std::int64_t cluster_steps_ = 0, multi_block_cluster_steps_ = 0;
 };
 
 }  // namespace bkq

@@ -1,7 +1,7 @@
 // Explicit midpoint rule; see rk2.hpp.
 #include "integrate/rk2.hpp"
 
-#include "integrate/single_block.hpp"
+#include "integrate/cluster.hpp"
 
 namespace bkq {
 
@@ -51,17 +51,23 @@ void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   st.t += dt;
 }
 
-bool Rk2::relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const {
-  // step() for one block, operation for operation.
-  run_single_block(forces, r, [](const auto& acceleration, double& w, double& wd, double h) {
+bool Rk2::relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const {
+  // step() for the cluster's interior blocks, operation for operation.
+  return run_cluster(forces, r, [](const auto& acceleration, auto& w, auto& wd, double h) {
+    constexpr int k = static_cast<int>(std::tuple_size_v<std::remove_reference_t<decltype(w)>>) - 2;
     const double h2 = 0.5 * h;
-    const double a1 = acceleration(w, wd);
-    const double ws = w + h2 * wd, wds = wd + h2 * a1;
-    const double a2 = acceleration(ws, wds);
-    w += h * wds;
-    wd += h * a2;
+    auto a = w, ws = w, wds = wd;
+    acceleration(w, wd, a);
+    for (int i = 1; i <= k; ++i) {
+      ws[i] = w[i] + h2 * wd[i];
+      wds[i] = wd[i] + h2 * a[i];
+    }
+    acceleration(ws, wds, a);
+    for (int i = 1; i <= k; ++i) {
+      w[i] += h * wds[i];
+      wd[i] += h * a[i];
+    }
   });
-  return true;
 }
 
 }  // namespace bkq

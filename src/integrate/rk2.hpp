@@ -19,7 +19,7 @@ class Rk2 final : public ExplicitStepper {
   int order() const override { return 2; }
   double stability_constant() const override { return 0.5; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
-  bool relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const override;
+  bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
 };
 
 }  // namespace bkq

@@ -2,7 +2,7 @@
 // velocities are accumulated in acc_w_/acc_v_ so each stage is one pass over the ranges.
 #include "integrate/rk4.hpp"
 
-#include "integrate/single_block.hpp"
+#include "integrate/cluster.hpp"
 
 namespace bkq {
 
@@ -159,26 +159,37 @@ void Rk4::step_held(const ChainForces& forces, const Substrate& sub, ChainState&
   st.t += dt;
 }
 
-bool Rk4::relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const {
-  // step() for one block, operation for operation (cw, cv are its stage sums).
-  run_single_block(forces, r, [](const auto& acceleration, double& w, double& wd, double h) {
+bool Rk4::relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const {
+  // step_held() for the cluster's interior blocks, operation for operation (cw, cv are
+  // the stage sums; the ends' stage positions are their positions).
+  return run_cluster(forces, r, [](const auto& acceleration, auto& w, auto& wd, double h) {
+    constexpr int k = static_cast<int>(std::tuple_size_v<std::remove_reference_t<decltype(w)>>) - 2;
     const double h2 = 0.5 * h, h6 = h / 6.0;
-    double a = acceleration(w, wd);
-    double cw = wd, cv = a, ws = w + h2 * wd, wds = wd + h2 * a;
+    auto a = w, cw = w, cv = w, ws = w, wds = wd;
+    acceleration(w, wd, a);
+    for (int i = 1; i <= k; ++i) {
+      cw[i] = wd[i];
+      cv[i] = a[i];
+      ws[i] = w[i] + h2 * wd[i];
+      wds[i] = wd[i] + h2 * a[i];
+    }
     for (int stage = 2; stage <= 3; ++stage) {
       const double c = stage == 2 ? h2 : h;
-      a = acceleration(ws, wds);
-      cw += 2.0 * wds;
-      cv += 2.0 * a;
-      ws = w + c * wds;
-      wds = wd + c * a;
+      acceleration(ws, wds, a);
+      for (int i = 1; i <= k; ++i) {
+        cw[i] += 2.0 * wds[i];
+        cv[i] += 2.0 * a[i];
+        ws[i] = w[i] + c * wds[i];
+        wds[i] = wd[i] + c * a[i];
+      }
     }
-    a = acceleration(ws, wds);
-    const double dw = h6 * (cw + wds);
-    w += dw;
-    wd += h6 * (cv + a);
+    acceleration(ws, wds, a);
+    for (int i = 1; i <= k; ++i) {
+      const double dw = h6 * (cw[i] + wds[i]);
+      w[i] += dw;
+      wd[i] += h6 * (cv[i] + a[i]);
+    }
   });
-  return true;
 }
 
 }  // namespace bkq

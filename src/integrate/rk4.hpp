@@ -19,7 +19,7 @@ class Rk4 final : public ExplicitStepper {
   // One pass per stage over each range: forces, accelerations and stage sums together,
   // with the stage positions and velocities double-buffered.
   void step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
-  bool relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const override;
+  bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
 
  private:
   std::vector<double> ws2_ = std::vector<double>(ws_.size()), wds2_ = std::vector<double>(ws_.size());

@@ -29,7 +29,7 @@
 
 namespace bkq {
 
-struct SingleBlockRelaxation;
+struct ClusterRelaxation;
 
 enum class StickRule { Crossing, Projection, Located };
 
@@ -72,10 +72,10 @@ class Stepper {
                          Ranges ranges) {
     step(forces, sub, st, dt, ranges);
   }
-  // Steps of one block sliding alone between neighbours that hold, with this scheme's
-  // scalar step (integrate/single_block.hpp); false when the stepper has no such form
-  // (the event engine then uses step()).
-  virtual bool relax_single_block(const ChainForces&, SingleBlockRelaxation&) const { return false; }
+  // Steps of a few blocks between two stuck ones, the pad held, with this scheme's step
+  // written for a fixed-size cluster (integrate/cluster.hpp); false when the stepper has
+  // no such form (the event engine then uses step()).
+  virtual bool relax_cluster(const ChainForces&, ClusterRelaxation&) const { return false; }
 };
 
 // Keyword -> stepper; an unknown keyword throws bkq::Error listing the valid ones.

@@ -1,7 +1,7 @@
 // Velocity Verlet with a velocity-corrected closing kick; see verlet.hpp.
 #include "integrate/verlet.hpp"
 
-#include "integrate/single_block.hpp"
+#include "integrate/cluster.hpp"
 
 namespace bkq {
 
@@ -49,20 +49,28 @@ void Verlet::step(const ChainForces& forces, const Substrate& sub, ChainState& s
   st.t += dt;
 }
 
-bool Verlet::relax_single_block(const ChainForces& forces, SingleBlockRelaxation& r) const {
-  // step() for one block, operation for operation (the engine never holds a moving pad
-  // here, and event-driven friction always depends on velocity, but keep the test).
+bool Verlet::relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const {
+  // step() for the cluster's interior blocks, operation for operation (the engine never
+  // holds a moving pad here, and event-driven friction always depends on velocity, but
+  // keep the test).
   const ModelParams& p = forces.params();
   const bool velocity_dependent = p.law != FrictionLaw::None || p.c_u != 0;
-  run_single_block(forces, r, [velocity_dependent](const auto& acceleration, double& w, double& wd, double h) {
+  return run_cluster(forces, r, [velocity_dependent](const auto& acceleration, auto& w, auto& wd, double h) {
+    constexpr int k = static_cast<int>(std::tuple_size_v<std::remove_reference_t<decltype(w)>>) - 2;
     const double h2 = 0.5 * h;
-    const double wh = wd + h2 * acceleration(w, wd);
-    w += h * wh;
-    double a = acceleration(w, wh);
-    if (velocity_dependent) a = acceleration(w, wh + h2 * a);
-    wd = wh + h2 * a;
+    auto a = w, wh = wd, wp = wd;
+    acceleration(w, wd, a);
+    for (int i = 1; i <= k; ++i) {
+      wh[i] = wd[i] + h2 * a[i];
+      w[i] += h * wh[i];
+    }
+    acceleration(w, wh, a);
+    if (velocity_dependent) {
+      for (int i = 1; i <= k; ++i) wp[i] = wh[i] + h2 * a[i];
+      acceleration(w, wp, a);
+    }
+    for (int i = 1; i <= k; ++i) wd[i] = wh[i] + h2 * a[i];
   });
-  return true;
 }
 
 }  // namespace bkq

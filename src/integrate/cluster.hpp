@@ -1,0 +1,173 @@
+// The event engine's commonest cases, a few blocks sliding between two neighbours that
+// hold (78% of the carlson-langer scene's events never involve a second block, and most
+// of the others stay within a handful), advanced by a scheme's scalar form instead of
+// its range loops.
+//
+// A cluster is one covered range [lo, lo + K + 2) whose two end blocks are stuck: K
+// interior blocks, some sliding, some stuck, and nothing else in the chain moving (the
+// pad is held; the caller checks). With K a compile-time constant the whole cluster
+// lives in registers. A Crossing stepper (rk2, rk4, verlet) supplies its step for the
+// cluster as a function of fixed-size arrays; run_cluster() runs it step after step and
+// after each one does what the engine's general path does: it adds the dissipated power
+// to the energy balance (dissipated_power's sum, in the same order), and applies the
+// Crossing rule and the release test to every block of the range in block order
+// (settle_contacts' rule, engine/contacts.hpp). It returns after the first step at whose
+// end every block is stuck, a block broke loose, a speed is not finite, or the step
+// budget ran out: the caller then does its usual end-of-step bookkeeping, and the general
+// path takes over if the event goes on in another shape.
+//
+// Every operation is the one the general path performs, in the same order (the stuck
+// ends' stage positions equal their positions), so the events are the same bit for bit;
+// tests/regression/test_cluster.cpp runs both paths and compares the catalogs.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+
+#include "model/chain.hpp"
+
+namespace bkq {
+
+// Largest number of interior blocks a cluster may have (the code is instantiated for
+// each size up to it).
+inline constexpr int kMaxCluster = 8;
+
+struct ClusterRelaxation {
+  // Set by the caller.
+  int lo = 0;                  // the range is [lo, lo + k + 2); its end blocks are stuck
+  int k = 1;                   // interior blocks, 1..kMaxCluster
+  double anchor = 0;           // substrate + pad (the pad is held)
+  SubstrateState sub;          // the frozen substrate
+  double dt = 0;
+  double half_dt_m = 0;        // trapezoidal weight of the dissipated power: dt m_u / 2
+  std::int64_t max_steps = 0;  // return after this many steps at most
+  // Advanced: the range's entries of the state, and the time.
+  ChainState* state = nullptr;
+  double* dissipated = nullptr;  // += half_dt_m * power, step by step
+  // What happened.
+  std::int64_t steps = 0;
+  std::int64_t sliding_block_steps = 0;  // sliding blocks at the end of each step, summed
+  double max_speed = 0;                  // NaN if a speed became NaN
+  int sliding = 0;                       // sliding blocks after the last step
+  std::array<int, kMaxCluster + 2> released{};  // blocks that broke loose then, in order
+  int n_released = 0;
+};
+
+// The arrays a scheme's cluster step works on: entries 0 and K + 1 are the stuck ends.
+template <int K>
+using ClusterArray = std::array<double, K + 2>;
+
+// Runs the loop described above with the scheme's step
+//   advance(acceleration, w, y, h)
+// on ClusterArray<K> positions w and velocities y, interior entries only, where
+// acceleration(x, v, a) sets a[1..K] to the blocks' accelerations at stage positions x
+// and velocities v (x[0] and x[K+1] being the ends' positions), with every block's
+// stick flag and direction of sliding frozen for the step. Returns false, having done
+// nothing, for the friction laws the event engine refuses (cl89, none).
+template <int K, class Advance>
+bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&& advance) {
+  static_assert(K >= 1 && K <= kMaxCluster);
+  return forces.with_switches([&]<FrictionLaw Law, bool Neighbours, bool Damper>() {
+    if constexpr (Law == FrictionLaw::Cl89 || Law == FrictionLaw::None) {
+      return false;
+    } else {
+      using Array = ClusterArray<K>;
+      const Friction& fr = forces.friction();
+      const double damper = forces.params().c_u / forces.params().m_u;
+      ChainState& st = *r.state;
+      double* w_all = st.w.data();
+      const int lo = r.lo;
+      const double anchor = r.anchor, dt = r.dt, half_dt_m = r.half_dt_m;
+      const SubstrateState sub = r.sub;
+      // Everything the loop carries lives in locals (written back once at the end), so the
+      // stores into the state cannot force reloads; the sums are formed in the same order.
+      Array w, y, mobile, dir;
+      for (int i = 0; i < K + 2; ++i) {
+        w[i] = w_all[lo + i];
+        y[i] = st.wd[lo + i];
+        mobile[i] = st.mobile[lo + i];
+        dir[i] = st.dir[lo + i];
+      }
+      double t = st.t, dissipated = *r.dissipated, max_speed = r.max_speed;
+      std::int64_t steps = 0, sliding_block_steps = 0;
+      int sliding = 0, n_released = 0;
+      auto acceleration = [&](const Array& x, const Array& v, Array& a) {
+        for (int i = 1; i <= K; ++i) {
+          const double acc = forces.acceleration<Law, Damper, false>(
+              forces.interior_force<Neighbours>(x[i - 1], x[i], x[i + 1], anchor), v[i], dir[i], sub);
+          // A lone block slides throughout the run (it ends at the step where it sticks),
+          // and 1 * acc is acc: the product is left out of its critical path.
+          a[i] = K == 1 ? acc : mobile[i] * acc;
+        }
+      };
+      for (bool done = false; !done;) {
+        const Array y0 = y;
+        advance(acceleration, w, y, dt);
+        t += dt;
+        ++steps;
+        for (int i = 1; i <= K; ++i) w_all[lo + i] = w[i];  // the spring forces below read them
+
+        // dissipated_power's sum: four partial sums over the blocks lo + 4m + l.
+        std::array<double, 4> part = {0.0, 0.0, 0.0, 0.0};
+        for (int i = 0; i < K + 2; ++i) part[i % 4] += mobile[i] * fr.step_power(y0[i], y[i], dir[i], damper);
+        dissipated += half_dt_m * ((part[0] + part[1]) + (part[2] + part[3]));
+
+        // settle_block's rule, block by block.
+        sliding = 0;
+        n_released = 0;
+        for (int i = 0; i < K + 2; ++i) {
+          const int j = lo + i;
+          if (mobile[i] != 0.0) {
+            if (fr.stops(y0[i], y[i], [&] { return forces.spring_force(w_all, j, anchor); })) {
+              y[i] = 0.0;
+              mobile[i] = 0.0;
+              continue;
+            }
+            if (y[i] != 0.0) dir[i] = std::copysign(1.0, y[i]);
+            ++sliding;
+            raise_max_speed(max_speed, std::abs(y[i]));
+          } else {
+            const double f = forces.spring_force(w_all, j, anchor);
+            if (fr.breaks(f)) {
+              mobile[i] = 1.0;
+              dir[i] = std::copysign(1.0, f);
+              ++sliding;
+              r.released[n_released++] = j;
+            }
+          }
+        }
+        sliding_block_steps += sliding;
+        done = sliding == 0 || n_released > 0 || !std::isfinite(max_speed) || steps >= r.max_steps;
+      }
+      for (int i = 0; i < K + 2; ++i) {
+        st.wd[lo + i] = y[i];
+        st.mobile[lo + i] = mobile[i];
+        st.dir[lo + i] = dir[i];
+      }
+      st.t = t;
+      *r.dissipated = dissipated;
+      r.max_speed = max_speed;
+      r.steps = steps;
+      r.sliding_block_steps = sliding_block_steps;
+      r.sliding = sliding;
+      r.n_released = n_released;
+      return true;
+    }
+  });
+}
+
+// Calls run_cluster_sized<K> with K = r.k as a compile-time constant; `advance` must accept
+// the ClusterArray of every size.
+template <class Advance>
+bool run_cluster(const ChainForces& forces, ClusterRelaxation& r, Advance&& advance) {
+  return [&]<int... Ks>(std::integer_sequence<int, Ks...>) {
+    bool ran = false;
+    ((r.k == Ks + 1 && (ran = run_cluster_sized<Ks + 1>(forces, r, advance), true)) || ...);
+    return ran;
+  }(std::make_integer_sequence<int, kMaxCluster>());
+}
+
+}  // namespace bkq
