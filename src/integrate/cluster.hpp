@@ -61,11 +61,12 @@ template <int K>
 using ClusterArray = std::array<double, K + 2>;
 
 // Runs the loop described above with the scheme's step
-//   advance(acceleration, w, y, h)
-// on ClusterArray<K> positions w and velocities y, interior entries only, where
-// acceleration(x, v, a) sets a[1..K] to the blocks' accelerations at stage positions x
-// and velocities v (x[0] and x[K+1] being the ends' positions), with every block's
-// stick flag and direction of sliding frozen for the step. Returns false, having done
+//   advance(acceleration, w, y, a, h)
+// on ClusterArray<K> positions w and velocities y, interior entries only, where a holds
+// the accelerations at (w, y) on entry (scratch after), and acceleration(x, v, a) sets
+// a[1..K] to the blocks' accelerations at stage positions x and velocities v (x[0] and
+// x[K+1] being the ends' positions), with every block's stick flag and direction of
+// sliding frozen for the step. Returns false, having done
 // nothing, for the friction laws the event engine refuses (cl89, none).
 template <int K, class Advance>
 bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&& advance) {
@@ -94,25 +95,38 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       double t = st.t, dissipated = *r.dissipated, max_speed = r.max_speed;
       std::int64_t steps = 0, sliding_block_steps = 0;
       int sliding = 0, n_released = 0;
+      // Each block's friction magnitude |phi(y)| at its current velocity: the power at the
+      // end of one step needs it, and the first stage of the next step and the power at
+      // its start need it again (the same value, so it is divided out once).
+      const double magnitude_at_rest = forces.friction_magnitude<Law>(0.0);
+      Array magnitude;
+      for (int i = 0; i < K + 2; ++i) magnitude[i] = forces.friction_magnitude<Law>(y[i]);
+      // A lone block slides throughout the run (it ends at the step where it sticks), and
+      // 1 * acc is acc: the product is left out of its critical path.
+      auto flagged = [&](int i, double acc) { return K == 1 ? acc : mobile[i] * acc; };
       auto acceleration = [&](const Array& x, const Array& v, Array& a) {
-        for (int i = 1; i <= K; ++i) {
-          const double acc = forces.acceleration<Law, Damper, false>(
-              forces.interior_force<Neighbours>(x[i - 1], x[i], x[i + 1], anchor), v[i], dir[i], sub);
-          // A lone block slides throughout the run (it ends at the step where it sticks),
-          // and 1 * acc is acc: the product is left out of its critical path.
-          a[i] = K == 1 ? acc : mobile[i] * acc;
-        }
+        for (int i = 1; i <= K; ++i)
+          a[i] = flagged(i, forces.acceleration<Law, Damper, false>(
+                                forces.interior_force<Neighbours>(x[i - 1], x[i], x[i + 1], anchor), v[i], dir[i], sub));
       };
       for (bool done = false; !done;) {
-        const Array y0 = y;
-        advance(acceleration, w, y, dt);
+        const Array y0 = y, magnitude0 = magnitude;
+        Array a;  // the first stage's accelerations, at the start of the step
+        for (int i = 1; i <= K; ++i)
+          a[i] = flagged(i, forces.acceleration_given<Law, Damper, false>(
+                                forces.interior_force<Neighbours>(w[i - 1], w[i], w[i + 1], anchor), magnitude[i],
+                                y[i], dir[i], sub));
+        advance(acceleration, w, y, a, dt);
         t += dt;
         ++steps;
         for (int i = 1; i <= K; ++i) w_all[lo + i] = w[i];  // the spring forces below read them
 
         // dissipated_power's sum: four partial sums over the blocks lo + 4m + l.
         std::array<double, 4> part = {0.0, 0.0, 0.0, 0.0};
-        for (int i = 0; i < K + 2; ++i) part[i % 4] += mobile[i] * fr.step_power(y0[i], y[i], dir[i], damper);
+        for (int i = 0; i < K + 2; ++i) {
+          magnitude[i] = forces.friction_magnitude<Law>(y[i]);
+          part[i % 4] += mobile[i] * fr.step_power_given(magnitude0[i], y0[i], magnitude[i], y[i], dir[i], damper);
+        }
         dissipated += half_dt_m * ((part[0] + part[1]) + (part[2] + part[3]));
 
         // settle_block's rule, block by block.
@@ -123,9 +137,11 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
           if (mobile[i] != 0.0) {
             if (fr.stops(y0[i], y[i], [&] { return forces.spring_force(w_all, j, anchor); })) {
               y[i] = 0.0;
+              magnitude[i] = magnitude_at_rest;
               mobile[i] = 0.0;
               continue;
             }
+            if (y[i] == 0.0) magnitude[i] = magnitude_at_rest;  // clst91 after a crossing
             if (y[i] != 0.0) dir[i] = std::copysign(1.0, y[i]);
             ++sliding;
             raise_max_speed(max_speed, std::abs(y[i]));

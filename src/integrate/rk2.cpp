@@ -53,11 +53,10 @@ void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
 
 bool Rk2::relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const {
   // step() for the cluster's interior blocks, operation for operation.
-  return run_cluster(forces, r, [](const auto& acceleration, auto& w, auto& wd, double h) {
+  return run_cluster(forces, r, [](const auto& acceleration, auto& w, auto& wd, auto& a, double h) {
     constexpr int k = static_cast<int>(std::tuple_size_v<std::remove_reference_t<decltype(w)>>) - 2;
     const double h2 = 0.5 * h;
-    auto a = w, ws = w, wds = wd;
-    acceleration(w, wd, a);
+    auto ws = w, wds = wd;
     for (int i = 1; i <= k; ++i) {
       ws[i] = w[i] + h2 * wd[i];
       wds[i] = wd[i] + h2 * a[i];

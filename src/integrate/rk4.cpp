@@ -162,11 +162,10 @@ void Rk4::step_held(const ChainForces& forces, const Substrate& sub, ChainState&
 bool Rk4::relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const {
   // step_held() for the cluster's interior blocks, operation for operation (cw, cv are
   // the stage sums; the ends' stage positions are their positions).
-  return run_cluster(forces, r, [](const auto& acceleration, auto& w, auto& wd, double h) {
+  return run_cluster(forces, r, [](const auto& acceleration, auto& w, auto& wd, auto& a, double h) {
     constexpr int k = static_cast<int>(std::tuple_size_v<std::remove_reference_t<decltype(w)>>) - 2;
     const double h2 = 0.5 * h, h6 = h / 6.0;
-    auto a = w, cw = w, cv = w, ws = w, wds = wd;
-    acceleration(w, wd, a);
+    auto cw = w, cv = w, ws = w, wds = wd;
     for (int i = 1; i <= k; ++i) {
       cw[i] = wd[i];
       cv[i] = a[i];

@@ -55,11 +55,11 @@ bool Verlet::relax_cluster(const ChainForces& forces, ClusterRelaxation& r) cons
   // keep the test).
   const ModelParams& p = forces.params();
   const bool velocity_dependent = p.law != FrictionLaw::None || p.c_u != 0;
-  return run_cluster(forces, r, [velocity_dependent](const auto& acceleration, auto& w, auto& wd, double h) {
+  return run_cluster(forces, r, [velocity_dependent](const auto& acceleration, auto& w, auto& wd, auto& a,
+                                                     double h) {
     constexpr int k = static_cast<int>(std::tuple_size_v<std::remove_reference_t<decltype(w)>>) - 2;
     const double h2 = 0.5 * h;
-    auto a = w, wh = wd, wp = wd;
-    acceleration(w, wd, a);
+    auto wh = wd, wp = wd;
     for (int i = 1; i <= k; ++i) {
       wh[i] = wd[i] + h2 * a[i];
       w[i] += h * wh[i];

@@ -106,7 +106,19 @@ class ChainForces {
   }
   // Acceleration of a sliding block with spring force f and relative velocity y.
   template <FrictionLaw Law, bool Damper, bool Inertial>
-  double acceleration(double f, double y, double dir, const SubstrateState& sub) const;
+  double acceleration(double f, double y, double dir, const SubstrateState& sub) const {
+    return acceleration_given<Law, Damper, Inertial>(f, friction_magnitude<Law>(y), y, dir, sub);
+  }
+  // The same with |phi(y)| already known (friction_magnitude), bit for bit.
+  template <FrictionLaw Law, bool Damper, bool Inertial>
+  double acceleration_given(double f, double magnitude, double y, double dir, const SubstrateState& sub) const;
+  // |phi(y)| as acceleration() forms it (Friction::magnitude_at for the law).
+  template <FrictionLaw Law>
+  double friction_magnitude(double y) const {
+    if constexpr (Law == FrictionLaw::None) return 0.0;
+    else if constexpr (Law == FrictionLaw::Clst91) return friction_.magnitude(std::max(y, 0.0));
+    else return friction_.magnitude(std::abs(y));
+  }
   // Calls `f.template operator()<Law, Neighbours, Damper>()` with the scene's switches as
   // compile-time constants, so the code it instantiates computes only what is on.
   template <class F>
@@ -146,13 +158,14 @@ class ChainForces {
 };
 
 template <FrictionLaw Law, bool Damper, bool Inertial>
-double ChainForces::acceleration(double f, double y, double dir, const SubstrateState& sub) const {
+double ChainForces::acceleration_given(double f, double magnitude, double y, double dir,
+                                       const SubstrateState& sub) const {
   double acc = f * inv_m_;
   if constexpr (Law == FrictionLaw::None) {
   } else if constexpr (Law == FrictionLaw::Clst91) {
-    acc -= friction_.magnitude(std::max(y, 0.0));
+    acc -= magnitude;
   } else {
-    acc -= std::copysign(friction_.magnitude(std::abs(y)), dir);
+    acc -= std::copysign(magnitude, dir);
   }
   if constexpr (Damper) acc -= p_.c_u * inv_m_ * (y - sub.v);
   if constexpr (Inertial) acc += sub.a;
