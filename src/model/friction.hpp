@@ -35,7 +35,7 @@ struct Friction {
   }
 
   // |phi(y)| for a sliding block (per unit mass).
-  double magnitude(double abs_y) const { return kinetic0 / (1.0 + abs_y * inv_scale); }
+  double magnitude(double abs_y) const { return kinetic0 / std::fma(abs_y, inv_scale, 1.0); }
 
   // What the energy balance adds up for a sliding block over a step: the power dissipated
   // per unit mass at the step's two ends, friction phi(y) y with phi frozen to oppose
