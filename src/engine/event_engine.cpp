@@ -313,20 +313,23 @@ bool EventEngine::held_ranges() const {
   return true;
 }
 
-int EventEngine::cluster_size() const {
-  // One covered range with stuck ends (so every sliding block is inside it) and at most
-  // kMaxCluster blocks between them, the pad held.
-  if (!cluster_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1) return 0;
-  const Range& r = ranges_.front();
-  const int k = r.hi - r.lo - 2;
-  if (k < 1 || k > kMaxCluster || st_.mobile[r.lo] != 0.0 || st_.mobile[r.hi - 1] != 0.0) return 0;
-  return k;
+bool EventEngine::cluster_ready(ClusterRelaxation& r) const {
+  // One covered range (so every sliding block is inside it), the pad held, and at most
+  // kMaxCluster blocks between its ends, which are stuck blocks or free chain ends.
+  if (!cluster_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1) return false;
+  const Range& range = ranges_.front();
+  const bool free_ends = forces_.params().boundary == Boundary::Free && n_ >= 2;
+  r.free_left = free_ends && range.lo == 0 && st_.mobile[0] != 0.0;
+  r.free_right = free_ends && range.hi == n_ && st_.mobile[n_ - 1] != 0.0;
+  if (r.free_left && r.free_right) return false;
+  r.lo = range.lo - (r.free_left ? 1 : 0);
+  r.k = range.hi - range.lo - 2 + (r.free_left ? 1 : 0) + (r.free_right ? 1 : 0);
+  if (r.k < 1 || r.k > kMaxCluster) return false;
+  return (r.free_left || st_.mobile[range.lo] == 0.0) && (r.free_right || st_.mobile[range.hi - 1] == 0.0);
 }
 
-bool EventEngine::relax_cluster(int k, std::int64_t& steps, ContactScan& scan) {
-  ClusterRelaxation r;
-  r.lo = ranges_.front().lo;
-  r.k = k;
+bool EventEngine::relax_cluster(ClusterRelaxation& r, std::int64_t& steps, ContactScan& scan) {
+  const int k = r.k;
   r.anchor = anchor();
   r.sub = SubstrateState{st_.s, 0.0, 0.0};
   r.dt = dt_;
@@ -344,7 +347,7 @@ bool EventEngine::relax_cluster(int k, std::int64_t& steps, ContactScan& scan) {
   steps += r.steps;
   cluster_steps_ += r.steps;
   if (k > 1) multi_block_cluster_steps_ += r.steps;
-  counters_.block_steps += (k + 2) * r.steps;
+  counters_.block_steps += (ranges_.front().hi - ranges_.front().lo) * r.steps;
   counters_.sliding_block_steps += r.sliding_block_steps;
   scan.sliding = r.sliding;
   scan.max_speed = r.max_speed;
@@ -396,7 +399,7 @@ EventRecord EventEngine::next_event() {
   for (;;) {
     while (sliding_ > 0) {
       ContactScan scan;
-      if (const int k = cluster_size(); k > 0 && relax_cluster(k, steps, scan)) {
+      if (ClusterRelaxation cluster; cluster_ready(cluster) && relax_cluster(cluster, steps, scan)) {
         // Ran one or more steps of a cluster; scan describes the last one.
       } else {
         for (const Range& r : ranges_) {

@@ -51,6 +51,7 @@
 
 #include "engine/contacts.hpp"
 #include "engine/force_tree.hpp"
+#include "integrate/cluster.hpp"
 #include "integrate/stepper.hpp"
 #include "io/catalog.hpp"
 #include "model/chain.hpp"
@@ -126,10 +127,12 @@ class EventEngine {
   // Change of the energy stored in the springs since the event started (pad at x0 then).
   double stored_energy_change(double x0) const;
   void check_finite() const;
-  int cluster_size() const;  // interior blocks of the one covered range, 0 if not a cluster
+  // Whether the covered blocks form a cluster (integrate/cluster.hpp); if so, sets its
+  // shape in r.
+  bool cluster_ready(ClusterRelaxation& r) const;
   bool held_ranges() const;
-  // Steps a cluster of k interior blocks; false when the stepper has no fixed-size form.
-  bool relax_cluster(int k, std::int64_t& steps, ContactScan& scan);
+  // Steps the cluster; false when the stepper has no fixed-size form.
+  bool relax_cluster(ClusterRelaxation& r, std::int64_t& steps, ContactScan& scan);
 
   const ChainForces& forces_;
   Stepper& stepper_;

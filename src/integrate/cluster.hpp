@@ -5,7 +5,12 @@
 //
 // A cluster is one covered range [lo, lo + K + 2) whose two end blocks are stuck: K
 // interior blocks, some sliding, some stuck, and nothing else in the chain moving (the
-// pad is held; the caller checks). With K a compile-time constant the whole cluster
+// pad is held; the caller checks). At a free chain end the range has no stuck block on
+// that side: its first (or last) block is then the chain's end block, in any state, and
+// the cluster's entry 0 (or K + 1) is a phantom that mirrors it. The interior force with
+// the phantom's position equal to the block's is the end block's spring force bit for
+// bit: k_c ((w - 2w) + w_r) is k_c (w_r - w) exactly, and k_p (anchor - w) + that is
+// spring_force's k_c (w_r - w) - k_p (w - anchor) exactly. With K a compile-time constant the whole cluster
 // lives in registers. A Crossing stepper (rk2, rk4, verlet) supplies its step for the
 // cluster as a function of fixed-size arrays; run_cluster() runs it step after step and
 // after each one does what the engine's general path does: it adds the dissipated power
@@ -37,8 +42,10 @@ inline constexpr int kMaxCluster = 8;
 
 struct ClusterRelaxation {
   // Set by the caller.
-  int lo = 0;                  // the range is [lo, lo + k + 2); its end blocks are stuck
-  int k = 1;                   // interior blocks, 1..kMaxCluster
+  int lo = 0;                  // the range is [lo, lo + k + 2); its end blocks are stuck,
+  int k = 1;                   // k interior blocks, 1..kMaxCluster, between them,
+  bool free_left = false;      // except that entry 0 is a phantom (lo = -1: block 0 is a free end)
+  bool free_right = false;     // or entry k + 1 is (block n - 1 is a free end)
   double anchor = 0;           // substrate + pad (the pad is held)
   SubstrateState sub;          // the frozen substrate
   double dt = 0;
@@ -68,7 +75,7 @@ using ClusterArray = std::array<double, K + 2>;
 // x[K+1] being the ends' positions), with every block's stick flag and direction of
 // sliding frozen for the step. Returns false, having done
 // nothing, for the friction laws the event engine refuses (cl89, none).
-template <int K, class Advance>
+template <int K, bool FreeLeft, bool FreeRight, class Advance>
 bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&& advance) {
   static_assert(K >= 1 && K <= kMaxCluster);
   return forces.with_switches([&]<FrictionLaw Law, bool Neighbours, bool Damper>() {
@@ -81,12 +88,14 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       ChainState& st = *r.state;
       double* w_all = st.w.data();
       const int lo = r.lo;
+      // The entries that are blocks of the chain (the phantoms are not).
+      constexpr int first = FreeLeft ? 1 : 0, last = FreeRight ? K : K + 1;
       const double anchor = r.anchor, dt = r.dt, half_dt_m = r.half_dt_m;
       const SubstrateState sub = r.sub;
       // Everything the loop carries lives in locals (written back once at the end), so the
       // stores into the state cannot force reloads; the sums are formed in the same order.
-      Array w, y, mobile, dir;
-      for (int i = 0; i < K + 2; ++i) {
+      Array w{}, y{}, mobile{}, dir{};
+      for (int i = first; i <= last; ++i) {
         w[i] = w_all[lo + i];
         y[i] = st.wd[lo + i];
         mobile[i] = st.mobile[lo + i];
@@ -104,35 +113,39 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       // A lone block slides throughout the run (it ends at the step where it sticks), and
       // 1 * acc is acc: the product is left out of its critical path.
       auto flagged = [&](int i, double acc) { return K == 1 ? acc : mobile[i] * acc; };
+      auto force = [&](const Array& x, int i) {
+        const double left = FreeLeft && i == 1 ? x[1] : x[i - 1];
+        const double right = FreeRight && i == K ? x[K] : x[i + 1];
+        return forces.interior_force<Neighbours>(left, x[i], right, anchor);
+      };
       auto acceleration = [&](const Array& x, const Array& v, Array& a) {
         for (int i = 1; i <= K; ++i)
-          a[i] = flagged(i, forces.acceleration<Law, Damper, false>(
-                                forces.interior_force<Neighbours>(x[i - 1], x[i], x[i + 1], anchor), v[i], dir[i], sub));
+          a[i] = flagged(i, forces.acceleration<Law, Damper, false>(force(x, i), v[i], dir[i], sub));
       };
       for (bool done = false; !done;) {
         const Array y0 = y, magnitude0 = magnitude;
         Array a;  // the first stage's accelerations, at the start of the step
         for (int i = 1; i <= K; ++i)
-          a[i] = flagged(i, forces.acceleration_given<Law, Damper, false>(
-                                forces.interior_force<Neighbours>(w[i - 1], w[i], w[i + 1], anchor), magnitude[i],
-                                y[i], dir[i], sub));
+          a[i] = flagged(i, forces.acceleration_given<Law, Damper, false>(force(w, i), magnitude[i], y[i], dir[i], sub));
         advance(acceleration, w, y, a, dt);
         t += dt;
         ++steps;
         for (int i = 1; i <= K; ++i) w_all[lo + i] = w[i];  // the spring forces below read them
 
-        // dissipated_power's sum: four partial sums over the blocks lo + 4m + l.
+        // dissipated_power's sum: four partial sums over the range's blocks, by their
+        // place in it modulo 4.
         std::array<double, 4> part = {0.0, 0.0, 0.0, 0.0};
-        for (int i = 0; i < K + 2; ++i) {
+        for (int i = first; i <= last; ++i) {
           magnitude[i] = forces.friction_magnitude<Law>(y[i]);
-          part[i % 4] += mobile[i] * fr.step_power_given(magnitude0[i], y0[i], magnitude[i], y[i], dir[i], damper);
+          part[(i - first) % 4] +=
+              mobile[i] * fr.step_power_given(magnitude0[i], y0[i], magnitude[i], y[i], dir[i], damper);
         }
         dissipated += half_dt_m * ((part[0] + part[1]) + (part[2] + part[3]));
 
         // settle_block's rule, block by block.
         sliding = 0;
         n_released = 0;
-        for (int i = 0; i < K + 2; ++i) {
+        for (int i = first; i <= last; ++i) {
           const int j = lo + i;
           if (mobile[i] != 0.0) {
             if (fr.stops(y0[i], y[i], [&] { return forces.spring_force(w_all, j, anchor); })) {
@@ -158,7 +171,7 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
         sliding_block_steps += sliding;
         done = sliding == 0 || n_released > 0 || !std::isfinite(max_speed) || steps >= r.max_steps;
       }
-      for (int i = 0; i < K + 2; ++i) {
+      for (int i = first; i <= last; ++i) {
         st.wd[lo + i] = y[i];
         st.mobile[lo + i] = mobile[i];
         st.dir[lo + i] = dir[i];
@@ -175,15 +188,25 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
   });
 }
 
-// Calls run_cluster_sized<K> with K = r.k as a compile-time constant; `advance` must accept
-// the ClusterArray of every size.
+// Free chain ends take this many blocks at most into a cluster (fewer instantiations).
+inline constexpr int kMaxClusterAtEnd = 4;
+
+// Calls run_cluster_sized with K = r.k and the free ends as compile-time constants;
+// `advance` must accept the ClusterArray of every size. False if there is no such
+// instantiation (a cluster at a chain end larger than kMaxClusterAtEnd).
 template <class Advance>
 bool run_cluster(const ChainForces& forces, ClusterRelaxation& r, Advance&& advance) {
-  return [&]<int... Ks>(std::integer_sequence<int, Ks...>) {
-    bool ran = false;
-    ((r.k == Ks + 1 && (ran = run_cluster_sized<Ks + 1>(forces, r, advance), true)) || ...);
-    return ran;
-  }(std::make_integer_sequence<int, kMaxCluster>());
+  auto sized = [&]<bool FreeLeft, bool FreeRight, int Max>() {
+    return [&]<int... Ks>(std::integer_sequence<int, Ks...>) {
+      bool ran = false;
+      ((r.k == Ks + 1 && (ran = run_cluster_sized<Ks + 1, FreeLeft, FreeRight>(forces, r, advance), true)) || ...);
+      return ran;
+    }(std::make_integer_sequence<int, Max>());
+  };
+  if (r.free_left && r.free_right) return false;
+  if (r.free_left) return sized.template operator()<true, false, kMaxClusterAtEnd>();
+  if (r.free_right) return sized.template operator()<false, true, kMaxClusterAtEnd>();
+  return sized.template operator()<false, false, kMaxCluster>();
 }
 
 }  // namespace bkq
