@@ -153,30 +153,26 @@ void EventEngine::shrink_ranges() {
   std::vector<Range> kept;
   kept.reserve(ranges_.size());
   const double* w = st_.w.data();
+  auto local_force = [&](int j) { return forces_.local_force(w, j); };
   for (const Range& r : ranges_) {
-    int start = -1;
-    for (int j = r.lo; j < r.hi; ++j) {
-      if (need_[j]) {
-        need_[j] = 0;
-        if (start < 0) start = j;
-        continue;
-      }
-      if (start >= 0) kept.push_back(Range{start, j}), start = -1;
-      covered_[j] = 0;
-      tree_.set(j, forces_.local_force(w, j));
+    // Alternating runs of needed blocks (kept) and the others (uncovered).
+    for (int j = r.lo; j < r.hi;) {
+      const int start = j;
+      const bool needed = need_[j];
+      for (; j < r.hi && need_[j] == needed; ++j) need_[j] = 0, covered_[j] = needed;
+      if (needed) kept.push_back(Range{start, j});
+      else tree_.set_range(start, j, local_force);
     }
-    if (start >= 0) kept.push_back(Range{start, r.hi});
   }
   ranges_.swap(kept);
 }
 
 void EventEngine::uncover_all() {
   const double* w = st_.w.data();
-  for (const Range& r : ranges_)
-    for (int j = r.lo; j < r.hi; ++j) {
-      covered_[j] = 0;
-      tree_.set(j, forces_.local_force(w, j));
-    }
+  for (const Range& r : ranges_) {
+    std::fill(covered_.begin() + r.lo, covered_.begin() + r.hi, 0);
+    tree_.set_range(r.lo, r.hi, [&](int j) { return forces_.local_force(w, j); });
+  }
   ranges_.clear();
 }
 

@@ -32,6 +32,15 @@ class ForceTree {
     lo_[j] = g;
     climb(j);
   }
+  // set(j, value(j)) for j in [lo, hi), with each ancestor recomputed once (the tree is a
+  // function of its leaves, so this is the same tree as after the single sets).
+  template <class Value>
+  void set_range(int lo, int hi, Value&& value) {
+    if (lo >= hi) return;
+    for (int j = lo; j < hi; ++j) hi_[j] = lo_[j] = value(j);
+    for (int a = (size_ + lo) / 2, b = (size_ + hi - 1) / 2; a >= 1; a /= 2, b /= 2)
+      for (int i = a; i <= b; ++i) pull(i);
+  }
   void remove(int j) {
     hi_[j] = -HUGE_VAL;
     lo_[j] = HUGE_VAL;
