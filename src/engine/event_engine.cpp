@@ -341,8 +341,10 @@ bool EventEngine::relax_cluster(ClusterRelaxation& r, std::int64_t& steps, Conta
   // A shrink due inside a lone block's run changed nothing; the one due after the last
   // step, if any, the caller does.
   steps += r.steps;
-  cluster_steps_ += r.steps;
-  if (k > 1) multi_block_cluster_steps_ += r.steps;
+  cluster_steps_.all += r.steps;
+  if (k > 1) cluster_steps_.multi_block += r.steps;
+  if (r.free_left) cluster_steps_.left_end += r.steps;
+  if (r.free_right) cluster_steps_.right_end += r.steps;
   counters_.block_steps += (ranges_.front().hi - ranges_.front().lo) * r.steps;
   counters_.sliding_block_steps += r.sliding_block_steps;
   scan.sliding = r.sliding;

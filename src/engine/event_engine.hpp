@@ -105,10 +105,12 @@ class EventEngine {
   // With the pad held and every covered range ending in stuck blocks, use the stepper's
   // step_held() (again the same events bit for bit).
   bool held_ranges_path = true;
-  // Steps this engine took on the cluster path, and those of them with more than one
-  // interior block (not part of snapshots).
-  std::int64_t cluster_steps() const { return cluster_steps_; }
-  std::int64_t multi_block_cluster_steps() const { return multi_block_cluster_steps_; }
+  // Steps this engine took on the cluster path (not part of snapshots): all of them,
+  // those with more than one block between the ends, and those at a free chain end.
+  struct ClusterSteps {
+    std::int64_t all = 0, multi_block = 0, left_end = 0, right_end = 0;
+  };
+  const ClusterSteps& cluster_steps() const { return cluster_steps_; }
 
  private:
   double anchor() const { return st_.s + (pad_ ? st_.x : 0.0); }
@@ -157,7 +159,7 @@ class EventEngine {
   int sliding_ = 0;
 
   EngineCounters counters_;
-  std::int64_t cluster_steps_ = 0, multi_block_cluster_steps_ = 0;
+  ClusterSteps cluster_steps_;
 };
 
 }  // namespace bkq

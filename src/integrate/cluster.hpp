@@ -8,9 +8,10 @@
 // pad is held; the caller checks). At a free chain end the range has no stuck block on
 // that side: its first (or last) block is then the chain's end block, in any state, and
 // the cluster's entry 0 (or K + 1) is a phantom that mirrors it. The interior force with
-// the phantom's position equal to the block's is the end block's spring force bit for
-// bit: k_c ((w - 2w) + w_r) is k_c (w_r - w) exactly, and k_p (anchor - w) + that is
-// spring_force's k_c (w_r - w) - k_p (w - anchor) exactly. With K a compile-time constant the whole cluster
+// the phantom's position equal to the block's, passed as the left neighbour and the
+// block's one real neighbour as the right, is the end block's spring force bit for bit:
+// k_c ((w - 2w) + w_n) is k_c (w_n - w) exactly, and k_p (anchor - w) + that is
+// spring_force's k_c (0 + (w_n - w)) - k_p (w - anchor) exactly. With K a compile-time constant the whole cluster
 // lives in registers. A Crossing stepper (rk2, rk4, verlet) supplies its step for the
 // cluster as a function of fixed-size arrays; run_cluster() runs it step after step and
 // after each one does what the engine's general path does: it adds the dissipated power
@@ -113,10 +114,17 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       // A lone block slides throughout the run (it ends at the step where it sticks), and
       // 1 * acc is acc: the product is left out of its critical path.
       auto flagged = [&](int i, double acc) { return K == 1 ? acc : mobile[i] * acc; };
+      // The phantom always goes in the left slot: k_c ((w - 2w) + w_n) rounds once, as
+      // spring_force's k_c (0 + (w_n - w)) does; in the right slot (w_n - 2w) + w would
+      // round twice.
       auto force = [&](const Array& x, int i) {
-        const double left = FreeLeft && i == 1 ? x[1] : x[i - 1];
-        const double right = FreeRight && i == K ? x[K] : x[i + 1];
-        return forces.interior_force<Neighbours>(left, x[i], right, anchor);
+        if constexpr (FreeLeft) {
+          if (i == 1) return forces.interior_force<Neighbours>(x[1], x[1], x[2], anchor);
+        }
+        if constexpr (FreeRight) {
+          if (i == K) return forces.interior_force<Neighbours>(x[K], x[K], x[K - 1], anchor);
+        }
+        return forces.interior_force<Neighbours>(x[i - 1], x[i], x[i + 1], anchor);
       };
       auto acceleration = [&](const Array& x, const Array& v, Array& a) {
         for (int i = 1; i <= K; ++i)
