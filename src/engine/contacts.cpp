@@ -82,12 +82,14 @@ template <bool Backslip>
 double range_power(Friction fr, double damper, const double* __restrict mobile, const double* __restrict dir,
                    const double* __restrict y0, const double* __restrict y1, int lo, int hi) {
   fr.backslip = Backslip;
-  double s[4] = {0.0, 0.0, 0.0, 0.0};
+  RangePowerSum sum;
+  auto power = [&](int j) { return mobile[j] * fr.step_power(y0[j], y1[j], dir[j], damper); };
+  // Four blocks at a time, the place modulo 4 a constant in the body: it vectorises.
   int j = lo;
   for (; j + 4 <= hi; j += 4)
-    for (int k = 0; k < 4; ++k) s[k] += mobile[j + k] * fr.step_power(y0[j + k], y1[j + k], dir[j + k], damper);
-  for (int k = 0; j < hi; ++j, ++k) s[k] += mobile[j] * fr.step_power(y0[j], y1[j], dir[j], damper);
-  return (s[0] + s[1]) + (s[2] + s[3]);
+    for (int k = 0; k < 4; ++k) sum.add(k, power(j + k));
+  for (; j < hi; ++j) sum.add(j - lo, power(j));
+  return sum.total();
 }
 
 }  // namespace

@@ -85,10 +85,9 @@ void settle_block(const ChainForces& forces, ChainState& st, const double* wd_ol
 }  // namespace contacts_detail
 
 // Friction::step_power summed over the blocks that slid through the step (stick flags
-// not yet settled; wd_old the velocities at its start, stuck blocks' exactly 0). The sum
-// runs in a fixed order that vectorises: within a range, four partial sums over the
-// blocks lo + 4i + k, added as (s0 + s1) + (s2 + s3); ranges in order. The cluster path
-// (integrate/cluster.hpp) forms the same sum.
+// not yet settled; wd_old the velocities at its start, stuck blocks' exactly 0): each
+// range in the order of RangePowerSum (model/friction.hpp), which the cluster path
+// (integrate/cluster.hpp) uses too, and the ranges in order.
 double dissipated_power(const ChainForces& forces, const ChainState& st, const double* wd_old, Ranges ranges);
 
 template <class OnRelease>

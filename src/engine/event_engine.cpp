@@ -311,13 +311,13 @@ bool EventEngine::held_ranges() const {
 
 bool EventEngine::cluster_ready(ClusterRelaxation& r) const {
   // One covered range (so every sliding block is inside it), the pad held, and at most
-  // kMaxCluster blocks between its ends, which are stuck blocks or free chain ends.
+  // kMaxCluster blocks between its ends, which are stuck blocks or free chain ends (the
+  // stepper refuses the shapes it has no code for: run_cluster).
   if (!cluster_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1) return false;
   const Range& range = ranges_.front();
   const bool free_ends = forces_.params().boundary == Boundary::Free && n_ >= 2;
   r.free_left = free_ends && range.lo == 0 && st_.mobile[0] != 0.0;
   r.free_right = free_ends && range.hi == n_ && st_.mobile[n_ - 1] != 0.0;
-  if (r.free_left && r.free_right) return false;
   r.lo = range.lo - (r.free_left ? 1 : 0);
   r.k = range.hi - range.lo - 2 + (r.free_left ? 1 : 0) + (r.free_right ? 1 : 0);
   if (r.k < 1 || r.k > kMaxCluster) return false;

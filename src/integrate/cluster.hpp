@@ -5,13 +5,7 @@
 //
 // A cluster is one covered range [lo, lo + K + 2) whose two end blocks are stuck: K
 // interior blocks, some sliding, some stuck, and nothing else in the chain moving (the
-// pad is held; the caller checks). At a free chain end the range has no stuck block on
-// that side: its first (or last) block is then the chain's end block, in any state, and
-// the cluster's entry 0 (or K + 1) is a phantom that mirrors it. The interior force with
-// the phantom's position equal to the block's, passed as the left neighbour and the
-// block's one real neighbour as the right, is the end block's spring force bit for bit:
-// k_c ((w - 2w) + w_n) is k_c (w_n - w) exactly, and k_p (anchor - w) + that is
-// spring_force's k_c (0 + (w_n - w)) - k_p (w - anchor) exactly. With K a compile-time constant the whole cluster
+// pad is held; the caller checks). With K a compile-time constant the whole cluster
 // lives in registers. A Crossing stepper (rk2, rk4, verlet) supplies its step for the
 // cluster as a function of fixed-size arrays; run_cluster() runs it step after step and
 // after each one does what the engine's general path does: it adds the dissipated power
@@ -25,6 +19,14 @@
 // Every operation is the one the general path performs, in the same order (the stuck
 // ends' stage positions equal their positions), so the events are the same bit for bit;
 // tests/regression/test_cluster.cpp runs both paths and compares the catalogs.
+//
+// At a free chain end the range has no stuck block on that side: its first (or last)
+// block is then the chain's end block, in any state, and the cluster's entry 0 (or
+// K + 1) is a phantom. The interior force with the phantom's position equal to the end
+// block's, passed as the left neighbour and the block's one real neighbour as the right,
+// is the end block's spring force bit for bit: k_c ((w - 2w) + w_n) is k_c (w_n - w)
+// exactly, and k_p (anchor - w) + that is spring_force's k_c (0 + (w_n - w)) -
+// k_p (w - anchor) exactly.
 #pragma once
 
 #include <array>
@@ -37,8 +39,8 @@
 
 namespace bkq {
 
-// Largest number of interior blocks a cluster may have (the code is instantiated for
-// each size up to it).
+// Largest number of blocks a cluster may have between its ends (the code is instantiated
+// for each size up to it).
 inline constexpr int kMaxCluster = 8;
 
 struct ClusterRelaxation {
@@ -109,8 +111,8 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       // end of one step needs it, and the first stage of the next step and the power at
       // its start need it again (the same value, so it is divided out once).
       const double magnitude_at_rest = forces.friction_magnitude<Law>(0.0);
-      Array magnitude;
-      for (int i = 0; i < K + 2; ++i) magnitude[i] = forces.friction_magnitude<Law>(y[i]);
+      Array magnitude{};
+      for (int i = first; i <= last; ++i) magnitude[i] = forces.friction_magnitude<Law>(y[i]);
       // A lone block slides throughout the run (it ends at the step where it sticks), and
       // 1 * acc is acc: the product is left out of its critical path.
       auto flagged = [&](int i, double acc) { return K == 1 ? acc : mobile[i] * acc; };
@@ -140,15 +142,13 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
         ++steps;
         for (int i = 1; i <= K; ++i) w_all[lo + i] = w[i];  // the spring forces below read them
 
-        // dissipated_power's sum: four partial sums over the range's blocks, by their
-        // place in it modulo 4.
-        std::array<double, 4> part = {0.0, 0.0, 0.0, 0.0};
+        // dissipated_power's sum, in the same order.
+        RangePowerSum power;
         for (int i = first; i <= last; ++i) {
           magnitude[i] = forces.friction_magnitude<Law>(y[i]);
-          part[(i - first) % 4] +=
-              mobile[i] * fr.step_power_given(magnitude0[i], y0[i], magnitude[i], y[i], dir[i], damper);
+          power.add(i - first, mobile[i] * fr.step_power_given(magnitude0[i], y0[i], magnitude[i], y[i], dir[i], damper));
         }
-        dissipated += half_dt_m * ((part[0] + part[1]) + (part[2] + part[3]));
+        dissipated += half_dt_m * power.total();
 
         // settle_block's rule, block by block.
         sliding = 0;
@@ -163,7 +163,7 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
               continue;
             }
             if (y[i] == 0.0) magnitude[i] = magnitude_at_rest;  // clst91 after a crossing
-            if (y[i] != 0.0) dir[i] = std::copysign(1.0, y[i]);
+            else dir[i] = std::copysign(1.0, y[i]);
             ++sliding;
             raise_max_speed(max_speed, std::abs(y[i]));
           } else {

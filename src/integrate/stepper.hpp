@@ -72,9 +72,10 @@ class Stepper {
                          Ranges ranges) {
     step(forces, sub, st, dt, ranges);
   }
-  // Steps of a few blocks between two stuck ones, the pad held, with this scheme's step
-  // written for a fixed-size cluster (integrate/cluster.hpp); false when the stepper has
-  // no such form (the event engine then uses step()).
+  // Steps of a few blocks between two stuck ones (or a stuck one and a free chain end),
+  // the pad held, with this scheme's step written for a fixed-size cluster
+  // (integrate/cluster.hpp); false when the stepper has no such form for that cluster
+  // (the event engine then uses step()).
   virtual bool relax_cluster(const ChainForces&, ClusterRelaxation&) const { return false; }
 };
 

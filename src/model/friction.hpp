@@ -74,4 +74,14 @@ struct Friction {
   bool holds(double f) const { return !breaks(f); }
 };
 
+// The order in which the event engine adds up the step powers of a range's blocks, the
+// same in every path: four partial sums by the block's place in the range modulo 4, in
+// block order, added as (s0 + s1) + (s2 + s3). It vectorises, and one sliding block among
+// stuck ones (whose terms are 0) sums to its own power exactly.
+struct RangePowerSum {
+  double part[4] = {0.0, 0.0, 0.0, 0.0};
+  void add(int place, double power) { part[place % 4] += power; }
+  double total() const { return (part[0] + part[1]) + (part[2] + part[3]); }
+};
+
 }  // namespace bkq
