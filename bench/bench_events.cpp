@@ -12,7 +12,7 @@
 
 namespace {
 
-void BM_Events(benchmark::State& state, const char* kind) {
+void BM_Events(benchmark::State& state, const char* kind, bool replay_starts) {
   const int n = static_cast<int>(state.range(0));
   bkq::Scene scene;
   scene.set("model.blocks", std::to_string(n));
@@ -22,9 +22,11 @@ void BM_Events(benchmark::State& state, const char* kind) {
   const bkq::ChainForces forces(p);
   auto stepper = bkq::make_stepper("rk4", n);
   bkq::EventEngine engine(forces, *stepper, 0.01, bkq::initial_state(forces, 7, 0.01, true));
+  engine.lone_slip_path = replay_starts;
   // Past the transient: ten loading cycles' worth of events per block.
   for (int i = 0; i < 20 * n; ++i) engine.next_event();
   const bkq::EngineCounters c0 = engine.counters();
+  const bkq::EventEngine::LoneSlipStarts l0 = engine.lone_slip_starts();
   for (auto _ : state) benchmark::DoNotOptimize(engine.next_event());
   const bkq::EngineCounters& c = engine.counters();
   const double events = static_cast<double>(c.events - c0.events);
@@ -36,10 +38,16 @@ void BM_Events(benchmark::State& state, const char* kind) {
   state.counters["ns_per_sliding_block_step"] =
       benchmark::Counter(sliding * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["sliding_share"] = sliding / static_cast<double>(c.block_steps - c0.block_steps);
+  // Of the steps, those taken from the lone slip's record rather than integrated.
+  state.counters["replayed_step_share"] =
+      static_cast<double>(engine.lone_slip_starts().steps - l0.steps) / static_cast<double>(c.steps - c0.steps);
+  state.counters["declined_starts"] = static_cast<double>(engine.lone_slip_starts().declined - l0.declined);
 }
 
-BENCHMARK_CAPTURE(BM_Events, bk, "bk")->Arg(100)->Arg(1000)->Arg(10000)->MinTime(1.0);
-BENCHMARK_CAPTURE(BM_Events, bkp, "bkp")->Arg(100)->Arg(1000)->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_Events, bk, "bk", true)->Arg(100)->Arg(1000)->Arg(10000)->MinTime(1.0);
+// Every step integrated, event starts included (EventEngine::lone_slip_path off).
+BENCHMARK_CAPTURE(BM_Events, bk_direct, "bk", false)->Arg(100)->Arg(1000)->Arg(10000)->MinTime(1.0);
+BENCHMARK_CAPTURE(BM_Events, bkp, "bkp", true)->Arg(100)->Arg(1000)->MinTime(1.0);
 
 }  // namespace
 

@@ -3,6 +3,7 @@
 #include "engine/event_engine.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -353,6 +354,89 @@ bool EventEngine::relax_cluster(ClusterRelaxation& r, std::int64_t& steps, Conta
   return true;
 }
 
+bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
+  const ModelParams& p = forces_.params();
+  const bool periodic = p.boundary == Boundary::Periodic;
+  if (!lone_slip_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || (periodic && n_ == 2)) return false;
+  // The neighbours whose spring force the block's slide changes, in block order (the
+  // order in which the general path would release them).
+  std::array<int, 2> nb{};
+  int count = 0;
+  if (p.has_neighbours()) {
+    if (periodic) {
+      nb = {(j + n_ - 1) % n_, (j + 1) % n_};
+      count = 2;
+      if (nb[0] > nb[1]) std::swap(nb[0], nb[1]);
+    } else {
+      if (j > 0) nb[count++] = j - 1;
+      if (j + 1 < n_) nb[count++] = j + 1;
+    }
+  }
+  const bool at_end = p.has_neighbours() && count == 1;
+  LoneSlip& table = lone_[at_end];
+  if (!lone_built_[at_end]) {
+    const double stiffness = p.k_p + (p.has_neighbours() ? (at_end ? 1.0 : 2.0) * p.k_c : 0.0);
+    table = integrate_lone_slip(p, stiffness, stepper_.name(), dt_, max_steps_per_event);
+    lone_built_[at_end] = true;
+  }
+  const auto last = static_cast<std::int64_t>(table.steps.size());
+  if (!table.usable || last > max_steps_per_event) return false;
+
+  const double* w = st_.w.data();
+  const double a = anchor(), thr = forces_.friction().threshold, kc = p.k_c;
+  const bool backslip = forces_.friction().backslip;
+  const LoneSlip::Step& end = table.steps.back();
+  const LoneSlipTolerance tol = lone_slip_tolerance(
+      p, std::abs(w[j]) + std::abs(a) + std::max(end.d_max, -end.d_min), dt_, last);
+  const double f0 = forces_.spring_force(w, j, a);
+  bool clear = std::abs(f0 - thr) <= tol.force && table.force_margin > 2.0 * tol.force &&
+               table.velocity_margin > 2.0 * tol.velocity;
+  // Each neighbour breaks at the first step n where its force f + k_c d_n passes the
+  // threshold, i.e. where f + k_c times the running extreme of d does (monotone in n).
+  // How far past the threshold a neighbour of force f is after step n (n = 0: the start).
+  auto excess = [&](double f, std::int64_t n) {
+    const double hi = n == 0 ? 0.0 : table.steps[n - 1].d_max, lo = n == 0 ? 0.0 : table.steps[n - 1].d_min;
+    return backslip ? std::max(f + kc * hi - thr, -thr - (f + kc * lo)) : f + kc * hi - thr;
+  };
+  std::array<std::int64_t, 2> breaks_at{last + 1, last + 1};
+  for (int k = 0; k < count && clear; ++k) {
+    const double f = forces_.spring_force(w, nb[k], a);
+    const auto n = std::partition_point(table.steps.begin(), table.steps.end(),
+                                        [&](const LoneSlip::Step& s) {
+                                          return excess(f, &s - table.steps.data() + 1) <= 0.0;
+                                        }) - table.steps.begin() + 1;
+    breaks_at[k] = n;
+    // Both sides of the decision clear of the bound: before step n it holds, after it not.
+    clear = excess(f, n - 1) < -tol.force && (n > last || excess(f, n) > tol.force);
+  }
+  if (!clear) {
+    ++lone_starts_.declined;
+    return false;
+  }
+
+  const std::int64_t stop = std::min(last, std::min(breaks_at[0], breaks_at[1]));
+  const LoneSlip::Step& s = table.steps[stop - 1];
+  st_.w[j] += s.d;
+  st_.wd[j] = s.v;
+  st_.mobile[j] = s.sliding ? 1.0 : 0.0;
+  st_.dir[j] = s.dir;
+  st_.t = s.t;
+  dissipated_ += s.work;
+  released_now_.clear();
+  for (int k = 0; k < count; ++k)
+    if (breaks_at[k] == stop) released_now_.push_back(nb[k]);
+  const int released = static_cast<int>(released_now_.size());
+  steps = stop;
+  for (const Range& r : ranges_) counters_.block_steps += (r.hi - r.lo) * stop;
+  counters_.sliding_block_steps += s.sliding_steps + released;
+  scan.sliding = s.sliding + released;
+  scan.max_speed = s.max_speed;
+  ++lone_starts_.replayed;
+  lone_starts_.steps += stop;
+  if (scan.sliding == 0) ++lone_starts_.finished;
+  return true;
+}
+
 void EventEngine::check_finite() const {
   for (const Range& r : ranges_)
     for (int j = r.lo; j < r.hi; ++j)
@@ -397,7 +481,9 @@ EventRecord EventEngine::next_event() {
   for (;;) {
     while (sliding_ > 0) {
       ContactScan scan;
-      if (ClusterRelaxation cluster; cluster_ready(cluster) && relax_cluster(cluster, steps, scan)) {
+      if (steps == 0 && replay_start(trigger, steps, scan)) {
+        // The start of the event, from the lone slip's record; scan describes its last step.
+      } else if (ClusterRelaxation cluster; cluster_ready(cluster) && relax_cluster(cluster, steps, scan)) {
         // Ran one or more steps of a cluster; scan describes the last one.
       } else {
         for (const Range& r : ranges_) {

@@ -51,6 +51,7 @@
 
 #include "engine/contacts.hpp"
 #include "engine/force_tree.hpp"
+#include "engine/lone_slip.hpp"
 #include "integrate/cluster.hpp"
 #include "integrate/stepper.hpp"
 #include "io/catalog.hpp"
@@ -111,6 +112,17 @@ class EventEngine {
     std::int64_t all = 0, multi_block = 0, left_end = 0, right_end = 0;
   };
   const ClusterSteps& cluster_steps() const { return cluster_steps_; }
+  // Start each event from the lone block's recorded slide (engine/lone_slip.hpp) where
+  // rounding cannot change the outcome; off, every step is integrated directly.
+  bool lone_slip_path = true;
+  // Events this engine started from the record (not part of snapshots): all of them, those
+  // it finished there (no neighbour broke loose), the steps it took from it, and the
+  // events it could have started there but integrated directly because a decision lay
+  // within the rounding bound.
+  struct LoneSlipStarts {
+    std::int64_t replayed = 0, finished = 0, steps = 0, declined = 0;
+  };
+  const LoneSlipStarts& lone_slip_starts() const { return lone_starts_; }
 
  private:
   double anchor() const { return st_.s + (pad_ ? st_.x : 0.0); }
@@ -135,6 +147,10 @@ class EventEngine {
   bool held_ranges() const;
   // Steps the cluster; false when the stepper has no fixed-size form.
   bool relax_cluster(ClusterRelaxation& r, std::int64_t& steps, ContactScan& scan);
+  // Takes the start of the event triggered by block j from the lone slip's record, up to
+  // the step at which the block sticks or a neighbour breaks loose; false, having done
+  // nothing, when the record does not apply or rounding could decide.
+  bool replay_start(int j, std::int64_t& steps, ContactScan& scan);
 
   const ChainForces& forces_;
   Stepper& stepper_;
@@ -160,6 +176,11 @@ class EventEngine {
 
   EngineCounters counters_;
   ClusterSteps cluster_steps_;
+  // The lone slip of an interior block [0] and of a block at a free chain end [1], built
+  // when first needed.
+  LoneSlip lone_[2];
+  bool lone_built_[2] = {false, false};
+  LoneSlipStarts lone_starts_;
 };
 
 }  // namespace bkq

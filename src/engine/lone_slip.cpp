@@ -1,0 +1,115 @@
+// The lone block's slide, integrated once (see lone_slip.hpp).
+#include "engine/lone_slip.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/contacts.hpp"
+#include "integrate/stepper.hpp"
+#include "model/chain.hpp"
+#include "model/substrate.hpp"
+
+namespace bkq {
+
+LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string_view scheme, double dt,
+                             std::int64_t max_steps) {
+  LoneSlip out;
+  out.stiffness = stiffness;
+  // One block on a pulling spring of the lone block's stiffness: its spring force is
+  // stiffness * (s - w), so with w = 0 and s = F0 / stiffness it starts at the threshold
+  // and w is the displacement d.
+  ModelParams q = p;
+  if (q.kind == ModelKind::BKP) q.kind = ModelKind::BK;
+  q.n = 1;
+  q.k_p = stiffness;
+  q.k_c = 0;
+  q.boundary = Boundary::Free;
+  q.m_x = q.k_p0 = q.c_p = 0;
+  const ChainForces forces(q);
+  const Friction& fr = forces.friction();
+  const auto& known = stepper_keywords();
+  if (std::find(known.begin(), known.end(), scheme) == known.end()) {
+    out.why_not = "the stepper is not one of the registry's";
+    return out;
+  }
+  const auto stepper = make_stepper(std::string(scheme), 1);
+  if (stepper->stick_rule() != StickRule::Crossing) {
+    out.why_not = "the stepper resolves transitions itself";
+    return out;
+  }
+  ChainState st;
+  st.resize(1);
+  st.s = fr.threshold / stiffness;
+  st.mobile[0] = 1.0;
+  st.dir[0] = 1.0;
+  const Substrate frozen = Substrate::frozen(st.s);
+  const Range all[1] = {Range{0, 1}};
+  const double half_dt_m = 0.5 * dt * q.m_u;
+  double wd_old = 0, work = 0, d_max = 0, d_min = 0, max_speed = 0;
+  std::int64_t sliding_steps = 0;
+  out.velocity_margin = out.force_margin = HUGE_VAL;
+  bool released = false;
+  while (st.mobile[0] != 0.0) {
+    if (static_cast<std::int64_t>(out.steps.size()) >= max_steps) {
+      out.why_not = "the lone block did not stick within the step bound";
+      return out;
+    }
+    wd_old = st.wd[0];
+    stepper->step(forces, frozen, st, dt, all);
+    work += half_dt_m * dissipated_power(forces, st, &wd_old, all);
+    // The decisions the rule takes below, and how far each is from going the other way.
+    const double y0 = wd_old, y1 = st.wd[0];
+    out.velocity_margin = std::min(out.velocity_margin, std::abs(y1));
+    const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || y1 == 0.0) : y1 <= 0.0;
+    if (crossed) {
+      const double f = forces.spring_force(st.w.data(), 0, st.s);
+      out.force_margin = std::min(out.force_margin, std::abs((fr.backslip ? std::abs(f) : f) - fr.threshold));
+    }
+    const ContactScan scan = settle_contacts(forces, st, &wd_old, st.s, all, true, [&](int) { released = true; });
+    if (released || !std::isfinite(st.w[0]) || !std::isfinite(st.wd[0])) {
+      out.why_not = "the lone block's integration did not stay finite";
+      return out;
+    }
+    LoneSlip::Step s;
+    s.d = st.w[0];
+    s.v = st.wd[0];
+    s.dir = st.dir[0];
+    s.t = st.t;
+    s.work = work;
+    d_max = std::max(d_max, s.d);
+    d_min = std::min(d_min, s.d);
+    s.d_max = d_max;
+    s.d_min = d_min;
+    raise_max_speed(max_speed, scan.max_speed);
+    s.max_speed = max_speed;
+    s.sliding = scan.sliding;
+    sliding_steps += scan.sliding;
+    s.sliding_steps = sliding_steps;
+    out.steps.push_back(s);
+  }
+  if (out.steps.back().d == 0.0) {
+    out.why_not = "the lone block does not move";
+    return out;
+  }
+  out.usable = true;
+  return out;
+}
+
+LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scale, double dt, std::int64_t steps) {
+  // A direct step rounds positions of size position_scale, a few times eps * scale each
+  // step; a spring force sees position errors through at most k_p + 4 k_c. Over n steps
+  // the force errors accumulate into the velocity (n dt / m_u) and both into the position.
+  constexpr double kSafety = 1e3;
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double n = static_cast<double>(std::max<std::int64_t>(steps, 1));
+  const double stiffness = p.k_p + 4.0 * p.k_c;
+  const double per_step = 4.0 * eps * (position_scale + p.threshold() / stiffness);
+  const double force_rounding = stiffness * per_step;
+  // (and velocities, of size at most F0/m_u * n dt, round by eps each operation)
+  const double velocity = n * dt * force_rounding / p.m_u + 4.0 * eps * n * (p.threshold() / p.m_u * n * dt);
+  const double position = n * dt * velocity + n * per_step;
+  return LoneSlipTolerance{kSafety * (force_rounding + stiffness * position), kSafety * velocity};
+}
+
+}  // namespace bkq
