@@ -18,13 +18,26 @@
 // a stuck block over the threshold (located by bisection to ~1e-13 in time; that block
 // then joins the same event), or, if no block can fail any more, to its rest position.
 //
-// Two fast paths give the same events bit for bit (tests/regression/test_cluster.cpp):
+// Two fast paths give the same events bit for bit (tests/regression/test_cluster.cpp), and
+// the whole engine gives the events of the straightforward engine that steps every block
+// (engine/reference_events.hpp; tests/regression/test_reference_events.cpp), except for
+// the replay of event starts below:
 // while the sliding blocks lie within one covered range of at most kMaxCluster interior
 // blocks with the pad held (most events never leave that shape) the stepper's
 // fixed-size form steps the range with its state in registers (integrate/cluster.hpp);
 // and with the pad held and every covered range ending in stuck blocks, the ranges
 // cannot interact, so the stepper may fuse its stages over each of them
 // (Stepper::step_held).
+//
+// A third path changes rounding, not decisions: every event starts with its trigger at
+// the threshold, at rest, between stuck blocks, so the start is the same slide every time
+// in coordinates relative to the trigger; it is integrated once and replayed
+// (engine/lone_slip.hpp) until the block sticks or a neighbour breaks loose, wherever the
+// rounding difference between the replay and a direct integration cannot change which.
+// The events are then the same as direct integration's, with moments and speeds that
+// differ by rounding (tests/regression/test_lone_slip.cpp); like any change in the
+// order of the arithmetic, that lets a long chaotic run drift away from the direct one
+// event by event. EventEngine::lone_slip_path turns it off.
 //
 // End of an event: every block stuck (by the stepper's stick rule) and the pad at rest —
 // exactly at rest, since the pad's remaining free oscillation is removed in closed form
