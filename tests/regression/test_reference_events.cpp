@@ -13,6 +13,7 @@
 #include <cctype>
 #include <cmath>
 #include <memory>
+#include <ostream>
 #include <string>
 
 #include "../scene_sim.hpp"
@@ -41,6 +42,8 @@ const Case kCases[] = {
     // Many of its events reach a chain end (and alpha = 1 has more large events).
     {"alpha = 1, short chain", {{"model.blocks", "24"}, {"friction.alpha", "1"}}, 24},
 };
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
 class ReferenceEvents : public ::testing::TestWithParam<Case> {};
 
