@@ -8,28 +8,14 @@
 // N = 1000 (1.3e5 against 4.4e3).
 #include <benchmark/benchmark.h>
 
-#include "engine/event_engine.hpp"
-#include "engine/initial_state.hpp"
+#include "carlson_langer_events.hpp"
 #include "engine/reference_events.hpp"
-#include "integrate/stepper.hpp"
-#include "io/scene.hpp"
-#include "model/chain.hpp"
 
 namespace {
 
 void BM_Events(benchmark::State& state, const char* kind, bool replay_starts) {
-  const int n = static_cast<int>(state.range(0));
-  bkq::Scene scene;
-  scene.set("model.blocks", std::to_string(n));
-  scene.set("model.kind", kind);
-  scene.validate();
-  const bkq::ModelParams p = bkq::model_from_scene(scene);
-  const bkq::ChainForces forces(p);
-  auto stepper = bkq::make_stepper("rk4", n);
-  bkq::EventEngine engine(forces, *stepper, 0.01, bkq::initial_state(forces, 7, 0.01, true));
-  engine.lone_slip_path = replay_starts;
-  // Past the transient: ten loading cycles' worth of events per block.
-  for (int i = 0; i < 20 * n; ++i) engine.next_event();
+  bkq::bench::CarlsonLangerEvents setup(static_cast<int>(state.range(0)), kind, replay_starts);
+  bkq::EventEngine& engine = setup.engine;
   const bkq::EngineCounters c0 = engine.counters();
   const bkq::EventEngine::LoneSlipStarts l0 = engine.lone_slip_starts();
   for (auto _ : state) benchmark::DoNotOptimize(engine.next_event());
@@ -51,16 +37,8 @@ void BM_Events(benchmark::State& state, const char* kind, bool replay_starts) {
 
 // The straightforward engine from the state the event engine reached past its transient.
 void BM_Straightforward(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  bkq::Scene scene;
-  scene.set("model.blocks", std::to_string(n));
-  scene.validate();
-  const bkq::ModelParams p = bkq::model_from_scene(scene);
-  const bkq::ChainForces forces(p);
-  auto stepper = bkq::make_stepper("rk4", n);
-  bkq::EventEngine engine(forces, *stepper, 0.01, bkq::initial_state(forces, 7, 0.01, true));
-  for (int i = 0; i < 20 * n; ++i) engine.next_event();
-  bkq::ReferenceEventEngine reference(forces, *stepper, 0.01, engine.state());
+  bkq::bench::CarlsonLangerEvents setup(static_cast<int>(state.range(0)));
+  bkq::ReferenceEventEngine reference(setup.forces, *setup.stepper, setup.kDt, setup.engine.state());
   std::int64_t events = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(reference.next_event());

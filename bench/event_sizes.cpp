@@ -10,11 +10,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "engine/event_engine.hpp"
-#include "engine/initial_state.hpp"
-#include "integrate/stepper.hpp"
-#include "io/scene.hpp"
-#include "model/chain.hpp"
+#include "carlson_langer_events.hpp"
 
 int main(int argc, char** argv) {
   const int n = argc > 1 ? std::atoi(argv[1]) : 100;
@@ -23,14 +19,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: event_sizes [BLOCKS >= 1] [EVENTS >= 1]\n");
     return 2;
   }
-  bkq::Scene scene;
-  scene.set("model.blocks", std::to_string(n));
-  scene.validate();
-  const bkq::ModelParams p = bkq::model_from_scene(scene);
-  const bkq::ChainForces forces(p);
-  auto stepper = bkq::make_stepper("rk4", n);
-  bkq::EventEngine engine(forces, *stepper, 0.01, bkq::initial_state(forces, 7, 0.01, true));
-  for (int i = 0; i < 20 * n; ++i) engine.next_event();
+  bkq::bench::CarlsonLangerEvents setup(n);
+  bkq::EventEngine& engine = setup.engine;
 
   constexpr int kClasses = 5;
   const int lowest[kClasses + 1] = {1, 2, 4, 10, 30, 1 << 30};  // class k: lowest[k] <= blocks < lowest[k + 1]
