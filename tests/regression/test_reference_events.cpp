@@ -5,7 +5,7 @@
 // the engine's "sliding-block-steps" are the honest count of the work an event needs);
 // with the replay on, taken from the same state before each event, they give the same
 // events to rounding. The scenes cover every explicit scheme, backslip, periodic ends, no
-// neighbour springs and a chain long enough for events to reach its ends; each asserts
+// neighbour springs and a short chain whose events span it end to end; each asserts
 // that large events occurred, so the comparison is not carried by one-block events alone.
 #include <gtest/gtest.h>
 
