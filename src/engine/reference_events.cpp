@@ -11,7 +11,8 @@
 
 namespace bkq {
 
-ReferenceEventEngine::ReferenceEventEngine(const ChainForces& forces, Stepper& stepper, double dt, ChainState state)
+ReferenceEventEngine::ReferenceEventEngine(const ChainForces& forces, Stepper& stepper, double dt,
+                                           const ChainState& state)
     : forces_(forces), stepper_(stepper), dt_(dt) {
   if (forces.params().pad_moves())
     throw Error("reference event engine: model.kind = bkp is not supported (the pad must be held)");
