@@ -23,29 +23,33 @@ void BM_Events(benchmark::State& state, const char* kind, bool replay_starts) {
   const double events = static_cast<double>(c.events - c0.events);
   const double sliding = static_cast<double>(c.sliding_block_steps - c0.sliding_block_steps);
   state.counters["events"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
-  state.counters["block_steps"] =
-      benchmark::Counter(static_cast<double>(c.block_steps - c0.block_steps), benchmark::Counter::kIsRate);
+  state.counters["block_steps"] = benchmark::Counter(
+      static_cast<double>(c.block_steps - c0.block_steps), benchmark::Counter::kIsRate);
   state.counters["sliding_block_steps"] = benchmark::Counter(sliding, benchmark::Counter::kIsRate);
   state.counters["ns_per_sliding_block_step"] =
       benchmark::Counter(sliding * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["sliding_share"] = sliding / static_cast<double>(c.block_steps - c0.block_steps);
   // Of the steps, those taken from the lone slip's record rather than integrated.
   state.counters["replayed_step_share"] =
-      static_cast<double>(engine.lone_slip_starts().steps - l0.steps) / static_cast<double>(c.steps - c0.steps);
-  state.counters["declined_starts"] = static_cast<double>(engine.lone_slip_starts().declined - l0.declined);
+      static_cast<double>(engine.lone_slip_starts().steps - l0.steps) /
+      static_cast<double>(c.steps - c0.steps);
+  state.counters["declined_starts"] =
+      static_cast<double>(engine.lone_slip_starts().declined - l0.declined);
 }
 
 // The straightforward engine from the state the event engine reached past its transient.
 void BM_Straightforward(benchmark::State& state) {
   bkq::bench::CarlsonLangerEvents setup(static_cast<int>(state.range(0)));
-  bkq::ReferenceEventEngine reference(setup.forces, *setup.stepper, setup.kDt, setup.engine.state());
+  bkq::ReferenceEventEngine reference(setup.forces, *setup.stepper, setup.kDt,
+                                      setup.engine.state());
   std::int64_t events = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(reference.next_event());
     ++events;
   }
   const double sliding = static_cast<double>(reference.sliding_block_steps);
-  state.counters["events"] = benchmark::Counter(static_cast<double>(events), benchmark::Counter::kIsRate);
+  state.counters["events"] =
+      benchmark::Counter(static_cast<double>(events), benchmark::Counter::kIsRate);
   state.counters["block_steps"] =
       benchmark::Counter(static_cast<double>(reference.block_steps), benchmark::Counter::kIsRate);
   state.counters["sliding_block_steps"] = benchmark::Counter(sliding, benchmark::Counter::kIsRate);

@@ -35,7 +35,8 @@ void BM_Continuous(benchmark::State& state, const char* scheme) {
     driver.step();
     ++steps;
   }
-  state.counters["block_steps"] = benchmark::Counter(static_cast<double>(steps) * n, benchmark::Counter::kIsRate);
+  state.counters["block_steps"] =
+      benchmark::Counter(static_cast<double>(steps) * n, benchmark::Counter::kIsRate);
   state.counters["sliding_fraction"] = static_cast<double>(driver.sliding()) / n;
 }
 

@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
   bkq::EventEngine& engine = setup.engine;
 
   constexpr int kClasses = 5;
-  const int lowest[kClasses + 1] = {1, 2, 4, 10, 30, 1 << 30};  // class k: lowest[k] <= blocks < lowest[k + 1]
+  const int lowest[kClasses + 1] = {1,  2,      4, 10,
+                                    30, 1 << 30};  // class k: lowest[k] <= blocks < lowest[k + 1]
   double seconds[kClasses] = {};
   std::int64_t count[kClasses] = {}, steps[kClasses] = {};
   using Clock = std::chrono::steady_clock;
@@ -42,16 +43,21 @@ int main(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
   double timed = 0;
   for (double s : seconds) timed += s;
-  std::printf("N = %d, %lld events: %.3g events/s\n", n, static_cast<long long>(events), events / wall);
-  std::printf("| event size (blocks) | share of events | steps per event | share of the time | time per event |\n");
+  std::printf("N = %d, %lld events: %.3g events/s\n", n, static_cast<long long>(events),
+              events / wall);
+  std::printf(
+      "| event size (blocks) | share of events | steps per event | share of the time | time per "
+      "event |\n");
   std::printf("|---|---|---|---|---|\n");
   for (int k = 0; k < kClasses; ++k) {
     if (count[k] == 0) continue;
-    const std::string size = lowest[k + 1] - lowest[k] == 1 ? std::to_string(lowest[k])
-                             : k + 1 == kClasses        ? ">= " + std::to_string(lowest[k])
-                                                        : std::to_string(lowest[k]) + "-" + std::to_string(lowest[k + 1] - 1);
-    std::printf("| %s | %.1f %% | %.0f | %.1f %% | %.3g us |\n", size.c_str(), 100.0 * count[k] / events,
-                static_cast<double>(steps[k]) / count[k], 100.0 * seconds[k] / timed, 1e6 * seconds[k] / count[k]);
+    const std::string size =
+        lowest[k + 1] - lowest[k] == 1 ? std::to_string(lowest[k])
+        : k + 1 == kClasses            ? ">= " + std::to_string(lowest[k])
+                            : std::to_string(lowest[k]) + "-" + std::to_string(lowest[k + 1] - 1);
+    std::printf("| %s | %.1f %% | %.0f | %.1f %% | %.3g us |\n", size.c_str(),
+                100.0 * count[k] / events, static_cast<double>(steps[k]) / count[k],
+                100.0 * seconds[k] / timed, 1e6 * seconds[k] / count[k]);
   }
   return 0;
 }

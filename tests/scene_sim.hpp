@@ -31,7 +31,8 @@ struct Sim {
   explicit Sim(const Scene& scene)
       : p(model_from_scene(scene)),
         forces(p),
-        stepper(make_stepper(scene.choice("integrator.scheme"), p.n, scene.real("integrator.tolerance"))),
+        stepper(make_stepper(scene.choice("integrator.scheme"), p.n,
+                             scene.real("integrator.tolerance"))),
         engine(forces, *stepper, checked_dt(scene),
                initial_state(forces, static_cast<std::uint64_t>(scene.integer("run.seed")),
                              scene.real("run.initial_disorder"), true)) {}

@@ -2,8 +2,8 @@
 // (the built-in default without one), driven event by event. Writes scene.ini (the
 // effective scene with provenance) and accuracy.csv into --out, and prints the table.
 // Thin: the study itself lives in the engine.
-#include <boost/program_options.hpp>
 #include <algorithm>
+#include <boost/program_options.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -38,7 +38,8 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
       used = 0;
     }
     if (used != item.size() || !(v > 0) || !std::isfinite(v))
-      throw Error("accuracy: --" + option + ": '" + item + "' is not a positive number (expected a list like 0.01,0.005)");
+      throw Error("accuracy: --" + option + ": '" + item +
+                  "' is not a positive number (expected a list like 0.01,0.005)");
     out.push_back(v);
   }
   if (out.empty()) throw Error("accuracy: --" + option + ": empty list");
@@ -53,7 +54,8 @@ std::vector<std::string> parse_schemes(const std::string& text) {
     if (std::find(known.begin(), known.end(), item) == known.end()) {
       std::string valid;
       for (const auto& k : known) valid += (valid.empty() ? "" : "|") + k;
-      throw Error("accuracy: --schemes: '" + item + "' is not a scheme; expected a list of " + valid);
+      throw Error("accuracy: --schemes: '" + item + "' is not a scheme; expected a list of " +
+                  valid);
     }
     out.push_back(item);
   }
@@ -88,11 +90,12 @@ int cmd_accuracy(const std::vector<std::string>& args) {
   // clang-format on
   const po::variables_map vm = parse_scene_command_line("accuracy", args, opts);
   if (vm.count("help")) {
-    std::cout << "Usage: bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]\n"
-                 "Work-precision study of the scene's model, driven event by event: per-event errors\n"
-                 "against an event-located adaptive reference, the distance of the magnitude\n"
-                 "distribution from the reference's, and the time per event, for each scheme and dt.\n\n"
-              << opts << "\n";
+    std::cout
+        << "Usage: bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]\n"
+           "Work-precision study of the scene's model, driven event by event: per-event errors\n"
+           "against an event-located adaptive reference, the distance of the magnitude\n"
+           "distribution from the reference's, and the time per event, for each scheme and dt.\n\n"
+        << opts << "\n";
     return 0;
   }
   Scene scene = scene_from_command_line("accuracy", vm);
@@ -109,24 +112,29 @@ int cmd_accuracy(const std::vector<std::string>& args) {
   opt.long_events = vm["long-events"].as<std::int64_t>();
   opt.reference_tolerance = vm["reference-tolerance"].as<double>();
   opt.long_reference_tolerance = vm["long-reference-tolerance"].as<double>();
-  if (opt.samples < 1) throw Error("accuracy: --samples: expected at least 1, got " + std::to_string(opt.samples));
+  if (opt.samples < 1)
+    throw Error("accuracy: --samples: expected at least 1, got " + std::to_string(opt.samples));
   if (opt.sample_spacing < 1)
-    throw Error("accuracy: --spacing: expected at least 1, got " + std::to_string(opt.sample_spacing));
+    throw Error("accuracy: --spacing: expected at least 1, got " +
+                std::to_string(opt.sample_spacing));
   if (opt.long_events < 100)
-    throw Error("accuracy: --long-events: expected at least 100, got " + std::to_string(opt.long_events));
+    throw Error("accuracy: --long-events: expected at least 100, got " +
+                std::to_string(opt.long_events));
 
   const std::string dir = vm["out"].as<std::string>();
   const bool force = vm.count("force") > 0;
   const OutputFolder out(dir, force, false);
   if (!force && std::filesystem::exists(out.path("accuracy.csv")))
-    throw Error("accuracy: " + out.path("accuracy.csv") + " already exists; use --force to overwrite it");
+    throw Error("accuracy: " + out.path("accuracy.csv") +
+                " already exists; use --force to overwrite it");
   write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
 
   const bool quiet = vm.count("quiet") > 0;
   const AccuracyStudy study = run_accuracy(scene, opt, [&](const AccuracyPoint& p) {
     if (quiet) return;
     std::fprintf(stderr, "accuracy: %-11s dt %-7g %s%s\n", p.scheme.c_str(), p.dt,
-                 p.tolerance > 0 ? ("tol " + format_real(p.tolerance) + " ").c_str() : "", p.status.c_str());
+                 p.tolerance > 0 ? ("tol " + format_real(p.tolerance) + " ").c_str() : "",
+                 p.status.c_str());
   });
   write_file_atomic(out.path("accuracy.csv"), accuracy_csv(study));
   std::cout << accuracy_table(study) << "outputs in " << dir << "/ (accuracy.csv, scene.ini)\n";

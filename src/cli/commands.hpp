@@ -8,9 +8,9 @@
 
 namespace bkq {
 
-int cmd_run(const std::vector<std::string>& args);    // src/cli/run.cpp
-int cmd_fit(const std::vector<std::string>& args);    // src/cli/fit.cpp
-int cmd_merge(const std::vector<std::string>& args);  // src/cli/merge.cpp
+int cmd_run(const std::vector<std::string>& args);       // src/cli/run.cpp
+int cmd_fit(const std::vector<std::string>& args);       // src/cli/fit.cpp
+int cmd_merge(const std::vector<std::string>& args);     // src/cli/merge.cpp
 int cmd_accuracy(const std::vector<std::string>& args);  // src/cli/accuracy.cpp
 
 }  // namespace bkq

@@ -79,8 +79,8 @@ int cmd_fit(const std::vector<std::string>& args) {
   }
   if (vm.count("blocks")) {
     blocks = vm["blocks"].as<int>();
-    if (*blocks < 1) throw Error("fit: --blocks: expected a positive integer, got " +
-                                 std::to_string(*blocks));
+    if (*blocks < 1)
+      throw Error("fit: --blocks: expected a positive integer, got " + std::to_string(*blocks));
   }
   if (vm.count("boundary")) boundary = vm["boundary"].as<std::string>();
   const Boundary bnd = parse_boundary(boundary);

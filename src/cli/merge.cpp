@@ -31,8 +31,8 @@ int cmd_merge(const std::vector<std::string>& args) {
   po::options_description opts(
       "bkquake merge RUN_DIR... --out DIR\n"
       "Merges the histograms of runs of the same scene and fits the result");
-  opts.add_options()("help,h", "show this help")(
-      "out", po::value<std::string>(), "output folder (created if missing)");
+  opts.add_options()("help,h", "show this help")("out", po::value<std::string>(),
+                                                 "output folder (created if missing)");
   po::options_description hidden;
   hidden.add_options()("runs", po::value<std::vector<std::string>>());
   po::options_description all;

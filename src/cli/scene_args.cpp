@@ -12,7 +12,8 @@ void add_scene_options(po::options_description& opts) {
                      "section.key=value: override one scene key (repeatable, applied in order)");
 }
 
-po::variables_map parse_scene_command_line(const std::string& command, const std::vector<std::string>& args,
+po::variables_map parse_scene_command_line(const std::string& command,
+                                           const std::vector<std::string>& args,
                                            const po::options_description& opts) {
   po::options_description hidden;
   hidden.add_options()("scene", po::value<std::vector<std::string>>(), "scene file");
@@ -35,11 +36,12 @@ Scene scene_from_command_line(const std::string& command, const po::variables_ma
   std::vector<std::string> scenes;
   if (vm.count("scene")) scenes = vm["scene"].as<std::vector<std::string>>();
   if (scenes.size() > 1)
-    throw Error(command + ": expected at most one scene file, got " + std::to_string(scenes.size()) + " ('" +
-                scenes[0] + "', '" + scenes[1] + "', ...)");
+    throw Error(command + ": expected at most one scene file, got " +
+                std::to_string(scenes.size()) + " ('" + scenes[0] + "', '" + scenes[1] + "', ...)");
   Scene scene = scenes.empty() ? Scene() : Scene::from_file(scenes.front());
   if (vm.count("set"))
-    for (const auto& assignment : vm["set"].as<std::vector<std::string>>()) scene.apply_override(assignment);
+    for (const auto& assignment : vm["set"].as<std::vector<std::string>>())
+      scene.apply_override(assignment);
   return scene;
 }
 

@@ -22,6 +22,7 @@ boost::program_options::variables_map parse_scene_command_line(
 
 // The scene file (or the built-in default) with the --set overrides applied; the caller
 // validates it (after settings of its own, if any).
-Scene scene_from_command_line(const std::string& command, const boost::program_options::variables_map& vm);
+Scene scene_from_command_line(const std::string& command,
+                              const boost::program_options::variables_map& vm);
 
 }  // namespace bkq

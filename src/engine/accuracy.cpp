@@ -50,16 +50,22 @@ double relative_error(double value, double reference) {
 class Study {
  public:
   Study(const Scene& scene, const AccuracyOptions& opt)
-      : scene_(scene), opt_(opt), p_(model_from_scene(scene)), forces_(p_), dt_(scene.real("integrator.dt")),
+      : scene_(scene),
+        opt_(opt),
+        p_(model_from_scene(scene)),
+        forces_(p_),
+        dt_(scene.real("integrator.dt")),
         seed_(static_cast<std::uint64_t>(scene.integer("run.seed"))),
-        transient_(scene.integer("run.transient_events")), bin_width_(scene.real("stats.bin_width")) {
+        transient_(scene.integer("run.transient_events")),
+        bin_width_(scene.real("stats.bin_width")) {
     EventEngine::check_model(p_);
   }
 
   // Pre-event states sampled from a run of the scene's own stepper, and the reference
   // relaxation of the event that follows each.
   void sample_states() {
-    const auto stepper = make_stepper(scene_.choice("integrator.scheme"), p_.n, scene_.real("integrator.tolerance"));
+    const auto stepper =
+        make_stepper(scene_.choice("integrator.scheme"), p_.n, scene_.real("integrator.tolerance"));
     check_time_step(*stepper, p_, dt_);
     EventEngine engine(forces_, *stepper, dt_, start(seed_));
     for (std::int64_t i = 0; i < transient_; ++i) engine.next_event();
@@ -160,7 +166,8 @@ class Study {
       const EventRecord e = engine.next_event();
       if (e.moment > 0) run.hist.add(e.magnitude);
     }
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     run.hist.set_loading(engine.load() - load0, p_.n);
     const double events = static_cast<double>(std::max<std::int64_t>(opt_.long_events, 1));
     run.seconds_per_event = wall / events;
@@ -202,7 +209,8 @@ double ks_binned(const MagnitudeHistogram& a, const MagnitudeHistogram& b) {
   const double na = static_cast<double>(a.events()), nb = static_cast<double>(b.events());
   double d = 0;
   std::int64_t ca = 0, cb = 0;
-  for (std::int64_t k = std::min(a.first_bin(), b.first_bin()); k <= std::max(a.last_bin(), b.last_bin()); ++k) {
+  for (std::int64_t k = std::min(a.first_bin(), b.first_bin());
+       k <= std::max(a.last_bin(), b.last_bin()); ++k) {
     ca += a.count(k);
     cb += b.count(k);
     d = std::max(d, std::abs(static_cast<double>(ca) / na - static_cast<double>(cb) / nb));
@@ -245,14 +253,16 @@ std::string csv_field(const std::string& text) {
 
 std::string accuracy_csv(const AccuracyStudy& study) {
   std::string out =
-      "scheme,dt,tolerance,status,sampled_events,moment_error_median,moment_error_max,duration_error_median,"
+      "scheme,dt,tolerance,status,sampled_events,moment_error_median,moment_error_max,duration_"
+      "error_median,"
       "duration_error_max,ks_distance,b,b_shift,seconds_per_event,steps_per_event,note\n";
   for (const AccuracyPoint& p : study.points) {
-    out += p.scheme + ',' + format_real(p.dt) + ',' + format_real(p.tolerance) + ',' + p.status + ',' +
-           std::to_string(p.sampled);
+    out += p.scheme + ',' + format_real(p.dt) + ',' + format_real(p.tolerance) + ',' + p.status +
+           ',' + std::to_string(p.sampled);
     // Blank where nothing was measured: not run, or (reference rows) no per-event errors.
     const bool ran = p.status == "ok", per_event = ran && p.sampled > 0;
-    for (double v : {p.moment_error_median, p.moment_error_max, p.duration_error_median, p.duration_error_max})
+    for (double v :
+         {p.moment_error_median, p.moment_error_max, p.duration_error_median, p.duration_error_max})
       out += ',' + (per_event ? format_real(v) : std::string());
     for (double v : {p.ks_distance, p.b, p.b_shift, p.seconds_per_event, p.steps_per_event})
       out += ',' + (ran ? format_real(v) : std::string());
@@ -264,27 +274,30 @@ std::string accuracy_csv(const AccuracyStudy& study) {
 std::string accuracy_table(const AccuracyStudy& study) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "%-11s %8s %8s %11s %11s %9s %8s %11s %9s  %s\n", "scheme", "dt", "tol",
-                "dM/M med", "dT/T med", "KS", "db", "s/event", "steps/ev", "status");
+  std::snprintf(line, sizeof line, "%-11s %8s %8s %11s %11s %9s %8s %11s %9s  %s\n", "scheme", "dt",
+                "tol", "dM/M med", "dT/T med", "KS", "db", "s/event", "steps/ev", "status");
   out += line;
   for (const AccuracyPoint& p : study.points) {
     if (p.status != "ok") {
-      std::snprintf(line, sizeof line, "%-11s %8.3g %8s %11s %11s %9s %8s %11s %9s  %s (%s)\n", p.scheme.c_str(), p.dt,
-                    p.tolerance > 0 ? format_real(p.tolerance).c_str() : "-", "", "", "", "", "", "",
-                    p.status.c_str(), p.note.c_str());
+      std::snprintf(line, sizeof line, "%-11s %8.3g %8s %11s %11s %9s %8s %11s %9s  %s (%s)\n",
+                    p.scheme.c_str(), p.dt,
+                    p.tolerance > 0 ? format_real(p.tolerance).c_str() : "-", "", "", "", "", "",
+                    "", p.status.c_str(), p.note.c_str());
     } else {
       char dm[32] = "-", dd[32] = "-";
       if (p.sampled > 0) {
         std::snprintf(dm, sizeof dm, "%.3g", p.moment_error_median);
         std::snprintf(dd, sizeof dd, "%.3g", p.duration_error_median);
       }
-      std::snprintf(line, sizeof line, "%-11s %8.3g %8s %11s %11s %9.4f %+8.4f %11.3g %9.4g  ok\n", p.scheme.c_str(),
-                    p.dt, p.tolerance > 0 ? format_real(p.tolerance).c_str() : "-", dm, dd, p.ks_distance, p.b_shift,
-                    p.seconds_per_event, p.steps_per_event);
+      std::snprintf(line, sizeof line, "%-11s %8.3g %8s %11s %11s %9.4f %+8.4f %11.3g %9.4g  ok\n",
+                    p.scheme.c_str(), p.dt,
+                    p.tolerance > 0 ? format_real(p.tolerance).c_str() : "-", dm, dd, p.ks_distance,
+                    p.b_shift, p.seconds_per_event, p.steps_per_event);
     }
     out += line;
   }
-  std::snprintf(line, sizeof line, "b fitted on mu in [%.2f, %.2f) (the reference run's automatic window)\n",
+  std::snprintf(line, sizeof line,
+                "b fitted on mu in [%.2f, %.2f) (the reference run's automatic window)\n",
                 study.mu_min, study.mu_max);
   out += line;
   return out;

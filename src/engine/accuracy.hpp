@@ -12,9 +12,9 @@
 //      the integrated ranges once per macro step.)
 //  (b) Statistics. A long run (`long_events` after the transient, the scene's seed for
 //      every point) gives the magnitude distribution: its Kolmogorov–Smirnov distance
-//      to the reference run's (on the histogram's bins, see ks_binned), and the shift of b (binned MLE on the window the
-//      automatic fit picks for the reference run). The noise floor is the same two numbers
-//      between the reference run and a reference run from another seed: below it a
+//      to the reference run's (on the histogram's bins, see ks_binned), and the shift of b (binned
+//      MLE on the window the automatic fit picks for the reference run). The noise floor is the
+//      same two numbers between the reference run and a reference run from another seed: below it a
 //      scheme's statistics are as good as the reference's.
 //  (c) Cost: wall seconds per event of the long run (and steps per event).
 // A dt above a scheme's stability limit stays in the table as "unstable" (not run); a run
@@ -35,12 +35,12 @@ struct AccuracyOptions {
   std::vector<std::string> schemes{"rk2", "rk4", "verlet", "theta", "adaptive"};
   std::vector<double> dts{0.05, 0.02, 0.01, 0.005, 0.002, 0.001};
   std::vector<double> tolerances{1e-3, 1e-5, 1e-7, 1e-9};  // adaptive scheme
-  int samples = 40;                  // K pre-event states for the per-event errors
-  int sample_spacing = 25;           // events between two sampled states
-  std::int64_t long_events = 50000;  // events per long run, after the scene's transient
-  double reference_tolerance = 1e-12;       // per-event reference
-  double long_reference_tolerance = 1e-9;   // reference long runs (cost grows fast below)
-  std::uint64_t other_seed_offset = 1;      // the noise-floor run uses seed + this
+  int samples = 40;                        // K pre-event states for the per-event errors
+  int sample_spacing = 25;                 // events between two sampled states
+  std::int64_t long_events = 50000;        // events per long run, after the scene's transient
+  double reference_tolerance = 1e-12;      // per-event reference
+  double long_reference_tolerance = 1e-9;  // reference long runs (cost grows fast below)
+  std::uint64_t other_seed_offset = 1;     // the noise-floor run uses seed + this
 };
 
 struct AccuracyPoint {

@@ -15,8 +15,8 @@ namespace {
 // fold away.
 template <bool Backslip, class Force>
 InteriorPass settle_run(int lo, int hi, Force force, Friction fr, bool crossing_rule,
-                        const double* __restrict wd_old, double* __restrict wd, double* __restrict mob,
-                        double* __restrict dir) {
+                        const double* __restrict wd_old, double* __restrict wd,
+                        double* __restrict mob, double* __restrict dir) {
   fr.backslip = Backslip;
   int sliding = 0, breaks = 0, first_break = hi;
   // The largest speed as an integer maximum over bit patterns: for doubles of positive
@@ -26,7 +26,8 @@ InteriorPass settle_run(int lo, int hi, Force force, Friction fr, bool crossing_
   for (int j = lo; j < hi; ++j) {
     const double y0 = wd_old[j], y1 = wd[j], d = dir[j], m = mob[j], f = force(j);
     const bool was_sliding = m != 0.0;
-    const bool crossed = crossing_rule & was_sliding & (Backslip ? (y0 * y1 < 0.0) | (y1 == 0.0) : y1 <= 0.0);
+    const bool crossed =
+        crossing_rule & was_sliding & (Backslip ? (y0 * y1 < 0.0) | (y1 == 0.0) : y1 <= 0.0);
     const bool stick = crossed & fr.holds(f);
     const bool slides = was_sliding & !stick;
     const double y = crossed & (stick | !Backslip) ? 0.0 : y1;
@@ -49,28 +50,32 @@ InteriorPass settle_run(int lo, int hi, Force force, Friction fr, bool crossing_
 // The spring force on interior blocks: spring_force's arithmetic for the scene's boundary
 // written out (the same operations, so the same bits) without its end tests.
 template <bool Backslip>
-InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int lo,
-                             int hi, bool crossing_rule) {
+InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old,
+                             double anchor, int lo, int hi, bool crossing_rule) {
   const ModelParams& p = forces.params();
   const double kc = p.k_c, kp = p.k_p;
   const double* w = st.w.data();
   auto run = [&](auto force) {
-    return settle_run<Backslip>(lo, hi, force, forces.friction(), crossing_rule, wd_old, st.wd.data(),
-                                st.mobile.data(), st.dir.data());
+    return settle_run<Backslip>(lo, hi, force, forces.friction(), crossing_rule, wd_old,
+                                st.wd.data(), st.mobile.data(), st.dir.data());
   };
   if (!p.has_neighbours()) return run([=](int j) { return 0.0 - kp * (w[j] - anchor); });
   if (p.boundary == Boundary::Periodic)
-    return run([=](int j) { return kc * (w[j - 1] - 2.0 * w[j] + w[j + 1]) - kp * (w[j] - anchor); });
+    return run(
+        [=](int j) { return kc * (w[j - 1] - 2.0 * w[j] + w[j + 1]) - kp * (w[j] - anchor); });
   // Free ends: neighbour_force's running sum starts from 0.
-  return run([=](int j) { return kc * ((0.0 + (w[j - 1] - w[j])) + (w[j + 1] - w[j])) - kp * (w[j] - anchor); });
+  return run([=](int j) {
+    return kc * ((0.0 + (w[j - 1] - w[j])) + (w[j + 1] - w[j])) - kp * (w[j] - anchor);
+  });
 }
 
 }  // namespace
 
-InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int lo,
-                             int hi, bool crossing_rule) {
-  return forces.friction().backslip ? settle_interior<true>(forces, st, wd_old, anchor, lo, hi, crossing_rule)
-                                    : settle_interior<false>(forces, st, wd_old, anchor, lo, hi, crossing_rule);
+InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old,
+                             double anchor, int lo, int hi, bool crossing_rule) {
+  return forces.friction().backslip
+             ? settle_interior<true>(forces, st, wd_old, anchor, lo, hi, crossing_rule)
+             : settle_interior<false>(forces, st, wd_old, anchor, lo, hi, crossing_rule);
 }
 
 }  // namespace bkq::contacts_detail
@@ -79,8 +84,9 @@ namespace bkq {
 namespace {
 
 template <bool Backslip>
-double range_power(Friction fr, double damper, const double* __restrict mobile, const double* __restrict dir,
-                   const double* __restrict y0, const double* __restrict y1, int lo, int hi) {
+double range_power(Friction fr, double damper, const double* __restrict mobile,
+                   const double* __restrict dir, const double* __restrict y0,
+                   const double* __restrict y1, int lo, int hi) {
   fr.backslip = Backslip;
   RangePowerSum sum;
   auto power = [&](int j) { return mobile[j] * fr.step_power(y0[j], y1[j], dir[j], damper); };
@@ -94,7 +100,8 @@ double range_power(Friction fr, double damper, const double* __restrict mobile, 
 
 }  // namespace
 
-double dissipated_power(const ChainForces& forces, const ChainState& st, const double* wd_old, Ranges ranges) {
+double dissipated_power(const ChainForces& forces, const ChainState& st, const double* wd_old,
+                        Ranges ranges) {
   const Friction& fr = forces.friction();
   const double damper = forces.params().c_u / forces.params().m_u;
   const double* mobile = st.mobile.data();

@@ -32,8 +32,8 @@
 namespace bkq {
 
 struct ContactScan {
-  int sliding = 0;        // blocks sliding after the pass
-  double max_speed = 0;   // largest |relative velocity| among them; NaN if any is NaN
+  int sliding = 0;       // blocks sliding after the pass
+  double max_speed = 0;  // largest |relative velocity| among them; NaN if any is NaN
 };
 
 namespace contacts_detail {
@@ -44,26 +44,27 @@ inline constexpr int kMinInteriorRun = 32;
 
 // What settle_interior found.
 struct InteriorPass {
-  int sliding = 0;        // blocks sliding after it, not counting the releases
-  double max_speed = 0;   // largest |relative velocity| among them; NaN if any is NaN
-  int breaks = 0;         // stuck blocks that break loose (left stuck for now)
-  int first_break = 0;    // the first of them (hi if none)
+  int sliding = 0;       // blocks sliding after it, not counting the releases
+  double max_speed = 0;  // largest |relative velocity| among them; NaN if any is NaN
+  int breaks = 0;        // stuck blocks that break loose (left stuck for now)
+  int first_break = 0;   // the first of them (hi if none)
 };
 
 // Blocks lo..hi-1, none of them a chain end: every transition but the releases.
-InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int lo,
-                             int hi, bool crossing_rule);
+InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const double* wd_old,
+                             double anchor, int lo, int hi, bool crossing_rule);
 
 // Block j; adds to the count of sliding blocks and the speed maximum.
 template <class OnRelease>
-void settle_block(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor, int j,
-                  bool crossing_rule, OnRelease& on_release, ContactScan& out) {
+void settle_block(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor,
+                  int j, bool crossing_rule, OnRelease& on_release, ContactScan& out) {
   const Friction& fr = forces.friction();
   const double* w = st.w.data();
   double* wd = st.wd.data();
   double* mob = st.mobile.data();
   if (mob[j] != 0.0) {
-    if (crossing_rule && fr.stops(wd_old[j], wd[j], [&] { return forces.spring_force(w, j, anchor); })) {
+    if (crossing_rule &&
+        fr.stops(wd_old[j], wd[j], [&] { return forces.spring_force(w, j, anchor); })) {
       wd[j] = 0.0;
       mob[j] = 0.0;
       return;
@@ -88,14 +89,18 @@ void settle_block(const ChainForces& forces, ChainState& st, const double* wd_ol
 // not yet settled; wd_old the velocities at its start, stuck blocks' exactly 0): each
 // range in the order of RangePowerSum (model/friction.hpp), which the cluster path
 // (integrate/cluster.hpp) uses too, and the ranges in order.
-double dissipated_power(const ChainForces& forces, const ChainState& st, const double* wd_old, Ranges ranges);
+double dissipated_power(const ChainForces& forces, const ChainState& st, const double* wd_old,
+                        Ranges ranges);
 
 template <class OnRelease>
-ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor,
-                            Ranges ranges, bool crossing_rule, OnRelease&& on_release) {
+ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const double* wd_old,
+                            double anchor, Ranges ranges, bool crossing_rule,
+                            OnRelease&& on_release) {
   using namespace contacts_detail;
   ContactScan out;
-  auto block = [&](int j) { settle_block(forces, st, wd_old, anchor, j, crossing_rule, on_release, out); };
+  auto block = [&](int j) {
+    settle_block(forces, st, wd_old, anchor, j, crossing_rule, on_release, out);
+  };
   const int n = forces.n();
   for (const Range& r : ranges) {
     if (r.hi - r.lo < kMinInteriorRun) {

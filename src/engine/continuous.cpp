@@ -8,8 +8,8 @@
 
 namespace bkq {
 
-ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper, const Substrate& substrate,
-                                   ChainState state, double dt)
+ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
+                                   const Substrate& substrate, ChainState state, double dt)
     : forces_(forces), stepper_(stepper), substrate_(substrate), st_(std::move(state)), dt_(dt) {
   const int n = forces.n();
   all_ = Range{0, n};
@@ -20,8 +20,8 @@ ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper, 
   // Blocks loaded beyond the threshold at the start break loose before the first step.
   const SubstrateState sub = substrate_.at(st_.t);
   const double anchor = sub.s + (forces.params().pad_moves() ? st_.x : 0.0);
-  const ContactScan scan = settle_contacts(forces_, st_, wd_old_.data(), anchor, Ranges(&all_, 1), false,
-                                           [](int) {});
+  const ContactScan scan =
+      settle_contacts(forces_, st_, wd_old_.data(), anchor, Ranges(&all_, 1), false, [](int) {});
   sliding_ = scan.sliding;
   if (sliding_ > 0) start_episode(-1);
 }
@@ -71,12 +71,12 @@ void ContinuousDriver::step() {
   const SubstrateState sub = substrate_.at(st_.t);
   const double anchor = sub.s + (forces_.params().pad_moves() ? st_.x : 0.0);
   int first_release = -1;
-  const ContactScan scan = settle_contacts(
-      forces_, st_, wd_old_.data(), anchor, ranges, stepper_.stick_rule() == StickRule::Crossing,
-      [&](int j) {
-        if (first_release < 0) first_release = j;
-        if (in_episode_) slid_[j] = 1;
-      });
+  const ContactScan scan =
+      settle_contacts(forces_, st_, wd_old_.data(), anchor, ranges,
+                      stepper_.stick_rule() == StickRule::Crossing, [&](int j) {
+                        if (first_release < 0) first_release = j;
+                        if (in_episode_) slid_[j] = 1;
+                      });
   const bool was_sliding = sliding_ > 0;
   sliding_ = scan.sliding;
   if (!was_sliding && sliding_ > 0) {

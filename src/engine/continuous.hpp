@@ -15,8 +15,8 @@ namespace bkq {
 
 class ContinuousDriver {
  public:
-  ContinuousDriver(const ChainForces& forces, Stepper& stepper, const Substrate& substrate, ChainState state,
-                   double dt);
+  ContinuousDriver(const ChainForces& forces, Stepper& stepper, const Substrate& substrate,
+                   ChainState state, double dt);
 
   // One time step followed by the stick/slip transitions.
   void step();

@@ -23,8 +23,13 @@ constexpr int kResumEvery = 1024;
 }  // namespace
 
 EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt, ChainState state)
-    : forces_(forces), stepper_(stepper), dt_(dt), st_(std::move(state)), pad_(forces.params().pad_moves()),
-      n_(forces.n()), margin_(stepper.stick_rule() == StickRule::Located ? 2 : 1) {
+    : forces_(forces),
+      stepper_(stepper),
+      dt_(dt),
+      st_(std::move(state)),
+      pad_(forces.params().pad_moves()),
+      n_(forces.n()),
+      margin_(stepper.stick_rule() == StickRule::Located ? 2 : 1) {
   check_model(forces.params());
   allocate_bookkeeping();
   std::fill(st_.mobile.begin(), st_.mobile.end(), 0.0);
@@ -35,12 +40,20 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
   rebuild_tree();
 }
 
-EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt, const EngineSnapshot& saved)
-    : forces_(forces), stepper_(stepper), dt_(dt), st_(saved.state), pad_(forces.params().pad_moves()),
-      n_(forces.n()), margin_(stepper.stick_rule() == StickRule::Located ? 2 : 1), counters_(saved.counters) {
+EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
+                         const EngineSnapshot& saved)
+    : forces_(forces),
+      stepper_(stepper),
+      dt_(dt),
+      st_(saved.state),
+      pad_(forces.params().pad_moves()),
+      n_(forces.n()),
+      margin_(stepper.stick_rule() == StickRule::Located ? 2 : 1),
+      counters_(saved.counters) {
   check_model(forces.params());
   if (st_.n() != n_)
-    throw Error("checkpoint: it holds " + std::to_string(st_.n()) + " blocks, the scene has " + std::to_string(n_));
+    throw Error("checkpoint: it holds " + std::to_string(st_.n()) + " blocks, the scene has " +
+                std::to_string(n_));
   allocate_bookkeeping();
   rebuild_tree();
 }
@@ -57,16 +70,22 @@ void EventEngine::allocate_bookkeeping() {
 
 void EventEngine::check_model(const ModelParams& p) {
   if (p.law == FrictionLaw::None)
-    throw Error("friction.law: 'none' cannot drive events (nothing ever sticks); use drive.mode = continuous");
+    throw Error(
+        "friction.law: 'none' cannot drive events (nothing ever sticks); use drive.mode = "
+        "continuous");
   // The loader puts the failing block exactly at the threshold; without a drop from static
   // to kinetic friction the net force there is zero and the block never moves (the v -> 0
   // limit is singular, which is why Carlson et al. 1991 introduced sigma).
   if (p.law == FrictionLaw::Cl89)
-    throw Error("friction.law: 'cl89' has no drop from static to kinetic friction, so event-driven runs "
-                "never start an event; use thesis or clst91 with friction.sigma > 0, or drive.mode = continuous");
+    throw Error(
+        "friction.law: 'cl89' has no drop from static to kinetic friction, so event-driven runs "
+        "never start an event; use thesis or clst91 with friction.sigma > 0, or drive.mode = "
+        "continuous");
   if (p.sigma <= 0)
-    throw Error("friction.sigma: 0 leaves no drop from static to kinetic friction, so event-driven runs never "
-                "start an event; event-driven mode needs friction.sigma in (0, 1)");
+    throw Error(
+        "friction.sigma: 0 leaves no drop from static to kinetic friction, so event-driven runs "
+        "never "
+        "start an event; event-driven mode needs friction.sigma in (0, 1)");
 }
 
 void EventEngine::rebuild_tree() {
@@ -87,7 +106,8 @@ double EventEngine::worst_stuck_excess() const {
 
 void EventEngine::add_to_ranges(int k) {
   // Ranges stay sorted and disjoint; adjacent ones merge.
-  auto it = std::lower_bound(ranges_.begin(), ranges_.end(), k, [](const Range& r, int v) { return r.hi < v; });
+  auto it = std::lower_bound(ranges_.begin(), ranges_.end(), k,
+                             [](const Range& r, int v) { return r.hi < v; });
   if (it != ranges_.end() && it->lo <= k && k < it->hi) return;
   if (it != ranges_.end() && it->hi == k) {
     it->hi = k + 1;
@@ -147,8 +167,10 @@ void EventEngine::shrink_ranges() {
       if (st_.mobile[j] == 0.0) continue;
       for (int d = -margin_; d <= margin_; ++d) {
         const int k = j + d;
-        if (k >= 0 && k < n_) need_[k] = 1;
-        else if (periodic) need_[((k % n_) + n_) % n_] = 1;
+        if (k >= 0 && k < n_)
+          need_[k] = 1;
+        else if (periodic)
+          need_[((k % n_) + n_) % n_] = 1;
       }
     }
   std::vector<Range> kept;
@@ -161,8 +183,10 @@ void EventEngine::shrink_ranges() {
       const int start = j;
       const bool needed = need_[j];
       for (; j < r.hi && need_[j] == needed; ++j) need_[j] = 0, covered_[j] = needed;
-      if (needed) kept.push_back(Range{start, j});
-      else tree_.set_range(start, j, local_force);
+      if (needed)
+        kept.push_back(Range{start, j});
+      else
+        tree_.set_range(start, j, local_force);
     }
   }
   ranges_.swap(kept);
@@ -314,7 +338,8 @@ bool EventEngine::cluster_ready(ClusterRelaxation& r) const {
   // One covered range (so every sliding block is inside it), the pad held, and at most
   // kMaxCluster blocks between its ends, which are stuck blocks or free chain ends (the
   // stepper refuses the shapes it has no code for: run_cluster).
-  if (!cluster_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1) return false;
+  if (!cluster_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1)
+    return false;
   const Range& range = ranges_.front();
   const bool free_ends = forces_.params().boundary == Boundary::Free && n_ >= 2;
   r.free_left = free_ends && range.lo == 0 && st_.mobile[0] != 0.0;
@@ -322,7 +347,8 @@ bool EventEngine::cluster_ready(ClusterRelaxation& r) const {
   r.lo = range.lo - (r.free_left ? 1 : 0);
   r.k = range.hi - range.lo - 2 + (r.free_left ? 1 : 0) + (r.free_right ? 1 : 0);
   if (r.k < 1 || r.k > kMaxCluster) return false;
-  return (r.free_left || st_.mobile[range.lo] == 0.0) && (r.free_right || st_.mobile[range.hi - 1] == 0.0);
+  return (r.free_left || st_.mobile[range.lo] == 0.0) &&
+         (r.free_right || st_.mobile[range.hi - 1] == 0.0);
 }
 
 bool EventEngine::relax_cluster(ClusterRelaxation& r, std::int64_t& steps, ContactScan& scan) {
@@ -357,7 +383,9 @@ bool EventEngine::relax_cluster(ClusterRelaxation& r, std::int64_t& steps, Conta
 bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   const ModelParams& p = forces_.params();
   const bool periodic = p.boundary == Boundary::Periodic;
-  if (!lone_slip_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || (periodic && n_ == 2)) return false;
+  if (!lone_slip_path || pad_ || stepper_.stick_rule() != StickRule::Crossing ||
+      (periodic && n_ == 2))
+    return false;
   // The neighbours whose spring force the block's slide changes, in block order (the
   // order in which the general path would release them).
   std::array<int, 2> nb{};
@@ -395,7 +423,8 @@ bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   // threshold, i.e. where f + k_c times the running extreme of d does (monotone in n).
   // How far past the threshold a neighbour of force f is after step n (n = 0: the start).
   auto excess = [&](double f, std::int64_t n) {
-    const double hi = n == 0 ? 0.0 : table.steps[n - 1].d_max, lo = n == 0 ? 0.0 : table.steps[n - 1].d_min;
+    const double hi = n == 0 ? 0.0 : table.steps[n - 1].d_max,
+                 lo = n == 0 ? 0.0 : table.steps[n - 1].d_min;
     return backslip ? std::max(f + kc * hi - thr, -thr - (f + kc * lo)) : f + kc * hi - thr;
   };
   std::array<std::int64_t, 2> breaks_at{last + 1, last + 1};
@@ -404,7 +433,8 @@ bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
     const auto n = std::partition_point(table.steps.begin(), table.steps.end(),
                                         [&](const LoneSlip::Step& s) {
                                           return excess(f, &s - table.steps.data() + 1) <= 0.0;
-                                        }) - table.steps.begin() + 1;
+                                        }) -
+                   table.steps.begin() + 1;
     breaks_at[k] = n;
     // Both sides of the decision clear of the bound: before step n it holds, after it not.
     clear = excess(f, n - 1) < -tol.force && (n > last || excess(f, n) > tol.force);
@@ -442,10 +472,11 @@ void EventEngine::check_finite() const {
     for (int j = r.lo; j < r.hi; ++j)
       if (!std::isfinite(st_.w[j]) || !std::isfinite(st_.wd[j])) {
         char msg[300];
-        std::snprintf(msg, sizeof msg,
-                      "non-finite state at block %d, time %.9g into event %lld: the integration is unstable "
-                      "(reduce integrator.dt)",
-                      j, st_.t, static_cast<long long>(counters_.events + 1));
+        std::snprintf(
+            msg, sizeof msg,
+            "non-finite state at block %d, time %.9g into event %lld: the integration is unstable "
+            "(reduce integrator.dt)",
+            j, st_.t, static_cast<long long>(counters_.events + 1));
         throw Error(msg);
       }
 }
@@ -483,13 +514,15 @@ EventRecord EventEngine::next_event() {
       ContactScan scan;
       if (steps == 0 && replay_start(trigger, steps, scan)) {
         // The start of the event, from the lone slip's record; scan describes its last step.
-      } else if (ClusterRelaxation cluster; cluster_ready(cluster) && relax_cluster(cluster, steps, scan)) {
+      } else if (ClusterRelaxation cluster;
+                 cluster_ready(cluster) && relax_cluster(cluster, steps, scan)) {
         // Ran one or more steps of a cluster; scan describes the last one.
       } else {
         for (const Range& r : ranges_) {
           std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old_.begin() + r.lo);
           if (!crossing) {
-            std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi, mobile_old_.begin() + r.lo);
+            std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi,
+                      mobile_old_.begin() + r.lo);
             std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, w_old_.begin() + r.lo);
           }
         }
@@ -525,7 +558,8 @@ EventRecord EventEngine::next_event() {
       if (steps > max_steps_per_event) {
         char msg[300];
         std::snprintf(msg, sizeof msg,
-                      "event %lld did not end after %lld steps (time %.6g): check integrator.dt and the scene "
+                      "event %lld did not end after %lld steps (time %.6g): check integrator.dt "
+                      "and the scene "
                       "(the bound is run.max_steps_per_event)",
                       static_cast<long long>(e.event), static_cast<long long>(steps), st_.t);
         throw Error(msg);

@@ -149,7 +149,7 @@ class EventEngine {
   void shrink_ranges();
   void uncover_all();
   bool query_tree_failures();
-  bool pad_phase();  // true if a block failed while the pad swung
+  bool pad_phase();              // true if a block failed while the pad swung
   void note_released_in_step();  // bookkeeping for blocks a Projection/Located stepper released
   // Change of the energy stored in the springs since the event started (pad at x0 then).
   double stored_energy_change(double x0) const;

@@ -11,10 +11,13 @@
 
 namespace bkq {
 
-inline double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+inline double uniform01(std::mt19937_64& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
 
 // pad_at_rest: put the pad at its static balance (event-driven mode); otherwise at 0.
-inline ChainState initial_state(const ChainForces& forces, std::uint64_t seed, double disorder, bool pad_at_rest) {
+inline ChainState initial_state(const ChainForces& forces, std::uint64_t seed, double disorder,
+                                bool pad_at_rest) {
   const ModelParams& p = forces.params();
   ChainState st;
   st.resize(p.n);

@@ -12,8 +12,8 @@
 
 namespace bkq {
 
-LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string_view scheme, double dt,
-                             std::int64_t max_steps) {
+LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string_view scheme,
+                             double dt, std::int64_t max_steps) {
   LoneSlip out;
   out.stiffness = stiffness;
   // One block on a pulling spring of the lone block's stiffness: its spring force is
@@ -64,9 +64,11 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
     const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || y1 == 0.0) : y1 <= 0.0;
     if (crossed) {
       const double f = forces.spring_force(st.w.data(), 0, st.s);
-      out.force_margin = std::min(out.force_margin, std::abs((fr.backslip ? std::abs(f) : f) - fr.threshold));
+      out.force_margin =
+          std::min(out.force_margin, std::abs((fr.backslip ? std::abs(f) : f) - fr.threshold));
     }
-    const ContactScan scan = settle_contacts(forces, st, &wd_old, st.s, all, true, [&](int) { released = true; });
+    const ContactScan scan =
+        settle_contacts(forces, st, &wd_old, st.s, all, true, [&](int) { released = true; });
     if (released || !std::isfinite(st.w[0]) || !std::isfinite(st.wd[0])) {
       out.why_not = "the lone block's integration did not stay finite";
       return out;
@@ -96,7 +98,8 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
   return out;
 }
 
-LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scale, double dt, std::int64_t steps) {
+LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scale, double dt,
+                                      std::int64_t steps) {
   // A direct step rounds positions of size position_scale, a few times eps * scale each
   // step; a spring force sees position errors through at most k_p + 4 k_c. Over n steps
   // the force errors accumulate into the velocity (n dt / m_u) and both into the position.
@@ -107,7 +110,8 @@ LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scal
   const double per_step = 4.0 * eps * (position_scale + p.threshold() / stiffness);
   const double force_rounding = stiffness * per_step;
   // (and velocities, of size at most F0/m_u * n dt, round by eps each operation)
-  const double velocity = n * dt * force_rounding / p.m_u + 4.0 * eps * n * (p.threshold() / p.m_u * n * dt);
+  const double velocity =
+      n * dt * force_rounding / p.m_u + 4.0 * eps * n * (p.threshold() / p.m_u * n * dt);
   const double position = n * dt * velocity + n * per_step;
   return LoneSlipTolerance{kSafety * (force_rounding + stiffness * position), kSafety * velocity};
 }

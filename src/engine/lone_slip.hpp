@@ -54,15 +54,15 @@ namespace bkq {
 struct LoneSlip {
   // The state at the end of step n (steps[n - 1]), after the stick rule.
   struct Step {
-    double d = 0;          // displacement from the start
-    double v = 0;          // velocity (0 once stuck)
-    double dir = 1;        // direction of sliding
-    double t = 0;          // time since the start (dt added n times, as the engine adds it)
-    double work = 0;       // work against friction and the block damper since the start
-    double d_max = 0;      // extremes of d over steps 1..n
+    double d = 0;      // displacement from the start
+    double v = 0;      // velocity (0 once stuck)
+    double dir = 1;    // direction of sliding
+    double t = 0;      // time since the start (dt added n times, as the engine adds it)
+    double work = 0;   // work against friction and the block damper since the start
+    double d_max = 0;  // extremes of d over steps 1..n
     double d_min = 0;
-    double max_speed = 0;  // largest |v| of a sliding block over steps 1..n
-    int sliding = 1;       // 1 while it slides, 0 at the last step
+    double max_speed = 0;            // largest |v| of a sliding block over steps 1..n
+    int sliding = 1;                 // 1 while it slides, 0 at the last step
     std::int64_t sliding_steps = 0;  // `sliding` summed over steps 1..n
   };
   double stiffness = 0;
@@ -79,8 +79,8 @@ struct LoneSlip {
 // Integrates the lone block of stiffness `stiffness` with the model's friction, mass and
 // damper, by `scheme` at step dt, until it sticks (unusable if it has not after max_steps
 // steps, or if it never leaves the start).
-LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string_view scheme, double dt,
-                             std::int64_t max_steps);
+LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string_view scheme,
+                             double dt, std::int64_t max_steps);
 
 // Bounds on the differences of rounding size between the table and a direct integration
 // of `steps` steps at step dt with positions of size `position_scale` (see above).
@@ -88,6 +88,7 @@ struct LoneSlipTolerance {
   double force = 0;
   double velocity = 0;
 };
-LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scale, double dt, std::int64_t steps);
+LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scale, double dt,
+                                      std::int64_t steps);
 
 }  // namespace bkq

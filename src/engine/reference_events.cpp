@@ -67,16 +67,17 @@ EventRecord ReferenceEventEngine::next_event() {
   for (int sliding = 1; sliding > 0;) {
     std::copy(st_.wd.begin(), st_.wd.end(), wd_old_.begin());
     stepper_.step(forces_, frozen, st_, dt_, all);
-    const ContactScan scan =
-        settle_contacts(forces_, st_, wd_old_.data(), st_.s, all, true, [&](int j) { slipped_[j] = 1; });
+    const ContactScan scan = settle_contacts(forces_, st_, wd_old_.data(), st_.s, all, true,
+                                             [&](int j) { slipped_[j] = 1; });
     sliding = scan.sliding;
     raise_max_speed(max_speed, scan.max_speed);
     sliding_block_steps += scan.sliding;
     if (!std::isfinite(max_speed))
-      throw Error("reference event engine: non-finite velocity in event " + std::to_string(e.event));
+      throw Error("reference event engine: non-finite velocity in event " +
+                  std::to_string(e.event));
     if (++event_steps > max_steps_per_event)
-      throw Error("reference event engine: event " + std::to_string(e.event) + " did not end within " +
-                  std::to_string(max_steps_per_event) + " steps");
+      throw Error("reference event engine: event " + std::to_string(e.event) +
+                  " did not end within " + std::to_string(max_steps_per_event) + " steps");
   }
   steps += event_steps;
   block_steps += event_steps * n;

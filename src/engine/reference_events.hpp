@@ -28,7 +28,8 @@ class ReferenceEventEngine {
  public:
   // Throws bkq::Error for a moving pad or a stepper that is not a Crossing one. The state's
   // blocks are all made stuck and at rest, as EventEngine does.
-  ReferenceEventEngine(const ChainForces& forces, Stepper& stepper, double dt, const ChainState& state);
+  ReferenceEventEngine(const ChainForces& forces, Stepper& stepper, double dt,
+                       const ChainState& state);
 
   // Load to the next failure and relax it; returns the event (numbered from 1).
   EventRecord next_event();

@@ -45,12 +45,12 @@ inline constexpr int kMaxCluster = 8;
 
 struct ClusterRelaxation {
   // Set by the caller.
-  int lo = 0;                  // the range is [lo, lo + k + 2); its end blocks are stuck,
-  int k = 1;                   // k interior blocks, 1..kMaxCluster, between them,
-  bool free_left = false;      // except that entry 0 is a phantom (lo = -1: block 0 is a free end)
-  bool free_right = false;     // or entry k + 1 is (block n - 1 is a free end)
-  double anchor = 0;           // substrate + pad (the pad is held)
-  SubstrateState sub;          // the frozen substrate
+  int lo = 0;               // the range is [lo, lo + k + 2); its end blocks are stuck,
+  int k = 1;                // k interior blocks, 1..kMaxCluster, between them,
+  bool free_left = false;   // except that entry 0 is a phantom (lo = -1: block 0 is a free end)
+  bool free_right = false;  // or entry k + 1 is (block n - 1 is a free end)
+  double anchor = 0;        // substrate + pad (the pad is held)
+  SubstrateState sub;       // the frozen substrate
   double dt = 0;
   double half_dt_m = 0;        // trapezoidal weight of the dissipated power: dt m_u / 2
   std::int64_t max_steps = 0;  // return after this many steps at most
@@ -59,9 +59,9 @@ struct ClusterRelaxation {
   double* dissipated = nullptr;  // += half_dt_m * power, step by step
   // What happened.
   std::int64_t steps = 0;
-  std::int64_t sliding_block_steps = 0;  // sliding blocks at the end of each step, summed
-  double max_speed = 0;                  // NaN if a speed became NaN
-  int sliding = 0;                       // sliding blocks after the last step
+  std::int64_t sliding_block_steps = 0;         // sliding blocks at the end of each step, summed
+  double max_speed = 0;                         // NaN if a speed became NaN
+  int sliding = 0;                              // sliding blocks after the last step
   std::array<int, kMaxCluster + 2> released{};  // blocks that broke loose then, in order
   int n_released = 0;
 };
@@ -130,13 +130,15 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       };
       auto acceleration = [&](const Array& x, const Array& v, Array& a) {
         for (int i = 1; i <= K; ++i)
-          a[i] = flagged(i, forces.acceleration<Law, Damper, false>(force(x, i), v[i], dir[i], sub));
+          a[i] =
+              flagged(i, forces.acceleration<Law, Damper, false>(force(x, i), v[i], dir[i], sub));
       };
       for (bool done = false; !done;) {
         const Array y0 = y, magnitude0 = magnitude;
         Array a;  // the first stage's accelerations, at the start of the step
         for (int i = 1; i <= K; ++i)
-          a[i] = flagged(i, forces.acceleration_given<Law, Damper, false>(force(w, i), magnitude[i], y[i], dir[i], sub));
+          a[i] = flagged(i, forces.acceleration_given<Law, Damper, false>(force(w, i), magnitude[i],
+                                                                          y[i], dir[i], sub));
         advance(acceleration, w, y, a, dt);
         t += dt;
         ++steps;
@@ -146,7 +148,8 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
         RangePowerSum power;
         for (int i = first; i <= last; ++i) {
           magnitude[i] = forces.friction_magnitude<Law>(y[i]);
-          power.add(i - first, mobile[i] * fr.step_power_given(magnitude0[i], y0[i], magnitude[i], y[i], dir[i], damper));
+          power.add(i - first, mobile[i] * fr.step_power_given(magnitude0[i], y0[i], magnitude[i],
+                                                               y[i], dir[i], damper));
         }
         dissipated += half_dt_m * power.total();
 
@@ -162,8 +165,10 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
               mobile[i] = 0.0;
               continue;
             }
-            if (y[i] == 0.0) magnitude[i] = magnitude_at_rest;  // clst91 after a crossing
-            else dir[i] = std::copysign(1.0, y[i]);
+            if (y[i] == 0.0)
+              magnitude[i] = magnitude_at_rest;  // clst91 after a crossing
+            else
+              dir[i] = std::copysign(1.0, y[i]);
             ++sliding;
             raise_max_speed(max_speed, std::abs(y[i]));
           } else {
@@ -207,9 +212,12 @@ bool run_cluster(const ChainForces& forces, ClusterRelaxation& r, Advance&& adva
   auto sized = [&]<bool FreeLeft, bool FreeRight, int Max>() {
     return [&]<int... Ks>(std::integer_sequence<int, Ks...>) {
       bool ran = false;
-      ((r.k == Ks + 1 && (ran = run_cluster_sized<Ks + 1, FreeLeft, FreeRight>(forces, r, advance), true)) || ...);
+      ((r.k == Ks + 1 &&
+        (ran = run_cluster_sized<Ks + 1, FreeLeft, FreeRight>(forces, r, advance), true)) ||
+       ...);
       return ran;
-    }(std::make_integer_sequence<int, Max>());
+    }
+    (std::make_integer_sequence<int, Max>());
   };
   if (r.free_left && r.free_right) return false;
   if (r.free_left) return sized.template operator()<true, false, kMaxClusterAtEnd>();

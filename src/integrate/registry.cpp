@@ -33,19 +33,22 @@ std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n, double t
 
 Stepper::TimeStepLimit Stepper::time_step_limit(const ModelParams& p) const {
   char why[200];
-  std::snprintf(why, sizeof why, "omega_max = %.6g, %s accepts omega_max*dt <= %g", p.max_angular_frequency(),
-                std::string(name()).c_str(), stability_constant());
+  std::snprintf(why, sizeof why, "omega_max = %.6g, %s accepts omega_max*dt <= %g",
+                p.max_angular_frequency(), std::string(name()).c_str(), stability_constant());
   return {stability_constant() / p.max_angular_frequency(), why};
 }
 
-double stability_limit(const Stepper& stepper, const ModelParams& p) { return stepper.time_step_limit(p).dt; }
+double stability_limit(const Stepper& stepper, const ModelParams& p) {
+  return stepper.time_step_limit(p).dt;
+}
 
 void check_time_step(const Stepper& stepper, const ModelParams& p, double dt) {
   const Stepper::TimeStepLimit limit = stepper.time_step_limit(p);
   if (dt > limit.dt) {
     char msg[400];
-    std::snprintf(msg, sizeof msg, "integrator.dt: %g is above the stability limit %.6g of %s for this scene (%s)", dt,
-                  limit.dt, std::string(stepper.name()).c_str(), limit.why.c_str());
+    std::snprintf(msg, sizeof msg,
+                  "integrator.dt: %g is above the stability limit %.6g of %s for this scene (%s)",
+                  dt, limit.dt, std::string(stepper.name()).c_str(), limit.why.c_str());
     throw Error(msg);
   }
 }

@@ -5,7 +5,8 @@
 
 namespace bkq {
 
-void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+               Ranges ranges) {
   const bool pad = forces.params().pad_moves();
   const double h = dt, h2 = 0.5 * dt;
   double* __restrict w = st.w.data();
@@ -14,8 +15,7 @@ void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   double* __restrict wds = wds_.data();
   double* __restrict a = a_.data();
 
-  const double ax1 =
-      evaluate(forces, sub.at(st.t), w, wd, st, st.x, st.xd, st.sum_w, ranges, a);
+  const double ax1 = evaluate(forces, sub.at(st.t), w, wd, st, st.x, st.xd, st.sum_w, ranges, a);
   for (const Range& r : ranges) {
     for (int j = r.lo; j < r.hi; ++j) {
       ws[j] = w[j] + h2 * wd[j];
@@ -24,7 +24,8 @@ void Rk2::step(const ChainForces& forces, const Substrate& sub, ChainState& st, 
   }
   const double xm = st.x + h2 * st.xd, xdm = st.xd + h2 * ax1;
   const SubstrateState sub_m = sub.at(st.t + h2);
-  forces.block_accelerations(ws, wds, st.mobile.data(), st.dir.data(), sub_m.s + (pad ? xm : 0.0), sub_m, ranges, a);
+  forces.block_accelerations(ws, wds, st.mobile.data(), st.dir.data(), sub_m.s + (pad ? xm : 0.0),
+                             sub_m, ranges, a);
   // The pad needs the sums of the block velocities at both stages (for its acceleration at
   // the midpoint and for sum_w). Each sum, taken in block order, is a chain of dependent
   // additions whose speed is set by the latency of one addition; two chains side by side

@@ -18,7 +18,8 @@ class Rk2 final : public ExplicitStepper {
   std::string_view name() const override { return "rk2"; }
   int order() const override { return 2; }
   double stability_constant() const override { return 0.5; }
-  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
+  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+            Ranges ranges) override;
   bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
 };
 

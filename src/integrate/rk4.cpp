@@ -12,7 +12,8 @@
 
 namespace bkq {
 
-void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+void Rk4::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+               Ranges ranges) {
   const bool pad = forces.params().pad_moves();
   const double h = dt, h2 = 0.5 * dt;
   double* __restrict w = st.w.data();
@@ -98,17 +99,19 @@ struct HeldStage {
 // stage sums cw, cv start, or (middle stages) they gain 2 x the stage, and the next
 // stage's positions and velocities w + c v, w' + c a go to x_out, v_out.
 template <FrictionLaw Law, bool Neighbours, bool Damper, bool First>
-void held_stage(const ChainForces& forces, const HeldStage& in, int lo, int hi, const double* __restrict w,
-                const double* __restrict wd, const double* __restrict x, const double* __restrict v, double c,
-                double* __restrict cw, double* __restrict cv, double* __restrict x_out, double* __restrict v_out) {
+void held_stage(const ChainForces& forces, const HeldStage& in, int lo, int hi,
+                const double* __restrict w, const double* __restrict wd, const double* __restrict x,
+                const double* __restrict v, double c, double* __restrict cw, double* __restrict cv,
+                double* __restrict x_out, double* __restrict v_out) {
   const double* __restrict mobile = in.mobile;
   const double* __restrict dir = in.dir;
   const double anchor = in.anchor;
   const SubstrateState frozen = in.frozen;
   for (int j = lo; j < hi; ++j) {
-    const double a = mobile[j] * forces.acceleration<Law, Damper, false>(
-                                     forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j],
-                                     dir[j], frozen);
+    const double a =
+        mobile[j] * forces.acceleration<Law, Damper, false>(
+                        forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j],
+                        dir[j], frozen);
     if constexpr (First) {
       cw[j] = v[j];
       cv[j] = a;
@@ -123,17 +126,19 @@ void held_stage(const ChainForces& forces, const HeldStage& in, int lo, int hi, 
 
 // The last stage: w += h/6 (cw + v), w' += h/6 (cv + a).
 template <FrictionLaw Law, bool Neighbours, bool Damper>
-void held_last_stage(const ChainForces& forces, const HeldStage& in, int lo, int hi, double* __restrict w,
-                     double* __restrict wd, const double* __restrict x, const double* __restrict v, double h6,
-                     const double* __restrict cw, const double* __restrict cv) {
+void held_last_stage(const ChainForces& forces, const HeldStage& in, int lo, int hi,
+                     double* __restrict w, double* __restrict wd, const double* __restrict x,
+                     const double* __restrict v, double h6, const double* __restrict cw,
+                     const double* __restrict cv) {
   const double* __restrict mobile = in.mobile;
   const double* __restrict dir = in.dir;
   const double anchor = in.anchor;
   const SubstrateState frozen = in.frozen;
   for (int j = lo; j < hi; ++j) {
-    const double a = mobile[j] * forces.acceleration<Law, Damper, false>(
-                                     forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j],
-                                     dir[j], frozen);
+    const double a =
+        mobile[j] * forces.acceleration<Law, Damper, false>(
+                        forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j],
+                        dir[j], frozen);
     const double dw = h6 * (cw[j] + v[j]);
     w[j] += dw;
     wd[j] = std::fma(h6, cv[j] + a, wd[j]);
@@ -142,10 +147,12 @@ void held_last_stage(const ChainForces& forces, const HeldStage& in, int lo, int
 
 }  // namespace
 
-void Rk4::step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+void Rk4::step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+                    Ranges ranges) {
   // The stage positions and velocities alternate between (ws_, wds_) and (ws2_, wds2_).
   const SubstrateState frozen = sub.at(st.t);
-  const HeldStage in{st.mobile.data(), st.dir.data(), frozen.s + 0.0 /* as evaluate() forms it */, frozen};
+  const HeldStage in{st.mobile.data(), st.dir.data(), frozen.s + 0.0 /* as evaluate() forms it */,
+                     frozen};
   const double h = dt, h2 = 0.5 * dt, h6 = h / 6.0;
   double* w = st.w.data();
   double* wd = st.wd.data();
@@ -153,12 +160,16 @@ void Rk4::step_held(const ChainForces& forces, const Substrate& sub, ChainState&
   double *cw = acc_w_.data(), *cv = acc_v_.data();
   forces.with_switches([&]<FrictionLaw Law, bool Neighbours, bool Damper>() {
     for (const Range& r : ranges) {
-      const int lo = r.lo + 1, hi = r.hi - 1;  // the end blocks are stuck: their stage positions are w
+      const int lo = r.lo + 1,
+                hi = r.hi - 1;  // the end blocks are stuck: their stage positions are w
       xa[r.lo] = xb[r.lo] = w[r.lo];
       xa[hi] = xb[hi] = w[hi];
-      held_stage<Law, Neighbours, Damper, true>(forces, in, lo, hi, w, wd, w, wd, h2, cw, cv, xa, va);
-      held_stage<Law, Neighbours, Damper, false>(forces, in, lo, hi, w, wd, xa, va, h2, cw, cv, xb, vb);
-      held_stage<Law, Neighbours, Damper, false>(forces, in, lo, hi, w, wd, xb, vb, h, cw, cv, xa, va);
+      held_stage<Law, Neighbours, Damper, true>(forces, in, lo, hi, w, wd, w, wd, h2, cw, cv, xa,
+                                                va);
+      held_stage<Law, Neighbours, Damper, false>(forces, in, lo, hi, w, wd, xa, va, h2, cw, cv, xb,
+                                                 vb);
+      held_stage<Law, Neighbours, Damper, false>(forces, in, lo, hi, w, wd, xb, vb, h, cw, cv, xa,
+                                                 va);
       held_last_stage<Law, Neighbours, Damper>(forces, in, lo, hi, w, wd, xa, va, h6, cw, cv);
     }
   });

@@ -15,14 +15,17 @@ class Rk4 final : public ExplicitStepper {
   std::string_view name() const override { return "rk4"; }
   int order() const override { return 4; }
   double stability_constant() const override { return 2.8; }
-  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
+  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+            Ranges ranges) override;
   // One pass per stage over each range: forces, accelerations and stage sums together,
   // with the stage positions and velocities double-buffered.
-  void step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
+  void step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+                 Ranges ranges) override;
   bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
 
  private:
-  std::vector<double> ws2_ = std::vector<double>(ws_.size()), wds2_ = std::vector<double>(ws_.size());
+  std::vector<double> ws2_ = std::vector<double>(ws_.size()),
+                      wds2_ = std::vector<double>(ws_.size());
 };
 
 }  // namespace bkq

@@ -81,7 +81,8 @@ class Stepper {
 
 // Keyword -> stepper; an unknown keyword throws bkq::Error listing the valid ones.
 // `tolerance` is the local error tolerance of the adaptive scheme (integrator.tolerance).
-std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n_blocks, double tolerance = 1e-8);
+std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n_blocks,
+                                      double tolerance = 1e-8);
 const std::vector<std::string>& stepper_keywords();
 
 // Largest stable dt for this stepper on this model: stability_constant / omega_max.
@@ -96,10 +97,12 @@ class ExplicitStepper : public Stepper {
   explicit ExplicitStepper(int n) { resize(n); }
   void resize(int n);
   // Accelerations at a stage; returns the pad's (0 when the pad is held).
-  double evaluate(const ChainForces& forces, const SubstrateState& sub, const double* w, const double* wd,
-                  const ChainState& st, double x, double xd, double sum_w, Ranges ranges, double* a) const {
+  double evaluate(const ChainForces& forces, const SubstrateState& sub, const double* w,
+                  const double* wd, const ChainState& st, double x, double xd, double sum_w,
+                  Ranges ranges, double* a) const {
     const bool pad = forces.params().pad_moves();
-    forces.block_accelerations(w, wd, st.mobile.data(), st.dir.data(), sub.s + (pad ? x : 0.0), sub, ranges, a);
+    forces.block_accelerations(w, wd, st.mobile.data(), st.dir.data(), sub.s + (pad ? x : 0.0), sub,
+                               ranges, a);
     return pad ? forces.pad_acceleration(x, xd, sum_w, sub.s) : 0.0;
   }
   // Scratch: stage positions/velocities, accelerations and RK accumulators (length N,

@@ -22,11 +22,14 @@ constexpr int kMaxSweeps = 100000;
 constexpr double kSweepTolerance = 1e-14;
 }  // namespace
 
-Theta::Theta(int n_blocks) { resize(n_blocks); }
+Theta::Theta(int n_blocks) {
+  resize(n_blocks);
+}
 
 void Theta::resize(int n) {
   n_ = n;
-  for (auto* v : {&v0_, &vn_, &impulse0_, &force_pred_, &diag0_, &a_hat_, &z_, &cp_, &q_, &inv_, &gamma_f_, &diag_f_})
+  for (auto* v : {&v0_, &vn_, &impulse0_, &force_pred_, &diag0_, &a_hat_, &z_, &cp_, &q_, &inv_,
+                  &gamma_f_, &diag_f_})
     v->assign(n, 0.0);
   start_.assign(n, 0);
   status_.assign(n, 0);
@@ -42,7 +45,8 @@ void Theta::build_segments(const ModelParams& p, Ranges ranges) {
   segments_.clear();
   for (const Range& r : ranges)
     if (r.hi > r.lo) segments_.push_back(Segment{r.lo, r.hi - r.lo, false});
-  std::sort(segments_.begin(), segments_.end(), [](const Segment& a, const Segment& b) { return a.lo < b.lo; });
+  std::sort(segments_.begin(), segments_.end(),
+            [](const Segment& a, const Segment& b) { return a.lo < b.lo; });
   // Adjacent ranges are one segment: their blocks are coupled and both move.
   std::size_t k = 0;
   for (std::size_t i = 1; i < segments_.size(); ++i) {
@@ -70,7 +74,8 @@ double Theta::neighbour_velocities(int j) const {
   return (j > 0 ? vn_[j - 1] : 0.0) + (j < n_ - 1 ? vn_[j + 1] : 0.0);
 }
 
-void Theta::prepare(const ChainForces& forces, const Substrate& sub, const ChainState& st, double dt) {
+void Theta::prepare(const ChainForces& forces, const Substrate& sub, const ChainState& st,
+                    double dt) {
   const ModelParams& p = forces.params();
   const Friction& fr = forces.friction();
   const SubstrateState s0 = sub.at(st.t), s1 = sub.at(st.t + dt);
@@ -90,7 +95,8 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   if (b_ * k0_ * s_ >= 1.0) {
     char msg[300];
     std::snprintf(msg, sizeof msg,
-                  "integrator.dt: %g is too large for theta with this velocity-weakening friction: the sliding "
+                  "integrator.dt: %g is too large for theta with this velocity-weakening friction: "
+                  "the sliding "
                   "speed is unique only for dt < 2 v_c/F0 = %.6g",
                   dt, 2.0 / (k0_ * s_));
     throw Error(msg);
@@ -111,7 +117,8 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
     // L at the start, and L+ with the new velocities left out (w+ = w + b v here).
     const double L = forces.spring_force(w, j, anchor0) - p.c_u * (v - s0.v) + m_ * s0.a;
     const double L_pred = forces.spring_force(w, j, anchor_pred) +
-                          b_ * (forces.neighbour_force(v0_.data(), j) - p.k_p * v) + p.c_u * s1.v + m_ * s1.a;
+                          b_ * (forces.neighbour_force(v0_.data(), j) - p.k_p * v) + p.c_u * s1.v +
+                          m_ * s1.a;
     double r = 0;  // friction at the start of the step
     const int d = start_[j];
     if (d == 0) {
@@ -135,7 +142,8 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   if (pad_) {
     // m_x (xd+ - xd) = b (X + X+), X the pad force; X+ with the new velocities left out.
     const double X = p.m_x * forces.pad_acceleration(st.x, st.xd, st.sum_w, s0.s);
-    const double X_pred = p.k_p * (st.sum_w + b_ * sum_v0 - p.n * s1.s - p.n * x_pred) - p.k_p0 * x_pred;
+    const double X_pred =
+        p.k_p * (st.sum_w + b_ * sum_v0 - p.n * s1.s - p.n * x_pred) - p.k_p0 * x_pred;
     pad_col_ = b_ * b_ * kp_;
     pad_diag_ = p.m_x + b_ * p.c_p + b_ * b_ * (p.n * p.k_p + p.k_p0);
     pad_rhs_ = p.m_x * st.xd + b_ * (X + X_pred);
@@ -143,7 +151,9 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   // The last factorisation serves this step if the matrix is the same but for friction slopes.
   factored_ = factored_ && segments_ == segments_f_ && link_ == link_f_ && pad_col_ == pad_col_f_ &&
               pad_diag_ == pad_diag_f_;
-  for_each_block([&](int j) { factored_ = factored_ && diag0_[j] == diag_f_[j] && status_[j] == status_f_[j]; });
+  for_each_block([&](int j) {
+    factored_ = factored_ && diag0_[j] == diag_f_[j] && status_[j] == status_f_[j];
+  });
 }
 
 Theta::Load Theta::load(int j) const {
@@ -159,7 +169,7 @@ int Theta::decide(int j, Load l) const {
   const bool holds = backslip_ ? std::abs(l.f) <= thr_ : l.f <= thr_;
   const int d = start_[j];
   if (d != 0 && d * l.c > kinetic) return d;  // keeps sliding
-  if (holds) return 0;                         // stays stuck, or stops and sticks
+  if (holds) return 0;                        // stays stuck, or stops and sticks
   // Friction cannot hold the block: it slides the way it is pulled, if the step's momentum
   // allows a speed that way (when it does not, the pull reversed while the block was
   // stopping: it is left stuck for this step and breaks loose at the next).
@@ -376,7 +386,8 @@ void Theta::finish(ChainState& st, double dt) {
   st.t += dt;
 }
 
-void Theta::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+void Theta::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+                 Ranges ranges) {
   const ModelParams& p = forces.params();
   if (p.n != n_) resize(p.n);
   build_segments(p, ranges);
@@ -391,7 +402,8 @@ Stepper::TimeStepLimit Theta::time_step_limit(const ModelParams& p) const {
   if (slope <= 0) return {HUGE_VAL, "theta is unconditionally stable on the linear part"};
   // Strictly below: step() needs dt * slope / 2 < 1.
   return {std::nextafter(2.0 / slope, 0.0),
-          "theta: the sliding speed under velocity-weakening friction is unique only for dt < 2 v_c/F0"};
+          "theta: the sliding speed under velocity-weakening friction is unique only for dt < 2 "
+          "v_c/F0"};
 }
 
 }  // namespace bkq

@@ -95,7 +95,8 @@ class Theta final : public Stepper {
   StickRule stick_rule() const override { return StickRule::Projection; }
   // No linear limit; under velocity-weakening friction dt must stay below 2 v_c/F0.
   TimeStepLimit time_step_limit(const ModelParams& p) const override;
-  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
+  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+            Ranges ranges) override;
 
   // Active-set rounds before falling back to projected Gauss–Seidel (0: Gauss–Seidel only).
   void set_max_active_set_iterations(int k) { max_active_set_ = k; }
@@ -145,12 +146,12 @@ class Theta final : public Stepper {
 
   // Per block (indexed by block number; v0_ and vn_ are zero outside the ranges between
   // steps, so neighbour sums over them see held blocks at rest).
-  std::vector<double> v0_;     // velocity at the start of the step
-  std::vector<double> vn_;     // iterate of the velocity at the end
+  std::vector<double> v0_;          // velocity at the start of the step
+  std::vector<double> vn_;          // iterate of the velocity at the end
   std::vector<double> impulse0_;    // m v + b (L + r) at the start of the step
   std::vector<double> force_pred_;  // L at the end with the new velocities left out
-  std::vector<double> diag0_;  // D_j
-  std::vector<double> a_hat_;  // sliding speed the friction is linearised about
+  std::vector<double> diag0_;       // D_j
+  std::vector<double> a_hat_;       // sliding speed the friction is linearised about
   // The factorisation of the linear system (kept across iterations and steps while the
   // matrix stays the same but for the friction slopes gamma_f it was made with): pad
   // column z = T^-1 e, Thomas factors, cyclic correction q = A^-1 u.
@@ -167,7 +168,8 @@ class Theta final : public Stepper {
   double kc_ = 0, kp_ = 0;
   double link_ = 0;  // b^2 k_c, a row's coupling to a neighbour (doubled for a periodic pair)
   double thr_ = 0, k0_ = 0, s_ = 0;
-  bool backslip_ = true, frictionless_ = false, pad_ = false, periodic_ = false, neighbours_ = false;
+  bool backslip_ = true, frictionless_ = false, pad_ = false, periodic_ = false,
+       neighbours_ = false;
   double pad_diag_ = 1, pad_rhs_ = 0, pad_col_ = 0, xdn_ = 0;
 };
 

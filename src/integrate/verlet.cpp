@@ -5,15 +5,15 @@
 
 namespace bkq {
 
-void Verlet::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) {
+void Verlet::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+                  Ranges ranges) {
   const ModelParams& p = forces.params();
   const bool pad = p.pad_moves();
-  const bool velocity_dependent =
-      p.law != FrictionLaw::None || p.c_u != 0 || (pad && p.c_p != 0);
+  const bool velocity_dependent = p.law != FrictionLaw::None || p.c_u != 0 || (pad && p.c_p != 0);
   const double h = dt, h2 = 0.5 * dt;
   double* __restrict w = st.w.data();
   double* __restrict wd = st.wd.data();
-  double* __restrict wh = wds_.data();  // half-step velocity
+  double* __restrict wh = wds_.data();    // half-step velocity
   double* __restrict wp = acc_v_.data();  // predicted end velocity
   double* __restrict a = a_.data();
 
@@ -55,22 +55,24 @@ bool Verlet::relax_cluster(const ChainForces& forces, ClusterRelaxation& r) cons
   // keep the test).
   const ModelParams& p = forces.params();
   const bool velocity_dependent = p.law != FrictionLaw::None || p.c_u != 0;
-  return run_cluster(forces, r, [velocity_dependent](const auto& acceleration, auto& w, auto& wd, auto& a,
-                                                     double h) {
-    constexpr int k = static_cast<int>(std::tuple_size_v<std::remove_reference_t<decltype(w)>>) - 2;
-    const double h2 = 0.5 * h;
-    auto wh = wd, wp = wd;
-    for (int i = 1; i <= k; ++i) {
-      wh[i] = wd[i] + h2 * a[i];
-      w[i] += h * wh[i];
-    }
-    acceleration(w, wh, a);
-    if (velocity_dependent) {
-      for (int i = 1; i <= k; ++i) wp[i] = wh[i] + h2 * a[i];
-      acceleration(w, wp, a);
-    }
-    for (int i = 1; i <= k; ++i) wd[i] = wh[i] + h2 * a[i];
-  });
+  return run_cluster(
+      forces, r,
+      [velocity_dependent](const auto& acceleration, auto& w, auto& wd, auto& a, double h) {
+        constexpr int k =
+            static_cast<int>(std::tuple_size_v<std::remove_reference_t<decltype(w)>>) - 2;
+        const double h2 = 0.5 * h;
+        auto wh = wd, wp = wd;
+        for (int i = 1; i <= k; ++i) {
+          wh[i] = wd[i] + h2 * a[i];
+          w[i] += h * wh[i];
+        }
+        acceleration(w, wh, a);
+        if (velocity_dependent) {
+          for (int i = 1; i <= k; ++i) wp[i] = wh[i] + h2 * a[i];
+          acceleration(w, wp, a);
+        }
+        for (int i = 1; i <= k; ++i) wd[i] = wh[i] + h2 * a[i];
+      });
 }
 
 }  // namespace bkq

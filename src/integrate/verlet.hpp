@@ -17,7 +17,8 @@ class Verlet final : public ExplicitStepper {
   std::string_view name() const override { return "verlet"; }
   int order() const override { return 2; }
   double stability_constant() const override { return 2.0; }
-  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override;
+  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+            Ranges ranges) override;
   bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
 };
 

@@ -20,7 +20,9 @@ const std::vector<ColumnSpec>& catalog_schema() {
       {"pad_displacement", "length", "change of the pad position over the event (0 for bk)"},
       {"first_block", "", "lowest block index that slipped"},
       {"last_block", "", "highest block index that slipped"},
-      {"energy_residual", "1", "(change of stored energy + work against friction and dampers) / that work; 0 for an exact integration"},
+      {"energy_residual", "1",
+       "(change of stored energy + work against friction and dampers) / that work; 0 for an exact "
+       "integration"},
   };
   return schema;
 }

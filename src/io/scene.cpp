@@ -155,7 +155,8 @@ std::vector<ParamSpec> make_table() {
       real("run.initial_disorder", "0.01", '[', 0, 10, ']', "D0",
            "initial displacements uniform in +-value*D0, D0 = F0 m_u / k_p"),
       integer("run.max_steps_per_event", "200000000", 1, 1e15, "",
-              "give up on an event after this many relaxation steps (a runaway: dt or the scene is wrong)"),
+              "give up on an event after this many relaxation steps (a runaway: dt or the scene is "
+              "wrong)"),
       integer("run.checkpoint_events", "0", 0, 1e12, "",
               "write a checkpoint every this many events (0 = off)"),
       real("run.checkpoint_seconds", "600", '[', 0, kInf, ')', "wall s",

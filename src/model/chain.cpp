@@ -19,9 +19,10 @@ ChainForces::ChainForces(const ModelParams& p) : p_(p), friction_(p), inv_m_(1.0
 }
 
 template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
-void ChainForces::kernel(const ChainForces& self, const double* __restrict w, const double* __restrict wd,
-                         const double* __restrict mobile, const double* __restrict dir, double anchor,
-                         const SubstrateState& sub, int lo, int hi, double* __restrict a) {
+void ChainForces::kernel(const ChainForces& self, const double* __restrict w,
+                         const double* __restrict wd, const double* __restrict mobile,
+                         const double* __restrict dir, double anchor, const SubstrateState& sub,
+                         int lo, int hi, double* __restrict a) {
   const int n = self.p_.n;
   // The chain ends (and the periodic wrap) go through the scalar path.
   auto at = [&](int j, double f) {
@@ -36,7 +37,8 @@ void ChainForces::kernel(const ChainForces& self, const double* __restrict w, co
     hi = n - 1;
   }
   // Interior blocks: branch-free so the compiler vectorises it.
-  for (int j = lo; j < hi; ++j) at(j, self.interior_force<Neighbours>(w[j - 1], w[j], w[j + 1], anchor));
+  for (int j = lo; j < hi; ++j)
+    at(j, self.interior_force<Neighbours>(w[j - 1], w[j], w[j + 1], anchor));
 }
 
 ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
@@ -45,8 +47,9 @@ ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
   });
 }
 
-void ChainForces::block_accelerations(const double* w, const double* wd, const double* mobile, const double* dir,
-                                      double anchor, const SubstrateState& sub, Ranges ranges, double* a) const {
+void ChainForces::block_accelerations(const double* w, const double* wd, const double* mobile,
+                                      const double* dir, double anchor, const SubstrateState& sub,
+                                      Ranges ranges, double* a) const {
   const Kernel k = sub.a != 0.0 ? kernel_inertial_ : kernel_;
   for (const Range& r : ranges) k(*this, w, wd, mobile, dir, anchor, sub, r.lo, r.hi, a);
 }

@@ -111,13 +111,17 @@ class ChainForces {
   }
   // The same with |phi(y)| already known (friction_magnitude), bit for bit.
   template <FrictionLaw Law, bool Damper, bool Inertial>
-  double acceleration_given(double f, double magnitude, double y, double dir, const SubstrateState& sub) const;
+  double acceleration_given(double f, double magnitude, double y, double dir,
+                            const SubstrateState& sub) const;
   // |phi(y)| as acceleration() forms it (Friction::magnitude_at for the law).
   template <FrictionLaw Law>
   double friction_magnitude(double y) const {
-    if constexpr (Law == FrictionLaw::None) return 0.0;
-    else if constexpr (Law == FrictionLaw::Clst91) return friction_.magnitude(std::max(y, 0.0));
-    else return friction_.magnitude(std::abs(y));
+    if constexpr (Law == FrictionLaw::None)
+      return 0.0;
+    else if constexpr (Law == FrictionLaw::Clst91)
+      return friction_.magnitude(std::max(y, 0.0));
+    else
+      return friction_.magnitude(std::abs(y));
   }
   // Calls `f.template operator()<Law, Neighbours, Damper>()` with the scene's switches as
   // compile-time constants, so the code it instantiates computes only what is on.
@@ -125,8 +129,9 @@ class ChainForces {
   decltype(auto) with_switches(F&& f) const;
 
   // Block accelerations a[j] for every j in `ranges`; stuck blocks get exactly 0.
-  void block_accelerations(const double* w, const double* wd, const double* mobile, const double* dir,
-                           double anchor, const SubstrateState& sub, Ranges ranges, double* a) const;
+  void block_accelerations(const double* w, const double* wd, const double* mobile,
+                           const double* dir, double anchor, const SubstrateState& sub,
+                           Ranges ranges, double* a) const;
 
   // Pad acceleration given the sum of w over all blocks.
   double pad_acceleration(double x, double xd, double sum_w, double s) const {
@@ -143,11 +148,12 @@ class ChainForces {
   double kinetic_energy(const ChainState& st, double v) const;
 
  private:
-  using Kernel = void (*)(const ChainForces&, const double*, const double*, const double*, const double*,
-                          double, const SubstrateState&, int, int, double*);
+  using Kernel = void (*)(const ChainForces&, const double*, const double*, const double*,
+                          const double*, double, const SubstrateState&, int, int, double*);
   template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
-  static void kernel(const ChainForces& self, const double* w, const double* wd, const double* mobile,
-                     const double* dir, double anchor, const SubstrateState& sub, int lo, int hi, double* a);
+  static void kernel(const ChainForces& self, const double* w, const double* wd,
+                     const double* mobile, const double* dir, double anchor,
+                     const SubstrateState& sub, int lo, int hi, double* a);
   Kernel select_kernel(bool inertial) const;
 
   ModelParams p_;
@@ -177,14 +183,21 @@ decltype(auto) ChainForces::with_switches(F&& f) const {
   const bool nb = p_.has_neighbours();
   const bool damper = p_.c_u != 0;
   auto pick = [&]<FrictionLaw L>() -> decltype(auto) {
-    if (nb) return damper ? f.template operator()<L, true, true>() : f.template operator()<L, true, false>();
-    return damper ? f.template operator()<L, false, true>() : f.template operator()<L, false, false>();
+    if (nb)
+      return damper ? f.template operator()<L, true, true>()
+                    : f.template operator()<L, true, false>();
+    return damper ? f.template operator()<L, false, true>()
+                  : f.template operator()<L, false, false>();
   };
   switch (p_.law) {
-    case FrictionLaw::Thesis: return pick.template operator()<FrictionLaw::Thesis>();
-    case FrictionLaw::Clst91: return pick.template operator()<FrictionLaw::Clst91>();
-    case FrictionLaw::Cl89: return pick.template operator()<FrictionLaw::Cl89>();
-    case FrictionLaw::None: break;
+    case FrictionLaw::Thesis:
+      return pick.template operator()<FrictionLaw::Thesis>();
+    case FrictionLaw::Clst91:
+      return pick.template operator()<FrictionLaw::Clst91>();
+    case FrictionLaw::Cl89:
+      return pick.template operator()<FrictionLaw::Cl89>();
+    case FrictionLaw::None:
+      break;
   }
   return pick.template operator()<FrictionLaw::None>();
 }

@@ -37,9 +37,12 @@ class DampedOscillator {
 
   double position(double t) const {
     switch (regime_) {
-      case Under: return std::exp(-gamma_ * t) * (a_ * std::cos(wd_ * t) + b_ * std::sin(wd_ * t));
-      case Over: return a_ * std::exp(l1_ * t) + b_ * std::exp(l2_ * t);
-      case Critical: return (a_ + b_ * t) * std::exp(-gamma_ * t);
+      case Under:
+        return std::exp(-gamma_ * t) * (a_ * std::cos(wd_ * t) + b_ * std::sin(wd_ * t));
+      case Over:
+        return a_ * std::exp(l1_ * t) + b_ * std::exp(l2_ * t);
+      case Critical:
+        return (a_ + b_ * t) * std::exp(-gamma_ * t);
     }
     return 0;
   }
@@ -49,16 +52,20 @@ class DampedOscillator {
         const double e = std::exp(-gamma_ * t), c = std::cos(wd_ * t), s = std::sin(wd_ * t);
         return e * ((b_ * wd_ - gamma_ * a_) * c - (a_ * wd_ + gamma_ * b_) * s);
       }
-      case Over: return a_ * l1_ * std::exp(l1_ * t) + b_ * l2_ * std::exp(l2_ * t);
-      case Critical: return (b_ - gamma_ * (a_ + b_ * t)) * std::exp(-gamma_ * t);
+      case Over:
+        return a_ * l1_ * std::exp(l1_ * t) + b_ * l2_ * std::exp(l2_ * t);
+      case Critical:
+        return (b_ - gamma_ * (a_ + b_ * t)) * std::exp(-gamma_ * t);
     }
     return 0;
   }
   // An upper bound of |xi(tau)| for every tau >= t (non-increasing in t).
   double bound_after(double t) const {
     switch (regime_) {
-      case Under: return std::exp(-gamma_ * t) * std::hypot(a_, b_);
-      case Over: return std::abs(a_) * std::exp(l1_ * t) + std::abs(b_) * std::exp(l2_ * t);
+      case Under:
+        return std::exp(-gamma_ * t) * std::hypot(a_, b_);
+      case Over:
+        return std::abs(a_) * std::exp(l1_ * t) + std::abs(b_) * std::exp(l2_ * t);
       case Critical: {
         const double a = std::abs(a_), b = std::abs(b_);
         const double peak = b > 0 && gamma_ > 0 ? 1.0 / gamma_ - a / b : t;
@@ -71,9 +78,12 @@ class DampedOscillator {
   // A time step that resolves every extremum of xi (1/16 of the fastest time scale).
   double resolution() const {
     switch (regime_) {
-      case Under: return std::min(M_PI / wd_, gamma_ > 0 ? 1.0 / gamma_ : HUGE_VAL) / 16.0;
-      case Over: return 1.0 / (16.0 * std::abs(l2_));
-      case Critical: return 1.0 / (16.0 * gamma_);
+      case Under:
+        return std::min(M_PI / wd_, gamma_ > 0 ? 1.0 / gamma_ : HUGE_VAL) / 16.0;
+      case Over:
+        return 1.0 / (16.0 * std::abs(l2_));
+      case Critical:
+        return 1.0 / (16.0 * gamma_);
     }
     return 1;
   }

@@ -47,13 +47,16 @@ struct Friction {
     return step_power_given(magnitude_at(y0), y0, magnitude_at(y1), y1, dir, damper);
   }
   // The same with the magnitudes m0 = magnitude_at(y0), m1 = magnitude_at(y1) known.
-  double step_power_given(double m0, double y0, double m1, double y1, double dir, double damper) const {
+  double step_power_given(double m0, double y0, double m1, double y1, double dir,
+                          double damper) const {
     auto force = [&](double m) { return backslip ? m * dir : m; };
     const double friction = std::fma(force(m0), y0, force(m1) * y1);
     return std::fma(damper, std::fma(y0, y0, y1 * y1), friction);
   }
   // |phi(y)| at relative velocity y as the law sees it (clst91 only opposes y > 0).
-  double magnitude_at(double y) const { return magnitude(backslip ? std::abs(y) : std::max(y, 0.0)); }
+  double magnitude_at(double y) const {
+    return magnitude(backslip ? std::abs(y) : std::max(y, 0.0));
+  }
 
   // The Crossing rule (integrate/stepper.hpp) for a block that slid through a step with
   // its velocity going from y0 to y1: true if friction stops it (the caller zeroes y1 and

@@ -12,7 +12,9 @@ namespace bkq {
 namespace {
 
 // Critical damping of a mass m on a spring k is 2 sqrt(k m); zeta scales it (thesis §3.1).
-double damper(double zeta, double k, double m) { return zeta * 2.0 * std::sqrt(k * m); }
+double damper(double zeta, double k, double m) {
+  return zeta * 2.0 * std::sqrt(k * m);
+}
 
 }  // namespace
 
@@ -44,9 +46,9 @@ ModelParams model_from_scene(const Scene& scene) {
 
   const std::string& law = scene.choice("friction.law");
   p.law = law == "thesis" ? FrictionLaw::Thesis
-          : law == "cl89"  ? FrictionLaw::Cl89
-          : law == "none"  ? FrictionLaw::None
-                           : FrictionLaw::Clst91;
+          : law == "cl89" ? FrictionLaw::Cl89
+          : law == "none" ? FrictionLaw::None
+                          : FrictionLaw::Clst91;
   p.sigma = scene.real("friction.sigma");
 
   const double s_m = scene.real("model.s_m");
@@ -90,19 +92,26 @@ ModelParams model_from_scene(const Scene& scene) {
 
 const char* to_string(ModelKind k) {
   switch (k) {
-    case ModelKind::BK: return "bk";
-    case ModelKind::BKP: return "bkp";
-    case ModelKind::OneDof: return "1dof";
+    case ModelKind::BK:
+      return "bk";
+    case ModelKind::BKP:
+      return "bkp";
+    case ModelKind::OneDof:
+      return "1dof";
   }
   return "?";
 }
 
 const char* to_string(FrictionLaw f) {
   switch (f) {
-    case FrictionLaw::Thesis: return "thesis";
-    case FrictionLaw::Clst91: return "clst91";
-    case FrictionLaw::Cl89: return "cl89";
-    case FrictionLaw::None: return "none";
+    case FrictionLaw::Thesis:
+      return "thesis";
+    case FrictionLaw::Clst91:
+      return "clst91";
+    case FrictionLaw::Cl89:
+      return "cl89";
+    case FrictionLaw::None:
+      return "none";
   }
   return "?";
 }

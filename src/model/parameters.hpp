@@ -29,9 +29,9 @@ struct ModelParams {
   double c_p = 0;   // pad damper (BKP)
 
   FrictionLaw law = FrictionLaw::Clst91;
-  double F0 = 1;      // static threshold per unit block mass: stuck while |f| <= F0*m_u
-  double sigma = 0;   // drop from static to kinetic friction
-  double v_c = 1e300; // characteristic velocity (Carlson–Langer: 1/(2 alpha)); huge = flat law
+  double F0 = 1;       // static threshold per unit block mass: stuck while |f| <= F0*m_u
+  double sigma = 0;    // drop from static to kinetic friction
+  double v_c = 1e300;  // characteristic velocity (Carlson–Langer: 1/(2 alpha)); huge = flat law
 
   bool pad_moves() const { return kind == ModelKind::BKP; }
   bool has_neighbours() const { return k_c != 0 && n > 1; }

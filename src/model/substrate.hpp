@@ -47,12 +47,15 @@ class Substrate {
 
   SubstrateState at(double t) const {
     switch (kind_) {
-      case Kind::Frozen: return {s0_, 0.0, 0.0};
-      case Kind::Constant: return {v0_ * t, v0_, 0.0};
+      case Kind::Frozen:
+        return {s0_, 0.0, 0.0};
+      case Kind::Constant:
+        return {v0_ * t, v0_, 0.0};
       case Kind::Steps: {
         // v = v0 + k inc on [k I, (k+1) I); s integrates it piecewise.
         const double k = std::floor(t / interval_);
-        const double s = v0_ * t + inc_ * (interval_ * k * (k - 1.0) / 2.0 + k * (t - k * interval_));
+        const double s =
+            v0_ * t + inc_ * (interval_ * k * (k - 1.0) / 2.0 + k * (t - k * interval_));
         return {s, v0_ + k * inc_, 0.0};
       }
       case Kind::Ramp: {

@@ -44,8 +44,8 @@ bool CatalogReader::next(CatalogEvent& e) {
       return static_cast<int>(v);
     };
     e = CatalogEvent{};
-    e.event = c_event_ >= 0 ? csv::parse_int(field(c_event_), file_, lineno_, "event")
-                            : events_ + 1;
+    e.event =
+        c_event_ >= 0 ? csv::parse_int(field(c_event_), file_, lineno_, "event") : events_ + 1;
     if (c_load_ >= 0) e.load = csv::parse_double(field(c_load_), file_, lineno_, "load");
     if (c_blocks_ >= 0) e.blocks = as_int(c_blocks_, "blocks");
     if (c_first_ >= 0) e.first_block = as_int(c_first_, "first_block");
@@ -69,8 +69,7 @@ bool CatalogReader::next(CatalogEvent& e) {
 }
 
 void require_events_to_fit(const std::string& file, std::int64_t n) {
-  if (n < 2)
-    throw Error(file + ": need at least 2 events to fit, found " + std::to_string(n));
+  if (n < 2) throw Error(file + ": need at least 2 events to fit, found " + std::to_string(n));
 }
 
 }  // namespace bkq

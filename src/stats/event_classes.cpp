@@ -13,9 +13,12 @@ Boundary parse_boundary(const std::string& text) {
 
 const char* to_string(EventClass c) {
   switch (c) {
-    case EventClass::single_block: return "single_block";
-    case EventClass::localised: return "localised";
-    case EventClass::delocalised: return "delocalised";
+    case EventClass::single_block:
+      return "single_block";
+    case EventClass::localised:
+      return "localised";
+    case EventClass::delocalised:
+      return "delocalised";
   }
   return "?";
 }
@@ -30,9 +33,15 @@ EventClass classify_event(int blocks, int first_block, int last_block, int n, Bo
 
 void EventClassCounts::add(EventClass c) {
   switch (c) {
-    case EventClass::single_block: ++single_block; break;
-    case EventClass::localised: ++localised; break;
-    case EventClass::delocalised: ++delocalised; break;
+    case EventClass::single_block:
+      ++single_block;
+      break;
+    case EventClass::localised:
+      ++localised;
+      break;
+    case EventClass::delocalised:
+      ++delocalised;
+      break;
   }
 }
 

@@ -17,18 +17,30 @@ std::string fixed(double x, int digits = 4) {
   std::snprintf(buf, sizeof buf, "%.*f", digits, x);
   return buf;
 }
-std::string pm(double b, double err) { return fixed(b) + " +/- " + fixed(err); }
+std::string pm(double b, double err) {
+  return fixed(b) + " +/- " + fixed(err);
+}
 }  // namespace
 
 std::string json_string(const std::string& s) {
   std::string out = "\"";
   for (const char c : s) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char buf[8];
@@ -42,7 +54,9 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-std::string json_number(double x) { return std::isfinite(x) ? csv::format_double(x) : "null"; }
+std::string json_number(double x) {
+  return std::isfinite(x) ? csv::format_double(x) : "null";
+}
 
 JsonObject& JsonObject::add(const std::string& key, double x) {
   raw_.emplace_back(key, json_number(x));
@@ -143,11 +157,13 @@ std::string gr_fit_table(const GrFit& f) {
   t += "events            " + std::to_string(f.n_total) + "\n";
   t += "window            [" + fixed(f.mu_min, 3) + ", " + fixed(f.mu_max, 3) + ")  " +
        std::to_string(f.n_in_window) + " events, " +
-       (f.window_auto ? (f.mu_max_auto ? "mu_min and mu_max by KS scan" : "mu_min by KS scan (Clauset et al. 2009)")
+       (f.window_auto ? (f.mu_max_auto ? "mu_min and mu_max by KS scan"
+                                       : "mu_min by KS scan (Clauset et al. 2009)")
                       : (f.mu_max_auto ? "mu_min given, mu_max by KS scan" : "mu_min given")) +
        (f.truncated ? ", truncated at mu_max" : "") + "\n";
   t += "bin width         " + fixed(f.bin_width, 3) + "\n";
-  t += "b  binned MLE     " + pm(f.b_mle, f.b_mle_err) + "   (Tinti & Mulargia 1987; Shi & Bolt error)\n";
+  t += "b  binned MLE     " + pm(f.b_mle, f.b_mle_err) +
+       "   (Tinti & Mulargia 1987; Shi & Bolt error)\n";
   if (std::isnan(f.b_aki))
     t += "b  unbinned MLE   n/a (needs the magnitudes themselves, not a histogram)\n";
   else
@@ -156,8 +172,8 @@ std::string gr_fit_table(const GrFit& f) {
   t += "KS distance       " + fixed(f.ks_distance) + "\n";
   if (f.two_law_ok)
     t += "two power laws    b1 = " + fixed(f.two_law_b1) + ", b2 = " + fixed(f.two_law_b2) +
-         ", crossover mu~ = " + fixed(f.two_law_mu_cross, 3) + " (M~ = " +
-         fixed(f.two_law_moment_cross, 3) + ")   (thesis eq. 2.10)\n";
+         ", crossover mu~ = " + fixed(f.two_law_mu_cross, 3) +
+         " (M~ = " + fixed(f.two_law_moment_cross, 3) + ")   (thesis eq. 2.10)\n";
   else
     t += "two power laws    not fitted\n";
   if (f.excess_found)

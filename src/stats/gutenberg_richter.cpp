@@ -35,8 +35,8 @@ double h_prime(double x) {
 // Mean of (mu - a) and its derivative for the four models. D = window length, w = bin
 // width (0: continuous). Binned means are of (bin centre - first bin centre).
 struct Model {
-  double D;       // +inf when untruncated
-  double w;       // 0 when unbinned
+  double D;  // +inf when untruncated
+  double w;  // 0 when unbinned
   double m(double b) const {
     const double cont = std::isinf(D) ? 1 / b : D * h(b * D);
     return w > 0 ? cont - w * h(b * w) : cont;
@@ -111,7 +111,9 @@ Line weighted_line(const std::vector<double>& x, const std::vector<double>& y,
   return l;
 }
 
-std::string fmt(double x) { return csv::format_double(x); }
+std::string fmt(double x) {
+  return csv::format_double(x);
+}
 
 }  // namespace
 
@@ -124,12 +126,13 @@ BEstimate aki_mle(std::span<const double> mu, double mu_min, std::optional<doubl
       sum += m - mu_min;
     }
   if (n < 2)
-    throw Error("fit window [" + fmt(mu_min) + ", " + (mu_max ? fmt(*mu_max) : "inf") +
-                ") holds " + std::to_string(n) + " events; need at least 2");
+    throw Error("fit window [" + fmt(mu_min) + ", " + (mu_max ? fmt(*mu_max) : "inf") + ") holds " +
+                std::to_string(n) + " events; need at least 2");
   const double mean = sum / static_cast<double>(n);
   double var_sum = 0;
   for (double m : mu)
-    if (m >= mu_min && (!mu_max || m < *mu_max)) var_sum += (m - mu_min - mean) * (m - mu_min - mean);
+    if (m >= mu_min && (!mu_max || m < *mu_max))
+      var_sum += (m - mu_min - mean) * (m - mu_min - mean);
   const Model model{mu_max ? *mu_max - mu_min : kInf, 0};
   return estimate(model, n, mean, var_sum);
 }
@@ -198,7 +201,8 @@ double tail_excess_p(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
     const double s_fit = fitted_survival(b, w, i, J, truncated);
     const double expected = static_cast<double>(n) * s_fit;
     if (static_cast<double>(above) <= expected) continue;
-    p_min = std::min(p_min, expected > 0 ? boost::math::gamma_p(static_cast<double>(above), expected) : 0.0);
+    p_min = std::min(
+        p_min, expected > 0 ? boost::math::gamma_p(static_cast<double>(above), expected) : 0.0);
   }
   return p_min;
 }
@@ -250,7 +254,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     const std::int64_t hi_last = k_hi_given.value_or(h.last_bin());
     for (std::int64_t lo = lo_first; lo <= lo_last; ++lo) {
       if (!k_lo_given && h.count(lo) == 0) continue;
-      for (std::int64_t hi = std::max(hi_first, lo + opt.min_window_bins - 1); hi <= hi_last; ++hi) {
+      for (std::int64_t hi = std::max(hi_first, lo + opt.min_window_bins - 1); hi <= hi_last;
+           ++hi) {
         if (!k_hi_given && h.count(hi) == 0) continue;
         const std::int64_t n = h.count_range(lo, hi);
         if (n < opt.min_tail) continue;
@@ -272,8 +277,9 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
                         " bins: window spans the populated range");
     } else if (mu_max) {
       // Upper end fixed: Clauset, Shalizi & Newman 2009, the smallest KS distance wins.
-      const auto best = std::min_element(cands.begin(), cands.end(),
-                                         [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
+      const auto best =
+          std::min_element(cands.begin(), cands.end(),
+                           [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
       k_lo = best->lo;
     } else {
       // Upper end free: the widest window whose KS distance is within
@@ -283,7 +289,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       const bool any_tail_ok =
           std::any_of(cands.begin(), cands.end(), [](const Candidate& c) { return c.tail_ok; });
       if (!any_tail_ok)
-        f.notes.push_back("every candidate window shows an excess of large events over its own fit");
+        f.notes.push_back(
+            "every candidate window shows an excess of large events over its own fit");
       double d_best = kInf;
       for (const auto& c : cands)
         if (c.tail_ok || !any_tail_ok) d_best = std::min(d_best, c.d);
@@ -292,7 +299,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
         if (any_tail_ok && !c.tail_ok) continue;
         if (c.d > d_best + opt.ks_tolerance / std::sqrt(static_cast<double>(c.n))) continue;
         if (!pick || c.hi - c.lo > pick->hi - pick->lo ||
-            (c.hi - c.lo == pick->hi - pick->lo && (c.n > pick->n || (c.n == pick->n && c.d < pick->d))))
+            (c.hi - c.lo == pick->hi - pick->lo &&
+             (c.n > pick->n || (c.n == pick->n && c.d < pick->d))))
           pick = &c;
       }
       k_lo = pick->lo;
@@ -301,8 +309,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   }
   f.truncated = truncated_at(k_hi);
   if (k_hi < k_lo)
-    throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) +
-                ") is empty");
+    throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) + ") is empty");
   f.mu_min = h.mu_low(k_lo);
   f.mu_max = h.mu_high(k_hi);
   f.n_in_window = h.count_range(k_lo, k_hi);
@@ -310,7 +317,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   const BEstimate e = binned_mle(h, k_lo, k_hi, f.truncated);
   f.b_mle = e.b;
   f.b_mle_err = e.err;
-  if (!std::isfinite(e.b)) f.notes.push_back("b_mle is unbounded: the window's events fill one bin");
+  if (!std::isfinite(e.b))
+    f.notes.push_back("b_mle is unbounded: the window's events fill one bin");
   f.ks_distance = ks_distance_binned(h, k_lo, k_hi, e.b, f.truncated);
   const double nw = static_cast<double>(f.n_in_window);
   f.ln_A = std::log(nw) + f.b_mle * f.mu_min;
@@ -397,8 +405,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       f.excess_mu = h.mu_low(k);
       f.excess_observed = h.R(k);
       f.excess_expected = std::exp(f.ln_A - f.b_mle * h.mu_low(k));
-      f.excess_count = std::max(f.excess_count,
-                                static_cast<double>(f.excess_observed) - f.excess_expected);
+      f.excess_count =
+          std::max(f.excess_count, static_cast<double>(f.excess_observed) - f.excess_expected);
     }
   }
   return f;

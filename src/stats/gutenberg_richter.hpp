@@ -95,8 +95,8 @@ struct GrFit {
   // Window [mu_min, mu_max] (whole bins).
   double mu_min = 0;
   double mu_max = 0;
-  bool window_auto = false;   // mu_min chosen by the KS scan
-  bool mu_max_auto = false;   // mu_max chosen by the KS scan (not given)
+  bool window_auto = false;  // mu_min chosen by the KS scan
+  bool mu_max_auto = false;  // mu_max chosen by the KS scan (not given)
   // Truncated likelihoods: mu_max was given, or the automatic window ends below the
   // largest populated bin.
   bool truncated = false;
@@ -116,20 +116,20 @@ struct GrFit {
   double ks_distance = 0;
   // Two power laws (thesis eq. 2.10).
   bool two_law_ok = false;
-  double two_law_b1 = 0;         // slope below the crossover (localised events)
-  double two_law_b2 = 0;         // slope above the crossover (delocalised events)
-  double two_law_mu_cross = 0;   // crossover magnitude mu~ = ln M~ (a bin edge)
+  double two_law_b1 = 0;            // slope below the crossover (localised events)
+  double two_law_b2 = 0;            // slope above the crossover (delocalised events)
+  double two_law_mu_cross = 0;      // crossover magnitude mu~ = ln M~ (a bin edge)
   double two_law_moment_cross = 0;  // M~
-  double two_law_ln_A1 = 0;      // ln A: D(mu~) of the lower branch
-  double two_law_ln_A2 = 0;      // ln A': D(mu*) of the upper branch at the upper cutoff
-  double two_law_mu_low = 0;     // ln M1, lower cutoff (fit range start)
-  double two_law_mu_high = 0;    // ln M*, upper cutoff (fit range end)
+  double two_law_ln_A1 = 0;         // ln A: D(mu~) of the lower branch
+  double two_law_ln_A2 = 0;         // ln A': D(mu*) of the upper branch at the upper cutoff
+  double two_law_mu_low = 0;        // ln M1, lower cutoff (fit range start)
+  double two_law_mu_high = 0;       // ln M*, upper cutoff (fit range end)
   // Large-event excess.
   bool excess_found = false;
   double excess_mu = 0;
   std::int64_t excess_observed = 0;
   double excess_expected = 0;
-  double excess_count = 0;       // largest observed - expected over the excess run
+  double excess_count = 0;  // largest observed - expected over the excess run
   std::vector<std::string> notes;
 };
 

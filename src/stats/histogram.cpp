@@ -14,7 +14,7 @@
 namespace bkq {
 
 namespace {
-constexpr double kQuantum = 1099511627776.0;  // 2^40: fixed-point scale of the mu sums
+constexpr double kQuantum = 1099511627776.0;   // 2^40: fixed-point scale of the mu sums
 constexpr std::int64_t kMaxBins = 10'000'000;  // guards memory against absurd magnitudes
 
 std::string edge(double x) {
@@ -176,8 +176,7 @@ MagnitudeHistogram MagnitudeHistogram::from_state(const State& s) {
 }
 
 MagnitudeHistogram MagnitudeHistogram::read_csv(const std::filesystem::path& path,
-                                                double total_load, int blocks,
-                                                double bin_width) {
+                                                double total_load, int blocks, double bin_width) {
   const std::string file = path.string();
   std::ifstream f(path);
   if (!f) throw Error(file + ": cannot open");

@@ -54,7 +54,7 @@ class MagnitudeHistogram {
   double mu_low(std::int64_t k) const { return static_cast<double>(k) * w_; }
   double mu_high(std::int64_t k) const { return static_cast<double>(k + 1) * w_; }
   double D(std::int64_t k) const { return static_cast<double>(count(k)) / w_; }
-  std::int64_t R(std::int64_t k) const;                  // events with mu >= mu_low(k)
+  std::int64_t R(std::int64_t k) const;  // events with mu >= mu_low(k)
   std::int64_t count_range(std::int64_t k_lo, std::int64_t k_hi) const;  // bins k_lo..k_hi
   double rate_norm() const { return total_load_ * blocks_; }
 

@@ -43,7 +43,7 @@ void expect_at_rest(const Sim& sim, const std::string& what) {
 }
 
 struct RunStats {
-  double worst_residual = 0;      // largest |residual|
+  double worst_residual = 0;         // largest |residual|
   double most_positive = -HUGE_VAL;  // largest signed residual: > 0 means energy was created
   double moment_sum = 0;
   std::int64_t slipped_blocks = 0;
@@ -52,7 +52,8 @@ struct RunStats {
 // The random initial chain holds blocks beyond the threshold (neighbour springs); the
 // first events release them one by one. Run them off, plus a short transient.
 void run_transient(Sim& sim) {
-  for (int i = 0; i < 20 * sim.p.n && sim.engine.worst_stuck_excess() > 0; ++i) sim.engine.next_event();
+  for (int i = 0; i < 20 * sim.p.n && sim.engine.worst_stuck_excess() > 0; ++i)
+    sim.engine.next_event();
   ASSERT_LE(sim.engine.worst_stuck_excess(), 0.0);
   sim.run(200);
 }
@@ -61,7 +62,8 @@ RunStats run_checked(Sim& sim, int events, const std::string& what) {
   RunStats r;
   for (int i = 0; i < events; ++i) {
     const EventRecord e = sim.engine.next_event();
-    EXPECT_TRUE(std::isfinite(e.moment) && std::isfinite(e.max_speed)) << what << " event " << e.event;
+    EXPECT_TRUE(std::isfinite(e.moment) && std::isfinite(e.max_speed))
+        << what << " event " << e.event;
     EXPECT_TRUE(std::isfinite(e.energy_residual)) << what << " event " << e.event;
     r.worst_residual = std::max(r.worst_residual, std::abs(e.energy_residual));
     r.most_positive = std::max(r.most_positive, e.energy_residual);
@@ -135,12 +137,15 @@ struct Transitions {
 };
 
 Transitions count_transitions(double sigma, double duration) {
-  const Scene scene = make_scene({{"model.blocks", "20"}, {"friction.sigma", format_real(sigma)},
-                                  {"drive.mode", "continuous"}, {"drive.speed", "0.01"}});
+  const Scene scene = make_scene({{"model.blocks", "20"},
+                                  {"friction.sigma", format_real(sigma)},
+                                  {"drive.mode", "continuous"},
+                                  {"drive.speed", "0.01"}});
   const ModelParams p = model_from_scene(scene);
   const ChainForces forces(p);
   Rk4 stepper(p.n);
-  ContinuousDriver driver(forces, stepper, Substrate::constant(0.01), initial_state(forces, 7, 0.5, false), 0.01);
+  ContinuousDriver driver(forces, stepper, Substrate::constant(0.01),
+                          initial_state(forces, 7, 0.5, false), 0.01);
   std::vector<double> before = driver.state().mobile;
   std::vector<std::int64_t> last(p.n, -100);
   Transitions out;
@@ -203,7 +208,8 @@ TEST(HardCases, SystemWideAvalancheThroughTenThousandBlocks) {
   EXPECT_LT(std::abs(e.energy_residual), 5e-3);
   // Work in proportion to the rupture: most block-steps move a sliding block.
   const EngineCounters& c = sim.engine.counters();
-  EXPECT_GT(static_cast<double>(c.sliding_block_steps - c0.sliding_block_steps) / (c.block_steps - c0.block_steps),
+  EXPECT_GT(static_cast<double>(c.sliding_block_steps - c0.sliding_block_steps) /
+                (c.block_steps - c0.block_steps),
             0.5);
 }
 
@@ -220,7 +226,8 @@ TEST(HardCases, UndampedAndOverdampedPad) {
     // Slip balance with a pad: the blocks follow the anchor s + x, less what their
     // springs store, N (ds + dx) - df/k_p, exactly.
     const double n = sim.p.n;
-    const double balance = n * (st.s - s0 + st.x - x0) - (test::total_spring_force(sim) - f0) / sim.p.k_p;
+    const double balance =
+        n * (st.s - s0 + st.x - x0) - (test::total_spring_force(sim) - f0) / sim.p.k_p;
     EXPECT_NEAR(r.moment_sum, balance, 1e-9 * r.moment_sum) << "zeta " << zeta;
     EXPECT_GT(r.moment_sum, 0.0);
   }
@@ -233,7 +240,8 @@ TEST(HardCases, ThesisFrictionBackslipThenResticks) {
   // pulling backwards at 1.5 F0: it breaks loose backwards, slides against the substrate
   // about the point where the spring balances kinetic friction, and re-sticks after half
   // a period, having slipped 2 (1.5 - (1 - sigma)) backwards.
-  const Scene scene = make_scene({{"model.blocks", "1"}, {"friction.law", "thesis"}, {"friction.alpha", "0"}});
+  const Scene scene =
+      make_scene({{"model.blocks", "1"}, {"friction.law", "thesis"}, {"friction.alpha", "0"}});
   const ModelParams p = model_from_scene(scene);
   const ChainForces forces(p);
   Rk4 stepper(1);
@@ -324,7 +332,8 @@ class PoisonedRk4 : public Stepper {
   std::string_view name() const override { return "poisoned-rk4"; }
   int order() const override { return inner_.order(); }
   double stability_constant() const override { return inner_.stability_constant(); }
-  void step(const ChainForces& f, const Substrate& sub, ChainState& st, double dt, Ranges ranges) override {
+  void step(const ChainForces& f, const Substrate& sub, ChainState& st, double dt,
+            Ranges ranges) override {
     inner_.step(f, sub, st, dt, ranges);
     if (++steps_ == 5) st.wd[victim_] = std::nan("");
   }

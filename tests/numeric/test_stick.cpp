@@ -102,7 +102,8 @@ TEST(StickRule, MomentIsTheClosedFormAtTheStickingStepForEveryStepper) {
       EXPECT_LT(tk, M_PI + dt + 1e-9) << scheme << " dt=" << dt;
       // The position at that step is u(t_k) up to the stepper's smooth-phase error
       // (rk2/verlet: ~ sigma T dt^2, far below the dt^2/4 bound below).
-      EXPECT_NEAR(r.e.moment, kSigma * (1 - std::cos(tk)), 2e-2 * kSigma * dt * dt) << scheme << " dt=" << dt;
+      EXPECT_NEAR(r.e.moment, kSigma * (1 - std::cos(tk)), 2e-2 * kSigma * dt * dt)
+          << scheme << " dt=" << dt;
       // Envelope: relative moment error below dt^2/4 (+ a little for the stepper).
       const double rel = std::abs(r.e.moment - 2 * kSigma) / (2 * kSigma);
       EXPECT_LE(rel, 0.25 * dt * dt * 1.05 + 1e-12) << scheme << " dt=" << dt;
@@ -133,7 +134,8 @@ TEST(StickRule, BackslipLawSticksAtTheTurningPoint) {
       EventRecord e;
       ASSERT_NO_THROW(e = engine.next_event()) << scheme << " dt=" << dt;
       EXPECT_EQ(e.blocks, 1);
-      EXPECT_NEAR(e.moment, 2 * kSigma, 0.25 * dt * dt * 2 * kSigma * 1.05) << scheme << " dt=" << dt;
+      EXPECT_NEAR(e.moment, 2 * kSigma, 0.25 * dt * dt * 2 * kSigma * 1.05)
+          << scheme << " dt=" << dt;
       EXPECT_NEAR(e.duration, M_PI, 2 * dt) << scheme << " dt=" << dt;
       EXPECT_EQ(engine.state().mobile[0], 0.0);
     }

@@ -10,10 +10,10 @@
 //    once (no chattering), and under clst91 never slides backwards;
 //  - the closed-form slip of a single block (2 sigma in time pi) as dt -> 0;
 //  - the Gauss–Seidel fallback of the contact solver gives the active-set answer.
-#include <gtest/gtest.h>
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_matrix.h>
 #include <gsl/gsl_vector.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +35,9 @@
 namespace bkq {
 namespace {
 
-double observed_order(double coarse, double fine) { return std::log2(coarse / fine); }
+double observed_order(double coarse, double fine) {
+  return std::log2(coarse / fine);
+}
 
 std::string sci(double x) {
   char buf[32];
@@ -80,7 +82,8 @@ class NormalModes {
     // Symmetric form A = M^-1/2 K M^-1/2 with y = M^1/2 q.
     gsl_matrix* A = gsl_matrix_alloc(dof, dof);
     for (int a = 0; a < dof; ++a)
-      for (int b = 0; b < dof; ++b) gsl_matrix_set(A, a, b, K[a * dof + b] / std::sqrt(mass[a] * mass[b]));
+      for (int b = 0; b < dof; ++b)
+        gsl_matrix_set(A, a, b, K[a * dof + b] / std::sqrt(mass[a] * mass[b]));
     gsl_vector* eval = gsl_vector_alloc(dof);
     gsl_matrix* evec = gsl_matrix_alloc(dof, dof);
     gsl_eigen_symmv_workspace* ws = gsl_eigen_symmv_alloc(dof);
@@ -108,7 +111,8 @@ class NormalModes {
   double q(int a, double t) const {
     double y = 0;
     for (int k = 0; k < dof_; ++k)
-      y += phi_[a * dof_ + k] * (c_[k] * std::cos(om_[k] * t) + s_[k] * std::sin(om_[k] * t) / om_[k]);
+      y += phi_[a * dof_ + k] *
+           (c_[k] * std::cos(om_[k] * t) + s_[k] * std::sin(om_[k] * t) / om_[k]);
     return y / sqrt_m_[a];
   }
 
@@ -189,8 +193,8 @@ struct Trajectory {
 };
 
 template <class Setup>
-Trajectory run(Stepper& stepper, const ModelParams& p, const Substrate& sub, Setup&& setup, double dt,
-               const std::vector<Range>& ranges, double duration) {
+Trajectory run(Stepper& stepper, const ModelParams& p, const Substrate& sub, Setup&& setup,
+               double dt, const std::vector<Range>& ranges, double duration) {
   const ChainForces forces(p);
   ChainState st;
   st.resize(p.n);
@@ -378,7 +382,8 @@ double pad_error(double dt, bool blocks_in_range) {
   st.x = 0.5;
   st.recompute_sum_w();
   const DampedOscillator osc(p.m_x, p.c_p, p.k_p0 + p.n * p.k_p, st.x, st.xd);
-  const std::vector<Range> ranges = blocks_in_range ? std::vector<Range>{{0, p.n}} : std::vector<Range>{};
+  const std::vector<Range> ranges =
+      blocks_in_range ? std::vector<Range>{{0, p.n}} : std::vector<Range>{};
   double err = 0;
   const int steps = static_cast<int>(std::lround(10.0 / dt));
   for (int i = 0; i < steps; ++i) {
@@ -399,7 +404,8 @@ TEST(ThetaPad, PadAloneFollowsTheDampedOscillatorToSecondOrder) {
     std::vector<double> err;
     for (double dt : {0.1, 0.05, 0.025}) err.push_back(pad_error(dt, blocks_in_range));
     EXPECT_LT(err[2], 1e-3);
-    expect_second_order(blocks_in_range ? "pad, blocks held by friction" : "pad, no block advanced", err);
+    expect_second_order(blocks_in_range ? "pad, blocks held by friction" : "pad, no block advanced",
+                        err);
   }
 }
 
@@ -422,8 +428,8 @@ ModelParams carlson_langer_block(FrictionLaw law, double alpha) {
 struct StickHistory {
   int releases = 0, resticks = 0;
   double w_at_restick = 0;
-  bool moved_after_restick = false;  // w or wd changed after re-sticking
-  bool slid_backwards = false;       // wd < 0 at any step or w decreased
+  bool moved_after_restick = false;       // w or wd changed after re-sticking
+  bool slid_backwards = false;            // wd < 0 at any step or w decreased
   bool stuck_state_inconsistent = false;  // mobile = 0 with wd != 0, or mobile = 1 with wd = 0
 };
 
@@ -445,7 +451,8 @@ StickHistory slip_and_hold(FrictionLaw law, double alpha, double dt, int steps) 
       ++h.resticks;
       h.w_at_restick = st.w[0];
     }
-    if (h.resticks > 0 && (st.w[0] != h.w_at_restick || st.wd[0] != 0.0)) h.moved_after_restick = true;
+    if (h.resticks > 0 && (st.w[0] != h.w_at_restick || st.wd[0] != 0.0))
+      h.moved_after_restick = true;
     if (st.wd[0] < 0.0 || st.w[0] < w_old) h.slid_backwards = true;
     if ((st.mobile[0] == 0.0) != (st.wd[0] == 0.0)) h.stuck_state_inconsistent = true;
   }
@@ -528,7 +535,8 @@ TEST(ThetaStick, ChainEventEndsWithEveryBlockExactlyStuckAndNoChattering) {
     int sliding = 0;
     for (int j = 0; j < p.n; ++j) {
       if (must_break[j]) {
-        ASSERT_NE(st.mobile[j], 0.0) << "block " << j << " stuck beyond the threshold at step " << i;
+        ASSERT_NE(st.mobile[j], 0.0)
+            << "block " << j << " stuck beyond the threshold at step " << i;
         must_break[j] = 0;
       }
       if (mob_old[j] == 0.0 && st.mobile[j] != 0.0) ++releases;

@@ -63,7 +63,9 @@ void integrate(const ChainForces& forces, Stepper& stepper, ChainState& st, doub
   }
 }
 
-double observed_order(double err_coarse, double err_fine) { return std::log2(err_coarse / err_fine); }
+double observed_order(double err_coarse, double err_fine) {
+  return std::log2(err_coarse / err_fine);
+}
 
 struct Errors {
   double position = 0;  // max over time and blocks of |u - u_exact|
@@ -89,7 +91,8 @@ void expect_order(const char* what, const std::vector<double>& err, int order) {
   for (int k = 0; k < 2; ++k) {
     ASSERT_GT(err[k + 1], 0.0) << what;
     const double q = observed_order(err[k], err[k + 1]);
-    ::testing::Test::RecordProperty(std::string(what) + " order " + std::to_string(k + 1), std::to_string(q));
+    ::testing::Test::RecordProperty(std::string(what) + " order " + std::to_string(k + 1),
+                                    std::to_string(q));
     EXPECT_NEAR(q, order, 0.3) << what << ": errors " << err[0] << ", " << err[1] << ", " << err[2]
                                << " give observed order " << q << " at halving " << k + 1;
   }
@@ -118,7 +121,8 @@ Errors run_pulling_springs(const char* scheme, double dt) {
   // Thesis eq. 3.10, test 1.
   auto energy = [&](const ChainState& s) {
     double e = 0;
-    for (int j = 0; j < p.n; ++j) e += 0.5 * p.m_u * s.wd[j] * s.wd[j] + 0.5 * p.k_p * s.w[j] * s.w[j];
+    for (int j = 0; j < p.n; ++j)
+      e += 0.5 * p.m_u * s.wd[j] * s.wd[j] + 0.5 * p.k_p * s.w[j] * s.w[j];
     return e;
   };
   const double e0 = energy(st);
@@ -155,7 +159,8 @@ struct FreeChainModes {
   int n;
   double kc_over_m;
   std::vector<double> a, b, om;  // u(t) = sum_k (a_k cos(om_k t) + b_k sin(om_k t)/om_k) phi_k
-  FreeChainModes(int n_, double kc_over_m_, const std::vector<double>& u0, const std::vector<double>& v0)
+  FreeChainModes(int n_, double kc_over_m_, const std::vector<double>& u0,
+                 const std::vector<double>& v0)
       : n(n_), kc_over_m(kc_over_m_), a(n_), b(n_), om(n_) {
     for (int k = 0; k < n; ++k) {
       om[k] = 2.0 * std::sqrt(kc_over_m) * std::sin(M_PI * k / (2.0 * n));
@@ -169,7 +174,8 @@ struct FreeChainModes {
   double phi(int k, int j) const { return std::cos(M_PI * k * (j + 0.5) / n); }
   double u(int j, double t) const {
     double x = a[0] + b[0] * t;
-    for (int k = 1; k < n; ++k) x += (a[k] * std::cos(om[k] * t) + b[k] * std::sin(om[k] * t) / om[k]) * phi(k, j);
+    for (int k = 1; k < n; ++k)
+      x += (a[k] * std::cos(om[k] * t) + b[k] * std::sin(om[k] * t) / om[k]) * phi(k, j);
     return x;
   }
 };
@@ -218,7 +224,8 @@ NeighbourRun run_neighbour_springs(const char* scheme, double dt) {
   NeighbourRun r;
   const int steps = static_cast<int>(std::lround(10.0 / dt));
   integrate(forces, *stepper, st, dt, steps, [&](const ChainState& s) {
-    for (int j = 0; j < p.n; ++j) r.err.position = std::max(r.err.position, std::abs(s.w[j] - exact.u(j, s.t)));
+    for (int j = 0; j < p.n; ++j)
+      r.err.position = std::max(r.err.position, std::abs(s.w[j] - exact.u(j, s.t)));
     r.err.energy = std::max(r.err.energy, std::abs(energy(s) - e0) / e0);
     r.momentum_drift = std::max(r.momentum_drift, std::abs(momentum(s) - p0) / scale);
     EXPECT_NEAR(forces.spring_energy(s) + forces.kinetic_energy(s, 0.0), energy(s), 1e-12);
@@ -244,7 +251,8 @@ TYPED_TEST(Verification, NeighbourSpringsEnergyToOrderMomentumExact) {
 // Thesis eq. 3.14: m_x = 100, K = 200, c_p = 20, x(0) = 0.5, x'(0) = 0.
 double thesis_eq_3_14(double t) {
   const double r = std::sqrt(199.0);
-  return std::exp(-0.1 * t) * (0.5 * std::cos(r * t / 10.0) + 1.0 / (2.0 * r) * std::sin(r * t / 10.0));
+  return std::exp(-0.1 * t) *
+         (0.5 * std::cos(r * t / 10.0) + 1.0 / (2.0 * r) * std::sin(r * t / 10.0));
 }
 
 ModelParams pad_test_params() {
@@ -253,7 +261,7 @@ ModelParams pad_test_params() {
   p.n = 100;
   p.m_u = 1;
   p.k_p = 1;
-  p.k_c = 0;      // the blocks are held: their springs play no part (and set no time step)
+  p.k_c = 0;     // the blocks are held: their springs play no part (and set no time step)
   p.k_p0 = 100;  // K = k_p0 + N k_p = 200
   p.m_x = 100;
   p.c_p = 20;
@@ -298,7 +306,8 @@ TEST(PadAnalytic, DampedOscillatorMatchesThesisEq314) {
     EXPECT_NEAR(osc.position(t), thesis_eq_3_14(t), 1e-14) << "t = " << t;
     // Velocity against a central difference of eq. 3.14.
     const double h = 1e-5;
-    EXPECT_NEAR(osc.velocity(t), (thesis_eq_3_14(t + h) - thesis_eq_3_14(t - h)) / (2 * h), 1e-9) << "t = " << t;
+    EXPECT_NEAR(osc.velocity(t), (thesis_eq_3_14(t + h) - thesis_eq_3_14(t - h)) / (2 * h), 1e-9)
+        << "t = " << t;
     EXPECT_LE(std::abs(osc.position(t)), osc.bound_after(0.0) + 1e-15);
     EXPECT_LE(std::abs(osc.position(t + 0.05)), osc.bound_after(t) + 1e-15);
   }
@@ -423,7 +432,8 @@ TEST(StabilityLimit, CheckTimeStepRejectsAboveAndAcceptsBelow) {
   p.k_c = 100;
   const double omega_max = std::sqrt((4 * p.k_c + p.k_p) / p.m_u);  // thesis eq. 3.2
   EXPECT_NEAR(p.max_angular_frequency(), omega_max, 1e-12);
-  for (const StabilityCase c : {StabilityCase{"rk2", 0.5}, StabilityCase{"rk4", 2.8}, StabilityCase{"verlet", 2.0}}) {
+  for (const StabilityCase c :
+       {StabilityCase{"rk2", 0.5}, StabilityCase{"rk4", 2.8}, StabilityCase{"verlet", 2.0}}) {
     auto stepper = make_stepper(c.keyword, p.n);
     const double limit = c.constant / omega_max;
     EXPECT_NEAR(stability_limit(*stepper, p), limit, 1e-15) << c.keyword;

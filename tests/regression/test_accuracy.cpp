@@ -16,7 +16,8 @@
 namespace bkq {
 namespace {
 
-const AccuracyPoint& point(const AccuracyStudy& s, const std::string& scheme, double dt, double tol = 0) {
+const AccuracyPoint& point(const AccuracyStudy& s, const std::string& scheme, double dt,
+                           double tol = 0) {
   for (const AccuracyPoint& p : s.points)
     if (p.scheme == scheme && p.dt == dt && p.tolerance == tol) return p;
   throw std::runtime_error("no point " + scheme);
@@ -60,7 +61,8 @@ TEST(Accuracy, SmallStudyOrdersTheSchemesAndKeepsUnstablePoints) {
   EXPECT_LT(adaptive.moment_error_max, 1e-4);
 
   const std::string csv = accuracy_csv(study);
-  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), study.points.size() + 1);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')),
+            study.points.size() + 1);
   EXPECT_EQ(csv.rfind("scheme,dt,tolerance,status,", 0), 0u);
   EXPECT_NE(accuracy_table(study).find("unstable"), std::string::npos);
 }
@@ -76,16 +78,29 @@ TEST(Accuracy, BinnedKolmogorovSmirnovDistance) {
 
 TEST(AccuracyProgram, RefusesBadOptionsAndWritesTheTable) {
   test::TempDir dir;
-  const auto bad = test::run_process(BKQUAKE_BINARY, {"accuracy", "--schemes", "rk4,euler", "--out", dir.path().string()});
+  const auto bad = test::run_process(
+      BKQUAKE_BINARY, {"accuracy", "--schemes", "rk4,euler", "--out", dir.path().string()});
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("euler"), std::string::npos) << bad.err;
-  const auto bad_dt = test::run_process(BKQUAKE_BINARY, {"accuracy", "--dt", "0.01,-1", "--out", dir.path().string()});
+  const auto bad_dt = test::run_process(
+      BKQUAKE_BINARY, {"accuracy", "--dt", "0.01,-1", "--out", dir.path().string()});
   EXPECT_EQ(bad_dt.status, 2);
   EXPECT_NE(bad_dt.err.find("--dt"), std::string::npos) << bad_dt.err;
 
-  const std::vector<std::string> args = {"accuracy",      "--set",     "model.blocks=20", "--schemes", "rk4",
-                                         "--dt",          "0.01",      "--samples",       "3",         "--long-events",
-                                         "200",           "--quiet",   "--out",           dir.path().string()};
+  const std::vector<std::string> args = {"accuracy",
+                                         "--set",
+                                         "model.blocks=20",
+                                         "--schemes",
+                                         "rk4",
+                                         "--dt",
+                                         "0.01",
+                                         "--samples",
+                                         "3",
+                                         "--long-events",
+                                         "200",
+                                         "--quiet",
+                                         "--out",
+                                         dir.path().string()};
   const auto ok = test::run_process(BKQUAKE_BINARY, args);
   ASSERT_EQ(ok.status, 0) << ok.err;
   EXPECT_NE(ok.out.find("rk4"), std::string::npos);

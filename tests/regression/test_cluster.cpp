@@ -27,9 +27,17 @@ using test::Sim;
 // Every field of the record, compared as bits (a NaN magnitude equals itself).
 std::vector<std::uint64_t> bits(const EventRecord& e) {
   auto b = [](double v) { return std::bit_cast<std::uint64_t>(v); };
-  return {static_cast<std::uint64_t>(e.event), b(e.load), static_cast<std::uint64_t>(e.trigger),
-          static_cast<std::uint64_t>(e.blocks), b(e.moment), b(e.magnitude), b(e.duration), b(e.max_speed),
-          b(e.pad_displacement), static_cast<std::uint64_t>(e.first_block), static_cast<std::uint64_t>(e.last_block),
+  return {static_cast<std::uint64_t>(e.event),
+          b(e.load),
+          static_cast<std::uint64_t>(e.trigger),
+          static_cast<std::uint64_t>(e.blocks),
+          b(e.moment),
+          b(e.magnitude),
+          b(e.duration),
+          b(e.max_speed),
+          b(e.pad_displacement),
+          static_cast<std::uint64_t>(e.first_block),
+          static_cast<std::uint64_t>(e.last_block),
           b(e.energy_residual)};
 }
 
@@ -48,7 +56,10 @@ TEST_P(ClusterPath, SameEventsBitForBitAsTheGeneralPath) {
   const std::vector<Case> cases = {
       {"carlson-langer, clst91", {{"model.blocks", "40"}}, 0.3, 0.05},
       {"periodic", {{"model.blocks", "40"}, {"model.boundary", "periodic"}}, 0.3, 0.05, false},
-      {"thesis friction (backslip)", {{"model.blocks", "40"}, {"friction.law", "thesis"}}, 0.2, 0.05},
+      {"thesis friction (backslip)",
+       {{"model.blocks", "40"}, {"friction.law", "thesis"}},
+       0.2,
+       0.05},
       {"no neighbour springs", {{"model.blocks", "10"}, {"model.l", "0"}}, 0.7, 0.0},
       // Most events of a short chain reach an end, where the cluster has a phantom entry.
       {"short chain, free ends", {{"model.blocks", "5"}}, 0.3, 0.05},

@@ -20,10 +20,10 @@
 #include "../cli_helpers.hpp"
 #include "../scene_sim.hpp"
 #include "engine/event_engine.hpp"
-#include "io/error.hpp"
 #include "engine/initial_state.hpp"
 #include "integrate/stepper.hpp"
 #include "io/catalog.hpp"
+#include "io/error.hpp"
 #include "io/scene.hpp"
 #include "model/chain.hpp"
 #include "model/parameters.hpp"
@@ -69,7 +69,9 @@ TEST(EventLoading, MeasuredSlopeOfAStuckBlockForceWithThePadAtEquilibrium) {
   const double sw = sum_w(st);
   for (int j : {0, 17, 49}) {
     ASSERT_EQ(st.mobile[j], 0.0);
-    auto force_at = [&](double s) { return sim.forces.spring_force(st.w.data(), j, s + sim.forces.pad_equilibrium(sw, s)); };
+    auto force_at = [&](double s) {
+      return sim.forces.spring_force(st.w.data(), j, s + sim.forces.pad_equilibrium(sw, s));
+    };
     for (double ds : {1e-3, 0.1, 2.0}) {
       const double slope = (force_at(st.s + ds) - force_at(st.s)) / ds;
       EXPECT_NEAR(slope, sim.p.loading_rate(), 1e-9) << "block " << j << " ds " << ds;
@@ -107,8 +109,12 @@ void expect_loader_predicts_failures(const Settings& settings) {
   }
 }
 
-TEST(EventLoading, LoaderPredictsNextFailureBk) { expect_loader_predicts_failures(kBk50); }
-TEST(EventLoading, LoaderPredictsNextFailureBkp) { expect_loader_predicts_failures(kBkp50); }
+TEST(EventLoading, LoaderPredictsNextFailureBk) {
+  expect_loader_predicts_failures(kBk50);
+}
+TEST(EventLoading, LoaderPredictsNextFailureBkp) {
+  expect_loader_predicts_failures(kBkp50);
+}
 
 // ---- uncoupled blocks ----
 
@@ -163,8 +169,12 @@ void expect_rest_after_every_event(const Settings& settings, bool check_pad) {
   }
 }
 
-TEST(EventPhysics, EveryBlockStuckBelowThresholdAfterEveryEventBk) { expect_rest_after_every_event(kBk50, false); }
-TEST(EventPhysics, EveryBlockStuckBelowThresholdAfterEveryEventBkp) { expect_rest_after_every_event(kBkp50, false); }
+TEST(EventPhysics, EveryBlockStuckBelowThresholdAfterEveryEventBk) {
+  expect_rest_after_every_event(kBk50, false);
+}
+TEST(EventPhysics, EveryBlockStuckBelowThresholdAfterEveryEventBkp) {
+  expect_rest_after_every_event(kBkp50, false);
+}
 
 // The pad phase releases the block it located even when, at the located instant, its
 // force rounds to exactly the threshold (before, the event could end with the pad
@@ -200,7 +210,8 @@ TEST(EventPhysics, EventModeRefusesFrictionWithoutStaticKineticDrop) {
 // sum_j f_j = k_p (N anchor - sum_j w_j) (neighbour springs cancel with free ends), so
 //   sum of moments = N (delta s [+ delta x]) - delta(sum_j f_j)/k_p   exactly,
 // which over a long run is N delta s to within the bounded force term.
-void expect_moment_balance(const Settings& settings, int transient, int events, double tolerance_vs_load) {
+void expect_moment_balance(const Settings& settings, int transient, int events,
+                           double tolerance_vs_load) {
   Sim sim(make_scene(settings));
   sim.run(transient);
   const double s0 = sim.engine.load(), x0 = sim.engine.state().x;
@@ -220,7 +231,9 @@ void expect_moment_balance(const Settings& settings, int transient, int events, 
 // The force term is bounded (every stuck block's force lies between its post-slip value
 // and the threshold) while N delta s grows with the run: at 2x10^4 events it can reach 1%
 // of N delta s on an unlucky trajectory, so the run is 10^5 events long.
-TEST(EventPhysics, SumOfMomentsIsTotalSlipBk) { expect_moment_balance(kBk50, 500, 100000, 5e-3); }
+TEST(EventPhysics, SumOfMomentsIsTotalSlipBk) {
+  expect_moment_balance(kBk50, 500, 100000, 5e-3);
+}
 TEST(EventPhysics, SumOfMomentsIsTotalSlipBkp) {
   // With the pad, the pad's share of the load is N delta x; per unit substrate
   // displacement the blocks advance by the loading rate's fraction, so compare with the
@@ -236,7 +249,8 @@ TEST(EventPhysics, StiffCaliperBkpReproducesBk) {
   // Small initial disorder so no block starts above the threshold (otherwise BK leaves
   // distant over-threshold blocks to later events while the BKP pad query takes them all
   // into the first one).
-  const Settings bk = {{"model.blocks", "50"}, {"integrator.dt", "0.005"}, {"run.initial_disorder", "0.001"}};
+  const Settings bk = {
+      {"model.blocks", "50"}, {"integrator.dt", "0.005"}, {"run.initial_disorder", "0.001"}};
   Settings bkp = bk;
   bkp.push_back({"model.kind", "bkp"});
   bkp.push_back({"model.s_p", "1e-5"});
@@ -328,12 +342,15 @@ std::vector<std::string> lines_of(const std::string& text) {
 }
 
 // The row without its first column (the event number, renumbered after the transient).
-std::string without_event_number(const std::string& row) { return row.substr(row.find(',')); }
+std::string without_event_number(const std::string& row) {
+  return row.substr(row.find(','));
+}
 
 TEST(EventProgram, TransientEventsAreDiscarded) {
   test::TempDir tmp;
-  const auto r = test::run_bkquake({"run", "--set", "model.blocks=50", "--set", "run.events=2000", "--set",
-                                    "run.transient_events=100", "--out", tmp.file("a"), "--quiet"});
+  const auto r =
+      test::run_bkquake({"run", "--set", "model.blocks=50", "--set", "run.events=2000", "--set",
+                         "run.transient_events=100", "--out", tmp.file("a"), "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   const auto rows = lines_of(test::read_file(tmp.file("a/catalog.csv")));
   ASSERT_EQ(rows.size(), 2001u);
@@ -343,8 +360,9 @@ TEST(EventProgram, TransientEventsAreDiscarded) {
   EXPECT_NE(test::read_file(tmp.file("a/summary.json")).find("\"b_mle\""), std::string::npos);
 
   // The same run without a transient: its events 101..2100 are the recorded 1..2000.
-  const auto r0 = test::run_bkquake({"run", "--set", "model.blocks=50", "--set", "run.events=2100", "--set",
-                                     "run.transient_events=0", "--out", tmp.file("b"), "--quiet"});
+  const auto r0 =
+      test::run_bkquake({"run", "--set", "model.blocks=50", "--set", "run.events=2100", "--set",
+                         "run.transient_events=0", "--out", tmp.file("b"), "--quiet"});
   ASSERT_EQ(r0.status, 0) << r0.err;
   const auto all = lines_of(test::read_file(tmp.file("b/catalog.csv")));
   ASSERT_EQ(all.size(), 2101u);

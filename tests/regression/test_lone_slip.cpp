@@ -68,7 +68,8 @@ TEST_P(LoneSlipReplay, SameEventsAsDirectIntegrationFromTheSameStates) {
     EventEngine::LoneSlipStarts seen;
     const int events = 1500;
     for (int i = 0; i < events; ++i) {
-      EventEngine replay(direct.forces, *stepper, scene.real("integrator.dt"), direct.engine.snapshot());
+      EventEngine replay(direct.forces, *stepper, scene.real("integrator.dt"),
+                         direct.engine.snapshot());
       const EventRecord a = replay.next_event(), b = direct.engine.next_event();
       SCOPED_TRACE("event " + std::to_string(b.event));
       ASSERT_EQ(a.trigger, b.trigger);
@@ -201,7 +202,8 @@ TEST(LoneSlipReplay, SameEventsAndStillReplayedAtALargeLoad) {
     const double dt = scene.real("integrator.dt"), shift = 1e5;
     auto s1 = make_stepper("rk4", direct.p.n), s2 = make_stepper("rk4", direct.p.n);
     std::int64_t replayed = 0, declined = 0;
-    double replay_moment = 0, replay_speed = 0, shift_moment = 0, shift_speed = 0;  // largest relative differences
+    double replay_moment = 0, replay_speed = 0, shift_moment = 0,
+           shift_speed = 0;  // largest relative differences
     auto rel = [](double a, double b) { return std::abs(a - b) / std::abs(b); };
     const int events = 1000;
     for (int i = 0; i < events; ++i) {
@@ -231,10 +233,11 @@ TEST(LoneSlipReplay, SameEventsAndStillReplayedAtALargeLoad) {
     EXPECT_LE(replay_speed, shift_speed);
     EXPECT_EQ(replayed + declined, events);
     EXPECT_GT(replayed, 0.95 * events);
-    std::printf("[ %s ] replayed %lld of %d starts; largest relative differences: replay %.2g (moment), "
-                "%.2g (speed); shift %.2g, %.2g\n",
-                law, static_cast<long long>(replayed), events, replay_moment, replay_speed, shift_moment,
-                shift_speed);
+    std::printf(
+        "[ %s ] replayed %lld of %d starts; largest relative differences: replay %.2g (moment), "
+        "%.2g (speed); shift %.2g, %.2g\n",
+        law, static_cast<long long>(replayed), events, replay_moment, replay_speed, shift_moment,
+        shift_speed);
   }
 }
 
@@ -271,7 +274,8 @@ TEST(LoneSlipReplay, LeavesTheStatisticsOfALongRunAlone) {
   EXPECT_NEAR(replayed.fit.b_mle, direct.fit.b_mle, 3.0 * b_err);
   EXPECT_GT(direct.large, 100.0);  // Poisson counts: 3 standard deviations of the difference
   EXPECT_NEAR(replayed.large, direct.large, 3.0 * std::sqrt(direct.large + replayed.large));
-  EXPECT_NEAR(replayed.mean_mu, direct.mean_mu, 3.0 * std::hypot(direct.mean_err, replayed.mean_err));
+  EXPECT_NEAR(replayed.mean_mu, direct.mean_mu,
+              3.0 * std::hypot(direct.mean_err, replayed.mean_err));
 }
 
 // The replay is for a held pad: with a moving one (bkp) every start is integrated.

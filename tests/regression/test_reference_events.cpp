@@ -35,7 +35,9 @@ struct Case {
 const Case kCases[] = {
     {"carlson-langer, rk4", {{"model.blocks", "60"}}, 20},
     {"rk2", {{"model.blocks", "60"}, {"integrator.scheme", "rk2"}, {"integrator.dt", "0.005"}}, 20},
-    {"verlet", {{"model.blocks", "60"}, {"integrator.scheme", "verlet"}, {"integrator.dt", "0.005"}}, 20},
+    {"verlet",
+     {{"model.blocks", "60"}, {"integrator.scheme", "verlet"}, {"integrator.dt", "0.005"}},
+     20},
     {"thesis friction (backslip)", {{"model.blocks", "60"}, {"friction.law", "thesis"}}, 20},
     {"periodic", {{"model.blocks", "60"}, {"model.boundary", "periodic"}}, 20},
     {"no neighbour springs", {{"model.blocks", "20"}, {"model.l", "0"}}, 1},
@@ -43,14 +45,17 @@ const Case kCases[] = {
     {"alpha = 1, short chain", {{"model.blocks", "24"}, {"friction.alpha", "1"}}, 24},
 };
 
-void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class ReferenceEvents : public ::testing::TestWithParam<Case> {};
 
 // The reference engine, started from the event engine's state once every block holds: the
 // seeded initial state has blocks above the threshold, which the event engine lets fail one
 // event at a time (as triggers) and the reference all in its first event.
-std::unique_ptr<ReferenceEventEngine> reference_for(Sim& sim, std::unique_ptr<Stepper>& stepper, double dt) {
+std::unique_ptr<ReferenceEventEngine> reference_for(Sim& sim, std::unique_ptr<Stepper>& stepper,
+                                                    double dt) {
   sim.run(10 * sim.p.n);
   EXPECT_LE(sim.engine.worst_stuck_excess(), 0.0);
   stepper = make_stepper(std::string(sim.stepper->name()), sim.p.n);
@@ -112,14 +117,16 @@ TEST_P(ReferenceEvents, SameEventsToRoundingWithTheReplayFromTheSameStates) {
   // The work counted is the work the straightforward engine finds (a replayed step counts
   // as the step it stands for), and the replay really ran.
   EXPECT_EQ(sim.engine.counters().steps - before.steps, ref->steps);
-  EXPECT_EQ(sim.engine.counters().sliding_block_steps - before.sliding_block_steps, ref->sliding_block_steps);
+  EXPECT_EQ(sim.engine.counters().sliding_block_steps - before.sliding_block_steps,
+            ref->sliding_block_steps);
   EXPECT_GT(sim.engine.lone_slip_starts().replayed, 1000);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceEvents, ::testing::ValuesIn(kCases),
                          [](const ::testing::TestParamInfo<Case>& info) {
                            std::string name;
-                           for (char ch : info.param.name) name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+                           for (char ch : info.param.name)
+                             name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
                            return name;
                          });
 

@@ -507,8 +507,10 @@ namespace {
 TEST(ResumeFailure, FailedEventSavesTheStateBeforeIt) {
   test::TempDir tmp;
   const std::string out = tmp.file("out");
-  const std::vector<std::string> scene = {"--set", "model.blocks=50", "--set", "run.transient_events=0",
-                                          "--set", "run.max_steps_per_event=200", "--quiet"};
+  const std::vector<std::string> scene = {"--set",  "model.blocks=50",
+                                          "--set",  "run.transient_events=0",
+                                          "--set",  "run.max_steps_per_event=200",
+                                          "--quiet"};
   const auto first = run_bkquake(run_args(scene, {"--out", out}));
   ASSERT_EQ(first.status, 2) << first.err;
   const auto at = first.err.find("event ");

@@ -49,8 +49,9 @@ std::string read_error(const fs::path& p) {
 
 TEST(CatalogReader, ReadsColumnsByName) {
   // Columns in a different order from the schema.
-  const auto p = write_catalog("order", "moment,blocks,last_block,first_block,event\n"
-                                        "2.5,3,7,5,1\n1e-3,1,4,4,2\n");
+  const auto p = write_catalog("order",
+                               "moment,blocks,last_block,first_block,event\n"
+                               "2.5,3,7,5,1\n1e-3,1,4,4,2\n");
   CatalogReader r(p);
   EXPECT_TRUE(r.has_extent());
   EXPECT_FALSE(r.has_load());
@@ -76,22 +77,22 @@ TEST(CatalogReader, ZeroOrOneEventIsAnError) {
 }
 
 TEST(CatalogReader, NonPositiveMomentNamesTheLine) {
-  const auto p = write_catalog("negative", std::string(kHeader) + row(1, 1, "0.3", 4, 4) +
-                                               row(2, 1, "-0.3", 4, 4));
+  const auto p = write_catalog(
+      "negative", std::string(kHeader) + row(1, 1, "0.3", 4, 4) + row(2, 1, "-0.3", 4, 4));
   EXPECT_EQ(read_error(p), p.string() + " line 3: moment must be > 0, got -0.3");
   const auto z = write_catalog("zero_moment", std::string(kHeader) + row(1, 1, "0", 4, 4));
   EXPECT_EQ(read_error(z), z.string() + " line 2: moment must be > 0, got 0");
 }
 
 TEST(CatalogReader, MalformedRowsNameTheLine) {
-  const auto p = write_catalog("fields", std::string(kHeader) + row(1, 1, "0.3", 4, 4) +
-                                             "2,0.5,3,1,0.3\n");
+  const auto p =
+      write_catalog("fields", std::string(kHeader) + row(1, 1, "0.3", 4, 4) + "2,0.5,3,1,0.3\n");
   EXPECT_EQ(read_error(p), p.string() + " line 3: expected 12 fields, got 5");
   const auto q = write_catalog("nan", std::string(kHeader) + row(1, 1, "0.3", 4, 4) +
                                           row(2, 1, "0.3", 4, 4) + row(3, 1, "abc", 4, 4));
   EXPECT_EQ(read_error(q), q.string() + " line 4: column 'moment': expected a number, got 'abc'");
-  const auto r = write_catalog("int", std::string(kHeader) + row(1, 1, "0.3", 4, 4) +
-                                          "2,0.5,3,two,0.3,0,0,0,0,4,4,0\n");
+  const auto r = write_catalog(
+      "int", std::string(kHeader) + row(1, 1, "0.3", 4, 4) + "2,0.5,3,two,0.3,0,0,0,0,4,4,0\n");
   EXPECT_EQ(read_error(r), r.string() + " line 3: column 'blocks': expected a number, got 'two'");
 }
 

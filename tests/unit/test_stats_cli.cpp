@@ -50,8 +50,9 @@ TEST(StatsCli, FitsASyntheticCatalogue) {
     }
     std::ofstream(dir / "scene.ini") << "[model]\nblocks = 50\nboundary = free\n";
   }
-  const Result r = run("fit " + (dir / "catalog.csv").string() + " --mu-min 0 --json " +
-                           (dir / "fit.json").string(), dir);
+  const Result r = run(
+      "fit " + (dir / "catalog.csv").string() + " --mu-min 0 --json " + (dir / "fit.json").string(),
+      dir);
   ASSERT_EQ(r.rc, 0) << r.out;
   EXPECT_NE(r.out.find("binned MLE"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("localised         5000"), std::string::npos) << r.out;
@@ -81,7 +82,8 @@ TEST(StatsCli, MergeRefusesDifferentBinWidths) {
         << "mu_low,mu_high,count,D,R\n0," << w << ",1,1,1\n";
   }
   const Result r = run("merge " + (dir / "a").string() + " " + (dir / "b").string() + " --out " +
-                           (dir / "m").string(), dir);
+                           (dir / "m").string(),
+                       dir);
   EXPECT_EQ(r.rc, 2);
   EXPECT_NE(r.out.find("bin width"), std::string::npos) << r.out;
 }

@@ -15,8 +15,12 @@ namespace bkq {
 namespace {
 
 // Uniform in [0, 1) from 53 random bits: portable, unlike std::uniform_real_distribution.
-double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
-double exponential(std::mt19937_64& rng, double b) { return -std::log1p(-uniform(rng)) / b; }
+double uniform(std::mt19937_64& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+double exponential(std::mt19937_64& rng, double b) {
+  return -std::log1p(-uniform(rng)) / b;
+}
 
 std::vector<double> exp_sample(std::mt19937_64& rng, std::size_t n, double b, double mu0) {
   std::vector<double> mu(n);

@@ -13,7 +13,9 @@
 namespace bkq {
 namespace {
 
-double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+double uniform(std::mt19937_64& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
 
 // Exponential with slope b truncated to [lo, hi), by inversion.
 double truncated_exponential(std::mt19937_64& rng, double b, double lo, double hi) {
@@ -58,7 +60,8 @@ TEST_P(WindowPure, AutomaticWindowCoversAPureExponential) {
   // Most of the range and almost all the events (the top bins hold a handful).
   const double range = *std::max_element(mu.begin(), mu.end());
   EXPECT_GE(f.mu_max - f.mu_min, 0.75 * range);
-  const auto above_min = std::count_if(mu.begin(), mu.end(), [&](double m) { return m >= f.mu_min; });
+  const auto above_min =
+      std::count_if(mu.begin(), mu.end(), [&](double m) { return m >= f.mu_min; });
   EXPECT_GE(static_cast<double>(f.n_in_window), 0.99 * static_cast<double>(above_min));
   EXPECT_NEAR(f.b_mle, 1.0, 3 * f.b_mle_err);
 }
