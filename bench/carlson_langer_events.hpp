@@ -10,6 +10,7 @@
 #include "engine/initial_state.hpp"
 #include "integrate/stepper.hpp"
 #include "io/scene.hpp"
+#include "io/settings.hpp"
 #include "model/chain.hpp"
 
 namespace bkq::bench {

@@ -1,4 +1,4 @@
-// `bkquake accuracy [SCENE]`: the work–precision study of engine/accuracy.hpp for a scene
+// `bkquake accuracy [SCENE]`: the work–precision study of app/accuracy.hpp for a scene
 // (the built-in default without one), driven event by event. Writes scene.ini (the
 // effective scene with provenance) and accuracy.csv into --out, and prints the table.
 // Thin: the study itself lives in the engine.
@@ -10,11 +10,11 @@
 #include <iostream>
 #include <sstream>
 
+#include "app/accuracy.hpp"
 #include "cli/commands.hpp"
 #include "cli/scene_args.hpp"
-#include "engine/accuracy.hpp"
+#include "core/error.hpp"
 #include "integrate/stepper.hpp"
-#include "io/error.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/scene.hpp"

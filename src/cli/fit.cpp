@@ -9,14 +9,14 @@
 #include <iostream>
 #include <optional>
 
+#include "app/gr_report.hpp"
 #include "cli/commands.hpp"
-#include "io/error.hpp"
-#include "stats/catalog_reader.hpp"
+#include "core/error.hpp"
+#include "io/catalog_reader.hpp"
+#include "io/run_folder.hpp"
 #include "stats/event_classes.hpp"
-#include "stats/gr_report.hpp"
 #include "stats/gutenberg_richter.hpp"
 #include "stats/histogram.hpp"
-#include "stats/run_folder.hpp"
 
 namespace bkq {
 

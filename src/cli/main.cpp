@@ -8,7 +8,7 @@
 
 #include "bkquake_version.hpp"
 #include "cli/commands.hpp"
-#include "io/error.hpp"
+#include "core/error.hpp"
 
 namespace {
 

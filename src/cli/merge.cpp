@@ -7,12 +7,13 @@
 #include <fstream>
 #include <iostream>
 
+#include "app/gr_report.hpp"
 #include "cli/commands.hpp"
-#include "io/error.hpp"
-#include "stats/gr_report.hpp"
+#include "core/error.hpp"
+#include "io/histogram_csv.hpp"
+#include "io/run_folder.hpp"
 #include "stats/gutenberg_richter.hpp"
 #include "stats/histogram.hpp"
-#include "stats/run_folder.hpp"
 
 namespace bkq {
 
@@ -65,7 +66,7 @@ int cmd_merge(const std::vector<std::string>& args) {
     if (!(blocks >= 1) || blocks != static_cast<double>(static_cast<int>(blocks)))
       throw Error(summary.string() + ": \"blocks\": expected a positive integer");
     MagnitudeHistogram h =
-        MagnitudeHistogram::read_csv(dir / "histogram.csv", load, static_cast<int>(blocks), w);
+        read_histogram_csv(dir / "histogram.csv", load, static_cast<int>(blocks), w);
     if (const auto ev = read_json_number(summary, "events");
         ev && *ev != static_cast<double>(h.events()))
       throw Error(dir.string() + ": histogram.csv holds " + std::to_string(h.events()) +
@@ -84,7 +85,7 @@ int cmd_merge(const std::vector<std::string>& args) {
   }
 
   fs::create_directories(out);
-  merged->write_csv(out / "histogram.csv");
+  write_histogram_csv(*merged, out / "histogram.csv");
   JsonObject s;
   s.add("events", merged->events())
       .add("blocks", static_cast<std::int64_t>(merged->blocks()))

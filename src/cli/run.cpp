@@ -4,10 +4,10 @@
 #include <boost/program_options.hpp>
 #include <iostream>
 
+#include "app/run.hpp"
 #include "cli/commands.hpp"
 #include "cli/scene_args.hpp"
-#include "engine/run.hpp"
-#include "io/error.hpp"
+#include "core/error.hpp"
 #include "io/output.hpp"
 #include "io/scene.hpp"
 

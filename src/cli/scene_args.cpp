@@ -1,7 +1,7 @@
 // The shared SCENE / --set command line; see scene_args.hpp.
 #include "cli/scene_args.hpp"
 
-#include "io/error.hpp"
+#include "core/error.hpp"
 
 namespace bkq {
 

@@ -6,8 +6,8 @@
 
 #include <optional>
 
+#include "engine/event_record.hpp"
 #include "integrate/stepper.hpp"
-#include "io/catalog.hpp"
 #include "model/chain.hpp"
 #include "model/substrate.hpp"
 

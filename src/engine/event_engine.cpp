@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <string>
 
+#include "core/error.hpp"
 #include "engine/contacts.hpp"
 #include "integrate/cluster.hpp"
-#include "io/error.hpp"
 #include "model/damped_oscillator.hpp"
 
 namespace bkq {

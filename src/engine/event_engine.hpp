@@ -63,11 +63,11 @@
 #include <vector>
 
 #include "engine/contacts.hpp"
+#include "engine/event_record.hpp"
 #include "engine/force_tree.hpp"
 #include "engine/lone_slip.hpp"
 #include "integrate/cluster.hpp"
 #include "integrate/stepper.hpp"
-#include "io/catalog.hpp"
 #include "model/chain.hpp"
 
 namespace bkq {

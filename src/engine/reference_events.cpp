@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/error.hpp"
 #include "engine/contacts.hpp"
-#include "io/error.hpp"
 #include "model/substrate.hpp"
 
 namespace bkq {

@@ -18,8 +18,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/event_record.hpp"
 #include "integrate/stepper.hpp"
-#include "io/catalog.hpp"
 #include "model/chain.hpp"
 
 namespace bkq {

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <utility>
 
-#include "io/error.hpp"
+#include "core/error.hpp"
 
 namespace bkq {
 

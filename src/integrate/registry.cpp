@@ -1,13 +1,13 @@
 // integrator.scheme keyword -> stepper type, and the time-step stability check.
 #include <cstdio>
 
+#include "core/error.hpp"
 #include "integrate/adaptive.hpp"
 #include "integrate/rk2.hpp"
 #include "integrate/rk4.hpp"
 #include "integrate/stepper.hpp"
 #include "integrate/theta.hpp"
 #include "integrate/verlet.hpp"
-#include "io/error.hpp"
 
 namespace bkq {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "io/error.hpp"
+#include "core/error.hpp"
 
 namespace bkq {
 

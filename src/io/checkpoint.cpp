@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "bkquake_version.hpp"
-#include "io/error.hpp"
+#include "core/error.hpp"
 #include "io/output.hpp"
 #include "io/scene.hpp"
 

@@ -7,15 +7,6 @@
 
 namespace bkq {
 
-std::string format_real(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buf[64];
-  // std::to_chars without a format gives the shortest text that round-trips exactly.
-  auto res = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, res.ptr);
-}
-
 Json Json::boolean(bool b) {
   Json j;
   j.kind_ = Kind::Bool;

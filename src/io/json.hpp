@@ -1,7 +1,7 @@
 // A tiny JSON writer for summary.json and other small machine-read outputs. An ordered
 // object builder (keys keep the order they were added, so files diff cleanly), numbers
 // printed so they read back to the same double, strings escaped, pretty-printed by str().
-// Also home of format_real(), the one number formatter used by every text output.
+// Numbers go through core/format.hpp's format_real().
 #pragma once
 
 #include <cstdint>
@@ -10,10 +10,9 @@
 #include <utility>
 #include <vector>
 
-namespace bkq {
+#include "core/format.hpp"
 
-// Shortest text that reads back to exactly the same double ("0.1", "1e+300", "inf", "nan").
-std::string format_real(double x);
+namespace bkq {
 
 class Json {
  public:

@@ -12,7 +12,7 @@
 #include <fstream>
 
 #include "bkquake_version.hpp"
-#include "io/error.hpp"
+#include "core/error.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {

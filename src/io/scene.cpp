@@ -19,7 +19,7 @@
 #include <set>
 #include <sstream>
 
-#include "io/error.hpp"
+#include "core/error.hpp"
 #include "io/json.hpp"
 
 namespace bkq {

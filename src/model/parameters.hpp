@@ -7,8 +7,6 @@
 
 namespace bkq {
 
-class Scene;
-
 enum class ModelKind { BK, BKP, OneDof };
 enum class Boundary { Free, Periodic };
 // None is frictionless (verification runs only: every block slides freely).
@@ -43,7 +41,8 @@ struct ModelParams {
   double loading_rate() const;
 };
 
-ModelParams model_from_scene(const Scene& scene);
+// Damper of a mass m on a spring k at damping ratio zeta: zeta 2 sqrt(k m) (thesis §3.1).
+double critical_damping(double zeta, double k, double m);
 
 const char* to_string(ModelKind k);
 const char* to_string(FrictionLaw f);

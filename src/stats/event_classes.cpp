@@ -1,7 +1,7 @@
 // Implementation of the event classes (definitions in event_classes.hpp).
 #include "stats/event_classes.hpp"
 
-#include "io/error.hpp"
+#include "core/error.hpp"
 
 namespace bkq {
 

@@ -3,14 +3,14 @@
 // model fixes the mean m(b) of (mu - window start), the MLE solves m(b) = observed mean,
 // and the error is the standard error of the mean over |m'(b)| (Shi & Bolt 1982).
 #include "stats/gutenberg_richter.hpp"
+#include "core/format.hpp"
 
 #include <algorithm>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
 #include <limits>
 
-#include "io/error.hpp"
-#include "stats/csv_util.hpp"
+#include "core/error.hpp"
 
 namespace bkq {
 
@@ -112,7 +112,7 @@ Line weighted_line(const std::vector<double>& x, const std::vector<double>& y,
 }
 
 std::string fmt(double x) {
-  return csv::format_double(x);
+  return format_real(x);
 }
 
 }  // namespace

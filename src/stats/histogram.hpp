@@ -18,7 +18,6 @@
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -63,19 +62,17 @@ class MagnitudeHistogram {
   double mean_mu() const;
   double sum_mu() const;
   double sum_mu2() const;
-  // False after read_csv: the sums then come from bin centres, min/max from bin edges.
+  // False after from_bins: the sums then come from bin centres, min/max from bin edges.
   bool exact_moments() const { return exact_moments_; }
 
-  // histogram.csv: mu_low,mu_high,count,D,R,D_rate,R_rate, one row per bin from the
-  // first to the last populated bin (empty bins in between included). The rate columns
-  // are "nan" when the loading is unknown.
-  void write_csv(const std::filesystem::path& path) const;
-  std::string csv() const;
-  // Reads a histogram.csv written by write_csv (columns found by header name; only
-  // mu_low, mu_high and count are used). The bin width is taken from the file and must
-  // agree with bin_width when that is > 0. Loading comes from the caller (summary.json).
-  static MagnitudeHistogram read_csv(const std::filesystem::path& path, double total_load,
-                                     int blocks, double bin_width = 0);
+  // A histogram rebuilt from bin counts alone (as read back from histogram.csv): the
+  // moments then come from bin centres, min/max from bin edges (exact_moments() false).
+  struct Bin {
+    std::int64_t k;  // bin index: the bin is [k w, (k + 1) w)
+    std::int64_t count;
+  };
+  static MagnitudeHistogram from_bins(double bin_width, const std::vector<Bin>& bins,
+                                      double total_load, int blocks);
 
   bool operator==(const MagnitudeHistogram& o) const = default;
 

@@ -46,11 +46,11 @@
 #include <vector>
 
 #include "../scene_sim.hpp"
+#include "core/error.hpp"
 #include "engine/contacts.hpp"
 #include "integrate/adaptive.hpp"
 #include "integrate/rk2.hpp"
 #include "integrate/rk4.hpp"
-#include "io/error.hpp"
 #include "model/chain.hpp"
 #include "model/damped_oscillator.hpp"
 #include "model/substrate.hpp"

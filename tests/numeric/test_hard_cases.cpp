@@ -17,11 +17,12 @@
 #include <vector>
 
 #include "../scene_sim.hpp"
+#include "core/error.hpp"
 #include "engine/contacts.hpp"
 #include "engine/continuous.hpp"
 #include "integrate/rk4.hpp"
-#include "io/error.hpp"
 #include "io/json.hpp"
+#include "io/settings.hpp"
 
 namespace bkq {
 namespace {

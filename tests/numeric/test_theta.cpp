@@ -22,11 +22,11 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "engine/event_engine.hpp"
 #include "integrate/rk2.hpp"
 #include "integrate/stepper.hpp"
 #include "integrate/theta.hpp"
-#include "io/error.hpp"
 #include "model/chain.hpp"
 #include "model/damped_oscillator.hpp"
 #include "model/parameters.hpp"

@@ -21,9 +21,10 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "integrate/stepper.hpp"
-#include "io/error.hpp"
 #include "io/scene.hpp"
+#include "io/settings.hpp"
 #include "model/chain.hpp"
 #include "model/damped_oscillator.hpp"
 #include "model/parameters.hpp"

@@ -1,4 +1,4 @@
-// The work–precision study (engine/accuracy.hpp, `bkquake accuracy`) on a small chain:
+// The work–precision study (app/accuracy.hpp, `bkquake accuracy`) on a small chain:
 // errors shrink with dt and with the scheme's order, the adaptive reference beats the
 // fixed-step schemes, a dt above the stability limit is kept and marked, the table and
 // accuracy.csv carry every point, and the command refuses bad options.
@@ -11,7 +11,7 @@
 
 #include "../cli_helpers.hpp"
 #include "../scene_sim.hpp"
-#include "engine/accuracy.hpp"
+#include "app/accuracy.hpp"
 
 namespace bkq {
 namespace {

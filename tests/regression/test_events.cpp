@@ -19,12 +19,13 @@
 
 #include "../cli_helpers.hpp"
 #include "../scene_sim.hpp"
+#include "core/error.hpp"
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
 #include "integrate/stepper.hpp"
 #include "io/catalog.hpp"
-#include "io/error.hpp"
 #include "io/scene.hpp"
+#include "io/settings.hpp"
 #include "model/chain.hpp"
 #include "model/parameters.hpp"
 

@@ -17,8 +17,8 @@
 #include <string>
 
 #include "../scene_sim.hpp"
+#include "core/error.hpp"
 #include "engine/reference_events.hpp"
-#include "io/error.hpp"
 
 namespace bkq {
 namespace {

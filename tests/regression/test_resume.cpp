@@ -24,9 +24,10 @@
 
 #include "../cli_helpers.hpp"
 #include "bkquake_version.hpp"
+#include "core/error.hpp"
 #include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
-#include "io/error.hpp"
+#include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
 #include "stats/histogram.hpp"
 
@@ -416,7 +417,7 @@ TEST(Checkpoint, HistogramStateRoundTripsAndIsChecked) {
   for (double mu : {-1.0, 2.2, 2.3, 7.9}) h.add(mu);
   h.set_loading(2.0, 10);
   EXPECT_TRUE(MagnitudeHistogram::from_state(h.state()) == h);
-  EXPECT_EQ(MagnitudeHistogram::from_state(h.state()).csv(), h.csv());
+  EXPECT_EQ(histogram_csv(MagnitudeHistogram::from_state(h.state())), histogram_csv(h));
   MagnitudeHistogram::State bad = h.state();
   bad.events += 1;
   EXPECT_THROW(MagnitudeHistogram::from_state(bad), Error);

@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "../cli_helpers.hpp"
+#include "core/error.hpp"
 #include "io/catalog.hpp"
-#include "io/error.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/scene.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "../cli_helpers.hpp"
-#include "io/error.hpp"
+#include "core/error.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {

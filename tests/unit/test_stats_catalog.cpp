@@ -8,8 +8,8 @@
 #include <fstream>
 #include <string>
 
-#include "io/error.hpp"
-#include "stats/catalog_reader.hpp"
+#include "core/error.hpp"
+#include "io/catalog_reader.hpp"
 #include "stats/event_classes.hpp"
 
 namespace bkq {

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "io/error.hpp"
+#include "core/error.hpp"
 #include "stats/gutenberg_richter.hpp"
 
 namespace bkq {

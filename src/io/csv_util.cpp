@@ -1,10 +1,10 @@
 // Implementation of the CSV helpers (see csv_util.hpp).
-#include "stats/csv_util.hpp"
+#include "io/csv_util.hpp"
 
 #include <charconv>
 #include <cmath>
 
-#include "io/error.hpp"
+#include "core/error.hpp"
 
 namespace bkq::csv {
 
@@ -72,14 +72,6 @@ int find_column(const std::vector<std::string_view>& header, std::string_view na
   for (std::size_t i = 0; i < header.size(); ++i)
     if (header[i] == name) return static_cast<int>(i);
   return -1;
-}
-
-std::string format_double(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buf[64];
-  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, ec == std::errc() ? ptr : buf);
 }
 
 }  // namespace bkq::csv

@@ -24,7 +24,4 @@ std::int64_t parse_int(std::string_view text, const std::string& file, std::int6
 // Index of a column in the header, or -1.
 int find_column(const std::vector<std::string_view>& header, std::string_view name);
 
-// Formats a double so that it reads back exactly (shortest round-trip form); "nan"/"inf".
-std::string format_double(double x);
-
 }  // namespace bkq::csv

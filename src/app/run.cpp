@@ -6,7 +6,7 @@
 // failed event propagates its error; --resume continues from the newest checkpoint after
 // checking it against the scene and catalog.csv, so the outputs equal those of a run that
 // never stopped, byte for byte.
-#include "engine/run.hpp"
+#include "app/run.hpp"
 
 #include <signal.h>
 #include <unistd.h>
@@ -18,17 +18,19 @@
 #include <filesystem>
 #include <memory>
 
+#include "app/progress.hpp"
 #include "bkquake_version.hpp"
+#include "core/error.hpp"
 #include "engine/continuous.hpp"
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
-#include "engine/progress.hpp"
 #include "integrate/stepper.hpp"
 #include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
-#include "io/error.hpp"
+#include "io/histogram_csv.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
+#include "io/settings.hpp"
 #include "model/chain.hpp"
 #include "stats/gutenberg_richter.hpp"
 #include "stats/histogram.hpp"
@@ -256,7 +258,7 @@ class EventRun {
     const int n = engine_->state().n();
     const double total_load = engine_->load() - prog_.load0;
     hist_.set_loading(total_load, n);
-    write_file_atomic(out_.path("histogram.csv"), hist_.csv());
+    write_file_atomic(out_.path("histogram.csv"), histogram_csv(hist_));
 
     const EngineCounters& c = engine_->counters();
     const EngineCounters& c0 = prog_.counters0;

@@ -1,12 +1,12 @@
 // Implementation of the minimal run-folder readers (see run_folder.hpp).
-#include "stats/run_folder.hpp"
+#include "io/run_folder.hpp"
 
 #include <cctype>
 #include <fstream>
 #include <sstream>
 
-#include "io/error.hpp"
-#include "stats/csv_util.hpp"
+#include "core/error.hpp"
+#include "io/csv_util.hpp"
 
 namespace bkq {
 

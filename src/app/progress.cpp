@@ -1,5 +1,5 @@
 // Progress line; see progress.hpp.
-#include "engine/progress.hpp"
+#include "app/progress.hpp"
 
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
 // The work–precision study; see accuracy.hpp.
-#include "engine/accuracy.hpp"
+#include "app/accuracy.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,12 +8,13 @@
 #include <memory>
 #include <optional>
 
+#include "core/error.hpp"
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
 #include "integrate/adaptive.hpp"
 #include "integrate/stepper.hpp"
-#include "io/error.hpp"
 #include "io/json.hpp"
+#include "io/settings.hpp"
 #include "model/chain.hpp"
 #include "stats/gutenberg_richter.hpp"
 #include "stats/histogram.hpp"

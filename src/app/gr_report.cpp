@@ -1,10 +1,11 @@
 // Implementation of the fit table and JSON (see gr_report.hpp).
-#include "stats/gr_report.hpp"
+#include "app/gr_report.hpp"
+#include "core/format.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-#include "stats/csv_util.hpp"
+#include "io/csv_util.hpp"
 
 namespace bkq {
 
@@ -12,7 +13,7 @@ namespace {
 const std::string kNested = "\x01nested";
 
 std::string fixed(double x, int digits = 4) {
-  if (!std::isfinite(x)) return csv::format_double(x);
+  if (!std::isfinite(x)) return format_real(x);
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", digits, x);
   return buf;
@@ -55,7 +56,7 @@ std::string json_string(const std::string& s) {
 }
 
 std::string json_number(double x) {
-  return std::isfinite(x) ? csv::format_double(x) : "null";
+  return std::isfinite(x) ? format_real(x) : "null";
 }
 
 JsonObject& JsonObject::add(const std::string& key, double x) {

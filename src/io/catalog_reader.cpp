@@ -1,10 +1,10 @@
 // Implementation of the streaming catalogue reader (see catalog_reader.hpp).
-#include "stats/catalog_reader.hpp"
+#include "io/catalog_reader.hpp"
 
 #include <cmath>
 
-#include "io/error.hpp"
-#include "stats/csv_util.hpp"
+#include "core/error.hpp"
+#include "io/csv_util.hpp"
 
 namespace bkq {
 

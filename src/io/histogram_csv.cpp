@@ -1,0 +1,111 @@
+// histogram.csv, written and read: the columns of HistogramCsv's schema, bin edges printed
+// %.12g, the other numbers shortest round-trip. The histogram itself (stats/histogram.hpp)
+// knows no file format.
+#include "io/histogram_csv.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/csv_util.hpp"
+
+namespace bkq {
+
+namespace {
+std::string edge(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.12g", x);
+  return buf;
+}
+}  // namespace
+
+std::string histogram_csv(const MagnitudeHistogram& h) {
+  std::ostringstream out;
+  out << "mu_low,mu_high,count,D,R,D_rate,R_rate\n";
+  if (h.empty()) return out.str();
+  const double norm = h.rate_norm();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t r = h.events();
+  for (std::int64_t k = h.first_bin(); k <= h.last_bin(); ++k) {
+    const std::int64_t c = h.count(k);
+    const double d = static_cast<double>(c) / h.bin_width();
+    const double rr = static_cast<double>(r);
+    out << edge(h.mu_low(k)) << ',' << edge(h.mu_high(k)) << ',' << c << ',' << format_real(d)
+        << ',' << r << ',' << format_real(norm > 0 ? d / norm : nan) << ','
+        << format_real(norm > 0 ? rr / norm : nan) << '\n';
+    r -= c;
+  }
+  return out.str();
+}
+
+void write_histogram_csv(const MagnitudeHistogram& h, const std::filesystem::path& path) {
+  std::ofstream f(path);
+  if (!f) throw Error(path.string() + ": cannot open for writing");
+  f << histogram_csv(h);
+  if (!f) throw Error(path.string() + ": write failed");
+}
+
+MagnitudeHistogram read_histogram_csv(const std::filesystem::path& path, double total_load,
+                                      int blocks, double bin_width) {
+  const std::string file = path.string();
+  std::ifstream f(path);
+  if (!f) throw Error(file + ": cannot open");
+  std::string header_line;
+  if (!std::getline(f, header_line)) throw Error(file + ": empty file, expected a header line");
+  const auto header = csv::split(header_line);
+  const int c_lo = csv::find_column(header, "mu_low");
+  const int c_hi = csv::find_column(header, "mu_high");
+  const int c_n = csv::find_column(header, "count");
+  for (auto [c, name] : {std::pair{c_lo, "mu_low"}, {c_hi, "mu_high"}, {c_n, "count"}})
+    if (c < 0) throw Error(file + ": missing column '" + name + "'");
+
+  struct Row {
+    double lo, hi;
+    std::int64_t n;
+    std::int64_t line;
+  };
+  std::vector<Row> rows;
+  std::string line;
+  std::int64_t lineno = 1;
+  while (std::getline(f, line)) {
+    ++lineno;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto fields = csv::split(line);
+    if (fields.size() != header.size())
+      throw Error(file + " line " + std::to_string(lineno) + ": expected " +
+                  std::to_string(header.size()) + " fields, got " + std::to_string(fields.size()));
+    const Row r{csv::parse_double(fields[static_cast<std::size_t>(c_lo)], file, lineno, "mu_low"),
+                csv::parse_double(fields[static_cast<std::size_t>(c_hi)], file, lineno, "mu_high"),
+                csv::parse_int(fields[static_cast<std::size_t>(c_n)], file, lineno, "count"),
+                lineno};
+    if (r.n < 0)
+      throw Error(file + " line " + std::to_string(lineno) + ": count must be >= 0, got " +
+                  std::to_string(r.n));
+    rows.push_back(r);
+  }
+  double w = bin_width;
+  if (!rows.empty()) {
+    const double wf = rows.front().hi - rows.front().lo;
+    if (w > 0 && std::fabs(wf - w) > 1e-9 * std::max(1.0, w))
+      throw Error(file + ": bin width " + format_real(wf) + " differs from the expected " +
+                  format_real(w));
+    if (!(w > 0)) w = std::round(wf * 1e9) / 1e9;  // undo the %.12g rounding of the edges
+  }
+  if (!(w > 0)) w = MagnitudeHistogram::kDefaultBinWidth;
+  std::vector<MagnitudeHistogram::Bin> bins;
+  for (const Row& r : rows) {
+    const auto k = static_cast<std::int64_t>(std::llround(r.lo / w));
+    if (std::fabs(r.lo - static_cast<double>(k) * w) > 1e-6 * w ||
+        std::fabs(r.hi - r.lo - w) > 1e-6 * w)
+      throw Error(file + " line " + std::to_string(r.line) + ": bin [" + format_real(r.lo) + ", " +
+                  format_real(r.hi) + ") is not on the grid of width " + format_real(w));
+    bins.push_back({k, r.n});
+  }
+  return MagnitudeHistogram::from_bins(w, bins, total_load, blocks);
+}
+
+}  // namespace bkq

@@ -1,0 +1,64 @@
+// From the validated scene to the physical parameters (SPEC §1): thesis Table 3.1 (block
+// quantities scaled from the pad's) or Carlson–Langer dimensionless units (eq. 2.2).
+#include "io/settings.hpp"
+
+#include <cmath>
+
+#include "io/scene.hpp"
+
+namespace bkq {
+
+ModelParams model_from_scene(const Scene& scene) {
+  ModelParams p;
+  const std::string& kind = scene.choice("model.kind");
+  p.kind = kind == "bkp" ? ModelKind::BKP : kind == "1dof" ? ModelKind::OneDof : ModelKind::BK;
+  p.boundary = scene.choice("model.boundary") == "periodic" ? Boundary::Periodic : Boundary::Free;
+  p.n = p.kind == ModelKind::OneDof ? 1 : static_cast<int>(scene.integer("model.blocks"));
+
+  const std::string& law = scene.choice("friction.law");
+  p.law = law == "thesis" ? FrictionLaw::Thesis
+          : law == "cl89" ? FrictionLaw::Cl89
+          : law == "none" ? FrictionLaw::None
+                          : FrictionLaw::Clst91;
+  p.sigma = scene.real("friction.sigma");
+
+  const double s_m = scene.real("model.s_m");
+  const double s_p = scene.real("model.s_p");
+  const double zeta = scene.real("model.damping_ratio");
+  double m_x = 0, k_p0 = 0;
+  if (scene.choice("model.parameterisation") == "thesis") {
+    // Thesis Table 3.1: the blocks share the pad's mass and spring, the chain keeps the
+    // axial stiffness of a single element (k_c grows with N).
+    m_x = scene.real("model.pad_mass");
+    k_p0 = scene.real("model.caliper_stiffness");
+    p.m_u = s_m * m_x / p.n;
+    p.k_p = s_p * k_p0 / p.n;
+    p.k_c = scene.real("model.s_c") * k_p0 * p.n;
+    p.F0 = scene.real("friction.F0");
+    p.v_c = scene.real("friction.vc");
+  } else {
+    // Carlson–Langer units (eq. 2.2): m_u = k_p = F0 = 1, k_c = l^2, v_c = 1/(2 alpha).
+    // A pad, if any, is scaled from the blocks with the same factors as Table 3.1.
+    p.m_u = 1;
+    p.k_p = 1;
+    p.F0 = 1;
+    const double l = scene.real("model.l");
+    p.k_c = l * l;
+    const double alpha = scene.real("friction.alpha");
+    p.v_c = alpha > 0 ? 1.0 / (2.0 * alpha) : HUGE_VAL;
+    m_x = p.n * p.m_u / s_m;
+    k_p0 = p.n * p.k_p / s_p;
+  }
+  if (p.n == 1) p.k_c = 0;
+  if (p.kind == ModelKind::BKP) {
+    p.m_x = m_x;
+    p.k_p0 = k_p0;
+    p.c_p = critical_damping(zeta, k_p0 + p.n * p.k_p, m_x);
+  } else if (p.kind == ModelKind::OneDof) {
+    // Thesis eq. 2.11: one mass on a spring with a damper, m x'' = -c x' - k x - F(x' + v).
+    p.c_u = critical_damping(zeta, p.k_p, p.m_u);
+  }
+  return p;
+}
+
+}  // namespace bkq

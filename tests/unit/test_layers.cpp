@@ -1,0 +1,60 @@
+// The layers link downward only: core <- model <- integrate <- engine <- stats <- io <- app
+// <- cli. The build already refuses an upward include (each layer compiles against an
+// include root holding only itself and the layers below); this test names every offending
+// line at once, and also catches an include that happens to resolve relative to the file.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace bkq {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kLayers = {"core",  "model", "integrate", "engine",
+                                          "stats", "io",    "app",       "cli"};
+
+int rank_of(const std::string& layer) {
+  const auto it = std::find(kLayers.begin(), kLayers.end(), layer);
+  return it == kLayers.end() ? -1 : static_cast<int>(it - kLayers.begin());
+}
+
+TEST(Layers, EveryFolderUnderSrcIsALayer) {
+  for (const auto& e : fs::directory_iterator(fs::path(BKQUAKE_SOURCE_DIR) / "src")) {
+    if (e.is_directory()) {
+      EXPECT_GE(rank_of(e.path().filename().string()), 0) << e.path() << " is not a layer";
+    }
+  }
+}
+
+TEST(Layers, NoFileIncludesAHigherLayer) {
+  const std::regex include(R"re(^\s*#\s*include\s*"([a-z_]+)/)re");
+  std::vector<std::string> offences;
+  int files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(fs::path(BKQUAKE_SOURCE_DIR) / "src")) {
+    if (!e.is_regular_file()) continue;
+    const fs::path rel = fs::relative(e.path(), fs::path(BKQUAKE_SOURCE_DIR) / "src");
+    const int own = rank_of(rel.begin()->string());
+    ++files;
+    std::ifstream in(e.path());
+    int lineno = 0;
+    for (std::string line; std::getline(in, line);) {
+      ++lineno;
+      std::smatch m;
+      if (!std::regex_search(line, m, include)) continue;
+      const int target = rank_of(m[1].str());
+      if (target > own)
+        offences.push_back(rel.string() + ":" + std::to_string(lineno) + ": " + line);
+    }
+  }
+  EXPECT_GT(files, 50);
+  for (const auto& o : offences) ADD_FAILURE() << o;
+}
+
+}  // namespace
+}  // namespace bkq
