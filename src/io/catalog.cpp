@@ -7,8 +7,8 @@
 
 namespace bkq {
 
-const std::vector<ColumnSpec>& catalog_schema() {
-  static const std::vector<ColumnSpec> schema = {
+const Schema& catalog_schema() {
+  static const Schema schema = {
       {"event", "", "1-based event number, counted after the transient"},
       {"load", "length", "substrate displacement at the trigger"},
       {"trigger", "", "0-based index of the block that failed first"},
@@ -28,12 +28,7 @@ const std::vector<ColumnSpec>& catalog_schema() {
 }
 
 std::string catalog_header() {
-  std::string s;
-  for (const auto& c : catalog_schema()) {
-    if (!s.empty()) s += ',';
-    s += c.name;
-  }
-  return s;
+  return header_of(catalog_schema());
 }
 
 std::string catalog_row(const EventRecord& e) {

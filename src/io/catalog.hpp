@@ -8,17 +8,12 @@
 #include <vector>
 
 #include "engine/event_record.hpp"
+#include "io/schema.hpp"
 
 namespace bkq {
 
-struct ColumnSpec {
-  const char* name;
-  const char* units;
-  const char* doc;
-};
-
 // The catalogue schema: column order is the CSV column order.
-const std::vector<ColumnSpec>& catalog_schema();
+const Schema& catalog_schema();
 // "event,load,trigger,..." (no newline).
 std::string catalog_header();
 // One CSV row (no newline), numbers printed round-trip exactly (%.17g or shortest).
