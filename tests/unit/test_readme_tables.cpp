@@ -7,6 +7,7 @@
 // schema cannot drift from what the program writes.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -155,6 +156,23 @@ TEST(ReadmeTables, UpdateRewritesOnlyTheMarkedBlocks) {
   EXPECT_EQ(updated.find("| stale |"), std::string::npos);
   EXPECT_EQ(update_readme(updated), updated);
   EXPECT_THROW(update_readme("# no markers\n"), std::exception);
+}
+
+TEST(ReadmeTables, TheCommandRegeneratesACopyOfTheReadme) {
+  const fs::path dir = fs::temp_directory_path() / "bkq_test_readme_tables";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path copy = dir / "README.md";
+  std::string stale = slurp(kSource / "README.md");
+  const auto at = stale.find("| `model.kind` |");
+  ASSERT_NE(at, std::string::npos);
+  stale.insert(at, "| `stale.key` | | | | |\n");
+  std::ofstream(copy) << stale;
+  const std::string cmd = std::string(BKQUAKE_BINARY) + " readme-tables --update " + copy.string() +
+                          " > " + (dir / "out.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / "out.txt");
+  EXPECT_TRUE(slurp(copy) == slurp(kSource / "README.md"));
+  EXPECT_NE(slurp(dir / "out.txt").find("tables updated"), std::string::npos);
 }
 
 }  // namespace
