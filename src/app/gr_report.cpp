@@ -1,16 +1,15 @@
 // Implementation of the fit table and JSON (see gr_report.hpp).
 #include "app/gr_report.hpp"
-#include "core/format.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
-#include "io/csv_util.hpp"
+#include "core/format.hpp"
 
 namespace bkq {
 
 namespace {
-const std::string kNested = "\x01nested";
 
 std::string fixed(double x, int digits = 4) {
   if (!std::isfinite(x)) return format_real(x);
@@ -23,133 +22,52 @@ std::string pm(double b, double err) {
 }
 }  // namespace
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
-std::string json_number(double x) {
-  return std::isfinite(x) ? format_real(x) : "null";
-}
-
-JsonObject& JsonObject::add(const std::string& key, double x) {
-  raw_.emplace_back(key, json_number(x));
-  return *this;
-}
-JsonObject& JsonObject::add(const std::string& key, std::int64_t i) {
-  raw_.emplace_back(key, std::to_string(i));
-  return *this;
-}
-JsonObject& JsonObject::add(const std::string& key, bool b) {
-  raw_.emplace_back(key, b ? "true" : "false");
-  return *this;
-}
-JsonObject& JsonObject::add(const std::string& key, const std::string& s) {
-  raw_.emplace_back(key, json_string(s));
-  return *this;
-}
-JsonObject& JsonObject::add(const std::string& key, const JsonObject& o) {
-  raw_.emplace_back(key, kNested + std::to_string(nested_.size()));
-  nested_.push_back(o);
-  return *this;
-}
-JsonObject& JsonObject::add(const std::string& key, const std::vector<std::string>& strings) {
-  std::string text = "[";
-  for (std::size_t i = 0; i < strings.size(); ++i)
-    text += (i ? ", " : "") + json_string(strings[i]);
-  raw_.emplace_back(key, text + "]");
-  return *this;
-}
-
-std::string JsonObject::str(int indent) const {
-  if (raw_.empty()) return "{}";
-  const std::string pad(static_cast<std::size_t>(indent) + 2, ' ');
-  std::string out = "{\n";
-  for (std::size_t i = 0; i < raw_.size(); ++i) {
-    const auto& [key, text] = raw_[i];
-    out += pad + json_string(key) + ": ";
-    if (text.rfind(kNested, 0) == 0)
-      out += nested_[std::stoul(text.substr(kNested.size()))].str(indent + 2);
-    else
-      out += text;
-    out += i + 1 < raw_.size() ? ",\n" : "\n";
-  }
-  return out + std::string(static_cast<std::size_t>(indent), ' ') + "}";
-}
-
-JsonObject gr_fit_json(const GrFit& f) {
-  JsonObject two, excess, o;
-  two.add("ok", f.two_law_ok)
-      .add("b1", f.two_law_b1)
-      .add("b2", f.two_law_b2)
-      .add("mu_cross", f.two_law_mu_cross)
-      .add("moment_cross", f.two_law_moment_cross)
-      .add("ln_A1", f.two_law_ln_A1)
-      .add("ln_A2", f.two_law_ln_A2)
-      .add("mu_low", f.two_law_mu_low)
-      .add("mu_high", f.two_law_mu_high);
-  excess.add("found", f.excess_found)
-      .add("mu", f.excess_found ? f.excess_mu : NAN)
-      .add("observed", f.excess_observed)
-      .add("expected", f.excess_expected)
-      .add("count", f.excess_count);
-  o.add("bin_width", f.bin_width)
-      .add("events", f.n_total)
-      .add("mu_min", f.mu_min)
-      .add("mu_max", f.mu_max)
-      .add("window_auto", f.window_auto)
-      .add("mu_max_auto", f.mu_max_auto)
-      .add("truncated", f.truncated)
-      .add("n_in_window", f.n_in_window)
-      .add("b_mle", f.b_mle)
-      .add("b_mle_err", f.b_mle_err)
-      .add("b_aki", f.b_aki)
-      .add("b_aki_err", f.b_aki_err)
-      .add("b_lsq", f.b_lsq)
-      .add("b_lsq_err", f.b_lsq_err)
-      .add("ln_A", f.ln_A)
-      .add("ks_distance", f.ks_distance)
-      .add("two_power_law", two)
-      .add("excess", excess)
-      .add("notes", f.notes);
+Json gr_fit_json(const GrFit& f) {
+  Json two = Json::object(), excess = Json::object(), o = Json::object();
+  two.set("ok", f.two_law_ok)
+      .set("b1", fit_number(f.two_law_b1))
+      .set("b2", fit_number(f.two_law_b2))
+      .set("mu_cross", fit_number(f.two_law_mu_cross))
+      .set("moment_cross", fit_number(f.two_law_moment_cross))
+      .set("ln_A1", fit_number(f.two_law_ln_A1))
+      .set("ln_A2", fit_number(f.two_law_ln_A2))
+      .set("mu_low", fit_number(f.two_law_mu_low))
+      .set("mu_high", fit_number(f.two_law_mu_high));
+  excess.set("found", f.excess_found)
+      .set("mu", fit_number(f.excess_found ? f.excess_mu : NAN))
+      .set("observed", f.excess_observed)
+      .set("expected", fit_number(f.excess_expected))
+      .set("count", fit_number(f.excess_count));
+  o.set("bin_width", fit_number(f.bin_width))
+      .set("events", f.n_total)
+      .set("mu_min", fit_number(f.mu_min))
+      .set("mu_max", fit_number(f.mu_max))
+      .set("window_auto", f.window_auto)
+      .set("mu_max_auto", f.mu_max_auto)
+      .set("truncated", f.truncated)
+      .set("n_in_window", f.n_in_window)
+      .set("b_mle", fit_number(f.b_mle))
+      .set("b_mle_err", fit_number(f.b_mle_err))
+      .set("b_aki", fit_number(f.b_aki))
+      .set("b_aki_err", fit_number(f.b_aki_err))
+      .set("b_lsq", fit_number(f.b_lsq))
+      .set("b_lsq_err", fit_number(f.b_lsq_err))
+      .set("ln_A", fit_number(f.ln_A))
+      .set("ks_distance", fit_number(f.ks_distance))
+      .set("two_power_law", two)
+      .set("excess", excess)
+      .set("notes", Json::strings(f.notes));
   return o;
 }
 
-JsonObject class_counts_json(const EventClassCounts& c) {
-  JsonObject o;
-  o.add("single_block", c.single_block)
-      .add("localised", c.localised)
-      .add("delocalised", c.delocalised)
-      .add("single_block_fraction", c.fraction(EventClass::single_block))
-      .add("localised_fraction", c.fraction(EventClass::localised))
-      .add("delocalised_fraction", c.fraction(EventClass::delocalised));
+Json class_counts_json(const EventClassCounts& c) {
+  Json o = Json::object();
+  o.set("single_block", c.single_block)
+      .set("localised", c.localised)
+      .set("delocalised", c.delocalised)
+      .set("single_block_fraction", fit_number(c.fraction(EventClass::single_block)))
+      .set("localised_fraction", fit_number(c.fraction(EventClass::localised)))
+      .set("delocalised_fraction", fit_number(c.fraction(EventClass::delocalised)));
   return o;
 }
 

@@ -1,22 +1,13 @@
-// `bkquake fit CATALOG.csv`: reads an event catalogue, fits the Gutenberg-Richter law
-// (binned and unbinned maximum likelihood, least squares, KS window, two power laws,
-// large-event excess; see stats/gutenberg_richter.hpp) and counts the event classes.
-// Prints a short table; --json also writes the same as JSON. Thin: it only wires the
-// catalogue reader, the histogram and the fits together.
+// `bkquake fit CATALOG.csv`: parses the arguments and calls app/fit.hpp, which fits the
+// Gutenberg-Richter law to the catalogue, prints a short table and, with --json, writes the
+// same as JSON.
 #include <boost/program_options.hpp>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 
-#include "app/gr_report.hpp"
+#include "app/fit.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
-#include "io/catalog_reader.hpp"
-#include "io/run_folder.hpp"
-#include "stats/event_classes.hpp"
-#include "stats/gutenberg_richter.hpp"
-#include "stats/histogram.hpp"
 
 namespace bkq {
 
@@ -58,7 +49,6 @@ int cmd_fit(const std::vector<std::string>& args) {
     return 0;
   }
   if (!vm.count("catalog")) throw Error("fit: missing CATALOG.csv (see bkquake fit --help)");
-  const std::filesystem::path catalog = vm["catalog"].as<std::string>();
   const double w = vm["bin-width"].as<double>();
   if (!(w > 0)) throw Error("fit: --bin-width: expected a value > 0, got " + std::to_string(w));
   std::optional<double> mu_min, mu_max;
@@ -67,68 +57,20 @@ int cmd_fit(const std::vector<std::string>& args) {
   if (mu_min && mu_max && !(*mu_max > *mu_min))
     throw Error("fit: --mu-max must be greater than --mu-min");
 
-  // Chain length and boundary for the event classes.
-  std::optional<int> blocks;
-  std::string boundary = "free";
-  std::string class_note;
-  const auto scene = catalog.parent_path() / "scene.ini";
-  if (std::filesystem::exists(scene)) {
-    const SceneModelInfo info = read_scene_model(scene);
-    blocks = info.blocks;
-    if (info.boundary) boundary = *info.boundary;
-  }
+  FitRequest request;
+  request.catalog = vm["catalog"].as<std::string>();
+  request.bin_width = w;
+  request.mu_min = mu_min;
+  request.mu_max = mu_max;
   if (vm.count("blocks")) {
-    blocks = vm["blocks"].as<int>();
-    if (*blocks < 1)
-      throw Error("fit: --blocks: expected a positive integer, got " + std::to_string(*blocks));
+    request.blocks = vm["blocks"].as<int>();
+    if (*request.blocks < 1)
+      throw Error("fit: --blocks: expected a positive integer, got " +
+                  std::to_string(*request.blocks));
   }
-  if (vm.count("boundary")) boundary = vm["boundary"].as<std::string>();
-  const Boundary bnd = parse_boundary(boundary);
-
-  CatalogReader reader(catalog);
-  const bool classes_on = blocks.has_value() && reader.has_extent();
-  if (!blocks)
-    class_note = "event classes skipped: no --blocks and no scene.ini beside the catalogue";
-  else if (!reader.has_extent())
-    class_note = "event classes skipped: the catalogue lacks blocks/first_block/last_block";
-
-  MagnitudeHistogram hist(w);
-  std::vector<double> magnitudes;
-  EventClassCounts classes;
-  CatalogEvent e;
-  while (reader.next(e)) {
-    hist.add(e.magnitude);
-    magnitudes.push_back(e.magnitude);
-    if (classes_on)
-      classes.add(classify_event(e.blocks, e.first_block, e.last_block, *blocks, bnd));
-  }
-  require_events_to_fit(reader.file(), reader.events_read());
-
-  GrFit fit = fit_histogram(hist, mu_min, mu_max);
-  add_unbinned(fit, magnitudes);
-
-  std::cout << "catalogue         " << catalog.string() << "\n" << gr_fit_table(fit);
-  if (classes_on)
-    std::cout << "classes (N = " << *blocks << ", " << boundary << " ends)\n"
-              << class_counts_table(classes);
-  else
-    std::cout << "note: " << class_note << "\n";
-
-  if (vm.count("json")) {
-    JsonObject o;
-    o.add("catalog", catalog.string()).add("fit", gr_fit_json(fit));
-    if (classes_on)
-      o.add("blocks", static_cast<std::int64_t>(*blocks))
-          .add("boundary", boundary)
-          .add("classes", class_counts_json(classes));
-    else
-      o.add("classes_note", class_note);
-    const std::string out = vm["json"].as<std::string>();
-    std::ofstream f(out);
-    if (!f) throw Error("fit: --json: cannot open " + out + " for writing");
-    f << o.str() << "\n";
-    if (!f) throw Error("fit: --json: write to " + out + " failed");
-  }
+  if (vm.count("boundary")) request.boundary = vm["boundary"].as<std::string>();
+  if (vm.count("json")) request.json = vm["json"].as<std::string>();
+  fit_catalog(request, std::cout);
   return 0;
 }
 

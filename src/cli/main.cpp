@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
     if (command == "fit") return bkq::cmd_fit(args);
     if (command == "merge") return bkq::cmd_merge(args);
     if (command == "accuracy") return bkq::cmd_accuracy(args);
+    if (command == "readme-tables") return bkq::cmd_readme_tables(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {
     std::cerr << "bkquake: error: " << e.what() << "\n";

@@ -8,19 +8,20 @@
 namespace bkq {
 
 const Schema& catalog_schema() {
+  namespace c = catalog_col;
   static const Schema schema = {
-      {"event", "", "1-based event number, counted after the transient"},
-      {"load", "length", "substrate displacement at the trigger"},
-      {"trigger", "", "0-based index of the block that failed first"},
-      {"blocks", "", "number of distinct blocks that slipped"},
-      {"moment", "length", "moment M = sum over blocks of their slip"},
-      {"magnitude", "", "magnitude mu = ln M"},
-      {"duration", "time", "time from the trigger until the last block re-stuck"},
-      {"max_speed", "length/time", "largest |relative velocity| of any block during the event"},
-      {"pad_displacement", "length", "change of the pad position over the event (0 for bk)"},
-      {"first_block", "", "lowest block index that slipped"},
-      {"last_block", "", "highest block index that slipped"},
-      {"energy_residual", "1",
+      {c::event, "", "1-based event number, counted after the transient", kInteger},
+      {c::load, "length", "substrate displacement at the trigger"},
+      {c::trigger, "", "0-based index of the block that failed first", kInteger},
+      {c::blocks, "", "number of distinct blocks that slipped", kInteger},
+      {c::moment, "length", "moment M = sum over blocks of their slip"},
+      {c::magnitude, "", "magnitude mu = ln M"},
+      {c::duration, "time", "time from the trigger until the last block re-stuck"},
+      {c::max_speed, "length/time", "largest |relative velocity| of any block during the event"},
+      {c::pad_displacement, "length", "change of the pad position over the event (0 for bk)"},
+      {c::first_block, "", "lowest block index that slipped", kInteger},
+      {c::last_block, "", "highest block index that slipped", kInteger},
+      {c::energy_residual, "",
        "(change of stored energy + work against friction and dampers) / that work; 0 for an exact "
        "integration"},
   };

@@ -12,11 +12,27 @@
 
 namespace bkq {
 
+// The catalogue's column names, each spelled once: the schema and the readers use these.
+namespace catalog_col {
+inline constexpr const char* event = "event";
+inline constexpr const char* load = "load";
+inline constexpr const char* trigger = "trigger";
+inline constexpr const char* blocks = "blocks";
+inline constexpr const char* moment = "moment";
+inline constexpr const char* magnitude = "magnitude";
+inline constexpr const char* duration = "duration";
+inline constexpr const char* max_speed = "max_speed";
+inline constexpr const char* pad_displacement = "pad_displacement";
+inline constexpr const char* first_block = "first_block";
+inline constexpr const char* last_block = "last_block";
+inline constexpr const char* energy_residual = "energy_residual";
+}  // namespace catalog_col
+
 // The catalogue schema: column order is the CSV column order.
 const Schema& catalog_schema();
 // "event,load,trigger,..." (no newline).
 std::string catalog_header();
-// One CSV row (no newline), numbers printed round-trip exactly (%.17g or shortest).
+// One CSV row (no newline): integers as integers, reals shortest round-trip.
 std::string catalog_row(const EventRecord& e);
 
 }  // namespace bkq

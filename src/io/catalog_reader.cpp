@@ -4,9 +4,12 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "io/catalog.hpp"
 #include "io/csv_util.hpp"
 
 namespace bkq {
+
+namespace col = catalog_col;
 
 CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.string()), in_(path) {
   if (!in_) throw Error(file_ + ": cannot open");
@@ -16,15 +19,16 @@ CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.str
     throw Error(file_ + ": empty file, expected a header line");
   const auto header = csv::split(header_line);
   n_fields_ = header.size();
-  c_event_ = csv::find_column(header, "event");
-  c_load_ = csv::find_column(header, "load");
-  c_blocks_ = csv::find_column(header, "blocks");
-  c_first_ = csv::find_column(header, "first_block");
-  c_last_ = csv::find_column(header, "last_block");
-  c_moment_ = csv::find_column(header, "moment");
-  c_magnitude_ = csv::find_column(header, "magnitude");
+  const Schema& schema = catalog_schema();
+  c_event_ = csv::find_column(header, schema, col::event);
+  c_load_ = csv::find_column(header, schema, col::load);
+  c_blocks_ = csv::find_column(header, schema, col::blocks);
+  c_first_ = csv::find_column(header, schema, col::first_block);
+  c_last_ = csv::find_column(header, schema, col::last_block);
+  c_moment_ = csv::find_column(header, schema, col::moment);
+  c_magnitude_ = csv::find_column(header, schema, col::magnitude);
   if (c_moment_ < 0 && c_magnitude_ < 0)
-    throw Error(file_ + ": missing column 'moment' (header: " + header_line + ")");
+    throw Error(file_ + ": missing column '" + col::moment + "' (header: " + header_line + ")");
 }
 
 bool CatalogReader::next(CatalogEvent& e) {
@@ -45,20 +49,22 @@ bool CatalogReader::next(CatalogEvent& e) {
     };
     e = CatalogEvent{};
     e.event =
-        c_event_ >= 0 ? csv::parse_int(field(c_event_), file_, lineno_, "event") : events_ + 1;
-    if (c_load_ >= 0) e.load = csv::parse_double(field(c_load_), file_, lineno_, "load");
-    if (c_blocks_ >= 0) e.blocks = as_int(c_blocks_, "blocks");
-    if (c_first_ >= 0) e.first_block = as_int(c_first_, "first_block");
-    if (c_last_ >= 0) e.last_block = as_int(c_last_, "last_block");
+        c_event_ >= 0 ? csv::parse_int(field(c_event_), file_, lineno_, col::event) : events_ + 1;
+    if (c_load_ >= 0) e.load = csv::parse_double(field(c_load_), file_, lineno_, col::load);
+    if (c_blocks_ >= 0) e.blocks = as_int(c_blocks_, col::blocks);
+    if (c_first_ >= 0) e.first_block = as_int(c_first_, col::first_block);
+    if (c_last_ >= 0) e.last_block = as_int(c_last_, col::last_block);
     if (c_moment_ >= 0) {
-      e.moment = csv::parse_double(field(c_moment_), file_, lineno_, "moment");
+      e.moment = csv::parse_double(field(c_moment_), file_, lineno_, col::moment);
       if (!(e.moment > 0) || !std::isfinite(e.moment))
-        throw Error(where + ": moment must be > 0, got " + std::string(field(c_moment_)));
+        throw Error(where + ": " + col::moment + " must be > 0, got " +
+                    std::string(field(c_moment_)));
       e.magnitude = std::log(e.moment);
     } else {
-      e.magnitude = csv::parse_double(field(c_magnitude_), file_, lineno_, "magnitude");
+      e.magnitude = csv::parse_double(field(c_magnitude_), file_, lineno_, col::magnitude);
       if (!std::isfinite(e.magnitude))
-        throw Error(where + ": magnitude must be finite, got " + std::string(field(c_magnitude_)));
+        throw Error(where + ": " + col::magnitude + " must be finite, got " +
+                    std::string(field(c_magnitude_)));
       e.moment = std::exp(e.magnitude);
     }
     ++events_;

@@ -1,7 +1,7 @@
 // Streaming reader of an event catalogue (catalog.csv, schema in io/catalog.hpp) for the
-// statistics: rows are read one at a time, columns are found by their header names (no
-// column order is assumed), and every problem is a bkq::Error that names the file and
-// the line, e.g. "catalog.csv line 17: moment must be > 0, got -0.3".
+// statistics: rows are read one at a time, columns are found by the names catalog_schema()
+// declares (no column order is assumed), and every problem is a bkq::Error that names the
+// file and the line, e.g. "catalog.csv line 17: moment must be > 0, got -0.3".
 // Required: a header line and the column `moment` (or, failing that, `magnitude`).
 // Optional: event, load, blocks, first_block, last_block (the event classes need the
 // last three). The magnitude used is ln(moment) (thesis eq. 2.6).

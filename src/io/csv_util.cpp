@@ -74,4 +74,16 @@ int find_column(const std::vector<std::string_view>& header, std::string_view na
   return -1;
 }
 
+int find_column(const std::vector<std::string_view>& header, const Schema& schema,
+                std::string_view name) {
+  return find_column(header, column(schema, name).name);
+}
+
+int require_column(const std::vector<std::string_view>& header, const Schema& schema,
+                   std::string_view name, const std::string& file) {
+  const int c = find_column(header, schema, name);
+  if (c < 0) throw Error(file + ": missing column '" + std::string(name) + "'");
+  return c;
+}
+
 }  // namespace bkq::csv

@@ -1,13 +1,16 @@
-// Small helpers shared by the readers of catalog.csv and histogram.csv: split a CSV line
-// (plain comma-separated numbers and names, no quoting: that is all bkquake writes),
-// parse a number strictly, and find columns by header name. Errors are bkq::Error naming
-// the file, the line and the column.
+// The one CSV reader helper, shared by the readers of catalog.csv and histogram.csv: split a
+// CSV line (plain comma-separated numbers and names, no quoting: that is all they hold),
+// parse a number strictly, and find columns by the names their schema (io/schema.hpp)
+// declares. Errors are bkq::Error naming the file, the line and the column. (Writing is
+// CsvStream's, io/output.hpp, for streamed files, or whole text for the small ones.)
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "io/schema.hpp"
 
 namespace bkq::csv {
 
@@ -23,5 +26,12 @@ std::int64_t parse_int(std::string_view text, const std::string& file, std::int6
 
 // Index of a column in the header, or -1.
 int find_column(const std::vector<std::string_view>& header, std::string_view name);
+// Index in the header of the column `name` of `schema`, or -1 when the file lacks it; a name
+// the schema does not declare is a std::logic_error (a reader's bug).
+int find_column(const std::vector<std::string_view>& header, const Schema& schema,
+                std::string_view name);
+// As find_column, but a missing column is bkq::Error "<file>: missing column '<name>'".
+int require_column(const std::vector<std::string_view>& header, const Schema& schema,
+                   std::string_view name, const std::string& file);
 
 }  // namespace bkq::csv

@@ -1,4 +1,4 @@
-// histogram.csv, written and read: the columns of HistogramCsv's schema, bin edges printed
+// histogram.csv, written and read: the columns of histogram_schema(), bin edges printed
 // %.12g, the other numbers shortest round-trip. The histogram itself (stats/histogram.hpp)
 // knows no file format.
 #include "io/histogram_csv.hpp"
@@ -16,16 +16,32 @@
 namespace bkq {
 
 namespace {
+constexpr const char* kEdgeFormat = "%.12g";  // the edges are multiples of the bin width
+
 std::string edge(double x) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.12g", x);
+  std::snprintf(buf, sizeof buf, kEdgeFormat, x);
   return buf;
 }
 }  // namespace
 
+const Schema& histogram_schema() {
+  namespace c = histogram_col;
+  static const Schema schema = {
+      {c::mu_low, "", "lower edge of the magnitude bin", kEdgeFormat},
+      {c::mu_high, "", "upper edge of the magnitude bin", kEdgeFormat},
+      {c::count, "", "events with mu_low <= magnitude < mu_high", kInteger},
+      {c::D, "", "D(mu): events per unit magnitude, count / bin width"},
+      {c::R, "", "R(mu): events with magnitude >= mu_low", kInteger},
+      {c::D_rate, "1/length", "D per unit substrate loading per block (nan when unknown)"},
+      {c::R_rate, "1/length", "R per unit substrate loading per block (nan when unknown)"},
+  };
+  return schema;
+}
+
 std::string histogram_csv(const MagnitudeHistogram& h) {
   std::ostringstream out;
-  out << "mu_low,mu_high,count,D,R,D_rate,R_rate\n";
+  out << header_of(histogram_schema()) << '\n';
   if (h.empty()) return out.str();
   const double norm = h.rate_norm();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -57,11 +73,11 @@ MagnitudeHistogram read_histogram_csv(const std::filesystem::path& path, double 
   std::string header_line;
   if (!std::getline(f, header_line)) throw Error(file + ": empty file, expected a header line");
   const auto header = csv::split(header_line);
-  const int c_lo = csv::find_column(header, "mu_low");
-  const int c_hi = csv::find_column(header, "mu_high");
-  const int c_n = csv::find_column(header, "count");
-  for (auto [c, name] : {std::pair{c_lo, "mu_low"}, {c_hi, "mu_high"}, {c_n, "count"}})
-    if (c < 0) throw Error(file + ": missing column '" + name + "'");
+  namespace col = histogram_col;
+  const Schema& schema = histogram_schema();
+  const int c_lo = csv::require_column(header, schema, col::mu_low, file);
+  const int c_hi = csv::require_column(header, schema, col::mu_high, file);
+  const int c_n = csv::require_column(header, schema, col::count, file);
 
   struct Row {
     double lo, hi;
@@ -78,13 +94,13 @@ MagnitudeHistogram read_histogram_csv(const std::filesystem::path& path, double 
     if (fields.size() != header.size())
       throw Error(file + " line " + std::to_string(lineno) + ": expected " +
                   std::to_string(header.size()) + " fields, got " + std::to_string(fields.size()));
-    const Row r{csv::parse_double(fields[static_cast<std::size_t>(c_lo)], file, lineno, "mu_low"),
-                csv::parse_double(fields[static_cast<std::size_t>(c_hi)], file, lineno, "mu_high"),
-                csv::parse_int(fields[static_cast<std::size_t>(c_n)], file, lineno, "count"),
-                lineno};
+    auto field = [&](int c) { return fields[static_cast<std::size_t>(c)]; };
+    const Row r{csv::parse_double(field(c_lo), file, lineno, col::mu_low),
+                csv::parse_double(field(c_hi), file, lineno, col::mu_high),
+                csv::parse_int(field(c_n), file, lineno, col::count), lineno};
     if (r.n < 0)
-      throw Error(file + " line " + std::to_string(lineno) + ": count must be >= 0, got " +
-                  std::to_string(r.n));
+      throw Error(file + " line " + std::to_string(lineno) + ": " + std::string(col::count) +
+                  " must be >= 0, got " + std::to_string(r.n));
     rows.push_back(r);
   }
   double w = bin_width;

@@ -1,9 +1,12 @@
-// The JSON writer of json.hpp and the shared round-trip number formatter.
+// The JSON writer and number reader of json.hpp.
 #include "io/json.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
+
+#include "core/error.hpp"
 
 namespace bkq {
 
@@ -19,11 +22,12 @@ Json Json::integer(std::int64_t i) {
   j.i_ = i;
   return j;
 }
-Json Json::number(double x) {
+Json Json::number(double x, Real style) {
   Json j;
   if (!std::isfinite(x)) return j;
   j.kind_ = Kind::Number;
   j.x_ = x;
+  j.style_ = style;
   return j;
 }
 Json Json::string(std::string s) {
@@ -35,6 +39,16 @@ Json Json::string(std::string s) {
 Json Json::array() {
   Json j;
   j.kind_ = Kind::Array;
+  return j;
+}
+Json Json::inline_array() {
+  Json j = array();
+  j.inline_ = true;
+  return j;
+}
+Json Json::strings(const std::vector<std::string>& items) {
+  Json j = inline_array();
+  for (const auto& s : items) j.push(string(s));
   return j;
 }
 Json Json::object() {
@@ -115,8 +129,7 @@ void Json::write(std::string& out, int indent) const {
       break;
     case Kind::Number: {
       std::string t = format_real(x_);
-      // Keep numbers recognisably real for readers that distinguish ints from floats.
-      if (t.find_first_of(".eE") == std::string::npos) t += ".0";
+      if (style_ == Real::point && t.find_first_of(".eE") == std::string::npos) t += ".0";
       out += t;
       break;
     }
@@ -126,6 +139,15 @@ void Json::write(std::string& out, int indent) const {
     case Kind::Array:
       if (items_.empty()) {
         out += "[]";
+        break;
+      }
+      if (inline_) {
+        out += "[";
+        for (std::size_t k = 0; k < items_.size(); ++k) {
+          if (k) out += ", ";
+          items_[k].write(out, indent);
+        }
+        out += "]";
         break;
       }
       out += "[\n";
@@ -156,6 +178,116 @@ std::string Json::str() const {
   std::string out;
   write(out, 0);
   return out;
+}
+
+namespace {
+
+// A forward-only scanner over JSON text: enough to walk an object's members and skip any
+// value, so a top-level key is never confused with a nested one or with a string value.
+class Scanner {
+ public:
+  Scanner(const std::string& text, const std::string& origin) : t_(text), origin_(origin) {}
+
+  void space() {
+    while (i_ < t_.size() && (t_[i_] == ' ' || t_[i_] == '\t' || t_[i_] == '\n' || t_[i_] == '\r'))
+      ++i_;
+  }
+  bool at(char c) {
+    space();
+    return i_ < t_.size() && t_[i_] == c;
+  }
+  void expect(char c) {
+    if (!at(c)) fail(std::string("expected '") + c + "'");
+    ++i_;
+  }
+  std::string string() {
+    expect('"');
+    std::string s;
+    while (i_ < t_.size() && t_[i_] != '"') {
+      if (t_[i_] == '\\') ++i_;  // the escaped character is kept as written: keys are plain
+      if (i_ < t_.size()) s += t_[i_++];
+    }
+    if (i_ >= t_.size()) fail("unterminated string");
+    ++i_;
+    return s;
+  }
+  // A scalar token (number, true, false, null) as written.
+  std::string token() {
+    space();
+    const std::size_t b = i_;
+    while (i_ < t_.size() && std::string_view(",}] \t\r\n").find(t_[i_]) == std::string_view::npos)
+      ++i_;
+    if (i_ == b) fail("expected a value");
+    return t_.substr(b, i_ - b);
+  }
+  void skip_value() {
+    if (at('"')) {
+      string();
+    } else if (at('{') || at('[')) {
+      const char close = t_[i_] == '{' ? '}' : ']';
+      ++i_;
+      if (at(close)) {
+        ++i_;
+        return;
+      }
+      while (true) {
+        if (close == '}') {
+          string();
+          expect(':');
+        }
+        skip_value();
+        if (at(',')) {
+          ++i_;
+          continue;
+        }
+        expect(close);
+        return;
+      }
+    } else {
+      token();
+    }
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error(origin_ + ": not a JSON object: " + what + " at offset " + std::to_string(i_));
+  }
+
+ private:
+  const std::string& t_;
+  const std::string& origin_;
+  std::size_t i_ = 0;
+};
+
+}  // namespace
+
+std::optional<double> json_top_level_number(const std::string& text, const std::string& key,
+                                            const std::string& origin) {
+  Scanner s(text, origin);
+  s.expect('{');
+  if (s.at('}')) return std::nullopt;
+  while (true) {
+    const std::string k = s.string();
+    s.expect(':');
+    if (k == key) {
+      if (s.at('"') || s.at('{') || s.at('[')) {
+        throw Error(origin + ": \"" + key + "\": expected a number, got a " +
+                    (s.at('"') ? "string" : "structure"));
+      }
+      const std::string v = s.token();
+      if (v == "null") return std::nullopt;
+      double x = 0;
+      const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+      if (ec != std::errc() || ptr != v.data() + v.size())
+        throw Error(origin + ": \"" + key + "\": expected a number, got " + v);
+      return x;
+    }
+    s.skip_value();
+    if (s.at(',')) {
+      s.expect(',');
+      continue;
+    }
+    s.expect('}');
+    return std::nullopt;
+  }
 }
 
 }  // namespace bkq

@@ -1,11 +1,13 @@
-// A tiny JSON writer for summary.json and other small machine-read outputs. An ordered
+// The one JSON writer of bkquake (summary.json, `bkquake fit --json`, merge's summary.json)
+// and a small reader for the numbers other commands take back from those files. An ordered
 // object builder (keys keep the order they were added, so files diff cleanly), numbers
-// printed so they read back to the same double, strings escaped, pretty-printed by str().
-// Numbers go through core/format.hpp's format_real().
+// printed so they read back to the same double (core/format.hpp's format_real()), non-finite
+// numbers written as null (JSON has no inf/nan), strings escaped, pretty-printed by str().
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,14 +19,22 @@ namespace bkq {
 class Json {
  public:
   enum class Kind { Null, Bool, Integer, Number, String, Array, Object };
+  // How a real number is written: `point` keeps it recognisably real ("2.0", for readers
+  // that tell ints from floats: summary.json of a run); `shortest` writes format_real()
+  // as it is ("2": the fit reports of `bkquake fit --json` and `bkquake merge`).
+  enum class Real { point, shortest };
 
   Json() = default;  // null
   static Json null() { return Json(); }
   static Json boolean(bool b);
   static Json integer(std::int64_t i);
-  static Json number(double x);  // non-finite values are written as null (JSON has no inf/nan)
+  // Non-finite values are written as null (JSON has no inf/nan).
+  static Json number(double x, Real style = Real::point);
   static Json string(std::string s);
   static Json array();
+  // An array written on one line, `["a", "b"]`: short lists such as notes or run folders.
+  static Json inline_array();
+  static Json strings(const std::vector<std::string>& items);  // an inline array of strings
   static Json object();
 
   // Object: appends (or replaces, keeping its place) a member; returns *this for chaining.
@@ -46,6 +56,8 @@ class Json {
   void write(std::string& out, int indent) const;
 
   Kind kind_ = Kind::Null;
+  Real style_ = Real::point;  // Number
+  bool inline_ = false;       // Array
   bool b_ = false;
   std::int64_t i_ = 0;
   double x_ = 0;
@@ -56,5 +68,11 @@ class Json {
 
 // A JSON string literal with quotes and escapes.
 std::string json_quote(const std::string& s);
+
+// The number stored under a top-level `key` of the JSON object in `text`; nullopt when the
+// key is absent or null. bkq::Error naming `origin` when the text is not a JSON object or the
+// value is not a number. Nested objects and arrays are skipped, not searched.
+std::optional<double> json_top_level_number(const std::string& text, const std::string& key,
+                                            const std::string& origin);
 
 }  // namespace bkq

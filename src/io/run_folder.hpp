@@ -1,13 +1,16 @@
-// What the statistics need from a run folder besides the histogram and the catalogue:
-// the chain length and boundary from scene.ini ([model] blocks, boundary) and a few
-// top-level numbers from summary.json (events, blocks, total_load, bin_width). The readers
-// are deliberately minimal (the writers live in src/io): INI "key = value" lines under
-// "[section]" headers with ';' or '#' comments, and top-level JSON numbers found by key.
+// What the statistics need from a run folder besides the histogram and the catalogue: the
+// chain length and boundary from scene.ini and a few top-level numbers from summary.json
+// (events, blocks, total_load, bin_width). scene.ini is parsed by the one INI parser
+// (io/ini.hpp) and its values checked against the one parameter table (io/scene.hpp); only
+// the keys needed here are read, so the scene of a run finished by an older (or newer)
+// bkquake, with keys since added or removed, still reads.
 #pragma once
 
 #include <filesystem>
 #include <optional>
 #include <string>
+
+#include "model/parameters.hpp"
 
 namespace bkq {
 
@@ -18,8 +21,11 @@ struct SceneModelInfo {
 };
 
 // Reads [model] blocks/boundary and [friction] alpha; bkq::Error if the file cannot be
-// opened or blocks is not a positive integer.
+// read or a value is outside the parameter table's range.
 SceneModelInfo read_scene_model(const std::filesystem::path& scene_ini);
+
+// "free" | "periodic" (the values of model.boundary); bkq::Error otherwise.
+Boundary parse_boundary(const std::string& text);
 
 // The number stored under a top-level "key" of a JSON file; nullopt when absent or null.
 // bkq::Error if the file cannot be read or the value is not a number.

@@ -1,25 +1,22 @@
 // The parameter table of bkquake and the Scene that reads, checks and writes it.
 // Every key is declared exactly once below (type, default, range, units, doc); reading
-// (INI files through Boost.Program_options and --set overrides), validation,
+// (INI files through io/ini.hpp, the one INI parser, and --set overrides), validation,
 // --dump-defaults and the effective scene.ini of each run are all driven by that table,
 // so a new parameter is one new row. Values are stored as normalised text (shortest
 // round-trip reals, true/false booleans) so equal scenes hash equally.
 #include "io/scene.hpp"
 
 #include <algorithm>
-#include <boost/program_options.hpp>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
+#include <cstdlib>
 #include <limits>
 #include <set>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/ini.hpp"
 #include "io/json.hpp"
 
 namespace bkq {
@@ -363,41 +360,17 @@ Scene::Scene() : origin("built-in default (carlson-langer, event-driven)") {
 }
 
 Scene Scene::from_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw Error("cannot read scene file '" + path + "': " + std::strerror(EISDIR));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot read scene file '" + path + "': " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error("cannot read scene file '" + path + "': " + std::strerror(errno));
-  return from_text(text.str(), path);
+  return from_text(read_text_file(path, "scene file"), path);
 }
 
 Scene Scene::from_text(const std::string& text, const std::string& origin_name) {
-  namespace po = boost::program_options;
   Scene scene;
   scene.origin = origin_name;
   const std::string where = "in " + origin_name;
-
-  po::options_description desc;
-  for (const auto& p : parameter_table())
-    desc.add_options()(p.key.c_str(), po::value<std::string>());
-
-  std::istringstream in(text);
-  po::parsed_options parsed(&desc);
-  try {
-    parsed = po::parse_config_file(in, desc, /*allow_unregistered=*/true);
-  } catch (const po::error& e) {
-    throw Error(std::string(e.what()) + suffix(where));
-  }
-
   std::set<std::string> seen;
-  for (const auto& opt : parsed.options) {
-    const std::string& key = opt.string_key;
-    if (opt.unregistered || !find_param(key)) unknown_key(key, where);
+  for (const auto& [key, value] : parse_ini(text, where)) {
+    if (!find_param(key)) unknown_key(key, where);
     if (!seen.insert(key).second) throw Error(key + ": given more than once" + suffix(where));
-    const std::string value = opt.value.empty() ? std::string() : opt.value.front();
     scene.set(key, value, where);
   }
   return scene;

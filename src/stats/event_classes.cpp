@@ -1,15 +1,7 @@
 // Implementation of the event classes (definitions in event_classes.hpp).
 #include "stats/event_classes.hpp"
 
-#include "core/error.hpp"
-
 namespace bkq {
-
-Boundary parse_boundary(const std::string& text) {
-  if (text == "free") return Boundary::free_ends;
-  if (text == "periodic") return Boundary::periodic;
-  throw Error("model.boundary: expected free or periodic, got '" + text + "'");
-}
 
 const char* to_string(EventClass c) {
   switch (c) {
@@ -26,7 +18,7 @@ const char* to_string(EventClass c) {
 EventClass classify_event(int blocks, int first_block, int last_block, int n, Boundary boundary) {
   if (blocks <= 1) return EventClass::single_block;
   if (blocks >= n - 1) return EventClass::delocalised;
-  if (boundary == Boundary::free_ends && (first_block <= 0 || last_block >= n - 1))
+  if (boundary == Boundary::Free && (first_block <= 0 || last_block >= n - 1))
     return EventClass::delocalised;
   return EventClass::localised;
 }

@@ -6,17 +6,15 @@
 //                 with a free boundary, first_block == 0 or last_block == N - 1 (a pulse
 //                 that reaches a free end is reflected, the signature of great events);
 //   localised     everything else (2 <= blocks < N - 1, away from the free ends).
-// With a periodic boundary there are no ends, so only the span criterion applies.
+// With a periodic boundary there are no ends, so only the span criterion applies. The
+// boundary is the model's (model/parameters.hpp), so there is one Boundary type.
 #pragma once
 
 #include <cstdint>
-#include <string>
+
+#include "model/parameters.hpp"
 
 namespace bkq {
-
-enum class Boundary { free_ends, periodic };
-// "free" | "periodic"; bkq::Error otherwise.
-Boundary parse_boundary(const std::string& text);
 
 enum class EventClass { single_block, localised, delocalised };
 const char* to_string(EventClass c);

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "io/catalog_reader.hpp"
+#include "io/run_folder.hpp"
 #include "stats/event_classes.hpp"
 
 namespace bkq {
@@ -103,12 +104,12 @@ TEST(CatalogReader, MissingColumnIsAnError) {
 
 TEST(EventClasses, Definitions) {
   const int n = 100;
-  EXPECT_EQ(classify_event(1, 0, 0, n, Boundary::free_ends), EventClass::single_block);
-  EXPECT_EQ(classify_event(5, 10, 14, n, Boundary::free_ends), EventClass::localised);
-  EXPECT_EQ(classify_event(5, 0, 4, n, Boundary::free_ends), EventClass::delocalised);
-  EXPECT_EQ(classify_event(5, 95, 99, n, Boundary::free_ends), EventClass::delocalised);
-  EXPECT_EQ(classify_event(5, 0, 4, n, Boundary::periodic), EventClass::localised);
-  EXPECT_EQ(classify_event(99, 0, 98, n, Boundary::periodic), EventClass::delocalised);
+  EXPECT_EQ(classify_event(1, 0, 0, n, Boundary::Free), EventClass::single_block);
+  EXPECT_EQ(classify_event(5, 10, 14, n, Boundary::Free), EventClass::localised);
+  EXPECT_EQ(classify_event(5, 0, 4, n, Boundary::Free), EventClass::delocalised);
+  EXPECT_EQ(classify_event(5, 95, 99, n, Boundary::Free), EventClass::delocalised);
+  EXPECT_EQ(classify_event(5, 0, 4, n, Boundary::Periodic), EventClass::localised);
+  EXPECT_EQ(classify_event(99, 0, 98, n, Boundary::Periodic), EventClass::delocalised);
   EventClassCounts c;
   c.add(EventClass::single_block);
   c.add(EventClass::single_block);

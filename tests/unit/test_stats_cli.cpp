@@ -1,6 +1,7 @@
 // The fit and merge commands end to end through the program: a synthetic catalogue is
 // fitted (text and JSON), bad input exits 2 with a one-line message naming the file, and
-// merge refuses runs with different bin widths.
+// merge refuses runs with different bin widths; the app functions behind them run without
+// the program.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,10 @@
 #include <random>
 #include <sstream>
 #include <string>
+
+#include "app/fit.hpp"
+#include "app/merge.hpp"
+#include "core/error.hpp"
 
 namespace {
 
@@ -86,6 +91,26 @@ TEST(StatsCli, MergeRefusesDifferentBinWidths) {
                        dir);
   EXPECT_EQ(r.rc, 2);
   EXPECT_NE(r.out.find("bin width"), std::string::npos) << r.out;
+}
+
+TEST(StatsCli, FitAndMergeAreAppFunctionsTheCliOnlyCalls) {
+  // The same work without the program: app/fit.hpp and app/merge.hpp take a request and a
+  // stream, so a study or a sweep can call them directly.
+  const fs::path dir = fresh_dir("app");
+  {
+    std::ofstream c(dir / "catalog.csv");
+    c << "event,moment\n";
+    for (int i = 1; i <= 200; ++i) c << i << "," << std::exp(0.01 * i) << "\n";
+  }
+  bkq::FitRequest request;
+  request.catalog = dir / "catalog.csv";
+  request.json = dir / "fit.json";
+  std::ostringstream out;
+  bkq::fit_catalog(request, out);
+  EXPECT_NE(out.str().find("events            200"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("note: event classes skipped"), std::string::npos) << out.str();
+  EXPECT_TRUE(fs::exists(dir / "fit.json"));
+  EXPECT_THROW(bkq::merge_runs({{(dir / "nowhere").string()}, dir / "m"}, out), bkq::Error);
 }
 
 }  // namespace

@@ -1,0 +1,86 @@
+// Implementation of `bkquake merge` (see merge.hpp).
+#include "app/merge.hpp"
+
+#include <cstdint>
+#include <fstream>
+#include <optional>
+#include <ostream>
+
+#include "app/gr_report.hpp"
+#include "core/error.hpp"
+#include "io/histogram_csv.hpp"
+#include "io/run_folder.hpp"
+#include "stats/gutenberg_richter.hpp"
+#include "stats/histogram.hpp"
+
+namespace bkq {
+
+namespace fs = std::filesystem;
+
+namespace {
+double required(const fs::path& summary, const std::string& key) {
+  const auto v = read_json_number(summary, key);
+  if (!v) throw Error(summary.string() + ": missing \"" + key + "\"");
+  return *v;
+}
+}  // namespace
+
+void merge_runs(const MergeRequest& request, std::ostream& out) {
+  const auto& runs = request.runs;
+  std::optional<MagnitudeHistogram> merged;
+  for (const auto& run : runs) {
+    const fs::path dir = run;
+    const fs::path summary = dir / "summary.json";
+    const double w = required(summary, "bin_width");
+    const double blocks = required(summary, "blocks");
+    const double load = required(summary, "total_load");
+    if (!(blocks >= 1) || blocks != static_cast<double>(static_cast<int>(blocks)))
+      throw Error(summary.string() + ": \"blocks\": expected a positive integer");
+    MagnitudeHistogram h =
+        read_histogram_csv(dir / "histogram.csv", load, static_cast<int>(blocks), w);
+    if (const auto ev = read_json_number(summary, "events");
+        ev && *ev != static_cast<double>(h.events()))
+      throw Error(dir.string() + ": histogram.csv holds " + std::to_string(h.events()) +
+                  " events, summary.json says " + std::to_string(static_cast<std::int64_t>(*ev)));
+    if (!merged) {
+      merged = std::move(h);
+      continue;
+    }
+    if (merged->bin_width() != h.bin_width())
+      throw Error("merge: " + run + " has bin width " + std::to_string(h.bin_width()) +
+                  ", the first run " + std::to_string(merged->bin_width()));
+    if (merged->blocks() != h.blocks())
+      throw Error("merge: " + run + " has N = " + std::to_string(h.blocks()) +
+                  ", the first run N = " + std::to_string(merged->blocks()));
+    merged->merge(h);
+  }
+  if (!merged) throw Error("merge: no RUN_DIR given");
+
+  fs::create_directories(request.out);
+  write_histogram_csv(*merged, request.out / "histogram.csv");
+  Json s = Json::object();
+  s.set("events", merged->events())
+      .set("blocks", static_cast<std::int64_t>(merged->blocks()))
+      .set("total_load", fit_number(merged->total_load()))
+      .set("bin_width", fit_number(merged->bin_width()))
+      .set("merged_from", Json::strings(runs));
+  const std::string where =
+      "merged " + std::to_string(runs.size()) + " runs into " + request.out.string();
+  if (merged->events() >= 2) {
+    const GrFit fit = fit_histogram(*merged, std::nullopt, std::nullopt);
+    s.set("b_mle", fit_number(fit.b_mle))
+        .set("b_mle_err", fit_number(fit.b_mle_err))
+        .set("mu_min", fit_number(fit.mu_min))
+        .set("mu_max", fit_number(fit.mu_max))
+        .set("fit", gr_fit_json(fit));
+    out << where << "\n" << gr_fit_table(fit);
+  } else {
+    out << where << "; fewer than 2 events, no fit\n";
+  }
+  const fs::path summary = request.out / "summary.json";
+  std::ofstream f(summary);
+  if (!f) throw Error(summary.string() + ": cannot open for writing");
+  f << s.str() << "\n";
+}
+
+}  // namespace bkq

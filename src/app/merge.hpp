@@ -1,0 +1,22 @@
+// `bkquake merge`: merges the magnitude histograms of several runs of the same scene exactly
+// (counts add; loading adds) and writes histogram.csv and summary.json, with the
+// Gutenberg-Richter fit of the merged histogram, into an output folder. Runs with different
+// bin widths or chain lengths are refused.
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace bkq {
+
+struct MergeRequest {
+  std::vector<std::string> runs;  // run folders, each with summary.json and histogram.csv
+  std::filesystem::path out;      // created if missing
+};
+
+// Prints a line (and the fit table) to `out`. User errors throw bkq::Error.
+void merge_runs(const MergeRequest& request, std::ostream& out);
+
+}  // namespace bkq

@@ -1,0 +1,120 @@
+// Implementation of the generated README tables (see readme_tables.hpp).
+#include "io/readme_tables.hpp"
+
+#include <algorithm>
+#include <utility>
+
+#include "core/error.hpp"
+#include "io/accuracy_schema.hpp"
+#include "io/catalog.hpp"
+#include "io/histogram_csv.hpp"
+#include "io/scene.hpp"
+
+namespace bkq {
+
+namespace {
+
+// A table cell: '|' would end the cell, so it is escaped.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+std::string code(const std::string& text) {
+  std::string out(1, '`');  // appended, not "`" + ...: GCC 12 warns falsely (-Wrestrict) there
+  out += cell(text);
+  out += '`';
+  return out;
+}
+
+}  // namespace
+
+std::string scene_key_table() {
+  std::string t =
+      "| key | default | allowed | units | meaning |\n"
+      "|---|---|---|---|---|\n";
+  for (const auto& p : parameter_table())
+    t += "| " + code(p.key) + " | " + code(p.default_value) + " | " + code(allowed_text(p)) +
+         " | " + cell(p.units) + " | " + cell(p.doc) + " |\n";
+  return t;
+}
+
+std::string column_table(const Schema& schema) {
+  std::string t =
+      "| column | units | format | meaning |\n"
+      "|---|---|---|---|\n";
+  for (const auto& c : schema)
+    t += "| " + code(c.name) + " | " + cell(c.units) + " | " + cell(c.format) + " | " +
+         cell(c.doc) + " |\n";
+  return t;
+}
+
+const Schema& timeseries_readme_schema() {
+  static const Schema schema = {
+      {"t", "time", "simulated time"},
+      {"speed", "length/time", "substrate speed v"},
+      {"substrate", "length", "substrate position"},
+      {"pad_x", "length", "pad position x (0 for bk)"},
+      {"pad_v", "length/time", "pad velocity"},
+      {"pad_friction", "force", "pad friction k_p sum_j (u_j - x)"},
+      {"sliding", "", "number of sliding blocks", kInteger},
+  };
+  return schema;
+}
+
+std::vector<ReadmeTable> readme_tables() {
+  return {
+      {"scene-keys", scene_key_table()},
+      {"catalog.csv", column_table(catalog_schema())},
+      {"histogram.csv", column_table(histogram_schema())},
+      {"timeseries.csv", column_table(timeseries_readme_schema())},
+      {"accuracy.csv", column_table(accuracy_schema())},
+  };
+}
+
+std::string readme_begin_marker(const std::string& name) {
+  return "<!-- begin generated: " + name + " -->";
+}
+std::string readme_end_marker(const std::string& name) {
+  return "<!-- end generated: " + name + " -->";
+}
+
+namespace {
+// [first character of the block, one past its last) in `readme`.
+std::optional<std::pair<std::size_t, std::size_t>> block_range(const std::string& readme,
+                                                               const std::string& name) {
+  const std::string begin = readme_begin_marker(name) + "\n";
+  std::string end(1, '\n');
+  end += readme_end_marker(name);
+  const auto b = readme.find(begin);
+  if (b == std::string::npos) return std::nullopt;
+  const auto from = b + begin.size();
+  const auto e = readme.find(end, from > 0 ? from - 1 : 0);
+  if (e == std::string::npos) return std::nullopt;
+  return std::pair{from, std::max(from, e + 1)};
+}
+}  // namespace
+
+std::optional<std::string> readme_block(const std::string& readme, const std::string& name) {
+  const auto r = block_range(readme, name);
+  if (!r) return std::nullopt;
+  return readme.substr(r->first, r->second - r->first);
+}
+
+std::string update_readme(const std::string& readme) {
+  std::string out = readme;
+  for (const auto& table : readme_tables()) {
+    const auto r = block_range(out, table.name);
+    if (!r)
+      throw Error("README: no '" + readme_begin_marker(table.name) + "' ... '" +
+                  readme_end_marker(table.name) + "' block");
+    out.replace(r->first, r->second - r->first, table.markdown);
+  }
+  return out;
+}
+
+}  // namespace bkq

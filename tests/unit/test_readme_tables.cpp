@@ -1,0 +1,179 @@
+// The README's tables against their declarations: the scene-key table against
+// parameter_table() (every key, default, allowed values, units, doc) and the column tables
+// of catalog.csv, histogram.csv, timeseries.csv and accuracy.csv against their schemas. On a
+// difference the failure prints the expected table; regenerate the README with
+//   build/bkquake readme-tables --update README.md
+// The schemas are also checked against the headers of the recorded golden outputs, so a
+// schema cannot drift from what the program writes.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/accuracy_schema.hpp"
+#include "io/catalog.hpp"
+#include "io/histogram_csv.hpp"
+#include "io/readme_tables.hpp"
+#include "io/scene.hpp"
+
+namespace bkq {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = BKQUAKE_SOURCE_DIR;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string first_line(const fs::path& p) {
+  std::ifstream f(p);
+  std::string line;
+  std::getline(f, line);
+  return line;
+}
+
+// The cells of a markdown row "| a | b\| c |" -> {"a", "b| c"}.
+std::vector<std::string> cells(const std::string& row) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (std::size_t i = 1; i < row.size(); ++i) {
+    if (row[i] == '\\' && i + 1 < row.size() && row[i + 1] == '|') {
+      cur += '|';
+      ++i;
+    } else if (row[i] == '|') {
+      const auto b = cur.find_first_not_of(' ');
+      const auto e = cur.find_last_not_of(' ');
+      out.push_back(b == std::string::npos ? "" : cur.substr(b, e - b + 1));
+      cur.clear();
+    } else {
+      cur += row[i];
+    }
+  }
+  return out;
+}
+
+std::string uncode(const std::string& s) {
+  return s.size() >= 2 && s.front() == '`' && s.back() == '`' ? s.substr(1, s.size() - 2) : s;
+}
+
+// The body rows (after the header and the |---| line) of a block.
+std::vector<std::vector<std::string>> rows(const std::string& block) {
+  std::vector<std::vector<std::string>> out;
+  std::istringstream in(block);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line))
+    if (n++ >= 2) out.push_back(cells(line));
+  return out;
+}
+
+TEST(ReadmeTables, EveryGeneratedTableMatchesTheReadme) {
+  const std::string readme = slurp(kSource / "README.md");
+  ASSERT_FALSE(readme.empty());
+  for (const auto& t : readme_tables()) {
+    const auto block = readme_block(readme, t.name);
+    ASSERT_TRUE(block) << "README.md lacks the block " << readme_begin_marker(t.name) << " ... "
+                       << readme_end_marker(t.name);
+    EXPECT_EQ(*block, t.markdown) << "README.md's " << t.name
+                                  << " table differs from its declaration; regenerate it with\n"
+                                     "  build/bkquake readme-tables --update README.md\nexpected:\n"
+                                  << t.markdown;
+  }
+  EXPECT_TRUE(update_readme(readme) == readme);
+}
+
+TEST(ReadmeTables, SceneKeyRowsCarryEveryFieldOfTheParameterTable) {
+  // Read back independently of the generator: each row names one key with its default,
+  // allowed values, units and doc, in table order, and no key is missing or extra.
+  const auto block = readme_block(slurp(kSource / "README.md"), "scene-keys");
+  ASSERT_TRUE(block);
+  const auto body = rows(*block);
+  const auto& table = parameter_table();
+  ASSERT_EQ(body.size(), table.size());
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    const ParamSpec& p = table[i];
+    ASSERT_EQ(body[i].size(), 5u) << p.key;
+    EXPECT_EQ(uncode(body[i][0]), p.key);
+    EXPECT_EQ(uncode(body[i][1]), p.default_value) << p.key;
+    EXPECT_EQ(uncode(body[i][2]), allowed_text(p)) << p.key;
+    EXPECT_EQ(body[i][3], p.units) << p.key;
+    EXPECT_EQ(body[i][4], p.doc) << p.key;
+  }
+}
+
+TEST(ReadmeTables, ColumnRowsCarryEveryFieldOfTheSchemas) {
+  const std::string readme = slurp(kSource / "README.md");
+  const std::vector<std::pair<std::string, const Schema*>> files = {
+      {"catalog.csv", &catalog_schema()},
+      {"histogram.csv", &histogram_schema()},
+      {"timeseries.csv", &timeseries_readme_schema()},
+      {"accuracy.csv", &accuracy_schema()}};
+  for (const auto& [name, schema] : files) {
+    const auto block = readme_block(readme, name);
+    ASSERT_TRUE(block) << name;
+    const auto body = rows(*block);
+    ASSERT_EQ(body.size(), schema->size()) << name;
+    for (std::size_t i = 0; i < schema->size(); ++i) {
+      const ColumnSpec& c = (*schema)[i];
+      ASSERT_EQ(body[i].size(), 4u) << name << " " << c.name;
+      EXPECT_EQ(uncode(body[i][0]), c.name) << name;
+      EXPECT_EQ(body[i][1], c.units) << name << " " << c.name;
+      EXPECT_EQ(body[i][2], c.format) << name << " " << c.name;
+      EXPECT_EQ(body[i][3], c.doc) << name << " " << c.name;
+    }
+  }
+}
+
+TEST(ReadmeTables, SchemasMatchTheHeadersTheProgramWrote) {
+  const fs::path golden = kSource / "tests" / "golden";
+  EXPECT_EQ(first_line(golden / "bk_rk4_free" / "catalog.csv"), header_of(catalog_schema()));
+  EXPECT_EQ(first_line(golden / "bk_rk4_free" / "histogram.csv"), header_of(histogram_schema()));
+  EXPECT_EQ(first_line(golden / "merge" / "histogram.csv"), header_of(histogram_schema()));
+  EXPECT_EQ(first_line(golden / "bkp_continuous_theta" / "timeseries.csv"),
+            header_of(timeseries_readme_schema()));
+  EXPECT_EQ(header_of(timeseries_readme_schema()),
+            "t,speed,substrate,pad_x,pad_v,pad_friction,sliding");
+  EXPECT_EQ(first_line(golden / "accuracy" / "accuracy.csv"), header_of(accuracy_schema()));
+}
+
+TEST(ReadmeTables, UpdateRewritesOnlyTheMarkedBlocks) {
+  std::string readme = "# title\n\nintro\n";
+  for (const auto& t : readme_tables())
+    readme +=
+        readme_begin_marker(t.name) + "\n| stale |\n" + readme_end_marker(t.name) + "\ntext\n";
+  const std::string updated = update_readme(readme);
+  EXPECT_EQ(updated.rfind("# title\n\nintro\n", 0), 0u);
+  for (const auto& t : readme_tables()) EXPECT_EQ(readme_block(updated, t.name), t.markdown);
+  EXPECT_EQ(updated.find("| stale |"), std::string::npos);
+  EXPECT_EQ(update_readme(updated), updated);
+  EXPECT_THROW(update_readme("# no markers\n"), std::exception);
+}
+
+TEST(ReadmeTables, TheCommandRegeneratesACopyOfTheReadme) {
+  const fs::path dir = fs::temp_directory_path() / "bkq_test_readme_tables";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path copy = dir / "README.md";
+  std::string stale = slurp(kSource / "README.md");
+  const auto at = stale.find("| `model.kind` |");
+  ASSERT_NE(at, std::string::npos);
+  stale.insert(at, "| `stale.key` | | | | |\n");
+  std::ofstream(copy) << stale;
+  const std::string cmd = std::string(BKQUAKE_BINARY) + " readme-tables --update " + copy.string() +
+                          " > " + (dir / "out.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / "out.txt");
+  EXPECT_TRUE(slurp(copy) == slurp(kSource / "README.md"));
+  EXPECT_NE(slurp(dir / "out.txt").find("tables updated"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace bkq
