@@ -188,9 +188,14 @@ class EventRun {
     prog_.wall_total = wall_total0_ + seconds_since(session_t0_);
     if (prog_.transient_done == transient_)
       prog_.wall_events = wall_events0_ + seconds_since(recording_t0_);
-    Checkpoint c{
-        kVersion, kGitRevision, req_.scene.hash(), scene_ini_, settings_.run.seed, prog_, engine,
-        {}};
+    Checkpoint c;
+    c.version = kVersion;
+    c.git_revision = kGitRevision;
+    c.scene_hash = req_.scene.hash();
+    c.scene_ini = scene_ini_;
+    c.seed = settings_.run.seed;
+    c.progress = prog_;
+    c.engine = engine;
     observers_.checkpoint(c);
     files_.write(c);
     last_saved_ = engine;

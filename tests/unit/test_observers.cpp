@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,8 @@
 #include "app/observers/checkpoint_timer.hpp"
 #include "app/observers/observer.hpp"
 #include "app/run.hpp"
+#include "core/error.hpp"
+#include "io/checkpoint.hpp"
 #include "io/json.hpp"
 
 namespace bkq {
@@ -118,6 +121,97 @@ TEST(Observers, ContinuousRunNotifiesSamplesAndEpisodes) {
             rec.events.size() + 1);
   EXPECT_NE(test::read_file(dir.file("out/summary.json")).find("\"pad_friction_mean\""),
             std::string::npos);
+}
+
+// An observer with state of its own keeps it in the checkpoint under its name: stopped by
+// SIGTERM midway and resumed, it ends with the count of a run that never stopped.
+struct Counter : RunObserver {
+  void on_resume(const Checkpoint& c) override {
+    if (const std::string* bytes = c.find("test.counter")) {
+      StateReader r(*bytes, "test.counter");
+      n = r.i64();
+      restored = true;
+    }
+  }
+  void on_event(const EventRecord&) override {
+    if (++n == stop_at) std::raise(SIGTERM);
+  }
+  void on_checkpoint(Checkpoint& c) override {
+    StateWriter w;
+    w.i64(n);
+    c.put("test.counter", w.bytes());
+  }
+  std::int64_t n = 0, stop_at = -1;
+  bool restored = false;
+};
+
+TEST(Observers, OwnStateSurvivesAStopAndResume) {
+  test::TempDir dir;
+  RunRequest req;
+  for (const auto& [k, v] : std::vector<std::pair<std::string, std::string>>{
+           {"model.blocks", "20"}, {"run.events", "40"}, {"run.transient_events", "5"}})
+    req.scene.set(k, v);
+  req.scene.validate();
+  req.out_dir = dir.file("out");
+  req.quiet = true;
+  Counter first;
+  first.stop_at = 15;
+  req.observers = {&first};
+  ASSERT_EQ(run_scene(req), 128 + SIGTERM);
+  EXPECT_EQ(first.n, 15);
+
+  Counter second;
+  req.observers = {&second};
+  req.resume = true;
+  ASSERT_EQ(run_scene(req), 0);
+  EXPECT_TRUE(second.restored);
+  EXPECT_EQ(second.n, 40);
+}
+
+TEST(Checkpoint, ObserverStatesRoundTrip) {
+  Checkpoint c;
+  c.engine.state.w = c.engine.state.wd = c.engine.state.mobile = c.engine.state.dir = {0.0};
+  StateWriter w;
+  w.f64(0.1);
+  w.i64(-7);
+  c.put("a", w.bytes());
+  c.put("b", "");
+  c.put("a", w.bytes() + "x");  // replaces, keeps its place
+  const Checkpoint d = decode_checkpoint(encode_checkpoint(c), "mem");
+  ASSERT_EQ(d.observers.size(), 2u);
+  EXPECT_EQ(d.observers[0].name, "a");
+  ASSERT_NE(d.find("a"), nullptr);
+  StateReader r(*d.find("a"), "a");
+  EXPECT_EQ(r.f64(), 0.1);
+  EXPECT_EQ(r.i64(), -7);
+  EXPECT_FALSE(r.done());
+  EXPECT_THROW(r.u64(), Error);  // only the "x" is left
+  EXPECT_EQ(d.find("missing"), nullptr);
+}
+
+// A version-1 file (before the observers' states) is still read: the same bytes without
+// the trailing count, with version 1, length and checksum adjusted.
+TEST(Checkpoint, FormatVersionOneIsStillRead) {
+  Checkpoint c;
+  c.engine.state.w = c.engine.state.wd = c.engine.state.mobile = c.engine.state.dir = {0.5};
+  c.progress.events_done = 42;
+  std::string v2 = encode_checkpoint(c);
+  const std::size_t head = 8 + 4 + 8;
+  std::string payload = v2.substr(head, v2.size() - head - 8 - 8);  // drop count and checksum
+  StateWriter file;
+  file.bytes().append(v2, 0, 8);
+  file.u32(1);
+  file.u64(payload.size());
+  file.bytes() += payload;
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64, as checkpoint.cpp
+  for (char ch : file.bytes()) {
+    h ^= static_cast<unsigned char>(ch);
+    h *= 1099511628211ull;
+  }
+  file.u64(h);
+  const Checkpoint d = decode_checkpoint(file.bytes(), "v1");
+  EXPECT_EQ(d.progress.events_done, 42);
+  EXPECT_TRUE(d.observers.empty());
 }
 
 }  // namespace
