@@ -12,12 +12,7 @@ namespace bkq {
 
 // One sample of a continuous run, in the column order of timeseries_schema().
 struct TimeSeriesRow {
-  double t = 0;
-  double speed = 0;
-  double substrate = 0;
-  double pad_x = 0;
-  double pad_v = 0;
-  double pad_friction = 0;
+  double t = 0, speed = 0, substrate = 0, pad_x = 0, pad_v = 0, pad_friction = 0;
   int sliding = 0;
 };
 
