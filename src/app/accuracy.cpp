@@ -50,23 +50,22 @@ double relative_error(double value, double reference) {
 
 class Study {
  public:
-  Study(const Scene& scene, const AccuracyOptions& opt)
-      : scene_(scene),
+  Study(const Settings& settings, const AccuracyOptions& opt)
+      : settings_(settings),
         opt_(opt),
-        p_(model_from_scene(scene)),
+        p_(settings.model),
         forces_(p_),
-        dt_(scene.real("integrator.dt")),
-        seed_(static_cast<std::uint64_t>(scene.integer("run.seed"))),
-        transient_(scene.integer("run.transient_events")),
-        bin_width_(scene.real("stats.bin_width")) {
+        dt_(settings.integrator.dt),
+        seed_(settings.run.seed),
+        transient_(settings.run.transient_events),
+        bin_width_(settings.stats.bin_width) {
     EventEngine::check_model(p_);
   }
 
   // Pre-event states sampled from a run of the scene's own stepper, and the reference
   // relaxation of the event that follows each.
   void sample_states() {
-    const auto stepper =
-        make_stepper(scene_.choice("integrator.scheme"), p_.n, scene_.real("integrator.tolerance"));
+    const auto stepper = stepper_of(settings_.integrator, p_.n);
     check_time_step(*stepper, p_, dt_);
     EventEngine engine(forces_, *stepper, dt_, start(seed_));
     for (std::int64_t i = 0; i < transient_; ++i) engine.next_event();
@@ -152,7 +151,7 @@ class Study {
 
  private:
   ChainState start(std::uint64_t seed) const {
-    return initial_state(forces_, seed, scene_.real("run.initial_disorder"), true);
+    return initial_state(forces_, seed, settings_.run.initial_disorder, true);
   }
 
   LongRun long_run(Stepper& stepper, double dt, std::uint64_t seed) {
@@ -188,7 +187,7 @@ class Study {
     pt.seconds_per_event = run.seconds_per_event;
     pt.steps_per_event = run.steps_per_event;
   }
-  const Scene& scene_;
+  const Settings& settings_;
   const AccuracyOptions& opt_;
   ModelParams p_;
   ChainForces forces_;
@@ -222,7 +221,8 @@ double ks_binned(const MagnitudeHistogram& a, const MagnitudeHistogram& b) {
 AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
                            const std::function<void(const AccuracyPoint&)>& report) {
   AccuracyStudy study;
-  Study s(scene, options);
+  const Settings settings = settings_from_scene(scene);
+  Study s(settings, options);
   s.sample_states();
   for (AccuracyPoint& row : s.reference_rows(study)) {
     if (report) report(row);
@@ -231,7 +231,7 @@ AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
   for (const std::string& scheme : options.schemes) {
     if (scheme == "adaptive") {
       for (double tol : options.tolerances) {
-        study.points.push_back(s.measure(scheme, scene.real("integrator.dt"), tol));
+        study.points.push_back(s.measure(scheme, settings.integrator.dt, tol));
         if (report) report(study.points.back());
       }
       continue;

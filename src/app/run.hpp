@@ -3,7 +3,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "app/observers/observer.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -14,6 +16,8 @@ struct RunRequest {
   bool resume = false;
   bool force = false;
   bool quiet = false;
+  // Attached after the scene's own outputs (a study's or a test's); not owned.
+  std::vector<RunObserver*> observers;
 };
 
 // Runs the scene; returns the process exit status: 0 when finished, 130 or 143 when an

@@ -1,6 +1,6 @@
 // `bkquake run`: reads the scene (a file or the built-in default), applies --set
-// overrides in order, validates, and hands the effective scene to the engine. Thin on
-// purpose: everything it decides is in the scene table or the engine.
+// overrides in order, validates, and hands the effective scene to app/run. Thin on
+// purpose: everything it decides is in the scene table or the app layer.
 #include <boost/program_options.hpp>
 #include <iostream>
 
@@ -46,7 +46,7 @@ int cmd_run(const std::vector<std::string>& args) {
   request.quiet = vm.count("quiet") > 0;
   if (request.resume && request.force) throw Error("run: --resume and --force exclude each other");
   // Check the output folder now, so a bad --out fails in a second rather than after the
-  // engine has set up; the engine opens the same folder again for writing.
+  // run has set up; the run opens the same folder again for writing.
   OutputFolder(request.out_dir, request.force, request.resume);
   return run_scene(request);
 }

@@ -22,7 +22,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[8] = {'B', 'K', 'Q', 'C', 'K', 'P', 'T', '\n'};
-constexpr std::uint32_t kFormatVersion = 1;
+// Version 2 added the observers' named states; version 1 files (without them) are read too.
+constexpr std::uint32_t kFormatVersion = 2;
+constexpr std::uint32_t kOldestFormatVersion = 1;
 constexpr std::size_t kHeadBytes = sizeof kMagic + 4 + 8;  // magic, format version, length
 constexpr std::size_t kSumBytes = 8;
 
@@ -41,98 +43,7 @@ std::uint64_t fnv1a64(const char* data, std::size_t n) {
   return h;
 }
 
-class Writer {
- public:
-  void u64(std::uint64_t v) { little_endian(v); }
-  void u32(std::uint32_t v) { little_endian(v); }
-  void i64(std::int64_t v) { u64(static_cast<std::uint64_t>(v)); }
-  void i128(__int128 v) {
-    u64(static_cast<std::uint64_t>(v));
-    u64(static_cast<std::uint64_t>(static_cast<unsigned __int128>(v) >> 64));
-  }
-  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
-  void str(const std::string& s) {
-    u64(s.size());
-    out_ += s;
-  }
-  void f64s(const std::vector<double>& v) {
-    u64(v.size());
-    for (double x : v) f64(x);
-  }
-  void i64s(const std::vector<std::int64_t>& v) {
-    u64(v.size());
-    for (std::int64_t x : v) i64(x);
-  }
-  std::string& bytes() { return out_; }
-
- private:
-  template <class U>
-  void little_endian(U v) {
-    for (std::size_t b = 0; b < sizeof(U); ++b) out_.push_back(static_cast<char>(v >> (8 * b)));
-  }
-  std::string out_;
-};
-
-class Reader {
- public:
-  Reader(const std::string& bytes, std::size_t begin, std::size_t end, const std::string& origin)
-      : b_(bytes), pos_(begin), end_(end), origin_(origin) {}
-  std::uint64_t u64() { return little_endian<std::uint64_t>(); }
-  std::uint32_t u32() { return little_endian<std::uint32_t>(); }
-  std::int64_t i64() { return static_cast<std::int64_t>(u64()); }
-  __int128 i128() {
-    const std::uint64_t lo = u64();
-    const std::uint64_t hi = u64();
-    return static_cast<__int128>((static_cast<unsigned __int128>(hi) << 64) | lo);
-  }
-  double f64() { return std::bit_cast<double>(u64()); }
-  std::string str() {
-    const std::size_t n = count(1);
-    std::string s = b_.substr(pos_, n);
-    pos_ += n;
-    return s;
-  }
-  std::vector<double> f64s() {
-    std::vector<double> v(count(8));
-    for (double& x : v) x = f64();
-    return v;
-  }
-  std::vector<std::int64_t> i64s() {
-    std::vector<std::int64_t> v(count(8));
-    for (std::int64_t& x : v) x = i64();
-    return v;
-  }
-  bool done() const { return pos_ == end_; }
-
- private:
-  template <class U>
-  U little_endian() {
-    need(sizeof(U));
-    U v = 0;
-    for (std::size_t b = 0; b < sizeof(U); ++b)
-      v |= static_cast<U>(static_cast<unsigned char>(b_[pos_ + b])) << (8 * b);
-    pos_ += sizeof(U);
-    return v;
-  }
-  // A length prefix, checked against what is left so a bad one cannot allocate wildly.
-  std::size_t count(std::size_t element_bytes) {
-    const std::uint64_t n = u64();
-    if (n > (end_ - pos_) / element_bytes) fail();
-    return static_cast<std::size_t>(n);
-  }
-  void need(std::size_t n) {
-    if (end_ - pos_ < n) fail();
-  }
-  [[noreturn]] void fail() const {
-    throw Error("checkpoint '" + origin_ + "' is malformed: a field runs past the end of its data");
-  }
-
-  const std::string& b_;
-  std::size_t pos_, end_;
-  const std::string& origin_;
-};
-
-void put(Writer& w, const EngineCounters& c) {
+void put(StateWriter& w, const EngineCounters& c) {
   w.i64(c.events);
   w.i64(c.steps);
   w.i64(c.block_steps);
@@ -140,7 +51,7 @@ void put(Writer& w, const EngineCounters& c) {
   w.i64(c.releases);
 }
 
-EngineCounters get_counters(Reader& r) {
+EngineCounters get_counters(StateReader& r) {
   EngineCounters c;
   c.events = r.i64();
   c.steps = r.i64();
@@ -160,8 +71,12 @@ std::string read_whole(const std::string& path) {
 
 }  // namespace
 
+void StateReader::fail() const {
+  throw Error("checkpoint '" + origin_ + "' is malformed: a field runs past the end of its data");
+}
+
 std::string encode_checkpoint(const Checkpoint& c) {
-  Writer w;
+  StateWriter w;
   w.str(c.version);
   w.str(c.git_revision);
   w.u64(c.scene_hash);
@@ -205,7 +120,13 @@ std::string encode_checkpoint(const Checkpoint& c) {
   w.f64(h.total_load);
   w.i64(h.blocks);
 
-  Writer file;
+  w.u64(c.observers.size());
+  for (const ObserverState& o : c.observers) {
+    w.str(o.name);
+    w.str(o.bytes);
+  }
+
+  StateWriter file;
   file.bytes().append(kMagic, sizeof kMagic);
   file.u32(kFormatVersion);
   file.u64(w.bytes().size());
@@ -221,11 +142,12 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
   if (bytes.size() < kHeadBytes + kSumBytes)
     throw Error("checkpoint '" + origin + "' is truncated: " + std::to_string(bytes.size()) +
                 " bytes");
-  Reader head(bytes, sizeof kMagic, kHeadBytes, origin);
+  StateReader head(bytes, sizeof kMagic, kHeadBytes, origin);
   const std::uint32_t format = head.u32();
-  if (format != kFormatVersion)
+  if (format < kOldestFormatVersion || format > kFormatVersion)
     throw Error("checkpoint '" + origin + "' has format version " + std::to_string(format) +
-                "; this bkquake reads version " + std::to_string(kFormatVersion));
+                "; this bkquake reads versions " + std::to_string(kOldestFormatVersion) + " to " +
+                std::to_string(kFormatVersion));
   const std::uint64_t payload = head.u64();
   if (payload != bytes.size() - kHeadBytes - kSumBytes)
     throw Error("checkpoint '" + origin + "' is " +
@@ -233,11 +155,11 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
                 std::to_string(bytes.size()) + " bytes, its header announces " +
                 std::to_string(payload + kHeadBytes + kSumBytes));
   const std::size_t end = kHeadBytes + static_cast<std::size_t>(payload);
-  const std::uint64_t stored = Reader(bytes, end, bytes.size(), origin).u64();
+  const std::uint64_t stored = StateReader(bytes, end, bytes.size(), origin).u64();
   if (stored != fnv1a64(bytes.data(), end))
     throw Error("checkpoint '" + origin + "' is damaged: checksum mismatch");
 
-  Reader r(bytes, kHeadBytes, end, origin);
+  StateReader r(bytes, kHeadBytes, end, origin);
   Checkpoint c;
   c.version = r.str();
   c.git_revision = r.str();
@@ -281,6 +203,14 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
   h.exact_moments = r.u32() != 0;
   h.total_load = r.f64();
   h.blocks = static_cast<int>(r.i64());
+
+  if (format >= 2) {
+    c.observers.resize(r.count(16));
+    for (ObserverState& o : c.observers) {
+      o.name = r.str();
+      o.bytes = r.str();
+    }
+  }
 
   if (!r.done())
     throw Error("checkpoint '" + origin + "' is malformed: unexpected bytes after the last field");
@@ -363,6 +293,21 @@ std::string CheckpointFiles::previous() const {
 bool CheckpointFiles::exist() const {
   std::error_code ec;
   return fs::exists(current(), ec) || fs::exists(previous(), ec);
+}
+
+void Checkpoint::put(const std::string& name, std::string bytes) {
+  for (ObserverState& o : observers)
+    if (o.name == name) {
+      o.bytes = std::move(bytes);
+      return;
+    }
+  observers.push_back({name, std::move(bytes)});
+}
+
+const std::string* Checkpoint::find(const std::string& name) const {
+  for (const ObserverState& o : observers)
+    if (o.name == name) return &o.bytes;
+  return nullptr;
 }
 
 void CheckpointFiles::write(const Checkpoint& c) const {

@@ -17,7 +17,9 @@
 //   u32       format version
 //   u64       payload length P
 //   P bytes   payload: the fields of Checkpoint in declaration order; strings and arrays
-//             are a u64 length followed by their bytes / elements
+//             are a u64 length followed by their bytes / elements. Version 2 ends the
+//             payload with the observers' named states (a count, then name and bytes of
+//             each); version 1 files lack them and are still read.
 //   u64       FNV-1a 64 of everything before it (any single changed byte is detected)
 // A file of any other length, magic, version or checksum is refused by decode_checkpoint.
 //
@@ -28,8 +30,11 @@
 // or (between the two renames) checkpoint.prev.bin, which CheckpointFiles::read falls back to.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/event_engine.hpp"
 #include "stats/histogram.hpp"
@@ -52,6 +57,13 @@ struct RunProgress {
   std::int64_t resumes = 0;         // how often the run was continued from a checkpoint
 };
 
+// The state of a run observer that keeps it outside the fixed fields above: its name and
+// the bytes it wrote with a StateWriter. A new observer with state needs no format change.
+struct ObserverState {
+  std::string name;
+  std::string bytes;
+};
+
 struct Checkpoint {
   std::string version;       // kVersion of the program that wrote it
   std::string git_revision;  // kGitRevision of that program
@@ -61,6 +73,104 @@ struct Checkpoint {
   RunProgress progress;
   EngineSnapshot engine;
   MagnitudeHistogram::State histogram;
+  std::vector<ObserverState> observers;
+
+  // Sets (or replaces) the named observer state; find returns nullptr when there is none
+  // (a checkpoint from before the observer existed).
+  void put(const std::string& name, std::string bytes);
+  const std::string* find(const std::string& name) const;
+};
+
+// Little-endian integers and IEEE-754 bit patterns of doubles, so every value round-trips
+// exactly: the checkpoint's own encoding, and the one observers use for their state.
+class StateWriter {
+ public:
+  void u64(std::uint64_t v) { little_endian(v); }
+  void u32(std::uint32_t v) { little_endian(v); }
+  void i64(std::int64_t v) { u64(static_cast<std::uint64_t>(v)); }
+  void i128(__int128 v) {
+    u64(static_cast<std::uint64_t>(v));
+    u64(static_cast<std::uint64_t>(static_cast<unsigned __int128>(v) >> 64));
+  }
+  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+  void str(const std::string& s) {
+    u64(s.size());
+    out_ += s;
+  }
+  void f64s(const std::vector<double>& v) {
+    u64(v.size());
+    for (double x : v) f64(x);
+  }
+  void i64s(const std::vector<std::int64_t>& v) {
+    u64(v.size());
+    for (std::int64_t x : v) i64(x);
+  }
+  std::string& bytes() { return out_; }
+
+ private:
+  template <class U>
+  void little_endian(U v) {
+    for (std::size_t b = 0; b < sizeof(U); ++b) out_.push_back(static_cast<char>(v >> (8 * b)));
+  }
+  std::string out_;
+};
+
+// Reads what a StateWriter wrote, from bytes [begin, end) of `bytes`; a field running past
+// the end throws bkq::Error naming `origin`. `bytes` must outlive the reader.
+class StateReader {
+ public:
+  StateReader(const std::string& bytes, std::size_t begin, std::size_t end, std::string origin)
+      : b_(bytes), pos_(begin), end_(end), origin_(std::move(origin)) {}
+  StateReader(const std::string& bytes, std::string origin)
+      : StateReader(bytes, 0, bytes.size(), std::move(origin)) {}
+  std::uint64_t u64() { return little_endian<std::uint64_t>(); }
+  std::uint32_t u32() { return little_endian<std::uint32_t>(); }
+  std::int64_t i64() { return static_cast<std::int64_t>(u64()); }
+  __int128 i128() {
+    const std::uint64_t lo = u64();
+    const std::uint64_t hi = u64();
+    return static_cast<__int128>((static_cast<unsigned __int128>(hi) << 64) | lo);
+  }
+  double f64() { return std::bit_cast<double>(u64()); }
+  std::string str() {
+    const std::size_t n = count(1);
+    std::string s = b_.substr(pos_, n);
+    pos_ += n;
+    return s;
+  }
+  std::vector<double> f64s() {
+    std::vector<double> v(count(8));
+    for (double& x : v) x = f64();
+    return v;
+  }
+  std::vector<std::int64_t> i64s() {
+    std::vector<std::int64_t> v(count(8));
+    for (std::int64_t& x : v) x = i64();
+    return v;
+  }
+  // A length prefix, checked against what is left so a bad one cannot allocate wildly.
+  std::size_t count(std::size_t element_bytes) {
+    const std::uint64_t n = u64();
+    if (n > (end_ - pos_) / element_bytes) fail();
+    return static_cast<std::size_t>(n);
+  }
+  bool done() const { return pos_ == end_; }
+
+ private:
+  template <class U>
+  U little_endian() {
+    if (end_ - pos_ < sizeof(U)) fail();
+    U v = 0;
+    for (std::size_t b = 0; b < sizeof(U); ++b)
+      v |= static_cast<U>(static_cast<unsigned char>(b_[pos_ + b])) << (8 * b);
+    pos_ += sizeof(U);
+    return v;
+  }
+  [[noreturn]] void fail() const;
+
+  const std::string& b_;
+  std::size_t pos_, end_;
+  std::string origin_;
 };
 
 std::string encode_checkpoint(const Checkpoint& c);

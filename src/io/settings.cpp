@@ -1,5 +1,6 @@
-// From the validated scene to the physical parameters (SPEC §1): thesis Table 3.1 (block
-// quantities scaled from the pad's) or Carlson–Langer dimensionless units (eq. 2.2).
+// From the validated scene to the typed settings. The physical parameters (SPEC §1) come
+// from thesis Table 3.1 (block quantities scaled from the pad's) or Carlson–Langer
+// dimensionless units (eq. 2.2).
 #include "io/settings.hpp"
 
 #include <cmath>
@@ -59,6 +60,62 @@ ModelParams model_from_scene(const Scene& scene) {
     p.c_u = critical_damping(zeta, p.k_p, p.m_u);
   }
   return p;
+}
+
+Settings settings_from_scene(const Scene& scene) {
+  Settings s;
+  s.model = model_from_scene(scene);
+
+  DriveSettings& d = s.drive;
+  d.mode = scene.choice("drive.mode") == "continuous" ? DriveMode::Continuous : DriveMode::Events;
+  const std::string& schedule = scene.choice("drive.schedule");
+  d.schedule = schedule == "steps"  ? Schedule::Steps
+               : schedule == "ramp" ? Schedule::Ramp
+                                    : Schedule::Constant;
+  d.speed = scene.real("drive.speed");
+  d.step_increment = scene.real("drive.step_increment");
+  d.step_interval = scene.real("drive.step_interval");
+  d.ramp_from = scene.real("drive.ramp_from");
+  d.ramp_to = scene.real("drive.ramp_to");
+  d.ramp_duration = scene.real("drive.ramp_duration");
+
+  RunSettings& r = s.run;
+  r.events = scene.integer("run.events");
+  r.transient_events = scene.integer("run.transient_events");
+  r.duration = scene.real("run.duration");
+  r.seed = static_cast<std::uint64_t>(scene.integer("run.seed"));
+  r.initial_disorder = scene.real("run.initial_disorder");
+  r.max_steps_per_event = scene.integer("run.max_steps_per_event");
+  r.checkpoint_events = scene.integer("run.checkpoint_events");
+  r.checkpoint_seconds = scene.real("run.checkpoint_seconds");
+
+  s.integrator.scheme = scene.choice("integrator.scheme");
+  s.integrator.dt = scene.real("integrator.dt");
+  s.integrator.tolerance = scene.real("integrator.tolerance");
+
+  s.output.every = scene.real("output.every");
+  s.output.blocks = scene.flag("output.blocks");
+
+  s.stats.bin_width = scene.real("stats.bin_width");
+  s.stats.mu_min = scene.real_or_auto("stats.mu_min");
+  s.stats.mu_max = scene.real_or_auto("stats.mu_max");
+  return s;
+}
+
+Substrate substrate_of(const DriveSettings& drive) {
+  switch (drive.schedule) {
+    case Schedule::Steps:
+      return Substrate::steps(drive.speed, drive.step_increment, drive.step_interval);
+    case Schedule::Ramp:
+      return Substrate::ramp(drive.ramp_from, drive.ramp_to, drive.ramp_duration);
+    case Schedule::Constant:
+      break;
+  }
+  return Substrate::constant(drive.speed);
+}
+
+std::unique_ptr<Stepper> stepper_of(const IntegratorSettings& integrator, int blocks) {
+  return make_stepper(integrator.scheme, blocks, integrator.tolerance);
 }
 
 }  // namespace bkq

@@ -1,12 +1,82 @@
-// The scene's keys turned into the typed structs the layers below io work with.
+// The scene turned into typed settings, once, in io: the layers above read fields, never
+// string keys. Every key is declared (type, default, range, units, doc) in scene.cpp's
+// parameter table; these structs are that table's values after validation.
 #pragma once
 
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "integrate/stepper.hpp"
 #include "model/parameters.hpp"
+#include "model/substrate.hpp"
 
 namespace bkq {
 
 class Scene;
 
+enum class DriveMode { Events, Continuous };
+enum class Schedule { Constant, Steps, Ramp };
+
+// drive.*: how the substrate moves. The step_* and ramp_* values apply only to their
+// schedule (they hold their defaults otherwise).
+struct DriveSettings {
+  DriveMode mode = DriveMode::Events;
+  Schedule schedule = Schedule::Constant;
+  double speed = 0;
+  double step_increment = 0, step_interval = 0;
+  double ramp_from = 0, ramp_to = 0, ramp_duration = 0;
+};
+
+// run.*: length, seed, start and checkpoints.
+struct RunSettings {
+  std::int64_t events = 0;            // recorded events (events mode)
+  std::int64_t transient_events = 0;  // discarded before recording (events mode)
+  double duration = 0;                // simulated time (continuous mode)
+  std::uint64_t seed = 0;
+  double initial_disorder = 0;
+  std::int64_t max_steps_per_event = 0;
+  std::int64_t checkpoint_events = 0;  // 0 = off
+  double checkpoint_seconds = 0;       // 0 = off
+};
+
+// integrator.*: the stepper of the dynamic phase, by its registry keyword.
+struct IntegratorSettings {
+  std::string scheme;
+  double dt = 0;
+  double tolerance = 0;  // adaptive scheme only
+};
+
+// output.*: continuous-mode outputs.
+struct OutputSettings {
+  double every = 0;     // time between timeseries rows
+  bool blocks = false;  // also write blocks.csv
+};
+
+// stats.*: histogram and Gutenberg-Richter fit window (nullopt: chosen automatically).
+struct StatsSettings {
+  double bin_width = 0;
+  std::optional<double> mu_min, mu_max;
+};
+
+struct Settings {
+  ModelParams model;
+  DriveSettings drive;
+  RunSettings run;
+  IntegratorSettings integrator;
+  OutputSettings output;
+  StatsSettings stats;
+};
+
+// Reads every key of a validated scene into its typed field.
+Settings settings_from_scene(const Scene& scene);
+
 ModelParams model_from_scene(const Scene& scene);
+
+// The objects the settings describe, built in one place: the substrate motion
+// (continuous mode) and the stepper for a chain of `blocks`.
+Substrate substrate_of(const DriveSettings& drive);
+std::unique_ptr<Stepper> stepper_of(const IntegratorSettings& integrator, int blocks);
 
 }  // namespace bkq

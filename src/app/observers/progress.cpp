@@ -1,5 +1,5 @@
 // Progress line; see progress.hpp.
-#include "app/progress.hpp"
+#include "app/observers/progress.hpp"
 
 #include <unistd.h>
 
@@ -7,8 +7,8 @@
 
 namespace bkq {
 
-Progress::Progress(bool quiet, std::string what, double total)
-    : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0), what_(std::move(what)), total_(total) {
+Progress::Progress(std::string what, double total)
+    : tty_(isatty(STDERR_FILENO) != 0), what_(std::move(what)), total_(total) {
   start_ = last_ = std::chrono::steady_clock::now();
 }
 
@@ -28,9 +28,7 @@ void Progress::report(double done, bool final) {
 }
 
 void Progress::finish(double done) {
-  if (!quiet_ &&
-      (tty_ ||
-       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > 10))
+  if (tty_ || std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > 10)
     report(done, true);
 }
 

@@ -1,0 +1,270 @@
+// The event-run loop; see event_run.hpp. The loop owns the engine, the run's bookkeeping
+// (events done, load and work at the start of recording, wall time over all sessions) and
+// the checkpoint files; everything written per event is an observer's.
+#include "app/event_run.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+
+#include "app/observers/catalog.hpp"
+#include "app/observers/checkpoint_timer.hpp"
+#include "app/observers/histogram.hpp"
+#include "app/observers/progress.hpp"
+#include "app/observers/summary.hpp"
+#include "bkquake_version.hpp"
+#include "core/error.hpp"
+#include "engine/event_engine.hpp"
+#include "engine/initial_state.hpp"
+#include "io/checkpoint.hpp"
+#include "io/output.hpp"
+
+namespace bkq {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// SIGINT and SIGTERM during an event run. The first asks the run to stop after the current
+// event (checkpoint, flush, exit 128 + signal); a second one exits at once, leaving the
+// last checkpoint intact (checkpoints are renamed into place atomically).
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+void on_stop_signal(int sig) {
+  if (g_stop_signal != 0) ::_exit(128 + sig);
+  g_stop_signal = sig;
+}
+
+// Installs the handlers for its lifetime and restores the previous ones after.
+class StopSignals {
+ public:
+  StopSignals() {
+    g_stop_signal = 0;
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;  // a write or fsync under way completes instead of failing with EINTR
+    ::sigaction(SIGINT, &sa, &old_int_);
+    ::sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~StopSignals() {
+    ::sigaction(SIGINT, &old_int_, nullptr);
+    ::sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  int received() const { return g_stop_signal; }
+
+ private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+};
+
+class EventRun {
+ public:
+  EventRun(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+           const ChainForces& forces, Stepper& stepper, const Checkpoint* resumed)
+      : req_(req),
+        settings_(settings),
+        forces_(forces),
+        out_(out),
+        files_(out.dir()),
+        scene_ini_(req.scene.to_ini()),
+        transient_(settings.run.transient_events),
+        events_(settings.run.events) {
+    const double dt = settings.integrator.dt;
+    if (resumed) {
+      engine_ = std::make_unique<EventEngine>(forces, stepper, dt, resumed->engine);
+      prog_ = resumed->progress;
+      ++prog_.resumes;
+    } else {
+      engine_ = std::make_unique<EventEngine>(
+          forces, stepper, dt,
+          initial_state(forces, settings.run.seed, settings.run.initial_disorder, true));
+      if (transient_ == 0) begin_recording();
+    }
+    engine_->max_steps_per_event = settings.run.max_steps_per_event;
+    last_saved_ = engine_->snapshot();
+    wall_total0_ = prog_.wall_total;
+    wall_events0_ = prog_.wall_events;
+    attach_observers(resumed != nullptr);
+    if (resumed) observers_.resume(*resumed);
+  }
+
+  int run() {
+    StopSignals signals;
+    observers_.start();
+    if (prog_.transient_done < transient_) {
+      observers_.phase({"transient events", static_cast<double>(prog_.transient_done),
+                        static_cast<double>(transient_)});
+      while (prog_.transient_done < transient_ && !signals.received()) {
+        next_event();
+        if (++prog_.transient_done == transient_) begin_recording();
+        observers_.advance(advance(prog_.transient_done));
+      }
+      observers_.phase_end(advance(prog_.transient_done));
+    }
+    if (prog_.transient_done == transient_ && !signals.received()) {
+      observers_.phase(
+          {"events", static_cast<double>(prog_.events_done), static_cast<double>(events_)});
+      while (prog_.events_done < events_ && !signals.received()) {
+        EventRecord e = next_event();
+        e.event = ++prog_.events_done;
+        observers_.event(e);
+        observers_.advance(advance(prog_.events_done));
+      }
+      observers_.phase_end(advance(prog_.events_done));
+    }
+    if (const int sig = signals.received()) return stop(sig);
+    return finish();
+  }
+
+ private:
+  // The scene's outputs for an event run, in notification order: the histogram before the
+  // summary that fits it, the summary (which marks the run finished) after every file.
+  void attach_observers(bool resumed) {
+    const RunSettings& r = settings_.run;
+    observers_.attach<CatalogWriter>(out_.path("catalog.csv"), resumed);
+    const auto& hist =
+        observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
+    observers_.attach<EventSummary>(req_.scene, settings_, out_, hist.histogram(), observers_);
+    if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
+      observers_.attach<CheckpointTimer>([this] { save(engine_->snapshot()); }, r.checkpoint_events,
+                                         r.checkpoint_seconds);
+    if (!req_.quiet) observers_.attach<ProgressLine>();
+    for (RunObserver* o : req_.observers) observers_.attach_ref(*o);
+  }
+
+  Advance advance(std::int64_t done) const {
+    return {static_cast<double>(done), engine_->counters().events};
+  }
+
+  void begin_recording() {
+    prog_.load0 = engine_->load();
+    prog_.counters0 = engine_->counters();
+    recording_t0_ = Clock::now();
+  }
+
+  // The engine's next event; a failure in the middle of it (a non-finite state, a runaway)
+  // saves the state before the event as the checkpoint, then propagates, saying where.
+  EventRecord next_event() {
+    const std::int64_t done = engine_->counters().events;
+    try {
+      return engine_->next_event();
+    } catch (const Error& e) {
+      throw Error(e.what() + save_before_failure(done));
+    }
+  }
+
+  // The failed engine is unusable and copying the state before every event would cost a
+  // few per cent, so the state before the failed event is recomputed once from the last
+  // checkpoint (or the start): an engine continued from a snapshot repeats the same events
+  // bit for bit. That costs at most one checkpoint interval. Returns the note for the error.
+  std::string save_before_failure(std::int64_t events_done) {
+    try {
+      const std::unique_ptr<Stepper> stepper = stepper_of(settings_.integrator, forces_.n());
+      EventEngine replay(forces_, *stepper, settings_.integrator.dt, last_saved_);
+      replay.max_steps_per_event = engine_->max_steps_per_event;
+      while (replay.counters().events < events_done) replay.next_event();
+      save(replay.snapshot());
+      return "; the state before this event is saved in '" + files_.current() + "'";
+    } catch (const Error& e) {
+      return std::string("; saving the state before this event failed: ") + e.what();
+    }
+  }
+
+  // Writes a checkpoint of `engine` with the run as it stands. The run fills in its own
+  // bookkeeping; the observers add theirs (the catalog syncs and records its size, the
+  // histogram and the summary's sums their state).
+  void save(const EngineSnapshot& engine) {
+    prog_.wall_total = wall_total0_ + seconds_since(session_t0_);
+    if (prog_.transient_done == transient_)
+      prog_.wall_events = wall_events0_ + seconds_since(recording_t0_);
+    Checkpoint c;
+    c.version = kVersion;
+    c.git_revision = kGitRevision;
+    c.scene_hash = req_.scene.hash();
+    c.scene_ini = scene_ini_;
+    c.seed = settings_.run.seed;
+    c.progress = prog_;
+    c.engine = engine;
+    observers_.checkpoint(c);
+    files_.write(c);
+    last_saved_ = engine;
+  }
+
+  RunEnd run_end(int signal) const {
+    const EngineCounters& c = engine_->counters();
+    const EngineCounters& c0 = prog_.counters0;
+    RunEnd end;
+    end.signal = signal;
+    end.events = prog_.events_done;
+    end.transient_events = transient_;
+    end.blocks = engine_->state().n();
+    end.total_load = engine_->load() - prog_.load0;
+    end.wall_seconds = wall_events0_ + seconds_since(recording_t0_);
+    end.wall_seconds_total = wall_total0_ + seconds_since(session_t0_);
+    end.resumes = prog_.resumes;
+    end.steps_recorded = c.steps - c0.steps;
+    end.block_steps = c.block_steps - c0.block_steps;
+    end.sliding_block_steps = c.sliding_block_steps - c0.sliding_block_steps;
+    return end;
+  }
+
+  int stop(int sig) {
+    save(engine_->snapshot());
+    observers_.end(run_end(sig));
+    std::fprintf(stderr,
+                 "bkquake: stopped by %s after %lld of %lld events (%lld of %lld transient); "
+                 "checkpoint in '%s'; "
+                 "to continue: bkquake run %s --out %s --resume\n",
+                 sig == SIGINT ? "SIGINT" : "SIGTERM", static_cast<long long>(prog_.events_done),
+                 static_cast<long long>(events_), static_cast<long long>(prog_.transient_done),
+                 static_cast<long long>(transient_), files_.current().c_str(),
+                 out_.path("scene.ini").c_str(), out_.dir().c_str());
+    return 128 + sig;
+  }
+
+  int finish() {
+    observers_.end(run_end(0));
+    // summary.json marks the run finished; its checkpoints have served.
+    files_.remove();
+    return 0;
+  }
+
+  const RunRequest& req_;
+  const Settings& settings_;
+  const ChainForces& forces_;
+  const OutputFolder& out_;
+  const CheckpointFiles files_;
+  const std::string scene_ini_;
+  const std::int64_t transient_, events_;
+
+  std::unique_ptr<EventEngine> engine_;
+  EngineSnapshot last_saved_;  // the engine at the last checkpoint, or at the start
+  // The run's own part of the checkpoint; catalog_bytes, moment_sum and nonpositive are the
+  // observers' (filled in by them at each checkpoint, read back by them on resume).
+  RunProgress prog_;
+  Observers observers_;
+
+  // Wall time: this session's clocks on top of what earlier sessions (before a resume) spent.
+  Clock::time_point session_t0_ = Clock::now(), recording_t0_ = session_t0_;
+  double wall_total0_ = 0, wall_events0_ = 0;
+};
+
+}  // namespace
+
+int run_events(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+               const ChainForces& forces, Stepper& stepper, const Checkpoint* resumed) {
+  return EventRun(req, settings, out, forces, stepper, resumed).run();
+}
+
+}  // namespace bkq

@@ -1,0 +1,56 @@
+// The time-series schema (SPEC §3): each column listed once with its units and meaning;
+// header and rows follow its order.
+#include "io/timeseries.hpp"
+
+#include "core/format.hpp"
+
+namespace bkq {
+
+const Schema& timeseries_schema() {
+  static const Schema schema = {
+      {"t", "time", "simulated time of the sample"},
+      {"speed", "length/time", "substrate speed v at t"},
+      {"substrate", "length", "substrate displacement s at t"},
+      {"pad_x", "length", "pad position x (0 for bk)"},
+      {"pad_v", "length/time", "pad velocity (0 for bk)"},
+      {"pad_friction", "force", "pad friction: sum of the pulling-spring forces k_p (u_j - x)"},
+      {"sliding", "", "number of blocks sliding at t", "integer"},
+  };
+  return schema;
+}
+
+std::string timeseries_header() {
+  return header_of(timeseries_schema());
+}
+
+std::string timeseries_row(const TimeSeriesRow& r) {
+  // Same order as timeseries_schema().
+  std::string s;
+  s.reserve(160);
+  for (double v : {r.t, r.speed, r.substrate, r.pad_x, r.pad_v, r.pad_friction}) {
+    s += format_real(v);
+    s += ',';
+  }
+  s += std::to_string(r.sliding);
+  return s;
+}
+
+std::string blocks_header(int n) {
+  std::string header = "t";
+  for (int j = 0; j < n; ++j) {
+    header += ",u";
+    header += std::to_string(j);
+  }
+  return header;
+}
+
+std::string blocks_row(double t, const std::vector<double>& u) {
+  std::string row = format_real(t);
+  for (double x : u) {
+    row += ',';
+    row += format_real(x);
+  }
+  return row;
+}
+
+}  // namespace bkq

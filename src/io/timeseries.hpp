@@ -1,0 +1,29 @@
+// The continuous run's sampled signals (timeseries.csv) and block trajectories
+// (blocks.csv). The time-series columns are declared once in a schema that writes the
+// header; rows are streamed every output.every.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/schema.hpp"
+
+namespace bkq {
+
+// One sample of a continuous run, in the column order of timeseries_schema().
+struct TimeSeriesRow {
+  double t = 0, speed = 0, substrate = 0, pad_x = 0, pad_v = 0, pad_friction = 0;
+  int sliding = 0;
+};
+
+const Schema& timeseries_schema();
+// "t,speed,substrate,pad_x,pad_v,pad_friction,sliding" (no newline).
+std::string timeseries_header();
+// One CSV row (no newline), numbers printed round-trip exactly.
+std::string timeseries_row(const TimeSeriesRow& r);
+
+// blocks.csv: "t,u0,u1,...,u{n-1}" and one row of lab-frame displacements per sample.
+std::string blocks_header(int n);
+std::string blocks_row(double t, const std::vector<double>& u);
+
+}  // namespace bkq
