@@ -13,6 +13,7 @@
 #include "engine/initial_state.hpp"
 #include "integrate/adaptive.hpp"
 #include "integrate/stepper.hpp"
+#include "io/accuracy_schema.hpp"
 #include "io/json.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
@@ -253,10 +254,7 @@ std::string csv_field(const std::string& text) {
 }  // namespace
 
 std::string accuracy_csv(const AccuracyStudy& study) {
-  std::string out =
-      "scheme,dt,tolerance,status,sampled_events,moment_error_median,moment_error_max,duration_"
-      "error_median,"
-      "duration_error_max,ks_distance,b,b_shift,seconds_per_event,steps_per_event,note\n";
+  std::string out = header_of(accuracy_schema()) + "\n";
   for (const AccuracyPoint& p : study.points) {
     out += p.scheme + ',' + format_real(p.dt) + ',' + format_real(p.tolerance) + ',' + p.status +
            ',' + std::to_string(p.sampled);

@@ -9,6 +9,7 @@
 #include "io/catalog.hpp"
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
+#include "io/timeseries.hpp"
 
 namespace bkq {
 
@@ -53,25 +54,12 @@ std::string column_table(const Schema& schema) {
   return t;
 }
 
-const Schema& timeseries_readme_schema() {
-  static const Schema schema = {
-      {"t", "time", "simulated time"},
-      {"speed", "length/time", "substrate speed v"},
-      {"substrate", "length", "substrate position"},
-      {"pad_x", "length", "pad position x (0 for bk)"},
-      {"pad_v", "length/time", "pad velocity"},
-      {"pad_friction", "force", "pad friction k_p sum_j (u_j - x)"},
-      {"sliding", "", "number of sliding blocks", kInteger},
-  };
-  return schema;
-}
-
 std::vector<ReadmeTable> readme_tables() {
   return {
       {"scene-keys", scene_key_table()},
       {"catalog.csv", column_table(catalog_schema())},
       {"histogram.csv", column_table(histogram_schema())},
-      {"timeseries.csv", column_table(timeseries_readme_schema())},
+      {"timeseries.csv", column_table(timeseries_schema())},
       {"accuracy.csv", column_table(accuracy_schema())},
   };
 }

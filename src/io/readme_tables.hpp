@@ -27,10 +27,6 @@ std::string scene_key_table();
 // The markdown table of a file's columns: column, units, format, meaning.
 std::string column_table(const Schema& schema);
 
-// timeseries.csv's columns. Declared here until io/timeseries.hpp declares the schema the
-// continuous run writes; a test checks it against the header of a recorded run.
-const Schema& timeseries_readme_schema();
-
 std::string readme_begin_marker(const std::string& name);
 std::string readme_end_marker(const std::string& name);
 // The text between the markers of `name` (from the line after the begin marker to the line
