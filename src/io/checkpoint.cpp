@@ -43,22 +43,78 @@ std::uint64_t fnv1a64(const char* data, std::size_t n) {
   return h;
 }
 
-void put(StateWriter& w, const EngineCounters& c) {
-  w.i64(c.events);
-  w.i64(c.steps);
-  w.i64(c.block_steps);
-  w.i64(c.sliding_block_steps);
-  w.i64(c.releases);
+// The checkpoint's fields in file order, written once for both directions: `io` is an
+// Encode (writes each field) or a Decode (reads each field into it). A new field goes
+// here, with kFormatVersion raised.
+struct Encode {
+  StateWriter& w;
+  void operator()(const std::string& x) { w.str(x); }
+  void operator()(std::uint64_t x) { w.u64(x); }
+  void operator()(std::int64_t x) { w.i64(x); }
+  void operator()(int x) { w.i64(x); }
+  void operator()(double x) { w.f64(x); }
+  void operator()(bool x) { w.u32(x ? 1 : 0); }
+  void operator()(__int128 x) { w.i128(x); }
+  void operator()(const std::vector<double>& x) { w.f64s(x); }
+  void operator()(const std::vector<std::int64_t>& x) { w.i64s(x); }
+};
+
+struct Decode {
+  StateReader& r;
+  void operator()(std::string& x) { x = r.str(); }
+  void operator()(std::uint64_t& x) { x = r.u64(); }
+  void operator()(std::int64_t& x) { x = r.i64(); }
+  void operator()(int& x) { x = static_cast<int>(r.i64()); }
+  void operator()(double& x) { x = r.f64(); }
+  void operator()(bool& x) { x = r.u32() != 0; }
+  void operator()(__int128& x) { x = r.i128(); }
+  void operator()(std::vector<double>& x) { x = r.f64s(); }
+  void operator()(std::vector<std::int64_t>& x) { x = r.i64s(); }
+};
+
+template <class Io, class Counters>
+void counter_fields(Io& io, Counters& c) {
+  for (auto* x : {&c.events, &c.steps, &c.block_steps, &c.sliding_block_steps, &c.releases}) io(*x);
 }
 
-EngineCounters get_counters(StateReader& r) {
-  EngineCounters c;
-  c.events = r.i64();
-  c.steps = r.i64();
-  c.block_steps = r.i64();
-  c.sliding_block_steps = r.i64();
-  c.releases = r.i64();
-  return c;
+// Everything but the observers' states (which came with format version 2).
+template <class Io, class C>
+void fixed_fields(Io& io, C& c) {
+  io(c.version);
+  io(c.git_revision);
+  io(c.scene_hash);
+  io(c.scene_ini);
+  io(c.seed);
+
+  auto& p = c.progress;
+  io(p.transient_done);
+  io(p.events_done);
+  io(p.catalog_bytes);
+  io(p.load0);
+  counter_fields(io, p.counters0);
+  io(p.moment_sum);
+  io(p.nonpositive);
+  io(p.wall_events);
+  io(p.wall_total);
+  io(p.resumes);
+
+  auto& st = c.engine.state;
+  for (auto* v : {&st.w, &st.wd, &st.mobile, &st.dir}) io(*v);
+  for (auto* x : {&st.x, &st.xd, &st.s, &st.t, &st.sum_w}) io(*x);
+  counter_fields(io, c.engine.counters);
+
+  auto& h = c.histogram;
+  io(h.bin_width);
+  io(h.first_bin);
+  io(h.counts);
+  io(h.events);
+  io(h.sum_q);
+  io(h.sum_q2);
+  io(h.min_mu);
+  io(h.max_mu);
+  io(h.exact_moments);
+  io(h.total_load);
+  io(h.blocks);
 }
 
 std::string read_whole(const std::string& path) {
@@ -77,48 +133,8 @@ void StateReader::fail() const {
 
 std::string encode_checkpoint(const Checkpoint& c) {
   StateWriter w;
-  w.str(c.version);
-  w.str(c.git_revision);
-  w.u64(c.scene_hash);
-  w.str(c.scene_ini);
-  w.u64(c.seed);
-
-  const RunProgress& p = c.progress;
-  w.i64(p.transient_done);
-  w.i64(p.events_done);
-  w.u64(p.catalog_bytes);
-  w.f64(p.load0);
-  put(w, p.counters0);
-  w.f64(p.moment_sum);
-  w.i64(p.nonpositive);
-  w.f64(p.wall_events);
-  w.f64(p.wall_total);
-  w.i64(p.resumes);
-
-  const ChainState& st = c.engine.state;
-  w.f64s(st.w);
-  w.f64s(st.wd);
-  w.f64s(st.mobile);
-  w.f64s(st.dir);
-  w.f64(st.x);
-  w.f64(st.xd);
-  w.f64(st.s);
-  w.f64(st.t);
-  w.f64(st.sum_w);
-  put(w, c.engine.counters);
-
-  const MagnitudeHistogram::State& h = c.histogram;
-  w.f64(h.bin_width);
-  w.i64(h.first_bin);
-  w.i64s(h.counts);
-  w.i64(h.events);
-  w.i128(h.sum_q);
-  w.i128(h.sum_q2);
-  w.f64(h.min_mu);
-  w.f64(h.max_mu);
-  w.u32(h.exact_moments ? 1 : 0);
-  w.f64(h.total_load);
-  w.i64(h.blocks);
+  Encode encode{w};
+  fixed_fields(encode, c);
 
   w.u64(c.observers.size());
   for (const ObserverState& o : c.observers) {
@@ -161,48 +177,8 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
 
   StateReader r(bytes, kHeadBytes, end, origin);
   Checkpoint c;
-  c.version = r.str();
-  c.git_revision = r.str();
-  c.scene_hash = r.u64();
-  c.scene_ini = r.str();
-  c.seed = r.u64();
-
-  RunProgress& p = c.progress;
-  p.transient_done = r.i64();
-  p.events_done = r.i64();
-  p.catalog_bytes = r.u64();
-  p.load0 = r.f64();
-  p.counters0 = get_counters(r);
-  p.moment_sum = r.f64();
-  p.nonpositive = r.i64();
-  p.wall_events = r.f64();
-  p.wall_total = r.f64();
-  p.resumes = r.i64();
-
-  ChainState& st = c.engine.state;
-  st.w = r.f64s();
-  st.wd = r.f64s();
-  st.mobile = r.f64s();
-  st.dir = r.f64s();
-  st.x = r.f64();
-  st.xd = r.f64();
-  st.s = r.f64();
-  st.t = r.f64();
-  st.sum_w = r.f64();
-  c.engine.counters = get_counters(r);
-
-  MagnitudeHistogram::State& h = c.histogram;
-  h.bin_width = r.f64();
-  h.first_bin = r.i64();
-  h.counts = r.i64s();
-  h.events = r.i64();
-  h.sum_q = r.i128();
-  h.sum_q2 = r.i128();
-  h.min_mu = r.f64();
-  h.max_mu = r.f64();
-  h.exact_moments = r.u32() != 0;
-  h.total_load = r.f64();
-  h.blocks = static_cast<int>(r.i64());
+  Decode decode{r};
+  fixed_fields(decode, c);
 
   if (format >= 2) {
     c.observers.resize(r.count(16));
@@ -214,6 +190,7 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
 
   if (!r.done())
     throw Error("checkpoint '" + origin + "' is malformed: unexpected bytes after the last field");
+  const ChainState& st = c.engine.state;
   const std::size_t n = st.w.size();
   if (st.wd.size() != n || st.mobile.size() != n || st.dir.size() != n)
     throw Error("checkpoint '" + origin + "' is malformed: the chain arrays differ in length");
