@@ -7,6 +7,7 @@
 
 #include "app/fit.hpp"
 #include "cli/commands.hpp"
+#include "cli/scene_args.hpp"
 #include "core/error.hpp"
 
 namespace bkq {
@@ -31,19 +32,7 @@ int cmd_fit(const std::vector<std::string>& args) {
     ("boundary", po::value<std::string>(), "free | periodic (default: scene.ini, else free)")
     ("json", po::value<std::string>(), "also write the result as JSON to this file");
   // clang-format on
-  po::options_description hidden;
-  hidden.add_options()("catalog", po::value<std::string>());
-  po::options_description all;
-  all.add(opts).add(hidden);
-  po::positional_options_description pos;
-  pos.add("catalog", 1);
-  po::variables_map vm;
-  try {
-    po::store(po::command_line_parser(args).options(all).positional(pos).run(), vm);
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw Error(std::string("fit: ") + e.what());
-  }
+  const po::variables_map vm = parse_command_line("fit", args, opts, "catalog", 1);
   if (vm.count("help")) {
     std::cout << opts << "\n";
     return 0;

@@ -7,6 +7,7 @@
 
 #include "app/merge.hpp"
 #include "cli/commands.hpp"
+#include "cli/scene_args.hpp"
 #include "core/error.hpp"
 
 namespace bkq {
@@ -19,19 +20,7 @@ int cmd_merge(const std::vector<std::string>& args) {
       "Merges the histograms of runs of the same scene and fits the result");
   opts.add_options()("help,h", "show this help")("out", po::value<std::string>(),
                                                  "output folder (created if missing)");
-  po::options_description hidden;
-  hidden.add_options()("runs", po::value<std::vector<std::string>>());
-  po::options_description all;
-  all.add(opts).add(hidden);
-  po::positional_options_description pos;
-  pos.add("runs", -1);
-  po::variables_map vm;
-  try {
-    po::store(po::command_line_parser(args).options(all).positional(pos).run(), vm);
-    po::notify(vm);
-  } catch (const po::error& e) {
-    throw Error(std::string("merge: ") + e.what());
-  }
+  const po::variables_map vm = parse_command_line("merge", args, opts, "runs", -1);
   if (vm.count("help")) {
     std::cout << opts << "\n";
     return 0;

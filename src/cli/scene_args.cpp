@@ -12,15 +12,19 @@ void add_scene_options(po::options_description& opts) {
                      "section.key=value: override one scene key (repeatable, applied in order)");
 }
 
-po::variables_map parse_scene_command_line(const std::string& command,
-                                           const std::vector<std::string>& args,
-                                           const po::options_description& opts) {
+po::variables_map parse_command_line(const std::string& command,
+                                     const std::vector<std::string>& args,
+                                     const po::options_description& opts, const char* positional,
+                                     int max_positional) {
   po::options_description hidden;
-  hidden.add_options()("scene", po::value<std::vector<std::string>>(), "scene file");
+  if (max_positional == 1)
+    hidden.add_options()(positional, po::value<std::string>());
+  else
+    hidden.add_options()(positional, po::value<std::vector<std::string>>());
   po::options_description all;
   all.add(opts).add(hidden);
   po::positional_options_description pos;
-  pos.add("scene", -1);
+  pos.add(positional, max_positional);
   po::variables_map vm;
   try {
     const int style = po::command_line_style::unix_style & ~po::command_line_style::allow_guessing;
@@ -30,6 +34,12 @@ po::variables_map parse_scene_command_line(const std::string& command,
     throw Error(command + ": " + e.what() + "; try 'bkquake " + command + " --help'");
   }
   return vm;
+}
+
+po::variables_map parse_scene_command_line(const std::string& command,
+                                           const std::vector<std::string>& args,
+                                           const po::options_description& opts) {
+  return parse_command_line(command, args, opts, "scene", -1);
 }
 
 Scene scene_from_command_line(const std::string& command, const po::variables_map& vm) {

@@ -1,4 +1,5 @@
-// The command line that the commands simulating a scene (run, accuracy) share: one
+// The commands' shared command-line parsing, and the part that the commands simulating a
+// scene (run, accuracy) share: one
 // optional SCENE file (the built-in default without it) and any number of
 // --set section.key=value overrides, applied in order after the file.
 #pragma once
@@ -13,6 +14,15 @@ namespace bkq {
 
 // Adds --set to a command's options.
 void add_scene_options(boost::program_options::options_description& opts);
+
+// Parses a command's `args` with `opts` plus positional arguments stored under
+// `positional` (a string when max_positional is 1, else a list; -1: any number), without
+// abbreviations (`--for` silently meaning --force would be a surprise). Errors read
+// "<command>: ...; try 'bkquake <command> --help'".
+boost::program_options::variables_map parse_command_line(
+    const std::string& command, const std::vector<std::string>& args,
+    const boost::program_options::options_description& opts, const char* positional,
+    int max_positional);
 
 // Parses `args` with `opts` plus the positional SCENE, without abbreviations (`--for`
 // silently meaning --force would be a surprise). Errors read "<command>: ...".

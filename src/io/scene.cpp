@@ -26,57 +26,50 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMaxInt64 = 9223372036854775807.0;  // 2^63 - 1 (rounds to 2^63 as a double)
 
+// The fields every row has.
+ParamSpec spec(const char* key, ParamType type, const char* def, const char* units,
+               const char* doc) {
+  ParamSpec p;
+  p.key = key;
+  p.type = type;
+  p.default_value = def;
+  p.units = units;
+  p.doc = doc;
+  return p;
+}
+
 // Range brackets: '[' or ']' is inclusive, '(' or ')' exclusive; an infinite bound is
 // always written open, so `inf` itself is never an accepted value.
 ParamSpec real(const char* key, const char* def, char lo_br, double lo, double hi, char hi_br,
                const char* units, const char* doc) {
-  ParamSpec p;
-  p.key = key;
-  p.type = ParamType::Real;
-  p.default_value = def;
+  ParamSpec p = spec(key, ParamType::Real, def, units, doc);
   p.min = lo;
   p.max = hi;
   p.has_min = std::isfinite(lo);
   p.has_max = std::isfinite(hi);
   p.min_open = lo_br == '(' || !p.has_min;
   p.max_open = hi_br == ')' || !p.has_max;
-  p.units = units;
-  p.doc = doc;
   return p;
 }
 
 ParamSpec integer(const char* key, const char* def, double lo, double hi, const char* units,
                   const char* doc) {
-  ParamSpec p;
-  p.key = key;
-  p.type = ParamType::Integer;
-  p.default_value = def;
+  ParamSpec p = spec(key, ParamType::Integer, def, units, doc);
   p.min = lo;
   p.max = hi;
   p.has_min = p.has_max = true;
-  p.units = units;
-  p.doc = doc;
   return p;
 }
 
 ParamSpec choice(const char* key, const char* def, std::vector<std::string> choices,
                  const char* doc) {
-  ParamSpec p;
-  p.key = key;
-  p.type = ParamType::Choice;
-  p.default_value = def;
+  ParamSpec p = spec(key, ParamType::Choice, def, "", doc);
   p.choices = std::move(choices);
-  p.doc = doc;
   return p;
 }
 
 ParamSpec boolean(const char* key, const char* def, const char* doc) {
-  ParamSpec p;
-  p.key = key;
-  p.type = ParamType::Boolean;
-  p.default_value = def;
-  p.doc = doc;
-  return p;
+  return spec(key, ParamType::Boolean, def, "", doc);
 }
 
 ParamSpec auto_real(const char* key, const char* units, const char* doc) {
