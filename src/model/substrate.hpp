@@ -14,33 +14,14 @@ class Substrate {
  public:
   enum class Kind { Frozen, Constant, Steps, Ramp };
 
-  static Substrate frozen(double s) {
-    Substrate d;
-    d.kind_ = Kind::Frozen;
-    d.s0_ = s;
-    return d;
-  }
-  static Substrate constant(double v) {
-    Substrate d;
-    d.kind_ = Kind::Constant;
-    d.v0_ = v;
-    return d;
-  }
+  Substrate() = default;
+  static Substrate frozen(double s) { return Substrate(Kind::Frozen, s, 0, 0, 0, 1); }
+  static Substrate constant(double v) { return Substrate(Kind::Constant, 0, v, 0, 0, 1); }
   static Substrate steps(double v0, double increment, double interval) {
-    Substrate d;
-    d.kind_ = Kind::Steps;
-    d.v0_ = v0;
-    d.inc_ = increment;
-    d.interval_ = interval;
-    return d;
+    return Substrate(Kind::Steps, 0, v0, 0, increment, interval);
   }
   static Substrate ramp(double from, double to, double duration) {
-    Substrate d;
-    d.kind_ = Kind::Ramp;
-    d.v0_ = from;
-    d.v1_ = to;
-    d.interval_ = duration;
-    return d;
+    return Substrate(Kind::Ramp, 0, from, to, 0, duration);
   }
 
   Kind kind() const { return kind_; }
@@ -77,6 +58,9 @@ class Substrate {
   }
 
  private:
+  Substrate(Kind kind, double s0, double v0, double v1, double inc, double interval)
+      : kind_(kind), s0_(s0), v0_(v0), v1_(v1), inc_(inc), interval_(interval) {}
+
   Kind kind_ = Kind::Frozen;
   double s0_ = 0, v0_ = 0, v1_ = 0, inc_ = 0, interval_ = 1;
 };
