@@ -1,72 +1,10 @@
 // The event-located adaptive reference stepper (integrator.scheme = adaptive): Dormand–
-// Prince 5(4) with error control, and every stick–slip transition inside a step located
-// on the dense output, so that accuracy does not collapse to first order at transitions
-// the way it does for the fixed-step schemes under the Crossing rule (stepper.hpp).
-//
-// Scheme. The explicit Runge–Kutta pair of Dormand & Prince (1980), seven stages with
-// FSAL (the last stage is the derivative at the new point, reused as the next step's
-// first), on y = (w, w', x, x') for the blocks in the ranges and the pad when it moves.
-// The 5th-order solution is propagated; the embedded 4th-order one gives the local error
-// estimate. Dense output is Shampine's 4th-order continuous extension (Hairer, Nørsett &
-// Wanner, Solving ODEs I, §II.6; DOPRI5's CONTD5), evaluated per component on demand.
-//   Order 5 in smooth phases (global error ~ tolerance).
-//   Stability: the step-size control keeps every step inside DOPRI5's stability region
-//   (|h lambda| up to ~3.3), so stability_constant() is HUGE_VAL: the scene's dt is only
-//   the macro step after which the driver looks at the state.
-//
-// Error control. Max norm over the advanced components of err_i / (tol (1 + |y_i|)) with
-// |y_i| the larger of the step's two ends (mixed absolute/relative, atol = rtol = tol).
-// Positions enter as w - s0, measured from the substrate's position s0 at the start of the
-// step, so the relative part does not grow with the loading (w = u + s). Step-size
-// controller: h_new = h min(10, max(0.2, 0.9 err^(-1/5))), no growth right after a
-// rejection; a step shortened to land on the macro step's end does not shrink the next.
-// The first step of a new problem (the stepper's first call, or a call whose time does
-// not continue the previous one, as at each event of the event engine) is guessed by
-// Hairer's HINIT. A step size below 16 eps max(|t|, dt) throws bkq::Error.
-//
-// Stick rule: Located. Within a step the stick flags (st.mobile) and sliding directions
-// (st.dir) are frozen between transitions. Event functions, checked at the ends of every
-// accepted step for the blocks in the ranges:
-//   sliding block j:  g_j = dir_j w'_j, a transition once g_j <= 0 (it stopped or turned);
-//   stuck block j:    friction().breaks(f_j), f_j = spring_force(w, j, s + x) (the static
-//                     threshold, and -threshold for laws with backslip).
-// If any fired, the earliest crossing is found in two stages:
-//   bracketing: each fired block's crossing is bisected on the dense output (cheap: per
-//     block) to 1e-13 (|t| + h), and the earliest, t*, taken. The dense output is only 4th
-//     order and not error-controlled: with h omega ~ 0.1 it puts a stick ~1e-6 late or early;
-//   polishing: Newton's method on that block's event function with real steps. A DP5 step
-//     from the step's start t0 to any t <= t0 + h ends on the 5th-order solution, its error
-//     no larger than the accepted step's. Starting at t*, each iterate is such a step, the
-//     event function's rate there (dir_j w''_j sliding, the spring force's rate stuck) gives
-//     the next t, kept inside the bracket [t0, t0 + h] that the real steps narrow (else
-//     bisected), until the correction is below 1e-13 (|t| + h), the event function is at
-//     its rounding level (for a stuck block, the rounding of spring forces summed from
-//     positions w = u + s of the size of the loading), or the corrections stop shrinking.
-//     Two or three real steps per transition (polishing_steps(); ~2.5 on the default scene).
-// The state is set to the last real step's end and every block whose event function has
-// fired there makes its transition:
-//   sliding -> stuck (mobile 0, w' = 0) if friction().holds(f); otherwise w' = 0 and it
-//              keeps sliding the way its spring pulls (dir = sign f): back the way it came
-//              (dir flips) for laws with backslip, forwards (dir = +1) for clst91;
-//   stuck -> sliding (mobile 1, w' = 0, dir = sign f).
-// Integration then restarts from that instant (the right-hand side jumps there). The
-// located instant is thus as accurate as the integration itself, whatever the step size:
-// its error is the trajectory's global error divided by the event function's rate of
-// change, plus rounding. At tolerance 1e-10 a single block decelerating at 0.01 sticks
-// within 1e-13 of the exact time in macro steps of 0.01 (2e-9 in one call for the whole
-// slip: the velocity's global error over the larger steps), and the first event of a
-// 2-block chain (k_c = 100) has the same moment and duration to 1e-13 in macro steps of
-// 1e-3 and 1e-4; in macro steps of 1e-2 they differ by the global error of steps that
-// long, 1e-9 and 3e-9 (tests/numeric/test_adaptive.cpp). A second block whose event
-// fires within the dense output's error of the located one makes its transition at the
-// polished instant too. The direction of a sliding block with non-zero velocity is taken
-// from its velocity at the start of step(), as settle_contacts keeps it. Frictionless
-// scenes (law none) have no transitions and locate nothing.
-//
-// Limitation: only blocks in the ranges are watched. A stuck block just outside them is
-// held fixed for the whole macro step and its threshold is checked by the driver only
-// after the macro step (the engine covers a sliding block's neighbours, so such a block
-// is one that a transition inside the step has newly exposed).
+// Prince 5(4) with error control (atol = rtol = integrator.tolerance) and every stick–slip
+// transition located on the dense output and polished with real steps, so accuracy does
+// not drop to first order at transitions. Order 5 in smooth phases. Stability: the
+// step-size control keeps every step stable (integrator.dt is only the macro step).
+// Stick rule: Located. The scheme, the error control, the event location and its limits
+// are set out in README.md, "The adaptive reference".
 #pragma once
 
 #include <array>

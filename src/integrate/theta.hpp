@@ -1,81 +1,10 @@
-// The theta-method (theta = 1/2) with set-valued friction: velocity-level Moreau–Jean
-// time stepping (seed 004 §3.3; Jean 1999). Keyword `theta`.
-//
-// Scheme. With h = dt and b = h/2, every block j in the ranges and the pad obey
-//   m (v+ - v) = b [L(q+, v+, t+h) + L(q, v, t)] + b (r+ + r),   q+ = q + b (v + v+),
-// where L is everything but friction (neighbour and pulling springs, the 1DOF damper
-// c_u, the substrate's position, speed and acceleration; chain.hpp) and r, r+ are the
-// friction forces at the two ends of the step. The linear part is the trapezoidal rule:
-// substituting q+ gives a linear system in v+ that is tridiagonal over each contiguous
-// segment of the ranges (cyclic when a periodic chain is advanced whole: Sherman–Morrison),
-// bordered by the pad's row; the pad is eliminated by a Schur complement, so one solve
-// costs O(blocks in the ranges). Blocks outside the ranges are held: they enter only
-// through the springs to their neighbours.
-//
-// Friction. r is known from the start of the step: -m phi(v) for a sliding block, and
-// for a stuck one the reaction that held it, -L projected on the admissible set. r+ comes
-// from the set-valued law at the end of the step:
-//   sliding (v+ != 0):  r+ = -m phi(v+), phi velocity-weakening (friction.hpp);
-//   stuck   (v+ == 0):  friction holds the block's force at the end of the step, f+ =
-//                       L(q+, 0, t+h), with a reaction in [-F0 m, F0 m] (thesis, cl89)
-//                       or [-F0 m, inf) (clst91: friction may push a block forward
-//                       without limit, so it never slides backwards).
-// For a block stuck throughout, r+ = -f+ exactly; for one that stops within the step r+
-// also absorbs its remaining momentum (the impulse of Moreau–Jean), so the stick test is
-// on f+, the reaction it needs from then on. Row j reads D_j v+_j - b r+_j = c_j, with
-// D_j = m + b c_u + b^2 (k_p + k_c #neighbours) and c_j known from the start of the step
-// and the neighbours' and the pad's new velocities; sliding in direction e has a speed
-// > 0 iff e c_j > b m F0 (1 - sigma) (the kinetic level; thesis/clst91, F0 for cl89).
-// Between the kinetic level and the static threshold both sticking and sliding solve the
-// law; the block's state at the start of the step settles it:
-//   - a block stuck at the start stays stuck while friction can hold f+ (static friction
-//     holds it); above the threshold it breaks inside this step and slides the way it is
-//     pulled (mobile = 1, dir set), so a block breaks only above F0;
-//   - a block sliding in direction d keeps sliding while its sliding solution keeps
-//     d v+ > 0; if that would reach or cross zero it sticks when friction can hold f+ —
-//     in particular whenever f+ lies in the band (1 - sigma) F0 .. F0 — and otherwise
-//     slides back (backslip laws; never clst91).
-// When friction cannot hold f+ but the step's momentum allows no sliding speed the way the
-// block is pulled (the pull reversed while it was stopping), the block is left stuck for
-// this step with a force beyond the threshold and breaks loose at the next step (the
-// engine's settle_contacts releases it first). Where the discrete contact problem has two
-// solutions (a block at the threshold whose breaking drags a sliding neighbour that pulls
-// it over), the active set and the Gauss–Seidel fallback may pick different ones; both
-// satisfy the law.
-// Stick is exact: a stuck block ends the step with v+ = 0 exactly (mobile = 0, wd = 0)
-// and does not move while it stays stuck; there is no threshold velocity and no
-// chattering. The stepper applies the whole rule itself (StickRule::Projection).
-//
-// Contact solver. The coupled problem is solved by an active-set iteration that is
-// Newton's method on the velocity-weakening friction at the same time: guess every
-// block's state (stuck, or sliding with phi linearised about its current speed), solve
-// the linear system, re-decide each block from c_j and f+ by the rule above, re-linearise,
-// repeat until no state changes and every sliding speed has converged (s |dv| <= 1e-10,
-// s the weakening rate: friction then within ~1e-10 of itself). The factorisation of the
-// linear system is kept while its blocks' states, the ranges and dt stay the same: later
-// iterations and steps only substitute, with the change of the friction slopes carried on
-// the right-hand side (a chord step; refactored after three of them without settling).
-// So a step in a smooth phase costs one or two substitutions, O(range) without divisions,
-// and each stick/slip change a refactorisation. If the iteration has not settled after
-// set_max_active_set_iterations() rounds (default 50) it falls back to projected
-// (nonlinear) Gauss–Seidel: each block solves its scalar problem exactly in turn, the pad
-// after each sweep, to a relative change of 1e-14; the system is diagonally dominant, so
-// that converges.
-//
-// Order. The linear part and the friction are both trapezoidal (friction is implicit,
-// iterated to convergence, not lagged), so smooth phases are second order; observed 2.00
-// on the frictionless tests and on a sliding block with weakening friction, a damper and
-// an accelerating substrate (tests/numeric/test_theta.cpp). A stick or slip transition
-// is resolved within its step: the release or re-stick happens at a step boundary, which
-// costs O(dt^2) in position per transition (at a turning point at most a dt^2/8, a the
-// deceleration), so across transitions the scheme is first order like every fixed-step
-// scheme (stepper.hpp).
-//
-// Stability. None on the linear part: the trapezoidal rule is A-stable and conserves the
-// energy of an undamped linear chain exactly (to rounding) at any dt, so
-// stability_constant() is HUGE_VAL. Velocity-weakening friction is negative damping of
-// rate at most F0/v_c; the sliding speed is unique (and Newton converges) only for
-// dt < 2 v_c/F0, which step() checks (Carlson–Langer alpha = 2.5: dt < 0.4).
+// The theta-method (theta = 1/2) with set-valued friction: velocity-level Moreau–Jean time
+// stepping (seed 004 §3.3; Jean 1999). Keyword `theta`. Implicit (trapezoidal) in the
+// springs, the pad and the friction; one tridiagonal solve per contact iteration.
+// Order 2 in smooth phases, 1 across stick transitions. Stability: none on the linear part
+// (A-stable); under weakening friction dt < 2 v_c/F0 (unique sliding speed), checked.
+// Stick rule: Projection, exact (v+ = 0, no threshold velocity). The scheme, the friction
+// rule, the contact solver and the order are set out in README.md, "The θ-method".
 #pragma once
 
 #include <cmath>
