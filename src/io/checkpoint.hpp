@@ -11,7 +11,7 @@
 // initial state (initial_state.hpp), so there is no generator state to keep; the seed is
 // recorded for provenance only.
 //
-// File format (version 1), all integers little-endian, doubles as their IEEE-754 bits
+// File format (version 2), all integers little-endian, doubles as their IEEE-754 bits
 // (so every value round-trips exactly):
 //   8 bytes   magic "BKQCKPT\n"
 //   u32       format version
