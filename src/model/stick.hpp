@@ -1,0 +1,60 @@
+// The stick rule (Crossing, integrate/stepper.hpp): what becomes of one block at the end
+// of a step, in one place for every path that applies it (engine/contacts.hpp, block by
+// block and branch-free over long runs; the cluster loop, integrate/cluster.hpp; the lone
+// slip's record, engine/lone_slip.cpp).
+//  - A sliding block whose velocity relative to the substrate went from y0 to y1 has
+//    crossed zero if it changed sign or is exactly 0 (for a law without backslip: if
+//    y1 <= 0). Then it sticks, with zero velocity, if friction holds its spring force f;
+//    otherwise it slides on, the other way (backslip) or at zero velocity (no backslip).
+//    A block that slides on slides the way its velocity points (unchanged at 0).
+//  - A stuck block breaks loose if its spring force exceeds the static threshold; the
+//    caller releases it (it slides the way its spring pulls).
+// The rule is written without branches, so a loop over many blocks vectorises; the force
+// matters only where needs_force() says so, and a caller may pass anything elsewhere.
+#pragma once
+
+#include <cmath>
+
+#include "model/friction.hpp"
+
+namespace bkq::stick {
+
+// Has a sliding block whose velocity went from y0 to y1 crossed zero?
+inline bool crossed(bool backslip, double y0, double y1) {
+  return backslip ? (y0 * y1 < 0.0) | (y1 == 0.0) : y1 <= 0.0;
+}
+
+// Does the rule look at the spring force of this block after this step?
+inline bool needs_force(const Friction& fr, bool crossing_rule, double mobile, double y0,
+                        double y1) {
+  return mobile == 0.0 || (crossing_rule && crossed(fr.backslip, y0, y1));
+}
+
+struct Outcome {
+  double y;       // velocity after the rule
+  double mobile;  // stick flag (a block that breaks loose is left stuck: see `breaks`)
+  double dir;     // direction of sliding
+  bool slides;    // a sliding block that slides on
+  bool breaks;    // a stuck block that breaks loose
+};
+
+// The rule for one block: stick flag `mobile`, direction `dir`, velocity y0 at the start
+// of the step and y1 at its end, spring force f. `crossing_rule` false leaves sliding
+// blocks sliding (a stepper that resolved its transitions itself).
+inline Outcome settle(const Friction& fr, bool crossing_rule, double mobile, double dir, double y0,
+                      double y1, double f) {
+  const bool sliding = mobile != 0.0;
+  const bool cross = crossing_rule & sliding & crossed(fr.backslip, y0, y1);
+  const bool stick = cross & fr.holds(f);
+  const bool slides = sliding & !stick;
+  const double y = cross & (stick | !fr.backslip) ? 0.0 : y1;
+  return Outcome{y, stick ? 0.0 : mobile, slides & (y != 0.0) ? std::copysign(1.0, y) : dir, slides,
+                 static_cast<bool>(!sliding & fr.breaks(f))};
+}
+
+// The direction a block that breaks loose under spring force f slides in.
+inline double release_direction(double f) {
+  return std::copysign(1.0, f);
+}
+
+}  // namespace bkq::stick
