@@ -53,18 +53,23 @@ class ChainLayout {
   bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), pad_); }
 
   template <class Point, class Update, class Sum>
-  void stage(Point, double time_offset, Update&& update, const Sum& sum) {
+  void stage(Point p, double time_offset, Update&& update, const Sum& sum) {
+    stage(p, time_offset, update, sum, no_sum);
+  }
+  // With `earlier`, the sum of the stage before (which that stage left out), taken in one
+  // pass with this stage's, both of them before this stage's update: the scheme vouches
+  // that neither term changes in between.
+  template <class Point, class Update, class Sum, class Earlier>
+  void stage(Point, double time_offset, Update&& update, const Sum& sum, const Earlier& earlier) {
     constexpr bool state_positions = Point::positions == Buf::W;
+    constexpr bool joint = !std::is_same_v<Earlier, NoSum>;
     const SubstrateState sub = sub_.at(st_.t + time_offset);
     const double* w_at = state_positions ? st_.w.data() : s_.x.data();
     const double* v_at = pick(Point::velocities, st_.wd.data(), s_.y.data(), s_.u.data());
     const double x_at = state_positions ? st_.x : x_;
-    const double sum_at = state_positions ? st_.sum_w : sum_;
     const double xd_at = pick(Point::velocities, st_.xd, xd_, xu_);
     forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(),
                                 sub.s + (pad_ ? x_at : 0.0), sub, ranges_, s_.a.data());
-    const double ax = pad_ ? forces_.pad_acceleration(x_at, xd_at, sum_at, sub.s) : 0.0;
-
     using B = typename Round::BlockRound;
     double* __restrict w = st_.w.data();
     double* __restrict wd = st_.wd.data();
@@ -74,9 +79,27 @@ class ChainLayout {
     double* __restrict cv = s_.cv.data();
     double* __restrict u = s_.u.data();
     const double* __restrict a = s_.a.data();
+    auto element = [&](int j) {
+      return StageElement<B>{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+    };
+    double joint_total = 0;
+    if constexpr (joint) {
+      if (pad_) {
+        double earlier_total = 0;
+        for (const Range& r : ranges_)
+          for (int j = r.lo; j < r.hi; ++j) {
+            earlier_total += earlier.term(element(j));
+            joint_total += sum.term(element(j));
+          }
+        sum_ = st_.sum_w + earlier.scale * earlier_total;
+      }
+    }
+    const double ax =
+        pad_ ? forces_.pad_acceleration(x_at, xd_at, state_positions ? st_.sum_w : sum_, sub.s)
+             : 0.0;
     for (const Range& r : ranges_)
       for (int j = r.lo; j < r.hi; ++j) {
-        StageElement<B> e{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+        StageElement<B> e = element(j);
         update(e, a[j]);
       }
     if (!pad_) return;
@@ -85,12 +108,10 @@ class ChainLayout {
     if constexpr (!std::is_same_v<Sum, NoSum>) {
       // A separate pass: a sum in block order is a chain of dependent additions, which
       // would keep the update loop above from vectorising.
-      double total = 0;
-      for (const Range& r : ranges_)
-        for (int j = r.lo; j < r.hi; ++j) {
-          const StageElement<B> e{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
-          total += sum.term(e);
-        }
+      double total = joint_total;
+      if constexpr (!joint)
+        for (const Range& r : ranges_)
+          for (int j = r.lo; j < r.hi; ++j) total += sum.term(element(j));
       if (sum.into_state)
         st_.sum_w += sum.scale * total;
       else
@@ -179,8 +200,8 @@ class HeldRangeLayout {
 
   bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), false); }
 
-  template <class Point, class Update, class Sum>
-  void stage(Point, double, Update&& update, const Sum&) {
+  template <class Point, class Update, class... Sums>
+  void stage(Point, double, Update&& update, const Sums&...) {
     static_assert(
         Point::positions == Buf::W ? Point::velocities == Buf::V : Point::velocities == Buf::Y,
         "a held range evaluates at the state or at the last stage point");
@@ -222,8 +243,8 @@ class ClusterLayout {
 
   bool velocity_dependent() const { return velocity_dependent_; }
 
-  template <class Point, class Update, class Sum>
-  void stage(Point, double, Update&& update, const Sum&) {
+  template <class Point, class Update, class... Sums>
+  void stage(Point, double, Update&& update, const Sums&...) {
     constexpr bool at_state = Point::positions == Buf::W && Point::velocities == Buf::V;
     if (!at_state || evaluated_)
       acceleration_(Point::positions == Buf::W ? w_ : x_, pick<Point::velocities>(), a_);

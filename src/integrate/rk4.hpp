@@ -22,14 +22,14 @@ struct Rk4Method {
   static void advance(Layout& l, double h) {
     const double h2 = 0.5 * h, h6 = h / 6.0;
     // cw, cv gather the stage velocities and accelerations with weights 1, 2, 2, 1.
-    auto first = [&](auto& e, double a) {
+    auto first = [h2](auto& e, double a) {
       using R = typename std::remove_reference_t<decltype(e)>::R;
       e.cw = e.v;
       e.cv = a;
       e.xo = R::axpy(h2, e.v, e.w);
       e.yo = R::axpy(h2, a, e.v);
     };
-    auto middle = [&](double c) {
+    auto middle = [](double c) {
       return [c](auto& e, double a) {
         using R = typename std::remove_reference_t<decltype(e)>::R;
         e.cw += 2.0 * e.y;
@@ -38,7 +38,7 @@ struct Rk4Method {
         e.yo = R::axpy(c, a, e.v);
       };
     };
-    auto last = [&](auto& e, double a) {
+    auto last = [h6](auto& e, double a) {
       using R = typename std::remove_reference_t<decltype(e)>::R;
       e.w += h6 * (e.cw + e.y);
       e.v = R::axpy(h6, e.cv + a, e.v);
