@@ -151,12 +151,15 @@ namespace layout_detail {
 // restrict parameter, so the compiler knows the stores cannot change what the pass reads
 // and vectorises it.
 // At the state (AtState) the stage point is (w, wd) itself and x, v are not read.
+// Kept out of line: inlined into the scheme's advance(), the restrict qualifiers no
+// longer tell the compiler the arrays are apart and the pass stays scalar.
 template <FrictionLaw Law, bool Neighbours, bool Damper, class B, bool AtState, class Update>
-void fused_stage(const ChainForces& forces, const HeldInput& in, int lo, int hi,
-                 double* __restrict w, double* __restrict wd, const double* __restrict x_in,
-                 const double* __restrict v_in, double* __restrict xo, double* __restrict yo,
-                 double* __restrict cw, double* __restrict cv, double* __restrict u,
-                 Update& update) {
+[[gnu::noinline]] void fused_stage(const ChainForces& forces, const HeldInput& in, int lo, int hi,
+                                   double* __restrict w, double* __restrict wd,
+                                   const double* __restrict x_in, const double* __restrict v_in,
+                                   double* __restrict xo, double* __restrict yo,
+                                   double* __restrict cw, double* __restrict cv,
+                                   double* __restrict u, Update& update) {
   const double* x = AtState ? w : x_in;
   const double* v = AtState ? wd : v_in;
   const double* __restrict mobile = in.mobile;

@@ -31,6 +31,7 @@
 #include "engine/event_engine.hpp"
 #include "integrate/stepper.hpp"
 #include "model/chain.hpp"
+#include "model/stick.hpp"
 
 namespace bkq {
 namespace {
@@ -140,6 +141,82 @@ TEST(StickRule, BackslipLawSticksAtTheTurningPoint) {
       EXPECT_EQ(engine.state().mobile[0], 0.0);
     }
   }
+}
+
+// The rule itself (model/stick.hpp), case by case, for a law with backslip (thesis) and
+// one without (clst91); threshold F0 = 1.
+Friction law_with(FrictionLaw law) {
+  ModelParams p = single_block();
+  p.law = law;
+  return Friction(p);
+}
+
+TEST(StickRuleUnit, CrossingIsASignChangeOrZeroWithBackslipAndNonPositiveWithout) {
+  EXPECT_TRUE(stick::crossed(true, 1.0, -1.0));
+  EXPECT_TRUE(stick::crossed(true, -1.0, 1.0));
+  EXPECT_TRUE(stick::crossed(true, 1.0, 0.0));
+  EXPECT_FALSE(stick::crossed(true, 1.0, 0.5));
+  EXPECT_FALSE(stick::crossed(true, -1.0, -0.5));
+  EXPECT_TRUE(stick::crossed(false, 1.0, -1.0));
+  EXPECT_TRUE(stick::crossed(false, 1.0, 0.0));
+  EXPECT_TRUE(stick::crossed(false, -1.0, -0.5));  // no backslip: any y1 <= 0
+  EXPECT_FALSE(stick::crossed(false, -1.0, 0.5));
+}
+
+TEST(StickRuleUnit, SlidingBlockThatCrossesSticksIfFrictionHolds) {
+  for (FrictionLaw law : {FrictionLaw::Thesis, FrictionLaw::Clst91}) {
+    const Friction fr = law_with(law);
+    const stick::Outcome o = stick::settle(fr, true, 1.0, 1.0, 0.5, -0.25, 0.9);
+    EXPECT_EQ(o.y, 0.0);
+    EXPECT_EQ(o.mobile, 0.0);
+    EXPECT_FALSE(o.slides);
+    EXPECT_FALSE(o.breaks);
+    EXPECT_EQ(o.dir, 1.0);
+  }
+}
+
+TEST(StickRuleUnit, SlidingBlockThatCrossesUnderTooLargeAForceSlidesOn) {
+  // Backslip: it slides the other way, with its velocity and a new direction.
+  const stick::Outcome back =
+      stick::settle(law_with(FrictionLaw::Thesis), true, 1.0, 1.0, 0.5, -0.25, -1.5);
+  EXPECT_EQ(back.y, -0.25);
+  EXPECT_EQ(back.mobile, 1.0);
+  EXPECT_EQ(back.dir, -1.0);
+  EXPECT_TRUE(back.slides);
+  // No backslip: it stays at zero velocity, still sliding, its direction unchanged.
+  const stick::Outcome none =
+      stick::settle(law_with(FrictionLaw::Clst91), true, 1.0, 1.0, 0.5, -0.25, 1.5);
+  EXPECT_EQ(none.y, 0.0);
+  EXPECT_EQ(none.mobile, 1.0);
+  EXPECT_EQ(none.dir, 1.0);
+  EXPECT_TRUE(none.slides);
+}
+
+TEST(StickRuleUnit, SlidingBlockThatDoesNotCrossSlidesOnTheWayItMoves) {
+  const Friction fr = law_with(FrictionLaw::Thesis);
+  const stick::Outcome o = stick::settle(fr, true, 1.0, 1.0, -0.5, -0.25, 0.0);
+  EXPECT_EQ(o.y, -0.25);
+  EXPECT_EQ(o.dir, -1.0);
+  EXPECT_TRUE(o.slides);
+  EXPECT_FALSE(stick::needs_force(fr, true, 1.0, -0.5, -0.25));
+  // Without the crossing rule (a stepper that resolves transitions) nothing sticks.
+  const stick::Outcome free = stick::settle(fr, false, 1.0, 1.0, 0.5, -0.25, 0.0);
+  EXPECT_EQ(free.y, -0.25);
+  EXPECT_TRUE(free.slides);
+}
+
+TEST(StickRuleUnit, StuckBlockBreaksLooseOnlyBeyondTheThreshold) {
+  const Friction thesis = law_with(FrictionLaw::Thesis), clst91 = law_with(FrictionLaw::Clst91);
+  EXPECT_TRUE(stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, 1.5).breaks);
+  EXPECT_TRUE(stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, -1.5).breaks);
+  EXPECT_FALSE(stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, 1.0).breaks);  // at it: holds
+  EXPECT_TRUE(stick::settle(clst91, true, 0.0, 1.0, 0.0, 0.0, 1.5).breaks);
+  EXPECT_FALSE(stick::settle(clst91, true, 0.0, 1.0, 0.0, 0.0, -1.5).breaks);
+  const stick::Outcome o = stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, -1.5);
+  EXPECT_EQ(o.mobile, 0.0);  // the caller releases it
+  EXPECT_FALSE(o.slides);
+  EXPECT_EQ(stick::release_direction(-1.5), -1.0);
+  EXPECT_TRUE(stick::needs_force(thesis, true, 0.0, 0.0, 0.0));
 }
 
 }  // namespace
