@@ -45,11 +45,9 @@ template <class OnRelease>
 void settle_block(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor,
                   int j, bool crossing_rule, OnRelease& on_release, ContactScan& out) {
   const Friction& fr = forces.friction();
-  const double y0 = wd_old[j], y1 = st.wd[j], mobile = st.mobile[j];
-  const double f = stick::needs_force(fr, crossing_rule, mobile, y0, y1)
-                       ? forces.spring_force(st.w.data(), j, anchor)
-                       : 0.0;
-  const stick::Outcome o = stick::settle(fr, crossing_rule, mobile, st.dir[j], y0, y1, f);
+  const stick::Outcome o =
+      stick::settle_one(fr, crossing_rule, st.mobile[j], st.dir[j], wd_old[j], st.wd[j],
+                        [&] { return forces.spring_force(st.w.data(), j, anchor); });
   st.wd[j] = o.y;
   st.mobile[j] = o.mobile;
   st.dir[j] = o.dir;
@@ -57,8 +55,6 @@ void settle_block(const ChainForces& forces, ChainState& st, const double* wd_ol
     ++out.sliding;
     raise_max_speed(out.max_speed, std::abs(o.y));
   } else if (o.breaks) {
-    st.mobile[j] = 1.0;
-    st.dir[j] = stick::release_direction(f);
     ++out.sliding;
     on_release(j);
   }

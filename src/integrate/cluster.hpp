@@ -159,22 +159,22 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
         n_released = 0;
         for (int i = first; i <= last; ++i) {
           const int j = lo + i;
-          const double f = stick::needs_force(fr, true, mobile[i], y0[i], y[i])
-                               ? forces.spring_force(w_all, j, anchor)
-                               : 0.0;
-          const stick::Outcome o = stick::settle(fr, true, mobile[i], dir[i], y0[i], y[i], f);
+          const bool was_sliding = mobile[i] != 0.0;
+          const stick::Outcome o = stick::settle_one(fr, true, mobile[i], dir[i], y0[i], y[i], [&] {
+            return forces.spring_force(w_all, j, anchor);
+          });
           y[i] = o.y;
           mobile[i] = o.mobile;
           dir[i] = o.dir;
-          if (o.y == 0.0) magnitude[i] = magnitude_at_rest;
           if (o.slides) {
+            if (o.y == 0.0) magnitude[i] = magnitude_at_rest;  // clst91 after a crossing
             ++sliding;
             raise_max_speed(max_speed, std::abs(o.y));
           } else if (o.breaks) {
-            mobile[i] = 1.0;
-            dir[i] = stick::release_direction(f);
             ++sliding;
             r.released[n_released++] = j;
+          } else if (was_sliding) {
+            magnitude[i] = magnitude_at_rest;  // it stuck
           }
         }
         sliding_block_steps += sliding;

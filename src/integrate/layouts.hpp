@@ -38,6 +38,25 @@ inline bool velocity_dependent(const ModelParams& p, bool pad_moves) {
   return p.law != FrictionLaw::None || p.c_u != 0 || (pad_moves && p.c_p != 0);
 }
 
+namespace layout_detail {
+
+// The scheme's update over blocks [lo, hi) of the whole chain, at accelerations a. Out of
+// line with restrict parameters: inlined into the stage, GCC no longer knows the buffers
+// are apart and the loop stays scalar.
+template <class B, class Update>
+[[gnu::noinline]] void update_range(int lo, int hi, double* __restrict w, double* __restrict wd,
+                                    double* __restrict x, double* __restrict y,
+                                    double* __restrict cw, double* __restrict cv,
+                                    double* __restrict u, const double* __restrict a,
+                                    Update& update) {
+  for (int j = lo; j < hi; ++j) {
+    StageElement<B> e{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+    update(e, a[j]);
+  }
+}
+
+}  // namespace layout_detail
+
 template <class Round>
 class ChainLayout {
  public:
@@ -98,10 +117,7 @@ class ChainLayout {
         pad_ ? forces_.pad_acceleration(x_at, xd_at, state_positions ? st_.sum_w : sum_, sub.s)
              : 0.0;
     for (const Range& r : ranges_)
-      for (int j = r.lo; j < r.hi; ++j) {
-        StageElement<B> e = element(j);
-        update(e, a[j]);
-      }
+      layout_detail::update_range<B>(r.lo, r.hi, w, wd, x, y, cw, cv, u, a, update);
     if (!pad_) return;
     StageElement<typename Round::PadRound> e{st_.x, st_.xd, x_, xd_, x_, xd_, cx_, cxd_, xu_};
     update(e, ax);

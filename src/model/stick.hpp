@@ -52,6 +52,26 @@ inline Outcome settle(const Friction& fr, bool crossing_rule, double mobile, dou
                  static_cast<bool>(!sliding & fr.breaks(f))};
 }
 
+// The same rule for one block, with branches: for the short runs of the event relaxation,
+// where the branches predict well and the spring force is computed only where the rule
+// looks at it. A stuck block that breaks loose is released here (mobile 1, sliding the
+// way its spring pulls: release_direction), unlike settle(), which leaves that to the
+// caller. A test holds the two forms against each other.
+template <class SpringForce>
+inline Outcome settle_one(const Friction& fr, bool crossing_rule, double mobile, double dir,
+                          double y0, double y1, SpringForce&& spring_force) {
+  if (mobile != 0.0) {
+    if (crossing_rule && crossed(fr.backslip, y0, y1)) {
+      if (fr.holds(spring_force())) return Outcome{0.0, 0.0, dir, false, false};
+      if (!fr.backslip) y1 = 0.0;
+    }
+    return Outcome{y1, mobile, y1 != 0.0 ? std::copysign(1.0, y1) : dir, true, false};
+  }
+  const double f = spring_force();
+  if (fr.breaks(f)) return Outcome{y1, 1.0, std::copysign(1.0, f), false, true};
+  return Outcome{y1, mobile, dir, false, false};
+}
+
 // The direction a block that breaks loose under spring force f slides in.
 inline double release_direction(double f) {
   return std::copysign(1.0, f);
