@@ -40,19 +40,48 @@ inline bool velocity_dependent(const ModelParams& p, bool pad_moves) {
 
 namespace layout_detail {
 
-// The scheme's update over blocks [lo, hi) of the whole chain, at accelerations a. Out of
-// line with restrict parameters: inlined into the stage, GCC no longer knows the buffers
-// are apart and the loop stays scalar.
-template <class B, class Update>
-[[gnu::noinline]] void update_range(int lo, int hi, double* __restrict w, double* __restrict wd,
-                                    double* __restrict x, double* __restrict y,
-                                    double* __restrict cw, double* __restrict cv,
-                                    double* __restrict u, const double* __restrict a,
-                                    Update& update) {
-  for (int j = lo; j < hi; ++j) {
-    StageElement<B> e{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
-    update(e, a[j]);
+// One stage's pass over the blocks of the ranges at accelerations a, range by range:
+// the pad's sums that come before the update (`earlier` and `sum` side by side: two chains
+// of dependent additions in one loop cost the time of one), the scheme's update, then the
+// pad's sum that follows it (a separate loop: a sum in block order is a chain of dependent
+// additions, which would keep the update loop from vectorising). Each term reads only its
+// own block's entries, so taking a range's sums beside its update is the same as taking
+// them over all ranges at once. The totals go to totals[0] (sum) and totals[1] (earlier).
+// Out of line with restrict parameters: inlined into the stage, GCC no longer knows the
+// buffers are apart and the loops stay scalar.
+template <class B, class Update, class Sum, class Earlier>
+[[gnu::noinline, gnu::optimize("no-tree-loop-distribute-patterns")]] void chain_pass(
+    Ranges ranges, bool pad, double* __restrict w, double* __restrict wd, double* __restrict x,
+    double* __restrict y, double* __restrict cw, double* __restrict cv, double* __restrict u,
+    const double* __restrict a, Update& update, const Sum& sum, const Earlier& earlier,
+    double* __restrict totals) {
+  constexpr bool joint = !std::is_same_v<Earlier, NoSum>;
+  constexpr bool summed = !std::is_same_v<Sum, NoSum>;
+  auto element = [&](int j) {
+    return StageElement<B>{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+  };
+  double total = 0, earlier_total = 0;
+  for (const Range& r : ranges) {
+    if constexpr (joint) {
+      if (pad)
+        for (int j = r.lo; j < r.hi; ++j) {
+          earlier_total += earlier.term(element(j));
+          total += sum.term(element(j));
+        }
+    }
+    // The copies some updates make (cw = v) stay in this loop instead of becoming calls
+    // to memcpy (the optimize attribute above): the ranges are short.
+    for (int j = r.lo; j < r.hi; ++j) {
+      StageElement<B> e{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+      update(e, a[j]);
+    }
+    if constexpr (summed && !joint) {
+      if (pad)
+        for (int j = r.lo; j < r.hi; ++j) total += sum.term(element(j));
+    }
   }
+  totals[0] = total;
+  totals[1] = earlier_total;
 }
 
 }  // namespace layout_detail
@@ -89,49 +118,28 @@ class ChainLayout {
     const double xd_at = pick(Point::velocities, st_.xd, xd_, xu_);
     forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(),
                                 sub.s + (pad_ ? x_at : 0.0), sub, ranges_, s_.a.data());
-    using B = typename Round::BlockRound;
-    double* __restrict w = st_.w.data();
-    double* __restrict wd = st_.wd.data();
-    double* __restrict x = s_.x.data();
-    double* __restrict y = s_.y.data();
-    double* __restrict cw = s_.cw.data();
-    double* __restrict cv = s_.cv.data();
-    double* __restrict u = s_.u.data();
-    const double* __restrict a = s_.a.data();
-    auto element = [&](int j) {
-      return StageElement<B>{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+    auto pad_acceleration = [&] {
+      return pad_ ? forces_.pad_acceleration(x_at, xd_at, state_positions ? st_.sum_w : sum_, sub.s)
+                  : 0.0;
     };
-    double joint_total = 0;
-    if constexpr (joint) {
-      if (pad_) {
-        double earlier_total = 0;
-        for (const Range& r : ranges_)
-          for (int j = r.lo; j < r.hi; ++j) {
-            earlier_total += earlier.term(element(j));
-            joint_total += sum.term(element(j));
-          }
-        sum_ = st_.sum_w + earlier.scale * earlier_total;
-      }
-    }
-    const double ax =
-        pad_ ? forces_.pad_acceleration(x_at, xd_at, state_positions ? st_.sum_w : sum_, sub.s)
-             : 0.0;
-    for (const Range& r : ranges_)
-      layout_detail::update_range<B>(r.lo, r.hi, w, wd, x, y, cw, cv, u, a, update);
+    // Before the pass where it can (its division overlaps the loops).
+    double ax = joint ? 0.0 : pad_acceleration();
+    double totals[2];
+    layout_detail::chain_pass<typename Round::BlockRound>(
+        ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
+        s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
     if (!pad_) return;
+    if constexpr (joint) {
+      sum_ = st_.sum_w + earlier.scale * totals[1];
+      ax = pad_acceleration();
+    }
     StageElement<typename Round::PadRound> e{st_.x, st_.xd, x_, xd_, x_, xd_, cx_, cxd_, xu_};
     update(e, ax);
     if constexpr (!std::is_same_v<Sum, NoSum>) {
-      // A separate pass: a sum in block order is a chain of dependent additions, which
-      // would keep the update loop above from vectorising.
-      double total = joint_total;
-      if constexpr (!joint)
-        for (const Range& r : ranges_)
-          for (int j = r.lo; j < r.hi; ++j) total += sum.term(element(j));
       if (sum.into_state)
-        st_.sum_w += sum.scale * total;
+        st_.sum_w += sum.scale * totals[0];
       else
-        sum_ = st_.sum_w + sum.scale * total;
+        sum_ = st_.sum_w + sum.scale * totals[0];
     }
   }
   void finish(double h) { st_.t += h; }
