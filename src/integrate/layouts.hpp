@@ -50,11 +50,13 @@ namespace layout_detail {
 // Out of line with restrict parameters: inlined into the stage, GCC no longer knows the
 // buffers are apart and the loops stay scalar.
 template <class B, class Update, class Sum, class Earlier>
-[[gnu::noinline, gnu::optimize("no-tree-loop-distribute-patterns")]] void chain_pass(
-    Ranges ranges, bool pad, double* __restrict w, double* __restrict wd, double* __restrict x,
-    double* __restrict y, double* __restrict cw, double* __restrict cv, double* __restrict u,
-    const double* __restrict a, Update& update, const Sum& sum, const Earlier& earlier,
-    double* __restrict totals) {
+[[gnu::always_inline]] inline void chain_pass_body(Ranges ranges, bool pad, double* __restrict w,
+                                                   double* __restrict wd, double* __restrict x,
+                                                   double* __restrict y, double* __restrict cw,
+                                                   double* __restrict cv, double* __restrict u,
+                                                   const double* __restrict a, Update& update,
+                                                   const Sum& sum, const Earlier& earlier,
+                                                   double* __restrict totals) {
   constexpr bool joint = !std::is_same_v<Earlier, NoSum>;
   constexpr bool summed = !std::is_same_v<Sum, NoSum>;
   auto element = [&](int j) {
@@ -84,11 +86,21 @@ template <class B, class Update, class Sum, class Earlier>
   totals[1] = earlier_total;
 }
 
+template <class B, class Update, class Sum, class Earlier>
+[[gnu::noinline, gnu::optimize("no-tree-loop-distribute-patterns")]] void chain_pass(
+    Ranges ranges, bool pad, double* __restrict w, double* __restrict wd, double* __restrict x,
+    double* __restrict y, double* __restrict cw, double* __restrict cv, double* __restrict u,
+    const double* __restrict a, Update& update, const Sum& sum, const Earlier& earlier,
+    double* __restrict totals) {
+  chain_pass_body<B>(ranges, pad, w, wd, x, y, cw, cv, u, a, update, sum, earlier, totals);
+}
+
 }  // namespace layout_detail
 
 template <class Round>
 class ChainLayout {
  public:
+  static constexpr int kShortRange = 8;
   ChainLayout(const ChainForces& forces, const Substrate& sub, ChainState& st, Ranges ranges,
               ExplicitScratch& s)
       : forces_(forces),
@@ -125,9 +137,14 @@ class ChainLayout {
     // Before the pass where it can (its division overlaps the loops).
     double ax = joint ? 0.0 : pad_acceleration();
     double totals[2];
-    layout_detail::chain_pass<typename Round::BlockRound>(
-        ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
-        s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
+    if (ranges_.size() == 1 && ranges_[0].hi - ranges_[0].lo <= kShortRange)
+      layout_detail::chain_pass_body<typename Round::BlockRound>(
+          ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
+          s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
+    else
+      layout_detail::chain_pass<typename Round::BlockRound>(
+          ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
+          s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
     if (!pad_) return;
     if constexpr (joint) {
       sum_ = st_.sum_w + earlier.scale * totals[1];
