@@ -10,7 +10,8 @@ namespace {
 
 // The stick rule for blocks lo..hi-1, with the stuck blocks that break loose only
 // counted, `force(j)` giving the spring force on block j. The rule has no branches, so the
-// loop vectorises; Backslip is the law's flag as a constant, so the rule's tests on it fold.
+// loop vectorises; Backslip is the law's flag as a constant, so the rule's tests on it fold
+// (stick::settle_in_place: the form that vectorises best).
 template <bool Backslip, class Force>
 InteriorPass settle_run(int lo, int hi, Force force, Friction fr, bool crossing_rule,
                         const double* __restrict wd_old, double* __restrict wd,
@@ -22,16 +23,13 @@ InteriorPass settle_run(int lo, int hi, Force force, Friction fr, bool crossing_
   // survives into max_speed.
   std::int64_t max_bits = 0;
   for (int j = lo; j < hi; ++j) {
-    const stick::Outcome o =
-        stick::settle(fr, crossing_rule, mob[j], dir[j], wd_old[j], wd[j], force(j));
-    wd[j] = o.y;
-    mob[j] = o.mobile;
-    dir[j] = o.dir;
+    const stick::Transition o = stick::settle_in_place<Backslip>(fr, crossing_rule, wd_old[j],
+                                                                 force(j), wd[j], mob[j], dir[j]);
     sliding += o.slides ? 1 : 0;
     // A block that does not slide enters the maximum with the complement of its bits,
     // which is negative and so below the start value 0. (Written as a select between two
     // values the compiler cannot order, it stays a plain maximum that vectorises.)
-    const std::int64_t bits = std::bit_cast<std::int64_t>(std::abs(o.y));
+    const std::int64_t bits = std::bit_cast<std::int64_t>(std::abs(wd[j]));
     max_bits = std::max(max_bits, o.slides ? bits : ~bits);
     breaks += o.breaks ? 1 : 0;
     first_break = std::min(first_break, o.breaks ? j : hi);
