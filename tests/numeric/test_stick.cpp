@@ -25,7 +25,9 @@
 // envelope, better than the first order the Crossing rule promises in general.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "engine/event_engine.hpp"
@@ -217,6 +219,56 @@ TEST(StickRuleUnit, StuckBlockBreaksLooseOnlyBeyondTheThreshold) {
   EXPECT_FALSE(o.slides);
   EXPECT_EQ(stick::release_direction(-1.5), -1.0);
   EXPECT_TRUE(stick::needs_force(thesis, true, 0.0, 0.0, 0.0));
+}
+
+// settle_one (branches, releases the block itself) against settle (branch-free, leaves the
+// release to the caller) over a grid: stick flag, direction, velocities of both signs and
+// zero at both ends of the step, spring forces below, at and above the threshold both
+// ways, laws with and without backslip. settle_one asks for the force only where
+// needs_force() says the rule looks at it.
+TEST(StickRuleUnit, SettleOneIsSettleWithTheReleaseApplied) {
+  const double kY[] = {-0.5, -0.0, 0.0, 0.25};
+  // Threshold F0 = 1: below, at and above it, both ways, and zero.
+  const double kF[] = {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5};
+  int cases = 0;
+  for (FrictionLaw law : {FrictionLaw::Thesis, FrictionLaw::Clst91}) {
+    const Friction fr = law_with(law);
+    for (bool crossing_rule : {true, false})
+      for (double mobile : {0.0, 1.0})
+        for (double dir : {-1.0, 1.0})
+          for (double y0 : kY)
+            for (double y1 : kY)
+              for (double f : kF) {
+                const stick::Outcome a = stick::settle(fr, crossing_rule, mobile, dir, y0, y1, f);
+                bool asked = false;
+                const stick::Outcome b =
+                    stick::settle_one(fr, crossing_rule, mobile, dir, y0, y1, [&] {
+                      asked = true;
+                      return f;
+                    });
+                // What settle leaves to the caller: a block that breaks loose slides the
+                // way its spring pulls.
+                stick::Outcome want = a;
+                if (a.breaks) {
+                  want.mobile = 1.0;
+                  want.dir = stick::release_direction(f);
+                }
+                const std::string where =
+                    std::string(fr.backslip ? "backslip" : "no backslip") +
+                    " rule=" + std::to_string(crossing_rule) + " mobile=" + std::to_string(mobile) +
+                    " dir=" + std::to_string(dir) + " y0=" + std::to_string(y0) +
+                    " y1=" + std::to_string(y1) + " f=" + std::to_string(f);
+                EXPECT_EQ(std::bit_cast<std::uint64_t>(b.y), std::bit_cast<std::uint64_t>(want.y))
+                    << where;
+                EXPECT_EQ(b.mobile, want.mobile) << where;
+                EXPECT_EQ(b.dir, want.dir) << where;
+                EXPECT_EQ(b.slides, want.slides) << where;
+                EXPECT_EQ(b.breaks, want.breaks) << where;
+                EXPECT_EQ(asked, stick::needs_force(fr, crossing_rule, mobile, y0, y1)) << where;
+                ++cases;
+              }
+  }
+  EXPECT_EQ(cases, 2 * 2 * 2 * 2 * 4 * 4 * 7);
 }
 
 }  // namespace
