@@ -8,11 +8,10 @@
 namespace bkq::contacts_detail {
 namespace {
 
-// settle_block's rule for blocks lo..hi-1, but with the stuck blocks that break loose
-// only counted, `force(j)` giving the spring force on block j. Every condition is
-// computed for every block and combined into selects, so the loop has no branches and
-// vectorises. Backslip is the law's flag as a constant, so that Friction's tests on it
-// fold away.
+// The stick rule for blocks lo..hi-1, with the stuck blocks that break loose only
+// counted, `force(j)` giving the spring force on block j. The rule has no branches, so the
+// loop vectorises; Backslip is the law's flag as a constant, so the rule's tests on it fold
+// (stick::settle_in_place: the form that vectorises best).
 template <bool Backslip, class Force>
 InteriorPass settle_run(int lo, int hi, Force force, Friction fr, bool crossing_rule,
                         const double* __restrict wd_old, double* __restrict wd,
@@ -24,25 +23,16 @@ InteriorPass settle_run(int lo, int hi, Force force, Friction fr, bool crossing_
   // survives into max_speed.
   std::int64_t max_bits = 0;
   for (int j = lo; j < hi; ++j) {
-    const double y0 = wd_old[j], y1 = wd[j], d = dir[j], m = mob[j], f = force(j);
-    const bool was_sliding = m != 0.0;
-    const bool crossed =
-        crossing_rule & was_sliding & (Backslip ? (y0 * y1 < 0.0) | (y1 == 0.0) : y1 <= 0.0);
-    const bool stick = crossed & fr.holds(f);
-    const bool slides = was_sliding & !stick;
-    const double y = crossed & (stick | !Backslip) ? 0.0 : y1;
-    wd[j] = y;
-    mob[j] = stick ? 0.0 : m;
-    dir[j] = slides & (y != 0.0) ? std::copysign(1.0, y) : d;
-    sliding += slides ? 1 : 0;
+    const stick::Transition o = stick::settle_in_place<Backslip>(fr, crossing_rule, wd_old[j],
+                                                                 force(j), wd[j], mob[j], dir[j]);
+    sliding += o.slides ? 1 : 0;
     // A block that does not slide enters the maximum with the complement of its bits,
     // which is negative and so below the start value 0. (Written as a select between two
     // values the compiler cannot order, it stays a plain maximum that vectorises.)
-    const std::int64_t bits = std::bit_cast<std::int64_t>(std::abs(y));
-    max_bits = std::max(max_bits, slides ? bits : ~bits);
-    const bool breaks_loose = !was_sliding & fr.breaks(f);
-    breaks += breaks_loose ? 1 : 0;
-    first_break = std::min(first_break, breaks_loose ? j : hi);
+    const std::int64_t bits = std::bit_cast<std::int64_t>(std::abs(wd[j]));
+    max_bits = std::max(max_bits, o.slides ? bits : ~bits);
+    breaks += o.breaks ? 1 : 0;
+    first_break = std::min(first_break, o.breaks ? j : hi);
   }
   return InteriorPass{sliding, std::bit_cast<double>(max_bits), breaks, first_break};
 }

@@ -1,33 +1,19 @@
-// Stick and slip transitions between steps (the Crossing rule of stepper.hpp), shared by
-// the continuous driver and the event relaxation. One pass over the ranges:
-//  - a sliding block whose relative velocity changed sign during the step (or is exactly
-//    0; for clst91, became <= 0 since it may not slide backwards) is stuck with zero
-//    velocity if friction can hold its spring force at the new position; otherwise it
-//    keeps sliding the other way (backslip laws) or stays at zero velocity, still sliding
-//    (clst91); a sliding block's direction of sliding is updated to its new velocity;
-//  - a stuck block whose spring force exceeds the static threshold breaks loose with
-//    zero relative velocity; `on_release(j)` is told.
+// Stick and slip transitions between steps, shared by the continuous driver and the event
+// relaxation: the stick rule of model/stick.hpp applied to the covered ranges, block by
+// block for short ranges, the chain ends and the releases (settle_block), and as one
+// vectorised pass over long runs of interior blocks (settle_interior, contacts.cpp), which
+// counts the releases and leaves them to settle_block in block order, so that `on_release`
+// hears of them in the same order. Each block's transition depends only on the positions,
+// which the pass does not change, so settling them all at once is the same as one by one.
 // dissipated_power(), called before the pass, adds up the power the sliding blocks
 // dissipate in friction (and the 1DOF damper) at the two ends of the step, with each
-// block's direction frozen as in the step: the caller turns the sum into work by the
-// trapezoidal rule.
-//
-// Speed. The rule is written twice, in two forms that must agree:
-//  - settle_block, one block with branches: for short ranges (the event relaxation's are
-//    mostly a few blocks), the chain ends and the releases;
-//  - settle_interior (contacts.cpp), a long run of interior blocks without branches, so
-//    that the compiler vectorises it. On a continuously driven chain most blocks slide, and
-//    branches on the stick flag or on the sign change mispredict wherever these change
-//    along the chain; this form has none. It does everything but the releases, which it
-//    only counts: the blocks that break loose are then found again in block order, so that
-//    `on_release` hears of them in the same order. Each block's transition depends only on
-//    the positions, which the pass does not change, so settling the blocks all at once is
-//    the same as settling them one after the other.
+// block's direction frozen as in the step; the caller turns it into work (trapezoidal).
 #pragma once
 
 #include <cmath>
 
 #include "model/chain.hpp"
+#include "model/stick.hpp"
 
 namespace bkq {
 
@@ -59,27 +45,18 @@ template <class OnRelease>
 void settle_block(const ChainForces& forces, ChainState& st, const double* wd_old, double anchor,
                   int j, bool crossing_rule, OnRelease& on_release, ContactScan& out) {
   const Friction& fr = forces.friction();
-  const double* w = st.w.data();
-  double* wd = st.wd.data();
-  double* mob = st.mobile.data();
-  if (mob[j] != 0.0) {
-    if (crossing_rule &&
-        fr.stops(wd_old[j], wd[j], [&] { return forces.spring_force(w, j, anchor); })) {
-      wd[j] = 0.0;
-      mob[j] = 0.0;
-      return;
-    }
-    if (wd[j] != 0.0) st.dir[j] = std::copysign(1.0, wd[j]);
+  const stick::Outcome o =
+      stick::settle_one(fr, crossing_rule, st.mobile[j], st.dir[j], wd_old[j], st.wd[j],
+                        [&] { return forces.spring_force(st.w.data(), j, anchor); });
+  st.wd[j] = o.y;
+  st.mobile[j] = o.mobile;
+  st.dir[j] = o.dir;
+  if (o.slides) {
     ++out.sliding;
-    raise_max_speed(out.max_speed, std::abs(wd[j]));
-  } else {
-    const double f = forces.spring_force(w, j, anchor);
-    if (fr.breaks(f)) {
-      mob[j] = 1.0;
-      st.dir[j] = std::copysign(1.0, f);  // it starts sliding the way its spring pulls
-      ++out.sliding;
-      on_release(j);
-    }
+    raise_max_speed(out.max_speed, std::abs(o.y));
+  } else if (o.breaks) {
+    ++out.sliding;
+    on_release(j);
   }
 }
 

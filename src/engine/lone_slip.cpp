@@ -8,6 +8,7 @@
 #include "engine/contacts.hpp"
 #include "integrate/stepper.hpp"
 #include "model/chain.hpp"
+#include "model/stick.hpp"
 #include "model/substrate.hpp"
 
 namespace bkq {
@@ -61,8 +62,7 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
     // The decisions the rule takes below, and how far each is from going the other way.
     const double y0 = wd_old, y1 = st.wd[0];
     out.velocity_margin = std::min(out.velocity_margin, std::abs(y1));
-    const bool crossed = fr.backslip ? (y0 * y1 < 0.0 || y1 == 0.0) : y1 <= 0.0;
-    if (crossed) {
+    if (stick::crossed(fr.backslip, y0, y1)) {
       const double f = forces.spring_force(st.w.data(), 0, st.s);
       out.force_margin =
           std::min(out.force_margin, std::abs((fr.backslip ? std::abs(f) : f) - fr.threshold));

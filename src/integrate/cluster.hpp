@@ -36,6 +36,7 @@
 #include <utility>
 
 #include "model/chain.hpp"
+#include "model/stick.hpp"
 
 namespace bkq {
 
@@ -153,32 +154,27 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
         }
         dissipated += half_dt_m * power.total();
 
-        // settle_block's rule, block by block.
+        // The stick rule (model/stick.hpp), block by block.
         sliding = 0;
         n_released = 0;
         for (int i = first; i <= last; ++i) {
           const int j = lo + i;
-          if (mobile[i] != 0.0) {
-            if (fr.stops(y0[i], y[i], [&] { return forces.spring_force(w_all, j, anchor); })) {
-              y[i] = 0.0;
-              magnitude[i] = magnitude_at_rest;
-              mobile[i] = 0.0;
-              continue;
-            }
-            if (y[i] == 0.0)
-              magnitude[i] = magnitude_at_rest;  // clst91 after a crossing
-            else
-              dir[i] = std::copysign(1.0, y[i]);
+          const bool was_sliding = mobile[i] != 0.0;
+          const stick::Outcome o = stick::settle_one(fr, true, mobile[i], dir[i], y0[i], y[i], [&] {
+            return forces.spring_force(w_all, j, anchor);
+          });
+          y[i] = o.y;
+          mobile[i] = o.mobile;
+          dir[i] = o.dir;
+          if (o.slides) {
+            if (o.y == 0.0) magnitude[i] = magnitude_at_rest;  // clst91 after a crossing
             ++sliding;
-            raise_max_speed(max_speed, std::abs(y[i]));
-          } else {
-            const double f = forces.spring_force(w_all, j, anchor);
-            if (fr.breaks(f)) {
-              mobile[i] = 1.0;
-              dir[i] = std::copysign(1.0, f);
-              ++sliding;
-              r.released[n_released++] = j;
-            }
+            raise_max_speed(max_speed, std::abs(o.y));
+          } else if (o.breaks) {
+            ++sliding;
+            r.released[n_released++] = j;
+          } else if (was_sliding) {
+            magnitude[i] = magnitude_at_rest;  // it stuck
           }
         }
         sliding_block_steps += sliding;

@@ -1,4 +1,5 @@
-// integrator.scheme keyword -> stepper type, and the time-step stability check.
+// integrator.scheme keyword -> stepper type (one line per scheme in kSchemes), and the
+// time-step stability check.
 #include <cstdio>
 
 #include "core/error.hpp"
@@ -11,21 +12,42 @@
 
 namespace bkq {
 
-void ExplicitStepper::resize(int n) {
-  for (auto* v : {&ws_, &wds_, &a_, &acc_w_, &acc_v_}) v->assign(n, 0.0);
+namespace {
+
+// One line per scheme: its keyword and how to make it.
+struct Entry {
+  const char* keyword;
+  std::unique_ptr<Stepper> (*make)(int n, double tolerance);
+};
+template <class S>
+std::unique_ptr<Stepper> make(int n, double) {
+  return std::make_unique<S>(n);
 }
+const Entry kSchemes[] = {
+    {"rk2", &make<Rk2>},
+    {"rk4", &make<Rk4>},
+    {"verlet", &make<Verlet>},
+    {"theta", &make<Theta>},
+    {"adaptive",
+     [](int n, double tolerance) -> std::unique_ptr<Stepper> {
+       return std::make_unique<Adaptive>(n, tolerance);
+     }},
+};
+
+}  // namespace
 
 const std::vector<std::string>& stepper_keywords() {
-  static const std::vector<std::string> k{"rk2", "rk4", "verlet", "theta", "adaptive"};
+  static const std::vector<std::string> k = [] {
+    std::vector<std::string> v;
+    for (const Entry& e : kSchemes) v.emplace_back(e.keyword);
+    return v;
+  }();
   return k;
 }
 
 std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n, double tolerance) {
-  if (scheme == "rk2") return std::make_unique<Rk2>(n);
-  if (scheme == "rk4") return std::make_unique<Rk4>(n);
-  if (scheme == "verlet") return std::make_unique<Verlet>(n);
-  if (scheme == "theta") return std::make_unique<Theta>(n);
-  if (scheme == "adaptive") return std::make_unique<Adaptive>(n, tolerance);
+  for (const Entry& e : kSchemes)
+    if (scheme == e.keyword) return e.make(n, tolerance);
   std::string valid;
   for (const auto& k : stepper_keywords()) valid += (valid.empty() ? "" : "|") + k;
   throw Error("integrator.scheme: '" + scheme + "' is not available; expected one of " + valid);

@@ -90,24 +90,4 @@ double stability_limit(const Stepper& stepper, const ModelParams& p);
 // Throws bkq::Error ("integrator.dt: ... above the stability limit ...") when dt is too big.
 void check_time_step(const Stepper& stepper, const ModelParams& p, double dt);
 
-// Shared machinery of the explicit steppers: scratch arrays and the evaluation of all
-// accelerations (blocks in the ranges and the pad) at one stage.
-class ExplicitStepper : public Stepper {
- protected:
-  explicit ExplicitStepper(int n) { resize(n); }
-  void resize(int n);
-  // Accelerations at a stage; returns the pad's (0 when the pad is held).
-  double evaluate(const ChainForces& forces, const SubstrateState& sub, const double* w,
-                  const double* wd, const ChainState& st, double x, double xd, double sum_w,
-                  Ranges ranges, double* a) const {
-    const bool pad = forces.params().pad_moves();
-    forces.block_accelerations(w, wd, st.mobile.data(), st.dir.data(), sub.s + (pad ? x : 0.0), sub,
-                               ranges, a);
-    return pad ? forces.pad_acceleration(x, xd, sum_w, sub.s) : 0.0;
-  }
-  // Scratch: stage positions/velocities, accelerations and RK accumulators (length N,
-  // zero-initialised so entries outside the ranges stay finite).
-  std::vector<double> ws_, wds_, a_, acc_w_, acc_v_;
-};
-
 }  // namespace bkq

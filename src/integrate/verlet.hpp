@@ -7,19 +7,51 @@
 // omega_max dt <= 2. Stick rule: Crossing (see stepper.hpp).
 #pragma once
 
-#include "integrate/stepper.hpp"
+#include "integrate/explicit_scheme.hpp"
 
 namespace bkq {
 
-class Verlet final : public ExplicitStepper {
- public:
-  explicit Verlet(int n) : ExplicitStepper(n) {}
-  std::string_view name() const override { return "verlet"; }
-  int order() const override { return 2; }
-  double stability_constant() const override { return 2.0; }
-  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
-            Ranges ranges) override;
-  bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
+struct VerletMethod {
+  static constexpr const char* name = "verlet";
+  static constexpr int order = 2;
+  static constexpr double stability_constant = 2.0;
+  static constexpr bool fusable = false;  // the first stage moves the positions it reads
+  using Round = Rounding<Plain, Plain>;
+
+  template <class Layout>
+  static void advance(Layout& l, double h) {
+    const double h2 = 0.5 * h;
+    // Kick and drift: y = v + h/2 a (the half-step velocity), w += h y.
+    l.stage(
+        at_state, 0.0,
+        [h, h2](auto& e, double a) {
+          using R = typename std::remove_reference_t<decltype(e)>::R;
+          e.yo = R::axpy(h2, a, e.v);
+          e.w = R::axpy(h, e.yo, e.w);
+        },
+        sum_to_state(1.0, [h](const auto& e) { return h * e.y; }));
+    // Closing kick v = y + h/2 a, with a at a predicted end velocity u when it matters.
+    auto kick = [h2](auto& e, double a) {
+      using R = typename std::remove_reference_t<decltype(e)>::R;
+      e.v = R::axpy(h2, a, e.y);
+    };
+    if (l.velocity_dependent()) {
+      l.stage(
+          at_state_positions, h,
+          [h2](auto& e, double a) {
+            using R = typename std::remove_reference_t<decltype(e)>::R;
+            e.u = R::axpy(h2, a, e.y);
+          },
+          no_sum);
+      l.stage(at_state_positions_spare, h, kick, no_sum);
+    } else {
+      l.stage(at_state_positions, h, kick, no_sum);
+    }
+    l.finish(h);
+  }
 };
+
+extern template class ExplicitScheme<VerletMethod>;
+using Verlet = ExplicitScheme<VerletMethod>;
 
 }  // namespace bkq

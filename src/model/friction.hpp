@@ -58,19 +58,7 @@ struct Friction {
     return magnitude(backslip ? std::abs(y) : std::max(y, 0.0));
   }
 
-  // The Crossing rule (integrate/stepper.hpp) for a block that slid through a step with
-  // its velocity going from y0 to y1: true if friction stops it (the caller zeroes y1 and
-  // sticks it). Otherwise it slides on, with y1 set to 0 after a crossing for a law that
-  // forbids backslip. The spring force is asked for only after a crossing.
-  template <class SpringForce>
-  bool stops(double y0, double& y1, SpringForce&& spring_force) const {
-    const bool crossed = backslip ? (y0 * y1 < 0.0 || y1 == 0.0) : y1 <= 0.0;
-    if (!crossed) return false;
-    if (holds(spring_force())) return true;
-    if (!backslip) y1 = 0.0;
-    return false;
-  }
-
+  // The static threshold, both ways (model/stick.hpp applies them).
   // Would a stuck block with spring force f break loose?
   bool breaks(double f) const { return backslip ? std::abs(f) > threshold : f > threshold; }
   // Can a block whose velocity has just reached zero stay stuck under spring force f?

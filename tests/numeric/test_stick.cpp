@@ -25,12 +25,15 @@
 // envelope, better than the first order the Crossing rule promises in general.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "engine/event_engine.hpp"
 #include "integrate/stepper.hpp"
 #include "model/chain.hpp"
+#include "model/stick.hpp"
 
 namespace bkq {
 namespace {
@@ -140,6 +143,132 @@ TEST(StickRule, BackslipLawSticksAtTheTurningPoint) {
       EXPECT_EQ(engine.state().mobile[0], 0.0);
     }
   }
+}
+
+// The rule itself (model/stick.hpp), case by case, for a law with backslip (thesis) and
+// one without (clst91); threshold F0 = 1.
+Friction law_with(FrictionLaw law) {
+  ModelParams p = single_block();
+  p.law = law;
+  return Friction(p);
+}
+
+TEST(StickRuleUnit, CrossingIsASignChangeOrZeroWithBackslipAndNonPositiveWithout) {
+  EXPECT_TRUE(stick::crossed(true, 1.0, -1.0));
+  EXPECT_TRUE(stick::crossed(true, -1.0, 1.0));
+  EXPECT_TRUE(stick::crossed(true, 1.0, 0.0));
+  EXPECT_FALSE(stick::crossed(true, 1.0, 0.5));
+  EXPECT_FALSE(stick::crossed(true, -1.0, -0.5));
+  EXPECT_TRUE(stick::crossed(false, 1.0, -1.0));
+  EXPECT_TRUE(stick::crossed(false, 1.0, 0.0));
+  EXPECT_TRUE(stick::crossed(false, -1.0, -0.5));  // no backslip: any y1 <= 0
+  EXPECT_FALSE(stick::crossed(false, -1.0, 0.5));
+}
+
+TEST(StickRuleUnit, SlidingBlockThatCrossesSticksIfFrictionHolds) {
+  for (FrictionLaw law : {FrictionLaw::Thesis, FrictionLaw::Clst91}) {
+    const Friction fr = law_with(law);
+    const stick::Outcome o = stick::settle(fr, true, 1.0, 1.0, 0.5, -0.25, 0.9);
+    EXPECT_EQ(o.y, 0.0);
+    EXPECT_EQ(o.mobile, 0.0);
+    EXPECT_FALSE(o.slides);
+    EXPECT_FALSE(o.breaks);
+    EXPECT_EQ(o.dir, 1.0);
+  }
+}
+
+TEST(StickRuleUnit, SlidingBlockThatCrossesUnderTooLargeAForceSlidesOn) {
+  // Backslip: it slides the other way, with its velocity and a new direction.
+  const stick::Outcome back =
+      stick::settle(law_with(FrictionLaw::Thesis), true, 1.0, 1.0, 0.5, -0.25, -1.5);
+  EXPECT_EQ(back.y, -0.25);
+  EXPECT_EQ(back.mobile, 1.0);
+  EXPECT_EQ(back.dir, -1.0);
+  EXPECT_TRUE(back.slides);
+  // No backslip: it stays at zero velocity, still sliding, its direction unchanged.
+  const stick::Outcome none =
+      stick::settle(law_with(FrictionLaw::Clst91), true, 1.0, 1.0, 0.5, -0.25, 1.5);
+  EXPECT_EQ(none.y, 0.0);
+  EXPECT_EQ(none.mobile, 1.0);
+  EXPECT_EQ(none.dir, 1.0);
+  EXPECT_TRUE(none.slides);
+}
+
+TEST(StickRuleUnit, SlidingBlockThatDoesNotCrossSlidesOnTheWayItMoves) {
+  const Friction fr = law_with(FrictionLaw::Thesis);
+  const stick::Outcome o = stick::settle(fr, true, 1.0, 1.0, -0.5, -0.25, 0.0);
+  EXPECT_EQ(o.y, -0.25);
+  EXPECT_EQ(o.dir, -1.0);
+  EXPECT_TRUE(o.slides);
+  EXPECT_FALSE(stick::needs_force(fr, true, 1.0, -0.5, -0.25));
+  // Without the crossing rule (a stepper that resolves transitions) nothing sticks.
+  const stick::Outcome free = stick::settle(fr, false, 1.0, 1.0, 0.5, -0.25, 0.0);
+  EXPECT_EQ(free.y, -0.25);
+  EXPECT_TRUE(free.slides);
+}
+
+TEST(StickRuleUnit, StuckBlockBreaksLooseOnlyBeyondTheThreshold) {
+  const Friction thesis = law_with(FrictionLaw::Thesis), clst91 = law_with(FrictionLaw::Clst91);
+  EXPECT_TRUE(stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, 1.5).breaks);
+  EXPECT_TRUE(stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, -1.5).breaks);
+  EXPECT_FALSE(stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, 1.0).breaks);  // at it: holds
+  EXPECT_TRUE(stick::settle(clst91, true, 0.0, 1.0, 0.0, 0.0, 1.5).breaks);
+  EXPECT_FALSE(stick::settle(clst91, true, 0.0, 1.0, 0.0, 0.0, -1.5).breaks);
+  const stick::Outcome o = stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, -1.5);
+  EXPECT_EQ(o.mobile, 0.0);  // the caller releases it
+  EXPECT_FALSE(o.slides);
+  EXPECT_EQ(stick::release_direction(-1.5), -1.0);
+  EXPECT_TRUE(stick::needs_force(thesis, true, 0.0, 0.0, 0.0));
+}
+
+// settle_one (branches, releases the block itself) against settle (branch-free, leaves the
+// release to the caller) over a grid: stick flag, direction, velocities of both signs and
+// zero at both ends of the step, spring forces below, at and above the threshold both
+// ways, laws with and without backslip. settle_one asks for the force only where
+// needs_force() says the rule looks at it.
+TEST(StickRuleUnit, SettleOneIsSettleWithTheReleaseApplied) {
+  const double kY[] = {-0.5, -0.0, 0.0, 0.25};
+  // Threshold F0 = 1: below, at and above it, both ways, and zero.
+  const double kF[] = {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5};
+  int cases = 0;
+  for (FrictionLaw law : {FrictionLaw::Thesis, FrictionLaw::Clst91}) {
+    const Friction fr = law_with(law);
+    for (bool crossing_rule : {true, false})
+      for (double mobile : {0.0, 1.0})
+        for (double dir : {-1.0, 1.0})
+          for (double y0 : kY)
+            for (double y1 : kY)
+              for (double f : kF) {
+                const stick::Outcome a = stick::settle(fr, crossing_rule, mobile, dir, y0, y1, f);
+                bool asked = false;
+                const stick::Outcome b =
+                    stick::settle_one(fr, crossing_rule, mobile, dir, y0, y1, [&] {
+                      asked = true;
+                      return f;
+                    });
+                // What settle leaves to the caller: a block that breaks loose slides the
+                // way its spring pulls.
+                stick::Outcome want = a;
+                if (a.breaks) {
+                  want.mobile = 1.0;
+                  want.dir = stick::release_direction(f);
+                }
+                const std::string where =
+                    std::string(fr.backslip ? "backslip" : "no backslip") +
+                    " rule=" + std::to_string(crossing_rule) + " mobile=" + std::to_string(mobile) +
+                    " dir=" + std::to_string(dir) + " y0=" + std::to_string(y0) +
+                    " y1=" + std::to_string(y1) + " f=" + std::to_string(f);
+                EXPECT_EQ(std::bit_cast<std::uint64_t>(b.y), std::bit_cast<std::uint64_t>(want.y))
+                    << where;
+                EXPECT_EQ(b.mobile, want.mobile) << where;
+                EXPECT_EQ(b.dir, want.dir) << where;
+                EXPECT_EQ(b.slides, want.slides) << where;
+                EXPECT_EQ(b.breaks, want.breaks) << where;
+                EXPECT_EQ(asked, stick::needs_force(fr, crossing_rule, mobile, y0, y1)) << where;
+                ++cases;
+              }
+  }
+  EXPECT_EQ(cases, 2 * 2 * 2 * 2 * 4 * 4 * 7);
 }
 
 }  // namespace

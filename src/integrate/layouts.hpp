@@ -1,0 +1,322 @@
+// The state layouts an explicit scheme (integrate/scheme.hpp) advances. Each supplies the
+// loop over its elements and the evaluation of the accelerations; the scheme supplies the
+// stage formulas, so every layout runs the same operations and they agree bit for bit.
+//   ChainLayout      the blocks in a set of ranges and the pad (when it moves), with the
+//                    substrate at each stage's time: the general step.
+//   HeldRangeLayout  the interior blocks of one range whose end blocks are stuck, the pad
+//                    held and the substrate frozen: each stage is one fused pass
+//                    (accelerations and updates together), the stage points
+//                    double-buffered; only for schemes whose stages never write the
+//                    positions they are evaluated at (Method::fusable).
+//   ClusterLayout    the interior entries of a fixed-size cluster (integrate/cluster.hpp),
+//                    held in registers.
+#pragma once
+
+#include <cstddef>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+#include "integrate/scheme.hpp"
+#include "model/chain.hpp"
+#include "model/substrate.hpp"
+
+namespace bkq {
+
+// Scratch of the explicit steppers, length N and zero-initialised so that entries outside
+// the ranges stay finite: stage positions and velocities (two sets, for double
+// buffering), accelerations, accumulators and the spare velocity.
+struct ExplicitScratch {
+  std::vector<double> x, y, x2, y2, a, cw, cv, u;
+  void resize(int n) {
+    for (auto* v : {&x, &y, &x2, &y2, &a, &cw, &cv, &u}) v->assign(n, 0.0);
+  }
+};
+
+// Does the scene have a velocity-dependent force (verlet's closing kick needs it)?
+inline bool velocity_dependent(const ModelParams& p, bool pad_moves) {
+  return p.law != FrictionLaw::None || p.c_u != 0 || (pad_moves && p.c_p != 0);
+}
+
+namespace layout_detail {
+
+// One stage's pass over the blocks of the ranges at accelerations a, range by range:
+// the pad's sums that come before the update (`earlier` and `sum` side by side: two chains
+// of dependent additions in one loop cost the time of one), the scheme's update, then the
+// pad's sum that follows it (a separate loop: a sum in block order is a chain of dependent
+// additions, which would keep the update loop from vectorising). Each term reads only its
+// own block's entries, so taking a range's sums beside its update is the same as taking
+// them over all ranges at once. The totals go to totals[0] (sum) and totals[1] (earlier).
+// Out of line with restrict parameters: inlined into the stage, GCC no longer knows the
+// buffers are apart and the loops stay scalar.
+template <class B, class Update, class Sum, class Earlier>
+[[gnu::always_inline]] inline void chain_pass_body(Ranges ranges, bool pad, double* __restrict w,
+                                                   double* __restrict wd, double* __restrict x,
+                                                   double* __restrict y, double* __restrict cw,
+                                                   double* __restrict cv, double* __restrict u,
+                                                   const double* __restrict a, Update& update,
+                                                   const Sum& sum, const Earlier& earlier,
+                                                   double* __restrict totals) {
+  constexpr bool joint = !std::is_same_v<Earlier, NoSum>;
+  constexpr bool summed = !std::is_same_v<Sum, NoSum>;
+  auto element = [&](int j) {
+    return StageElement<B>{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+  };
+  double total = 0, earlier_total = 0;
+  for (const Range& r : ranges) {
+    if constexpr (joint) {
+      if (pad)
+        for (int j = r.lo; j < r.hi; ++j) {
+          earlier_total += earlier.term(element(j));
+          total += sum.term(element(j));
+        }
+    }
+    // The copies some updates make (cw = v) stay in this loop instead of becoming calls
+    // to memcpy (the optimize attribute above): the ranges are short.
+    for (int j = r.lo; j < r.hi; ++j) {
+      StageElement<B> e{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+      update(e, a[j]);
+    }
+    if constexpr (summed && !joint) {
+      if (pad)
+        for (int j = r.lo; j < r.hi; ++j) total += sum.term(element(j));
+    }
+  }
+  totals[0] = total;
+  totals[1] = earlier_total;
+}
+
+template <class B, class Update, class Sum, class Earlier>
+[[gnu::noinline, gnu::optimize("no-tree-loop-distribute-patterns")]] void chain_pass(
+    Ranges ranges, bool pad, double* __restrict w, double* __restrict wd, double* __restrict x,
+    double* __restrict y, double* __restrict cw, double* __restrict cv, double* __restrict u,
+    const double* __restrict a, Update& update, const Sum& sum, const Earlier& earlier,
+    double* __restrict totals) {
+  chain_pass_body<B>(ranges, pad, w, wd, x, y, cw, cv, u, a, update, sum, earlier, totals);
+}
+
+}  // namespace layout_detail
+
+template <class Round>
+class ChainLayout {
+ public:
+  static constexpr int kShortRange = 8;
+  ChainLayout(const ChainForces& forces, const Substrate& sub, ChainState& st, Ranges ranges,
+              ExplicitScratch& s)
+      : forces_(forces),
+        sub_(sub),
+        st_(st),
+        ranges_(ranges),
+        s_(s),
+        pad_(forces.params().pad_moves()) {}
+
+  bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), pad_); }
+
+  template <class Point, class Update, class Sum>
+  void stage(Point p, double time_offset, Update&& update, const Sum& sum) {
+    stage(p, time_offset, update, sum, no_sum);
+  }
+  // With `earlier`, the sum of the stage before (which that stage left out), taken in one
+  // pass with this stage's, both of them before this stage's update: the scheme vouches
+  // that neither term changes in between.
+  template <class Point, class Update, class Sum, class Earlier>
+  void stage(Point, double time_offset, Update&& update, const Sum& sum, const Earlier& earlier) {
+    constexpr bool state_positions = Point::positions == Buf::W;
+    constexpr bool joint = !std::is_same_v<Earlier, NoSum>;
+    const SubstrateState sub = sub_.at(st_.t + time_offset);
+    const double* w_at = state_positions ? st_.w.data() : s_.x.data();
+    const double* v_at = pick(Point::velocities, st_.wd.data(), s_.y.data(), s_.u.data());
+    const double x_at = state_positions ? st_.x : x_;
+    const double xd_at = pick(Point::velocities, st_.xd, xd_, xu_);
+    forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(),
+                                sub.s + (pad_ ? x_at : 0.0), sub, ranges_, s_.a.data());
+    auto pad_acceleration = [&] {
+      return pad_ ? forces_.pad_acceleration(x_at, xd_at, state_positions ? st_.sum_w : sum_, sub.s)
+                  : 0.0;
+    };
+    // Before the pass where it can (its division overlaps the loops).
+    double ax = joint ? 0.0 : pad_acceleration();
+    double totals[2];
+    if (ranges_.size() == 1 && ranges_[0].hi - ranges_[0].lo <= kShortRange)
+      layout_detail::chain_pass_body<typename Round::BlockRound>(
+          ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
+          s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
+    else
+      layout_detail::chain_pass<typename Round::BlockRound>(
+          ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
+          s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
+    if (!pad_) return;
+    if constexpr (joint) {
+      sum_ = st_.sum_w + earlier.scale * totals[1];
+      ax = pad_acceleration();
+    }
+    StageElement<typename Round::PadRound> e{st_.x, st_.xd, x_, xd_, x_, xd_, cx_, cxd_, xu_};
+    update(e, ax);
+    if constexpr (!std::is_same_v<Sum, NoSum>) {
+      if (sum.into_state)
+        st_.sum_w += sum.scale * totals[0];
+      else
+        sum_ = st_.sum_w + sum.scale * totals[0];
+    }
+  }
+  void finish(double h) { st_.t += h; }
+
+ private:
+  template <class T>
+  static T pick(Buf b, T v, T y, T u) {
+    return b == Buf::V ? v : b == Buf::Y ? y : u;
+  }
+
+  const ChainForces& forces_;
+  const Substrate& sub_;
+  ChainState& st_;
+  Ranges ranges_;
+  ExplicitScratch& s_;
+  bool pad_;
+  // The pad's stage point, accumulators and spare velocity, and the stage's sum of w.
+  double x_ = 0, xd_ = 0, cx_ = 0, cxd_ = 0, xu_ = 0, sum_ = 0;
+};
+
+// What a held range's fused stages read besides the stage point.
+struct HeldInput {
+  const double* mobile;
+  const double* dir;
+  double anchor;
+  SubstrateState frozen;
+};
+
+namespace layout_detail {
+
+// One fused pass over the inner blocks [lo, hi): the acceleration at the stage point
+// (x, v) as the chain's kernel forms it, then the scheme's update. Everything is a
+// restrict parameter, so the compiler knows the stores cannot change what the pass reads
+// and vectorises it.
+// At the state (AtState) the stage point is (w, wd) itself and x, v are not read.
+// Kept out of line: inlined into the scheme's advance(), the restrict qualifiers no
+// longer tell the compiler the arrays are apart and the pass stays scalar.
+template <FrictionLaw Law, bool Neighbours, bool Damper, class B, bool AtState, class Update>
+[[gnu::noinline]] void fused_stage(const ChainForces& forces, const HeldInput& in, int lo, int hi,
+                                   double* __restrict w, double* __restrict wd,
+                                   const double* __restrict x_in, const double* __restrict v_in,
+                                   double* __restrict xo, double* __restrict yo,
+                                   double* __restrict cw, double* __restrict cv,
+                                   double* __restrict u, Update& update) {
+  const double* x = AtState ? w : x_in;
+  const double* v = AtState ? wd : v_in;
+  const double* __restrict mobile = in.mobile;
+  const double* __restrict dir = in.dir;
+  const double anchor = in.anchor;
+  const SubstrateState frozen = in.frozen;
+  for (int j = lo; j < hi; ++j) {
+    const double a =
+        mobile[j] * forces.acceleration<Law, Damper, false>(
+                        forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j],
+                        dir[j], frozen);
+    StageElement<B> e{w[j], wd[j], x[j], v[j], xo[j], yo[j], cw[j], cv[j], u[j]};
+    update(e, a);
+  }
+}
+
+}  // namespace layout_detail
+
+template <class Round, FrictionLaw Law, bool Neighbours, bool Damper>
+class HeldRangeLayout {
+ public:
+  HeldRangeLayout(const ChainForces& forces, const HeldInput& in, Range r, ChainState& st,
+                  ExplicitScratch& s)
+      : forces_(forces),
+        in_(in),
+        lo_(r.lo + 1),
+        hi_(r.hi - 1),
+        w_(st.w.data()),
+        wd_(st.wd.data()),
+        x_in_(s.x2.data()),
+        y_in_(s.y2.data()),
+        x_out_(s.x.data()),
+        y_out_(s.y.data()),
+        cw_(s.cw.data()),
+        cv_(s.cv.data()),
+        u_(s.u.data()) {
+    // The end blocks are stuck: their stage positions are their positions.
+    s.x[r.lo] = s.x2[r.lo] = w_[r.lo];
+    s.x[hi_] = s.x2[hi_] = w_[hi_];
+  }
+
+  bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), false); }
+
+  template <class Point, class Update, class... Sums>
+  void stage(Point, double, Update&& update, const Sums&...) {
+    static_assert(
+        Point::positions == Buf::W ? Point::velocities == Buf::V : Point::velocities == Buf::Y,
+        "a held range evaluates at the state or at the last stage point");
+    constexpr bool at_state = Point::positions == Buf::W;
+    layout_detail::fused_stage<Law, Neighbours, Damper, typename Round::BlockRound, at_state>(
+        forces_, in_, lo_, hi_, w_, wd_, x_in_, y_in_, x_out_, y_out_, cw_, cv_, u_, update);
+    std::swap(x_in_, x_out_);
+    std::swap(y_in_, y_out_);
+  }
+  void finish(double) {}
+
+ private:
+  const ChainForces& forces_;
+  const HeldInput& in_;
+  int lo_, hi_;
+  double *w_, *wd_, *x_in_, *y_in_, *x_out_, *y_out_, *cw_, *cv_, *u_;
+};
+
+// `acceleration(x, v, a)` sets a[1..K] at stage positions x and velocities v; on entry
+// `a` holds the accelerations at the state (the first stage's, which the cluster loop has
+// already formed).
+template <class Round, class Acceleration, class Array>
+class ClusterLayout {
+ public:
+  static constexpr int K = static_cast<int>(std::tuple_size_v<Array>) - 2;
+
+  ClusterLayout(const Acceleration& acceleration, Array& w, Array& v, Array& a,
+                bool velocity_dependent)
+      : acceleration_(acceleration),
+        w_(w),
+        v_(v),
+        a_(a),
+        x_(w),
+        y_(v),
+        cw_(w),
+        cv_(w),
+        u_(v),
+        velocity_dependent_(velocity_dependent) {}
+
+  bool velocity_dependent() const { return velocity_dependent_; }
+
+  template <class Point, class Update, class... Sums>
+  void stage(Point, double, Update&& update, const Sums&...) {
+    constexpr bool at_state = Point::positions == Buf::W && Point::velocities == Buf::V;
+    if (!at_state || evaluated_)
+      acceleration_(Point::positions == Buf::W ? w_ : x_, pick<Point::velocities>(), a_);
+    evaluated_ = true;
+    for (int i = 1; i <= K; ++i) {
+      StageElement<typename Round::BlockRound> e{w_[i], v_[i],  x_[i],  y_[i], x_[i],
+                                                 y_[i], cw_[i], cv_[i], u_[i]};
+      update(e, a_[i]);
+    }
+  }
+  void finish(double) {}
+
+ private:
+  template <Buf B>
+  const Array& pick() const {
+    if constexpr (B == Buf::V)
+      return v_;
+    else if constexpr (B == Buf::Y)
+      return y_;
+    else
+      return u_;
+  }
+
+  const Acceleration& acceleration_;
+  Array &w_, &v_, &a_;
+  Array x_, y_, cw_, cv_, u_;
+  bool velocity_dependent_;
+  bool evaluated_ = false;
+};
+
+}  // namespace bkq
