@@ -103,7 +103,7 @@ LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scal
   // A direct step rounds positions of size position_scale, a few times eps * scale each
   // step; a spring force sees position errors through at most k_p + 4 k_c. Over n steps
   // the force errors accumulate into the velocity (n dt / m_u) and both into the position.
-  constexpr double kSafety = 10;  // see lone_slip.hpp: the measured differences stay below 3% of 1x
+  constexpr double kSafety = 10;  // ten times the worst case (lone_slip.hpp)
   const double eps = std::numeric_limits<double>::epsilon();
   const double n = static_cast<double>(std::max<std::int64_t>(steps, 1));
   const double stiffness = p.k_p + 4.0 * p.k_c;

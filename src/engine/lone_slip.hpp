@@ -22,12 +22,9 @@
 // threshold, the start force not at the threshold within it, or a crossing of the table
 // too narrow for it), the engine integrates the event directly instead. The bound is ten
 // times the worst case of the rounding a direct integration of that many steps at those
-// positions can accumulate, every rounding adding up (lone_slip_tolerance); the
-// differences measured between table and direct steps stay below 3% of that worst case
-// (velocities; forces below 0.5%) at loads from 0 to 1e6. The bound grows with the
-// positions, so a long run's replays thin out as its load grows: the replay takes 97% of
-// starts at a load of 1e5 (about 5x10^7 events of a 100-block chain), and the record's
-// own crossing margin rules it out altogether near 5x10^7.
+// positions can accumulate, every rounding adding up (lone_slip_tolerance). The bound
+// grows with the positions, so a long run's replays thin out as its load grows (README,
+// "How it works", gives the measured share).
 //
 // What the replay changes is rounding only, but rounding is all that separates two
 // integrations of a chaotic chain: a long run with the replay on and off from the same

@@ -1,6 +1,5 @@
 // The event engine's commonest cases, a few blocks sliding between two neighbours that
-// hold (78% of the carlson-langer scene's events never involve a second block, and most
-// of the others stay within a handful), advanced by a scheme's scalar form instead of
+// hold (most events of the shipped scenes), advanced by a scheme's scalar form instead of
 // its range loops.
 //
 // A cluster is one covered range [lo, lo + K + 2) whose two end blocks are stuck: K
