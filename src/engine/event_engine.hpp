@@ -1,62 +1,20 @@
 // The event-driven earthquake engine (SPEC §2): a quasistatic loader and a dynamic
-// relaxation with the full BK–Pad equations.
+// relaxation with the full BK–Pad equations. README, "How it works", sets out the paths.
 //
-// Loading. Between events every block is stuck and the pad is at rest, so each stuck
-// block's spring force grows at the same rate per unit substrate displacement
-// (ModelParams::loading_rate). The loader asks the ForceTree for the largest force and
-// jumps the substrate so that block sits exactly at the threshold; no steps are spent.
-//
-// Relaxation. The substrate is frozen. The scene's stepper advances only the sliding
-// blocks plus one stuck block on either side (the "covered" ranges); those neighbours
-// are checked after every step and join when their force exceeds the threshold. With an
-// event-locating stepper two stuck blocks are covered on each side: it locates a
-// neighbour's release inside its step, and that neighbour's own neighbour must then be
-// integrated too (one further release within the same step is only seen at its end). Stuck
-// blocks elsewhere only feel the pad, uniformly, so with a moving pad the ForceTree is
-// asked each step whether any of them has failed. When every block is stuck the pad is a
-// damped linear oscillator; it is advanced in closed form to the first instant it pushes
-// a stuck block over the threshold (located by bisection to ~1e-13 in time; that block
-// then joins the same event), or, if no block can fail any more, to its rest position.
-//
-// Two fast paths give the same events bit for bit (tests/regression/test_cluster.cpp), and
-// the whole engine gives the events of the straightforward engine that steps every block
-// (engine/reference_events.hpp; tests/regression/test_reference_events.cpp), except for
-// the replay of event starts below:
-// while the sliding blocks lie within one covered range of at most kMaxCluster interior
-// blocks with the pad held (most events never leave that shape) the stepper's
-// fixed-size form steps the range with its state in registers (integrate/cluster.hpp);
-// and with the pad held and every covered range ending in stuck blocks, the ranges
-// cannot interact, so the stepper may fuse its stages over each of them
-// (Stepper::step_held).
-//
-// A third path changes rounding, not decisions: every event starts with its trigger at
-// the threshold, at rest, between stuck blocks, so the start is the same slide every time
-// in coordinates relative to the trigger; it is integrated once and replayed
-// (engine/lone_slip.hpp) until the block sticks or a neighbour breaks loose, wherever the
-// rounding difference between the replay and a direct integration cannot change which.
-// The events are then the same as direct integration's, with moments and speeds that
-// differ by rounding (tests/regression/test_lone_slip.cpp); like any change in the
-// order of the arithmetic, that lets a long chaotic run drift away from the direct one
-// event by event. EventEngine::lone_slip_path turns it off.
-//
-// End of an event: every block stuck (by the stepper's stick rule) and the pad at rest —
-// exactly at rest, since the pad's remaining free oscillation is removed in closed form
-// once its amplitude can no longer break any block (with an undamped pad, zeta = 0, this
-// discards the pad's free oscillation between events). The duration is the time from the
-// trigger until the last block re-stuck.
-//
-// Energy balance of an event (EventRecord::energy_residual). Loading happens before the
-// event, so over the relaxation nothing does work on the chain: the energy stored in the
-// springs can only go into friction and the dampers, and the chain is at rest at both
-// ends. The engine accumulates W, the work done against friction (and the 1DOF damper),
-// by the trapezoidal rule on each step, plus the pad damper's (trapezoidal while blocks
-// slide; exact in the closed-form pad phase, where the pad's energy lost is the damper's
-// work, and where the free oscillation removed at the end counts as dissipated — for an
-// undamped pad that energy is discarded, not dissipated). The change of stored energy
-// dE is computed from the blocks that slipped and the pad alone (O(event), not O(N)).
-// The residual is (dE + W)/W: zero for an exact integration; with the crossing rule its
-// size is set by the step (the quadrature is second order and a re-sticking block's last
-// step leaves an O(dt) kinetic remainder that the rule zeroes).
+// Loading: every stuck block's force grows at one rate (ModelParams::loading_rate); the
+// ForceTree gives the largest, and the substrate jumps so that block sits at the threshold.
+// Relaxation: the substrate frozen, the stepper advances the sliding blocks plus one stuck
+// neighbour each side (two for an event-locating stepper); neighbours join when their force
+// passes the threshold; with a moving pad the tree is asked each step about far blocks;
+// with every block stuck the pad is advanced in closed form (damped_oscillator.hpp).
+// Fast paths (cluster in registers, fused held ranges) give the same events bit for bit
+// (test_cluster); the replayed event start (lone_slip.hpp) changes rounding, not decisions
+// (test_lone_slip); otherwise the events are the straightforward engine's (test_reference_events).
+// End of an event: every block stuck by the stick rule and the pad at rest (its free
+// oscillation removed in closed form once it can break no block).
+// Energy balance (EventRecord::energy_residual): over an event nothing does work on the
+// chain, so (dE_stored + W_friction+dampers)/W is zero for an exact integration; W by the
+// trapezoidal rule per step, exact in the pad phase; dE from the slipped blocks and the pad.
 #pragma once
 
 #include <cstdint>
