@@ -5,10 +5,12 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +18,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace bkq::test {
@@ -94,6 +97,46 @@ inline ProcessResult run_process(const std::string& program, const std::vector<s
 inline ProcessResult run_bkquake(const std::vector<std::string>& args,
                                  const std::string& cwd = "") {
   return run_process(BKQUAKE_BINARY, args, cwd);
+}
+
+// Starts bkquake with `args` (in `cwd` when given; stdout and stderr to the file `log`, or
+// discarded), sends `sig` once `ready()` turns true, and returns the exit status (128 +
+// signal when killed by one). A run still going after two minutes is killed, so a run
+// that never gets ready cannot hang the suite.
+template <class Ready>
+int run_and_signal_when(const std::vector<std::string>& args, Ready ready, int sig,
+                        const std::string& log = "", const std::string& cwd = "") {
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    const int fd =
+        ::open(log.empty() ? "/dev/null" : log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    if (!cwd.empty() && ::chdir(cwd.c_str()) != 0) ::_exit(127);
+    std::vector<std::string> all = args;
+    std::vector<char*> argv{const_cast<char*>(BKQUAKE_BINARY)};
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(BKQUAKE_BINARY, argv.data());
+    ::_exit(127);
+  }
+  int wstatus = 0;
+  bool signalled = false;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (::waitpid(pid, &wstatus, WNOHANG) != pid) {
+    if (!signalled && ready()) {
+      ::kill(pid, sig);
+      signalled = true;
+    }
+    if (std::chrono::steady_clock::now() > give_up) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &wstatus, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
 }
 
 // A fresh scratch folder under the system temp dir, removed with everything in it.

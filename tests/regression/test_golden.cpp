@@ -9,18 +9,14 @@
 //   BKQUAKE_GOLDEN_RECORD=1 build/bkquake_tests --gtest_filter='Golden*'
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "../cli_helpers.hpp"
@@ -254,32 +250,9 @@ int run_command(const Command& c, const std::string& cwd) {
     if (r.status != 0) ADD_FAILURE() << "exit " << r.status << ": " << r.err;
     return r.status;
   }
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    if (::chdir(cwd.c_str()) != 0) ::_exit(127);
-    std::vector<char*> argv{const_cast<char*>(BKQUAKE_BINARY)};
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(BKQUAKE_BINARY, argv.data());
-    ::_exit(127);
-  }
   const fs::path watch = fs::path(cwd) / c.interrupt_after;
-  int wstatus = 0;
-  bool signalled = false;
-  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (::waitpid(pid, &wstatus, WNOHANG) != pid) {
-    if (!signalled && fs::exists(watch)) {
-      ::kill(pid, SIGTERM);
-      signalled = true;
-    }
-    if (std::chrono::steady_clock::now() > give_up) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &wstatus, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  const int status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
+  const int status = test::run_and_signal_when(
+      args, [&] { return fs::exists(watch); }, SIGTERM, "", cwd);
   EXPECT_EQ(status, 143) << "the run should stop on SIGTERM and be resumable";
   return status;
 }

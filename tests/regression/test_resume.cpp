@@ -78,41 +78,12 @@ struct Stopped {
 };
 
 // Starts bkquake with `bkquake_args`, waits until `watch` has at least `min_bytes`, sends `sig`
-// and waits for the exit. stdout and stderr go to files beside `dir`'s parent.
+// and waits for the exit; stdout and stderr go to `log`.
 Stopped run_and_signal(const std::vector<std::string>& bkquake_args, const std::string& watch,
                        std::uintmax_t min_bytes, int sig, const std::string& log) {
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    std::vector<std::string> all = bkquake_args;
-    std::vector<char*> argv{const_cast<char*>(BKQUAKE_BINARY)};
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(BKQUAKE_BINARY, argv.data());
-    ::_exit(127);
-  }
   Stopped r;
-  int wstatus = 0;
-  bool signalled = false;
-  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (true) {
-    const pid_t done = ::waitpid(pid, &wstatus, WNOHANG);
-    if (done == pid) break;
-    if (!signalled && size_of(watch) >= min_bytes) {
-      ::kill(pid, sig);
-      signalled = true;
-    }
-    if (std::chrono::steady_clock::now() > give_up) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &wstatus, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  r.status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
+  r.status = test::run_and_signal_when(
+      bkquake_args, [&] { return size_of(watch) >= min_bytes; }, sig, log);
   r.err = read_file(log);
   return r;
 }

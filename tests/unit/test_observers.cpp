@@ -19,6 +19,17 @@
 namespace bkq {
 namespace {
 
+// A quiet run of the default scene with `keys` set, writing into `out`.
+RunRequest quiet_run(const std::vector<std::pair<std::string, std::string>>& keys,
+                     const std::string& out) {
+  RunRequest req;
+  for (const auto& [k, v] : keys) req.scene.set(k, v);
+  req.scene.validate();
+  req.out_dir = out;
+  req.quiet = true;
+  return req;
+}
+
 struct Recorder : RunObserver {
   void on_start() override { ++starts; }
   void on_phase(const Phase& p) override { phases.push_back(p.what); }
@@ -71,13 +82,9 @@ TEST(Observers, CheckpointTimerAsksEveryNEvents) {
 TEST(Observers, EventRunNotifiesAnAttachedObserver) {
   test::TempDir dir;
   Recorder rec;
-  RunRequest req;
-  for (const auto& [k, v] : std::vector<std::pair<std::string, std::string>>{
-           {"model.blocks", "20"}, {"run.events", "40"}, {"run.transient_events", "10"}})
-    req.scene.set(k, v);
-  req.scene.validate();
-  req.out_dir = dir.file("out");
-  req.quiet = true;
+  RunRequest req =
+      quiet_run({{"model.blocks", "20"}, {"run.events", "40"}, {"run.transient_events", "10"}},
+                dir.file("out"));
   req.observers.push_back(&rec);
   ASSERT_EQ(run_scene(req), 0);
 
@@ -97,17 +104,12 @@ TEST(Observers, EventRunNotifiesAnAttachedObserver) {
 TEST(Observers, ContinuousRunNotifiesSamplesAndEpisodes) {
   test::TempDir dir;
   Recorder rec;
-  RunRequest req;
-  for (const auto& [k, v] :
-       std::vector<std::pair<std::string, std::string>>{{"model.blocks", "10"},
-                                                        {"drive.mode", "continuous"},
-                                                        {"drive.speed", "0.1"},
-                                                        {"run.duration", "20"},
-                                                        {"output.every", "2"}})
-    req.scene.set(k, v);
-  req.scene.validate();
-  req.out_dir = dir.file("out");
-  req.quiet = true;
+  RunRequest req = quiet_run({{"model.blocks", "10"},
+                              {"drive.mode", "continuous"},
+                              {"drive.speed", "0.1"},
+                              {"run.duration", "20"},
+                              {"output.every", "2"}},
+                             dir.file("out"));
   req.observers.push_back(&rec);
   ASSERT_EQ(run_scene(req), 0);
 
@@ -147,13 +149,9 @@ struct Counter : RunObserver {
 
 TEST(Observers, OwnStateSurvivesAStopAndResume) {
   test::TempDir dir;
-  RunRequest req;
-  for (const auto& [k, v] : std::vector<std::pair<std::string, std::string>>{
-           {"model.blocks", "20"}, {"run.events", "40"}, {"run.transient_events", "5"}})
-    req.scene.set(k, v);
-  req.scene.validate();
-  req.out_dir = dir.file("out");
-  req.quiet = true;
+  RunRequest req =
+      quiet_run({{"model.blocks", "20"}, {"run.events", "40"}, {"run.transient_events", "5"}},
+                dir.file("out"));
   Counter first;
   first.stop_at = 15;
   req.observers = {&first};
