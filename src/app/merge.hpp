@@ -13,7 +13,8 @@ namespace bkq {
 
 struct MergeRequest {
   std::vector<std::string> runs;  // run folders, each with summary.json and histogram.csv
-  std::filesystem::path out;      // created if missing
+  std::filesystem::path out;      // created if missing; neither an input nor inside one
+  bool force = false;             // write into an output folder that already holds files
 };
 
 // Prints a line (and the fit table) to `out`. User errors throw bkq::Error.

@@ -19,7 +19,7 @@ Usage:
   bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume] [--force]
   bkquake run --dump-defaults      print a commented scene with every key at its default
   bkquake fit CATALOG.csv [--mu-min A] [--mu-max B] [--bin-width W] [--blocks N] [--json OUT]
-  bkquake merge RUN_DIR... --out DIR
+  bkquake merge RUN_DIR... --out DIR [--force]
   bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]
   bkquake --help | --version
 
