@@ -3,6 +3,8 @@
 
 #include <cstdio>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
@@ -32,8 +34,31 @@ Json provenance_json(const Scene& scene, const Settings& settings, const std::st
 }  // namespace
 
 EventSummary::EventSummary(const Scene& scene, const Settings& settings, const OutputFolder& out,
-                           const MagnitudeHistogram& hist, const Observers& all)
-    : scene_(scene), settings_(settings), out_(out), hist_(hist), all_(all) {}
+                           const MagnitudeHistogram& hist, const Observers& all,
+                           std::function<bool()> stop_requested)
+    : scene_(scene),
+      settings_(settings),
+      out_(out),
+      hist_(hist),
+      all_(all),
+      stop_requested_(std::move(stop_requested)) {}
+
+void EventSummary::on_phase(const Phase& p) {
+  if (std::string_view(p.what) == "events") events_total_ = p.total;
+}
+
+void EventSummary::on_phase_end(const Advance& a) {
+  if (events_total_ < 0 || a.done < events_total_ || hist_.events() < 2) return;
+  GrFitOptions opt;
+  opt.cancelled = stop_requested_;
+  try {
+    fit_ = fit_histogram(hist_, settings_.stats.mu_min, settings_.stats.mu_max, opt);
+  } catch (const FitCancelled&) {
+    // The run stops after this phase (a checkpoint, no summary); a resume fits again.
+  } catch (const Error& err) {
+    fit_error_ = err.what();
+  }
+}
 
 void EventSummary::on_resume(const Checkpoint& c) {
   moment_sum_ = c.progress.moment_sum;
@@ -67,9 +92,9 @@ void EventSummary::on_end(const RunEnd& end) {
   summary.set("work", std::move(work));
 
   std::string fit_line = "b: not fitted (fewer than 2 events)";
-  if (hist_.events() >= 2) {
-    try {
-      const GrFit fit = fit_histogram(hist_, settings_.stats.mu_min, settings_.stats.mu_max);
+  if (fit_) {
+    {
+      const GrFit& fit = *fit_;
       summary.set("b_mle", fit.b_mle);
       summary.set("b_mle_err", fit.b_mle_err);
       summary.set("b_lsq", fit.b_lsq);
@@ -86,10 +111,10 @@ void EventSummary::on_end(const RunEnd& end) {
                     "b = %.3f ± %.3f (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.b_mle,
                     fit.b_mle_err, fit.mu_min, fit.mu_max, static_cast<long long>(fit.n_in_window));
       fit_line = line;
-    } catch (const Error& err) {
-      fit_line = std::string("b: not fitted (") + err.what() + ")";
-      summary.set("fit_error", err.what());
     }
+  } else if (!fit_error_.empty()) {
+    fit_line = "b: not fitted (" + fit_error_ + ")";
+    summary.set("fit_error", fit_error_);
   }
   all_.add_to_summary(summary);
   write_file_atomic(out_.path("summary.json"), summary.str() + "\n");

@@ -4,9 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
 
 #include "app/observers/observer.hpp"
 #include "io/settings.hpp"
+#include "stats/gutenberg_richter.hpp"
 
 namespace bkq {
 
@@ -15,11 +19,17 @@ class MagnitudeHistogram;
 class Scene;
 
 // Event runs: counts, load, moment sum, work, wall time and the Gutenberg-Richter fit of
-// the histogram (attached before this observer, so it is complete at on_end).
+// the histogram (attached before this observer, so it is complete at on_end). The fit is
+// made when the events phase ends complete, before on_end, so that a run asked to stop
+// during it (stop_requested turns true) can still checkpoint: the fit then stops and the
+// run stops as after any event; a resumed run fits again.
 class EventSummary : public RunObserver {
  public:
   EventSummary(const Scene& scene, const Settings& settings, const OutputFolder& out,
-               const MagnitudeHistogram& hist, const Observers& all);
+               const MagnitudeHistogram& hist, const Observers& all,
+               std::function<bool()> stop_requested = {});
+  void on_phase(const Phase& p) override;
+  void on_phase_end(const Advance& a) override;
   void on_resume(const Checkpoint& c) override;
   void on_event(const EventRecord& e) override {
     moment_sum_ += e.moment;
@@ -34,6 +44,10 @@ class EventSummary : public RunObserver {
   const OutputFolder& out_;
   const MagnitudeHistogram& hist_;
   const Observers& all_;
+  const std::function<bool()> stop_requested_;
+  double events_total_ = -1;  // of the events phase, once it has begun
+  std::optional<GrFit> fit_;
+  std::string fit_error_;
   double moment_sum_ = 0;
   std::int64_t nonpositive_ = 0;
 };
