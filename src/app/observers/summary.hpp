@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "app/observers/observer.hpp"
 #include "io/settings.hpp"
@@ -14,21 +15,27 @@ class OutputFolder;
 class MagnitudeHistogram;
 class Scene;
 
-// Event runs: counts, load, moment sum, work, wall time and the Gutenberg-Richter fit of
-// the histogram (attached before this observer, so it is complete at on_end).
-class EventSummary : public RunObserver {
+// What both summaries report about the events (recorded events, or the slip episodes of
+// a continuous run): their moment sum, the count with moment <= 0, and the
+// Gutenberg-Richter fit of the histogram (attached before the summary, so it is complete
+// at on_end). The sums travel in the checkpoint.
+class SummaryOfEvents : public RunObserver {
  public:
-  EventSummary(const Scene& scene, const Settings& settings, const OutputFolder& out,
-               const MagnitudeHistogram& hist, const Observers& all);
+  SummaryOfEvents(const Scene& scene, const Settings& settings, const OutputFolder& out,
+                  const MagnitudeHistogram& hist, const Observers& all);
   void on_resume(const Checkpoint& c) override;
   void on_event(const EventRecord& e) override {
     moment_sum_ += e.moment;
     if (!(e.moment > 0)) ++nonpositive_;
   }
   void on_checkpoint(Checkpoint& c) override;
-  void on_end(const RunEnd& end) override;
 
- private:
+ protected:
+  // Sets moment_sum, nonpositive_moments and bin_width.
+  void add_moments(Json& summary) const;
+  // Sets the fit's fields (or fit_error); returns the line printed about it.
+  std::string add_fit(Json& summary) const;
+
   const Scene& scene_;
   const Settings& settings_;
   const OutputFolder& out_;
@@ -38,18 +45,19 @@ class EventSummary : public RunObserver {
   std::int64_t nonpositive_ = 0;
 };
 
-// Continuous runs: simulated time, steps, slip episodes, load and speed.
-class ContinuousSummary : public RunObserver {
+// Event runs: counts, load, moment sum, work, wall time and the fit.
+class EventSummary : public SummaryOfEvents {
  public:
-  ContinuousSummary(const Scene& scene, const Settings& settings, const OutputFolder& out,
-                    const Observers& all);
+  using SummaryOfEvents::SummaryOfEvents;
   void on_end(const RunEnd& end) override;
+};
 
- private:
-  const Scene& scene_;
-  const Settings& settings_;
-  const OutputFolder& out_;
-  const Observers& all_;
+// Continuous runs: simulated time, steps, slip episodes, load, speed, moment sum and the
+// fit of the episodes, so the two modes compare directly.
+class ContinuousSummary : public SummaryOfEvents {
+ public:
+  using SummaryOfEvents::SummaryOfEvents;
+  void on_end(const RunEnd& end) override;
 };
 
 }  // namespace bkq
