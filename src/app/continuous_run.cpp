@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "app/observers/catalog.hpp"
+#include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
 #include "app/observers/summary.hpp"
 #include "app/observers/timeseries.hpp"
@@ -29,7 +30,9 @@ void attach_observers(Observers& obs, const RunRequest& req, const Settings& set
   if (settings.output.blocks)
     obs.attach<BlockTrajectories>(out.path("blocks.csv"), settings.model.n);
   obs.attach<PadFrictionStats>();
-  obs.attach<ContinuousSummary>(req.scene, settings, out, obs);
+  const auto& hist =
+      obs.attach<HistogramWriter>(settings.stats.bin_width, out.path("histogram.csv"));
+  obs.attach<ContinuousSummary>(req.scene, settings, out, hist.histogram(), obs);
   if (!req.quiet) obs.attach<ProgressLine>();
   for (RunObserver* o : req.observers) obs.attach_ref(*o);
 }
