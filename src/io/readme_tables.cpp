@@ -10,6 +10,7 @@
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
 #include "io/segments_csv.hpp"
+#include "io/spectrum_csv.hpp"
 #include "io/timeseries.hpp"
 
 namespace bkq {
@@ -63,6 +64,8 @@ std::vector<ReadmeTable> readme_tables() {
       {"timeseries.csv", column_table(timeseries_schema())},
       {"accuracy.csv", column_table(accuracy_schema())},
       {"segments.csv", column_table(segments_schema())},
+      {"spectrum.csv", column_table(spectrum_schema())},
+      {"special_law.csv", column_table(special_law_schema())},
   };
 }
 

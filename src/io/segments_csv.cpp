@@ -31,6 +31,14 @@ const Schema& segments_schema() {
   return schema;
 }
 
+const Schema& special_law_schema() {
+  static const Schema schema = {
+      {"speed", "length/time", "relative speed y of block and substrate (> 0, increasing)"},
+      {"friction", "force/mass", "friction phi(y) per unit block mass (> 0 opposes y > 0)"},
+  };
+  return schema;
+}
+
 std::string segments_header() {
   return header_of(segments_schema());
 }

@@ -32,6 +32,10 @@ std::string segments_row(const SegmentRow& r);
 // Reads every row; bkq::Error naming the file and line on a malformed one.
 std::vector<SegmentRow> read_segments_csv(const std::filesystem::path& path);
 
+// The tabulated special friction law (`bkquake special-law`, read by friction.law = table):
+// relative speed and friction per unit block mass, speeds increasing.
+const Schema& special_law_schema();
+
 // A numeric CSV with a header line (lines starting with '#' skipped): the named columns,
 // in the order asked. bkq::Error "<file>: missing column '<name>'" or on a bad number.
 std::vector<std::vector<double>> read_numeric_columns(const std::filesystem::path& path,
