@@ -9,6 +9,7 @@
 #include "app/observers/catalog.hpp"
 #include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
+#include "app/observers/segments.hpp"
 #include "app/observers/summary.hpp"
 #include "app/observers/timeseries.hpp"
 #include "core/error.hpp"
@@ -32,6 +33,7 @@ void attach_observers(Observers& obs, const RunRequest& req, const Settings& set
   obs.attach<PadFrictionStats>();
   const auto& hist =
       obs.attach<HistogramWriter>(settings.stats.bin_width, out.path("histogram.csv"));
+  attach_segment_stats(obs, settings, out);
   obs.attach<ContinuousSummary>(req.scene, settings, out, hist.histogram(), obs);
   if (!req.quiet) obs.attach<ProgressLine>();
   for (RunObserver* o : req.observers) obs.attach_ref(*o);
@@ -79,6 +81,7 @@ int run_continuous(const RunRequest& req, const Settings& settings, const Output
       msg += ": the integration is unstable (reduce integrator.dt)";
       throw Error(msg);
     }
+    if (observers.wants_steps()) observers.step({i + 1, driver});
     observers.advance({driver.state().t, episodes});
   }
   observers.phase_end({driver.state().t, episodes});
