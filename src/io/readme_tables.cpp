@@ -9,6 +9,7 @@
 #include "io/catalog.hpp"
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
+#include "io/sweep_file.hpp"
 #include "io/timeseries.hpp"
 
 namespace bkq {
@@ -61,6 +62,7 @@ std::vector<ReadmeTable> readme_tables() {
       {"histogram.csv", column_table(histogram_schema())},
       {"timeseries.csv", column_table(timeseries_schema())},
       {"accuracy.csv", column_table(accuracy_schema())},
+      {"sweep.csv", column_table(sweep_csv_schema())},
   };
 }
 
