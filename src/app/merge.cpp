@@ -80,13 +80,19 @@ void merge_runs(const MergeRequest& request, std::ostream& out) {
   const std::string where =
       "merged " + std::to_string(runs.size()) + " runs into " + request.out.string();
   if (merged->events() >= 2) {
-    const GrFit fit = fit_histogram(*merged, std::nullopt, std::nullopt);
-    s.set("b_mle", fit_number(fit.b_mle))
-        .set("b_mle_err", fit_number(fit.b_mle_err))
-        .set("mu_min", fit_number(fit.mu_min))
-        .set("mu_max", fit_number(fit.mu_max))
-        .set("fit", gr_fit_json(fit));
-    out << where << "\n" << gr_fit_table(fit);
+    // A window that holds no fit is a result, not a failure: it is named in fit_error.
+    try {
+      const GrFit fit = fit_histogram(*merged, request.mu_min, request.mu_max);
+      s.set("b_mle", fit_number(fit.b_mle))
+          .set("b_mle_err", fit_number(fit.b_mle_err))
+          .set("mu_min", fit_number(fit.mu_min))
+          .set("mu_max", fit_number(fit.mu_max))
+          .set("fit", gr_fit_json(fit));
+      out << where << "\n" << gr_fit_table(fit);
+    } catch (const Error& e) {
+      s.set("fit_error", e.what());
+      out << where << "; no fit: " << e.what() << "\n";
+    }
   } else {
     out << where << "; fewer than 2 events, no fit\n";
   }

@@ -103,9 +103,9 @@ std::string SummaryOfEvents::add_fit(Json& summary) {
   window.set("ks_distance", fit.ks_distance);
   summary.set("fit_window", std::move(window));
   char line[200];
-  std::snprintf(line, sizeof line, "b = %.3f ± %.3f (binned MLE) on mu in [%.2f, %.2f], %lld events",
-                fit.b_mle, fit.b_mle_err, fit.mu_min, fit.mu_max,
-                static_cast<long long>(fit.n_in_window));
+  std::snprintf(line, sizeof line,
+                "b = %.3f ± %.3f (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.b_mle,
+                fit.b_mle_err, fit.mu_min, fit.mu_max, static_cast<long long>(fit.n_in_window));
   return line;
 }
 
