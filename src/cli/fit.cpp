@@ -21,10 +21,10 @@ int cmd_fit(const std::vector<std::string>& args) {
   // clang-format off
   opts.add_options()
     ("help,h", "show this help")
-    ("mu-min", po::value<double>(), "lower end of the fit window (default: chosen by the "
-                                    "Kolmogorov-Smirnov scan of Clauset et al. 2009)")
+    ("mu-min", po::value<double>(), "lower end of the fit window (default: automatic, "
+                                    "README \"How b is fitted\")")
     ("mu-max", po::value<double>(), "upper end of the fit window; truncates the likelihood "
-                                    "(default: the largest populated bin, untruncated)")
+                                    "(default: automatic, below the bump of large events)")
     ("bin-width", po::value<double>()->default_value(MagnitudeHistogram::kDefaultBinWidth),
                   "magnitude bin width, > 0")
     ("blocks", po::value<int>(), "chain length N for the event classes (default: scene.ini "

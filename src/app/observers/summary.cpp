@@ -53,6 +53,10 @@ void EventSummary::on_phase_end(const Advance& a) {
   opt.cancelled = stop_requested_;
   try {
     fit_ = fit_histogram(hist_, settings_.stats.mu_min, settings_.stats.mu_max, opt);
+    if (!fit_->b_ok) {  // no b rather than a meaningless one (README "How b is fitted")
+      fit_error_ = "no acceptable fit window: " + fit_->no_b_reason;
+      fit_.reset();
+    }
   } catch (const FitCancelled&) {
     // The run stops after this phase (a checkpoint, no summary); a resume fits again.
   } catch (const Error& err) {
@@ -114,6 +118,7 @@ void EventSummary::on_end(const RunEnd& end) {
     }
   } else if (!fit_error_.empty()) {
     fit_line = "b: not fitted (" + fit_error_ + ")";
+    summary.set("b_mle", Json::null());
     summary.set("fit_error", fit_error_);
   }
   all_.add_to_summary(summary);
