@@ -26,11 +26,10 @@ int cmd_fit(const std::vector<std::string>& args) {
   opts.add_options()
     ("help,h", "show this help")
     ("mu-min", po::value<std::string>(), "lower end of the fit window, in [-50, 50] (default "
-                                         "or auto: chosen by the Kolmogorov-Smirnov scan of "
-                                         "Clauset et al. 2009)")
+                                         "or auto: automatic, README \"How b is fitted\")")
     ("mu-max", po::value<std::string>(), "upper end of the fit window, in [-50, 50]; truncates "
-                                         "the likelihood (default or auto: the largest populated "
-                                         "bin, untruncated)")
+                                         "the likelihood (default or auto: automatic, below the "
+                                         "bump of large events)")
     ("bin-width", po::value<std::string>()->default_value(
                       format_real(MagnitudeHistogram::kDefaultBinWidth)),
                   "magnitude bin width, in (0, 10]")
