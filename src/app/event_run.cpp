@@ -4,10 +4,8 @@
 #include "app/event_run.hpp"
 
 #include <signal.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 
@@ -16,6 +14,7 @@
 #include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
 #include "app/observers/summary.hpp"
+#include "app/stop_signals.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "engine/event_engine.hpp"
@@ -32,41 +31,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-// SIGINT and SIGTERM during an event run. The first asks the run to stop after the current
-// event (checkpoint, flush, exit 128 + signal); a second one exits at once, leaving the
-// last checkpoint intact (checkpoints are renamed into place atomically).
-volatile std::sig_atomic_t g_stop_signal = 0;
-
-void on_stop_signal(int sig) {
-  if (g_stop_signal != 0) ::_exit(128 + sig);
-  g_stop_signal = sig;
-}
-
-// Installs the handlers for its lifetime and restores the previous ones after.
-class StopSignals {
- public:
-  StopSignals() {
-    g_stop_signal = 0;
-    struct sigaction sa {};
-    sa.sa_handler = on_stop_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART;  // a write or fsync under way completes instead of failing with EINTR
-    ::sigaction(SIGINT, &sa, &old_int_);
-    ::sigaction(SIGTERM, &sa, &old_term_);
-  }
-  ~StopSignals() {
-    ::sigaction(SIGINT, &old_int_, nullptr);
-    ::sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-  int received() const { return g_stop_signal; }
-
- private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
-};
 
 class EventRun {
  public:

@@ -1,7 +1,7 @@
-// When an event run writes a checkpoint: every run.checkpoint_events events (counted over
-// the whole run, transient included) or run.checkpoint_seconds of wall time, whichever
-// comes first. The run writes it (with every observer's state); this observer only asks.
-// Attached when either interval is set.
+// When a run writes a checkpoint: every run.checkpoint_events events (counted over the
+// whole run, transient included; a continuous run counts its slip episodes) or
+// run.checkpoint_seconds of wall time, whichever comes first. The run writes it (with
+// every observer's state); this observer only asks. Attached when either interval is set.
 #pragma once
 
 #include <chrono>
@@ -20,7 +20,10 @@ class CheckpointTimer : public RunObserver {
 
   void on_start() override { last_ = Clock::now(); }
   void on_advance(const Advance& a) override {
-    const bool by_count = every_events_ > 0 && a.events % every_events_ == 0;
+    // A continuous run advances every time step, mostly without a new episode.
+    const bool by_count =
+        every_events_ > 0 && a.events != last_events_ && a.events % every_events_ == 0;
+    last_events_ = a.events;
     const bool by_time =
         every_seconds_ > 0 &&
         std::chrono::duration<double>(Clock::now() - last_).count() >= every_seconds_;
@@ -33,6 +36,7 @@ class CheckpointTimer : public RunObserver {
   std::function<void()> write_;
   std::int64_t every_events_;
   double every_seconds_;
+  std::int64_t last_events_ = -1;
   Clock::time_point last_ = Clock::now();
 };
 
