@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "app/observers/accuracy_check.hpp"
 #include "app/observers/catalog.hpp"
 #include "app/observers/checkpoint_timer.hpp"
 #include "app/observers/histogram.hpp"
@@ -120,6 +121,7 @@ class ContinuousRun {
                 const ChainForces& forces, Stepper& stepper, const Checkpoint* resumed)
       : req_(req),
         settings_(settings),
+        stepper_(stepper),
         out_(out),
         files_(out.dir()),
         dt_(settings.integrator.dt),
@@ -173,6 +175,7 @@ class ContinuousRun {
     observers_.end(run_end(0));
     // summary.json marks the run finished; its checkpoints have served.
     files_.remove();
+    accuracy_->verdict();
     return 0;
   }
 
@@ -188,6 +191,7 @@ class ContinuousRun {
     observers_.attach<PadFrictionStats>();
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
+    accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);
     observers_.attach<ContinuousSummary>(req_.scene, settings_, out_, hist.histogram(), observers_);
     if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
       observers_.attach<CheckpointTimer>([this] { save(); }, r.checkpoint_events,
@@ -246,12 +250,14 @@ class ContinuousRun {
 
   const RunRequest& req_;
   const Settings& settings_;
+  const Stepper& stepper_;
   const OutputFolder& out_;
   const CheckpointFiles files_;
   const double dt_, duration_, every_;
   const std::int64_t steps_;
 
   std::unique_ptr<ContinuousDriver> driver_;
+  AccuracyCheck* accuracy_ = nullptr;     // one of the observers
   std::int64_t done_ = 0, episodes_ = 0;  // steps and finished episodes, all sessions
   double next_out_ = 0;                   // time of the next sample
   RunProgress prog_;  // wall time and resumes; catalog_bytes and the moment sums are the observers'

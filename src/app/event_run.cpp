@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/observers/accuracy_check.hpp"
 #include "app/observers/catalog.hpp"
 #include "app/observers/checkpoint_timer.hpp"
 #include "app/observers/histogram.hpp"
@@ -39,6 +40,7 @@ class EventRun {
       : req_(req),
         settings_(settings),
         forces_(forces),
+        stepper_(stepper),
         out_(out),
         files_(out.dir()),
         scene_ini_(req.scene.to_ini()),
@@ -99,6 +101,7 @@ class EventRun {
     observers_.attach<CatalogWriter>(out_.path("catalog.csv"), resumed);
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
+    accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);
     observers_.attach<EventSummary>(req_.scene, settings_, out_, hist.histogram(), observers_);
     if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
       observers_.attach<CheckpointTimer>([this] { save(engine_->snapshot()); }, r.checkpoint_events,
@@ -121,8 +124,11 @@ class EventRun {
   // saves the state before the event as the checkpoint, then propagates, saying where.
   EventRecord next_event() {
     const std::int64_t done = engine_->counters().events;
+    const std::int64_t steps0 = engine_->counters().steps;
     try {
-      return engine_->next_event();
+      EventRecord e = engine_->next_event();
+      accuracy_->note_event_steps(engine_->counters().steps - steps0);
+      return e;
     } catch (const Error& e) {
       throw Error(e.what() + save_before_failure(done));
     }
@@ -201,19 +207,22 @@ class EventRun {
     observers_.end(run_end(0));
     // summary.json marks the run finished; its checkpoints have served.
     files_.remove();
+    accuracy_->verdict();
     return 0;
   }
 
   const RunRequest& req_;
   const Settings& settings_;
   const ChainForces& forces_;
+  const Stepper& stepper_;
   const OutputFolder& out_;
   const CheckpointFiles files_;
   const std::string scene_ini_;
   const std::int64_t transient_, events_;
 
   std::unique_ptr<EventEngine> engine_;
-  EngineSnapshot last_saved_;  // the engine at the last checkpoint, or at the start
+  AccuracyCheck* accuracy_ = nullptr;  // one of the observers
+  EngineSnapshot last_saved_;          // the engine at the last checkpoint, or at the start
   // The run's own part of the checkpoint; catalog_bytes, moment_sum and nonpositive are the
   // observers' (filled in by them at each checkpoint, read back by them on resume).
   RunProgress prog_;

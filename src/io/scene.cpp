@@ -153,6 +153,10 @@ std::vector<ParamSpec> make_table() {
       real("run.checkpoint_seconds", "600", '[', 0, kInf, ')', "wall s",
            "write a checkpoint at least this often in wall-clock seconds, the first after 30 s "
            "(0 = off)"),
+      choice("run.accuracy", "warn", {"warn", "error"},
+             "what a run does when an accuracy indicator (energy residual, omega_max*dt, event "
+             "steps) is above its threshold: warn on stderr, or fail with exit 2 keeping the "
+             "outputs (unattended runs)"),
 
       // --- integrator: the stepper of the dynamic phase ---
       choice("integrator.scheme", "rk4", {"rk2", "rk4", "verlet", "theta", "adaptive"},
