@@ -24,6 +24,7 @@ Usage:
   bkquake spectrum RUN_DIR [--signal S] [--segment K | --from T0 --to T1] [--out FILE]
   bkquake special-speed [SCENE] [--set section.key=value]...
   bkquake special-law BK_RUN_DIR... > law.csv
+  bkquake friction-study [--out DIR] [--seeds N] [--jobs J] [--segment T]
   bkquake --help | --version
 
 Commands:
@@ -36,6 +37,7 @@ Commands:
             frequencies (thesis §4.3)
   special-speed  t_death and v_special = F0/(k_p t_death) of thesis eq. 4.8
   special-law    the friction a held pad feels in BK runs, as a table (thesis Fig. 4.8)
+  friction-study the four configurations of thesis Fig. 4.6 over the speed grid
 
 Examples:
   bkquake run                                    the Carlson-Langer reference, event-driven
@@ -72,6 +74,7 @@ int main(int argc, char** argv) {
     if (command == "spectrum") return bkq::cmd_spectrum(args);
     if (command == "special-speed") return bkq::cmd_special_speed(args);
     if (command == "special-law") return bkq::cmd_special_law(args);
+    if (command == "friction-study") return bkq::cmd_friction_study(args);
     if (command == "readme-tables") return bkq::cmd_readme_tables(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {
