@@ -28,7 +28,8 @@ void attach_observers(Observers& obs, const RunRequest& req, const Settings& set
   obs.attach<TimeSeriesWriter>(out.path("timeseries.csv"));
   obs.attach<CatalogWriter>(out.path("catalog.csv"), false);
   if (settings.output.blocks)
-    obs.attach<BlockTrajectories>(out.path("blocks.csv"), settings.model.n);
+    obs.attach<BlockTrajectories>(out.path("blocks.csv"), settings.output.block_first,
+                                  settings.output.block_count);
   obs.attach<PadFrictionStats>();
   attach_segment_stats(obs, settings, out);
   obs.attach<ContinuousSummary>(req.scene, settings, out, obs);

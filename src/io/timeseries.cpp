@@ -44,6 +44,25 @@ std::string blocks_header(int n) {
   return header;
 }
 
+std::string blocks_header(int first, int count) {
+  std::string header = "t";
+  for (const char* what : {",u", ",v"})
+    for (int j = first; j < first + count; ++j) {
+      header += what;
+      header += std::to_string(j);
+    }
+  return header;
+}
+
+std::string blocks_row(double t, const std::vector<double>& u, const std::vector<double>& v) {
+  std::string row = blocks_row(t, u);
+  for (double x : v) {
+    row += ',';
+    row += format_real(x);
+  }
+  return row;
+}
+
 std::string blocks_row(double t, const std::vector<double>& u) {
   std::string row = format_real(t);
   for (double x : u) {

@@ -22,16 +22,25 @@ void TimeSeriesWriter::on_end(const RunEnd&) {
   csv_->close();
 }
 
-BlockTrajectories::BlockTrajectories(std::string path, int blocks)
-    : path_(std::move(path)), u_(static_cast<std::size_t>(blocks)) {}
+BlockTrajectories::BlockTrajectories(std::string path, int first, int count)
+    : path_(std::move(path)),
+      first_(first),
+      u_(static_cast<std::size_t>(count)),
+      v_(static_cast<std::size_t>(count)) {}
 
 void BlockTrajectories::on_start() {
-  csv_ = std::make_unique<CsvStream>(path_, blocks_header(static_cast<int>(u_.size())));
+  csv_ = std::make_unique<CsvStream>(path_, blocks_header(first_, static_cast<int>(u_.size())));
 }
 
 void BlockTrajectories::on_sample(const Sample& s) {
-  for (std::size_t j = 0; j < u_.size(); ++j) u_[j] = s.driver.displacement(static_cast<int>(j));
-  csv_->row(blocks_row(s.values.t, u_));
+  // Lab frame: u_j = w_j - s, u_j' = w_j' - v.
+  const ChainState& st = s.driver.state();
+  for (std::size_t j = 0; j < u_.size(); ++j) {
+    const int b = first_ + static_cast<int>(j);
+    u_[j] = s.driver.displacement(b);
+    v_[j] = st.wd[static_cast<std::size_t>(b)] - s.values.speed;
+  }
+  csv_->row(blocks_row(s.values.t, u_, v_));
 }
 
 void BlockTrajectories::on_end(const RunEnd&) {

@@ -25,17 +25,18 @@ class TimeSeriesWriter : public RunObserver {
   std::unique_ptr<CsvStream> csv_;
 };
 
-// Lab-frame displacement of every block at each sample.
+// Lab-frame displacement and velocity of the blocks first .. first+count-1 at each sample.
 class BlockTrajectories : public RunObserver {
  public:
-  BlockTrajectories(std::string path, int blocks);
+  BlockTrajectories(std::string path, int first, int count);
   void on_start() override;
   void on_sample(const Sample& s) override;
   void on_end(const RunEnd&) override;
 
  private:
   std::string path_;
-  std::vector<double> u_;
+  int first_;
+  std::vector<double> u_, v_;
   std::unique_ptr<CsvStream> csv_;
 };
 
