@@ -94,15 +94,21 @@ def cmd_timeseries(a):
     fig, ax = plt.subplots(figsize=(11, 4))
     ax.plot(t[m], y[m], lw=0.4, color="tab:blue")
     seg_path = os.path.join(a.dir, "segments.csv")
-    if os.path.exists(seg_path):
-        seg = read_table(seg_path)
-        for t0, t1, v in zip(seg["t_start"], seg["t_end"], seg["speed"]):
-            if t1 < t[m].min() or t0 > t[m].max():
-                continue
+    seg = read_table(seg_path) if os.path.exists(seg_path) else None
+    shown = None
+    if seg is not None:
+        shown = (seg["t_end"] >= t[m].min()) & (seg["t_start"] <= t[m].max())
+    if seg is not None and shown.sum() <= 60:
+        for t0, t1, v in zip(seg["t_start"][shown], seg["t_end"][shown], seg["speed"][shown]):
             ax.axvline(t0, color="k", lw=0.6, ls=":")
             ax.axvspan(0.5 * (t0 + t1), t1, color="0.9", zorder=0)
             ax.text(max(t0, t[m].min()), 1.0, f" v={v:.3g}", transform=ax.get_xaxis_transform(),
                     va="bottom", fontsize=7)
+    else:
+        # A ramp, or a staircase of many short segments: the speed on a second axis.
+        ax2 = ax.twinx()
+        ax2.plot(t[m], ts["speed"][m], color="tab:red", lw=1)
+        ax2.set_ylabel("speed", color="tab:red")
     ax.set_xlabel("t")
     ax.set_ylabel(a.signal)
     ax.set_title(f"{a.dir}: {a.signal} (shaded: each segment's last half, the input of segments.csv)",
@@ -184,12 +190,13 @@ def draw_study(ax, st, lo, hi, seeds_band=True):
             continue
         first = seed[sel].min()
         s0 = sel & (seed == first)
+        labelled = False
         for run in np.unique(st["run"][s0]):
             r = s0 & (st["run"] == run)
             r &= (st["speed"] >= lo) & (st["speed"] <= hi)
             if not r.any():
                 continue
-            lab = (run == st["run"][s0].min())
+            lab, labelled = not labelled, True
             v = st["speed"][r]
             ax.errorbar(v, st["friction_amp"][r], yerr=st["friction_amp_err"][r], color=COLOURS[c],
                         lw=1, capsize=1.5, label=f"{c} amplitude" if lab else None)
@@ -202,13 +209,17 @@ def draw_study(ax, st, lo, hi, seeds_band=True):
         # Seed spread: min..max of the amplitude over seeds at each speed.
         seeds = np.unique(seed[sel])
         if seeds_band and len(seeds) > 1:
+            labelled = False
             for run in np.unique(st["run"][sel]):
                 r = sel & (st["run"] == run) & (st["speed"] >= lo) & (st["speed"] <= hi)
                 v = np.unique(st["speed"][r])
+                if len(v) == 0:
+                    continue
                 amps = np.array([[st["friction_amp"][r & (seed == s) & (st["speed"] == x)][0]
                                   for x in v] for s in seeds])
                 ax.fill_between(v, amps.min(0), amps.max(0), color=COLOURS[c], alpha=0.15, lw=0,
-                                label=f"{c} amplitude, {len(seeds)} seeds" if run == 0 else None)
+                                label=None if labelled else f"{c} amplitude, {len(seeds)} seeds")
+                labelled = True
     b = (cfg == "bkp") & (seed == seed[cfg == "bkp"].min()) if (cfg == "bkp").any() else cfg == cfg[0]
     order = np.argsort(st["speed"][b])
     v = st["speed"][b][order]

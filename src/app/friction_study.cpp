@@ -153,7 +153,9 @@ std::string run_friction_study(const StudyRequest& req) {
     for (const Job& j : first)
       if (j.config == "bk" && j.seed == bk_seed0) seed0_dirs.push_back(j.dir);
     const std::string law = (fs::path(req.out) / "special_law.csv").string();
-    write_file_atomic(law, special_law_csv(special_law(seed0_dirs)));
+    std::vector<std::string> comments = {"special-law of the friction study, from:"};
+    for (const auto& d : seed0_dirs) comments.push_back("  " + d);
+    write_file_atomic(law, special_law_csv(special_law(seed0_dirs), comments));
     const std::string file = scene_file("special-1dof");
     const Scene base = Scene::from_file(file);
     const auto seed = static_cast<std::uint64_t>(base.integer("run.seed"));

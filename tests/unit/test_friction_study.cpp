@@ -8,10 +8,30 @@
 
 #include "../cli_helpers.hpp"
 #include "app/friction_study.hpp"
+#include "io/scene.hpp"
 #include "io/segments_csv.hpp"
+#include "io/settings.hpp"
 
 namespace bkq {
 namespace {
+
+TEST(FrictionStudy, ShippedBrakeScenesLoadAndValidate) {
+  const std::string dir = BKQUAKE_SOURCE_DIR "/data/scenes/brake/";
+  for (const char* name :
+       {"bkp", "bk", "1dof", "bkp-descent", "bkp-ascent", "bkp-descent-linear"}) {
+    const Scene s = Scene::from_file(dir + name + ".ini");
+    EXPECT_NO_THROW(s.validate()) << name;
+    EXPECT_EQ(s.choice("drive.mode"), "continuous") << name;
+  }
+  // The 1DOF reading: one body of the pad's and the blocks' mass on the caliper spring,
+  // with the caliper damper and the friction of all N blocks.
+  const ModelParams one = model_from_scene(Scene::from_file(dir + "1dof.ini"));
+  const ModelParams bkp = model_from_scene(Scene::from_file(dir + "bkp.ini"));
+  EXPECT_DOUBLE_EQ(one.m_u, bkp.m_x + bkp.n * bkp.m_u);
+  EXPECT_DOUBLE_EQ(one.k_p, bkp.k_p0);
+  EXPECT_NEAR(one.c_u, bkp.c_p, 1e-9);
+  EXPECT_DOUBLE_EQ(one.threshold(), bkp.n * bkp.threshold());
+}
 
 TEST(FrictionStudy, GridHoldsTheThesisSpeeds) {
   std::vector<double> speeds;
