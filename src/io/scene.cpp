@@ -180,6 +180,10 @@ std::vector<ParamSpec> make_table() {
       real("output.every", "1", '(', 0, kLongTime, ']', "time",
            "time between timeseries rows (continuous mode)"),
       boolean("output.blocks", "false", "also write block trajectories (continuous mode)"),
+      integer("output.block_first", "0", 0, 1e7, "",
+              "first block written to blocks.csv (output.blocks; 0-based)"),
+      integer("output.block_count", "0", 0, 1e7, "",
+              "how many adjacent blocks blocks.csv holds from output.block_first (0: to the end)"),
       integer("output.segment_blocks", "4", 1, 1e6, "",
               "blocks M of the segment statistics' errors in segments.csv (thesis eq. 4.3)"),
 
