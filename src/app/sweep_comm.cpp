@@ -15,6 +15,7 @@
 #if BKQUAKE_HAVE_MPI
 #include <boost/mpi.hpp>
 #include <deque>
+#include <exception>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -144,8 +145,19 @@ class MpiComm final : public SweepComm {
     std::vector<Clock::time_point> stopped_at;
     std::string msg;
     mpi::request pending = world_.irecv(mpi::any_source, kTagRequest, msg);
+    // An error in on_result (a failed write) stops the hand-out; it is thrown again once
+    // every rank has stopped, so the local thread is never left running.
+    std::exception_ptr failure;
     auto handle = [&](const TaskResult& r) {
-      if (!on_result(r)) {
+      bool go_on = false;
+      if (!failure) {
+        try {
+          go_on = on_result(r);
+        } catch (...) {
+          failure = std::current_exception();
+        }
+      }
+      if (!go_on) {
         std::lock_guard<std::mutex> lock(m);
         stopping = true;
       }
@@ -195,6 +207,7 @@ class MpiComm final : public SweepComm {
       if (!busy) std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     local.join();
+    if (failure) std::rethrow_exception(failure);
     const auto end = Clock::now();
     for (const auto& t : stopped_at) stats.idle_at_end_seconds += seconds_between(t, end);
     stats.idle_at_end_seconds += seconds_between(local_done_at, end);
