@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "../cli_helpers.hpp"
+#include "io/folder_lock.hpp"
 
 namespace bkq {
 namespace {
@@ -148,7 +149,7 @@ TEST_F(SweepMpi, TwoRanksWriteTheBytesOfOne) {
   // Every point and replica ran and was merged; no lock is left behind.
   EXPECT_TRUE(fs::exists(dir.path() / "two/points/p0003/r01/catalog.csv"));
   EXPECT_TRUE(fs::exists(dir.path() / "two/points/p0003/histogram.csv"));
-  EXPECT_FALSE(fs::exists(dir.path() / "two/sweep.lock"));
+  EXPECT_FALSE(fs::exists(dir.path() / "two/bkquake.lock"));
 }
 
 // Done-when of the sweep issue: the Carlson-Langer table from the shipped sweep file, the
@@ -224,7 +225,7 @@ run.checkpoint_events = 5000
   }
   ASSERT_GE(finished.size(), 1u);
   ASSERT_LT(finished.size(), 4u) << "the sweep finished before the kill landed";
-  EXPECT_TRUE(fs::exists(out / "sweep.lock"));  // left by the killed process
+  EXPECT_TRUE(fs::exists(out / "bkquake.lock"));  // left by the killed process
 
   // A new sweep into the folder is refused; --resume takes over the dead process's lock.
   const auto again = run_bkquake({"sweep", sweep, "--out", out.string()});
@@ -243,13 +244,11 @@ TEST(Sweep, TwoSweepsOnOneFolderAreRefused) {
   TempDir dir;
   const std::string sweep = dir.write("s.ini", "[vary]\nfriction.alpha = 1, 2\n");
   fs::create_directories(dir.path() / "out");
-  char host[256] = {};
-  ::gethostname(host, sizeof host - 1);
-  // A live process (this test) holds the lock.
-  dir.write("out/sweep.lock", std::string(host) + " " + std::to_string(::getpid()) + "\n");
+  // A live process (this test) holds the folder's lock, as a running sweep does.
+  const FolderLock held(dir.file("out"), "sweep", StaleLock::Refuse);
   const auto r = run_bkquake({"sweep", sweep, "--out", dir.file("out"), "--set", "run.events=100"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("in use by another sweep"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is in use by bkquake sweep"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("pid " + std::to_string(::getpid())), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "out/sweep.csv"));
   EXPECT_FALSE(fs::exists(dir.path() / "out/points"));
