@@ -241,7 +241,11 @@ class Sweep {
   // Rank 0, at the end: sweep.csv, the failures, the exit status.
   int finish(const DispatchStats& stats, const std::string& ranks, int size) {
     write_csv();
-    progress(true);
+    if (interrupted_)
+      std::fprintf(stderr,
+                   "bkquake: sweep: stopped; the same command with --resume continues it\n");
+    else
+      progress(true);
     int failed = 0;
     for (std::size_t p = 0; p < points_.size(); ++p)
       if (results_[p].state == PointResult::State::Failed) {

@@ -1,7 +1,7 @@
-// `bkquake sweep` as users run it: the outputs of a sweep on two MPI ranks and on one rank
-// without mpirun are the same bytes (provenance and wall-clock timings aside); a bad point
-// fails alone and the exit status says so; a sweep killed mid-way and resumed runs only
-// what was missing and ends with the outputs of a sweep that never stopped; a second
+// `bkquake sweep` as users run it: the outputs of a sweep on two and four MPI ranks and
+// on one rank without mpirun are the same bytes (provenance and wall-clock timings aside);
+// a bad point fails alone and the exit status says so; a sweep killed mid-way and resumed
+// runs only what was missing and ends with the outputs of a sweep that never stopped; a second
 // sweep on a folder in use is refused.
 //
 // The MPI tests run through ctest's `SweepMpi` test (CMakeLists.txt), which sets
@@ -136,7 +136,7 @@ class SweepMpi : public ::testing::Test {
   std::string mpirun_;
 };
 
-TEST_F(SweepMpi, TwoRanksWriteTheBytesOfOne) {
+TEST_F(SweepMpi, TwoAndFourRanksWriteTheBytesOfOne) {
   TempDir dir;
   const std::string sweep = dir.write("small.ini", kSmall);
   const auto one = run_bkquake({"sweep", sweep, "--out", dir.file("one")});
@@ -146,6 +146,10 @@ TEST_F(SweepMpi, TwoRanksWriteTheBytesOfOne) {
   ASSERT_EQ(two.status, 0) << two.out << two.err;
   EXPECT_NE(two.out.find("MPI, 2 ranks"), std::string::npos) << two.out;
   expect_same_outputs(dir.path() / "one", dir.path() / "two");
+  // More ranks than this machine has cores, and more than half the tasks in flight at once.
+  const auto four = mpi_sweep(4, {sweep, "--out", dir.file("four")});
+  ASSERT_EQ(four.status, 0) << four.out << four.err;
+  expect_same_outputs(dir.path() / "one", dir.path() / "four");
   // Every point and replica ran and was merged; no lock is left behind.
   EXPECT_TRUE(fs::exists(dir.path() / "two/points/p0003/r01/catalog.csv"));
   EXPECT_TRUE(fs::exists(dir.path() / "two/points/p0003/histogram.csv"));
