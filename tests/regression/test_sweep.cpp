@@ -203,6 +203,27 @@ run.transient_events = 50
   EXPECT_EQ(lines[3].rfind("2,0.02,ok,1,500,", 0), 0u) << lines[3];
 }
 
+TEST(Sweep, AWindowWithoutEventsIsNoFailureButAContradictoryPointIs) {
+  TempDir dir;
+  // Point 0 contradicts the base scene (mu_min above mu_max): refused alone. Point 1's fit
+  // window holds no event: its b is empty, the reason in its summary.json, and it is ok.
+  const std::string sweep = dir.write("w.ini", R"([vary]
+stats.mu_max = -2, 4.4
+[set]
+run.events = 300
+run.transient_events = 10
+stats.mu_min = 4
+)");
+  const auto r = run_bkquake({"sweep", sweep, "--out", dir.file("out")});
+  EXPECT_EQ(r.status, 3) << r.err;
+  const std::string csv = read_file(dir.file("out/sweep.csv"));
+  EXPECT_NE(csv.find("\n0,-2,failed,1,0,,,,,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("must be below stats.mu_max"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n1,4.4,ok,1,300,,,,,"), std::string::npos) << csv;
+  EXPECT_NE(read_file(dir.file("out/points/p0001/summary.json")).find("\"fit_error\""),
+            std::string::npos);
+}
+
 TEST(Sweep, KilledAndResumedRunsOnlyWhatWasMissing) {
   TempDir dir;
   const std::string sweep = dir.write("s.ini", R"([vary]
