@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace bkq {
 
@@ -59,7 +60,8 @@ Scene scene_from_command_line(const std::string& command, const po::variables_ma
 }
 
 void drop_inapplicable_keys(Scene& scene) {
-  for (const auto& w : scene.drop_inapplicable()) std::cerr << "bkquake: warning: " << w << "\n";
+  for (const auto& w : scene.drop_inapplicable())
+    std::cerr << "bkquake: warning: " << escape_unprintable(w) << "\n";
 }
 
 }  // namespace bkq
