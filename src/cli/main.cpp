@@ -9,6 +9,7 @@
 #include "bkquake_version.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace {
 
@@ -81,10 +82,11 @@ int main(int argc, char** argv) {
     if (command == "readme-tables") return bkq::cmd_readme_tables(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {
-    std::cerr << "bkquake: error: " << e.what() << "\n";
+    // One line of printable text, whatever file content or value the message quotes.
+    std::cerr << "bkquake: error: " << bkq::escape_unprintable(e.what()) << "\n";
     return bkq::kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "bkquake: internal error: " << e.what() << "\n";
+    std::cerr << "bkquake: internal error: " << bkq::escape_unprintable(e.what()) << "\n";
     return 1;
   }
 }
