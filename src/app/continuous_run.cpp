@@ -18,6 +18,7 @@
 #include "app/observers/checkpoint_timer.hpp"
 #include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
+#include "app/observers/segments.hpp"
 #include "app/observers/summary.hpp"
 #include "app/observers/timeseries.hpp"
 #include "app/stop_signals.hpp"
@@ -29,6 +30,7 @@
 #include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output.hpp"
+#include "io/segments_csv.hpp"
 #include "io/timeseries.hpp"
 
 namespace bkq {
@@ -168,6 +170,7 @@ class ContinuousRun {
         msg += ": the integration is unstable (reduce integrator.dt)";
         throw Error(msg);
       }
+      if (observers_.wants_steps()) observers_.step({done_, *driver_});
       observers_.advance({driver_->state().t, episodes_});
     }
     observers_.phase_end({driver_->state().t, episodes_});
@@ -191,6 +194,7 @@ class ContinuousRun {
     observers_.attach<PadFrictionStats>();
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
+    attach_segment_stats(observers_, settings_, out_);
     accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);
     observers_.attach<ContinuousSummary>(req_.scene, settings_, out_, hist.histogram(), observers_);
     if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
@@ -298,6 +302,9 @@ int resume_continuous(const RunRequest& req, const Settings& settings, const Out
   if (settings.output.blocks)
     files.push_back({out.path("blocks.csv"), blocks_header(settings.model.n),
                      find_csv_extent(saved, "blocks.csv")});
+  if (saved.find("segments.csv"))
+    files.push_back(
+        {out.path("segments.csv"), segments_header(), find_csv_extent(saved, "segments.csv")});
   for (const File& f : files) check_csv_prefix(f.path, f.header, f.extent.rows, f.extent.bytes);
   for (const File& f : files) cut_back(f.path, f.extent.bytes);
   cut_back(out.path("catalog.csv"), saved.progress.catalog_bytes);

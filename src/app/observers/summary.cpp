@@ -3,6 +3,8 @@
 
 #include <cstdio>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
@@ -33,8 +35,37 @@ Json provenance_json(const Scene& scene, const Settings& settings, const std::st
 
 SummaryOfEvents::SummaryOfEvents(const Scene& scene, const Settings& settings,
                                  const OutputFolder& out, const MagnitudeHistogram& hist,
-                                 const Observers& all)
-    : scene_(scene), settings_(settings), out_(out), hist_(hist), all_(all) {}
+                                 const Observers& all, std::function<bool()> stop_requested)
+    : scene_(scene),
+      settings_(settings),
+      out_(out),
+      hist_(hist),
+      all_(all),
+      stop_requested_(std::move(stop_requested)) {}
+
+void SummaryOfEvents::on_phase(const Phase& p) {
+  if (std::string_view(p.what) == "events") events_total_ = p.total;
+}
+
+void SummaryOfEvents::on_phase_end(const Advance& a) {
+  if (events_total_ < 0 || a.done < events_total_) return;
+  fit();
+}
+
+void SummaryOfEvents::fit() {
+  if (fitted_ || hist_.events() < 2) return;
+  GrFitOptions opt;
+  opt.cancelled = stop_requested_;
+  try {
+    fit_ = fit_histogram(hist_, settings_.stats.mu_min, settings_.stats.mu_max, opt);
+    fitted_ = true;
+  } catch (const FitCancelled&) {
+    // The run stops after this phase (a checkpoint, no summary); a resume fits again.
+  } catch (const Error& err) {
+    fit_error_ = err.what();
+    fitted_ = true;
+  }
+}
 
 void SummaryOfEvents::on_resume(const Checkpoint& c) {
   moment_sum_ = c.progress.moment_sum;
@@ -52,30 +83,30 @@ void SummaryOfEvents::add_moments(Json& summary) const {
   summary.set("bin_width", hist_.bin_width());
 }
 
-std::string SummaryOfEvents::add_fit(Json& summary) const {
+std::string SummaryOfEvents::add_fit(Json& summary) {
   if (hist_.events() < 2) return "b: not fitted (fewer than 2 events)";
-  try {
-    const GrFit fit = fit_histogram(hist_, settings_.stats.mu_min, settings_.stats.mu_max);
-    summary.set("b_mle", fit.b_mle);
-    summary.set("b_mle_err", fit.b_mle_err);
-    summary.set("b_lsq", fit.b_lsq);
-    summary.set("b_lsq_err", fit.b_lsq_err);
-    Json window = Json::object();
-    window.set("mu_min", fit.mu_min);
-    window.set("mu_max", fit.mu_max);
-    window.set("automatic", fit.window_auto);
-    window.set("events", fit.n_in_window);
-    window.set("ks_distance", fit.ks_distance);
-    summary.set("fit_window", std::move(window));
-    char line[200];
-    std::snprintf(line, sizeof line,
-                  "b = %.3f ± %.3f (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.b_mle,
-                  fit.b_mle_err, fit.mu_min, fit.mu_max, static_cast<long long>(fit.n_in_window));
-    return line;
-  } catch (const Error& err) {
-    summary.set("fit_error", err.what());
-    return std::string("b: not fitted (") + err.what() + ")";
+  fit();
+  if (!fit_) {
+    summary.set("fit_error", fit_error_);
+    return "b: not fitted (" + fit_error_ + ")";
   }
+  const GrFit& fit = *fit_;
+  summary.set("b_mle", fit.b_mle);
+  summary.set("b_mle_err", fit.b_mle_err);
+  summary.set("b_lsq", fit.b_lsq);
+  summary.set("b_lsq_err", fit.b_lsq_err);
+  Json window = Json::object();
+  window.set("mu_min", fit.mu_min);
+  window.set("mu_max", fit.mu_max);
+  window.set("automatic", fit.window_auto);
+  window.set("events", fit.n_in_window);
+  window.set("ks_distance", fit.ks_distance);
+  summary.set("fit_window", std::move(window));
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "b = %.3f ± %.3f (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.b_mle,
+                fit.b_mle_err, fit.mu_min, fit.mu_max, static_cast<long long>(fit.n_in_window));
+  return line;
 }
 
 void EventSummary::on_end(const RunEnd& end) {

@@ -4,10 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 
 #include "app/observers/observer.hpp"
 #include "io/settings.hpp"
+#include "stats/gutenberg_richter.hpp"
 
 namespace bkq {
 
@@ -18,11 +21,17 @@ class Scene;
 // What both summaries report about the events (recorded events, or the slip episodes of
 // a continuous run): their moment sum, the count with moment <= 0, and the
 // Gutenberg-Richter fit of the histogram (attached before the summary, so it is complete
-// at on_end). The sums travel in the checkpoint.
+// at on_end). The sums travel in the checkpoint. The fit of an event run is made when its
+// events phase ends complete, before on_end, so that a run asked to stop during it
+// (stop_requested turns true) can still checkpoint: the fit then stops and the run stops as
+// after any event; a resumed run fits again. Other runs fit at on_end.
 class SummaryOfEvents : public RunObserver {
  public:
   SummaryOfEvents(const Scene& scene, const Settings& settings, const OutputFolder& out,
-                  const MagnitudeHistogram& hist, const Observers& all);
+                  const MagnitudeHistogram& hist, const Observers& all,
+                  std::function<bool()> stop_requested = {});
+  void on_phase(const Phase& p) override;
+  void on_phase_end(const Advance& a) override;
   void on_resume(const Checkpoint& c) override;
   void on_event(const EventRecord& e) override {
     moment_sum_ += e.moment;
@@ -34,7 +43,8 @@ class SummaryOfEvents : public RunObserver {
   // Sets moment_sum, nonpositive_moments and bin_width.
   void add_moments(Json& summary) const;
   // Sets the fit's fields (or fit_error); returns the line printed about it.
-  std::string add_fit(Json& summary) const;
+  std::string add_fit(Json& summary);
+  void fit();
 
   const Scene& scene_;
   const Settings& settings_;
@@ -43,6 +53,11 @@ class SummaryOfEvents : public RunObserver {
   const Observers& all_;
   double moment_sum_ = 0;
   std::int64_t nonpositive_ = 0;
+  std::function<bool()> stop_requested_;
+  double events_total_ = -1;  // the events phase's length, once it has begun
+  bool fitted_ = false;
+  std::optional<GrFit> fit_;
+  std::string fit_error_;
 };
 
 // Event runs: counts, load, moment sum, work, wall time and the fit.

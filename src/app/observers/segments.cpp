@@ -1,0 +1,147 @@
+// Segment statistics of continuous runs; see segments.hpp.
+#include "app/observers/segments.hpp"
+
+#include <cmath>
+
+#include "app/observers/timeseries.hpp"
+#include "core/error.hpp"
+#include "engine/continuous.hpp"
+#include "io/checkpoint.hpp"
+#include "io/json.hpp"
+
+namespace bkq {
+
+std::vector<SegmentSpan> segment_spans(const DriveSettings& drive, double duration) {
+  std::vector<SegmentSpan> spans;
+  switch (drive.schedule) {
+    case Schedule::Ramp:
+      break;
+    case Schedule::Constant:
+      spans.push_back({0.0, duration, drive.speed});
+      break;
+    case Schedule::Steps: {
+      const double interval = drive.step_interval;
+      const double tol = 1e-9 * interval;
+      for (std::int64_t k = 0; static_cast<double>(k) * interval < duration - tol; ++k) {
+        const double t0 = static_cast<double>(k) * interval;
+        const double t1 = std::min(t0 + interval, duration);
+        spans.push_back({t0, t1, drive.speed + static_cast<double>(k) * drive.step_increment});
+      }
+      break;
+    }
+  }
+  return spans;
+}
+
+SegmentStats::SegmentStats(std::string path, const Settings& settings)
+    : path_(std::move(path)),
+      dt_(settings.integrator.dt),
+      blocks_(settings.output.segment_blocks),
+      spans_(segment_spans(settings.drive, settings.run.duration)) {}
+
+void SegmentStats::on_start() {
+  if (spans_.empty()) return;
+  csv_ = std::make_unique<CsvStream>(path_, segments_header(), resumed_, 1);
+  if (!resumed_) open_segment(0);
+}
+
+namespace {
+constexpr const char* kSegmentsState = "segments";
+}  // namespace
+
+void SegmentStats::on_checkpoint(Checkpoint& c) {
+  if (!csv_) return;
+  put_csv_extent(c, "segments.csv", {static_cast<std::int64_t>(rows_.size()), csv_->sync()});
+  StateWriter w;
+  w.i64(static_cast<std::int64_t>(current_));
+  w.u64(rows_.size());
+  for (const SegmentRow& r : rows_) {
+    w.i64(r.segment);
+    for (double x : {r.t_start, r.t_end, r.speed}) w.f64(x);
+    for (const SegmentStat& st : r.stats)
+      for (double x : {st.mean, st.mean_err, st.amp, st.amp_err}) w.f64(x);
+  }
+  w.u64(moments_.size());
+  for (const BlockedMoments& m : moments_) w.f64s(m.state());
+  c.put(kSegmentsState, std::move(w.bytes()));
+}
+
+void SegmentStats::on_resume(const Checkpoint& c) {
+  if (spans_.empty()) return;
+  const std::string* bytes = c.find(kSegmentsState);
+  if (!bytes) throw Error("the checkpoint holds no segment statistics");
+  StateReader r(*bytes, kSegmentsState);
+  const std::int64_t current = r.i64();
+  if (current < 0 || current > static_cast<std::int64_t>(spans_.size()))
+    throw Error("the checkpoint's segment statistics do not fit this scene");
+  rows_.resize(r.count(8 * 16));
+  for (SegmentRow& row : rows_) {
+    row.segment = r.i64();
+    for (double* x : {&row.t_start, &row.t_end, &row.speed}) *x = r.f64();
+    for (SegmentStat& st : row.stats)
+      for (double* x : {&st.mean, &st.mean_err, &st.amp, &st.amp_err}) *x = r.f64();
+  }
+  open_segment(static_cast<std::size_t>(current));
+  const std::size_t n = r.count(8);
+  if (n != moments_.size())
+    throw Error("the checkpoint's segment statistics do not fit this scene");
+  for (BlockedMoments& m : moments_)
+    if (!m.restore(r.f64s()))
+      throw Error("the checkpoint's segment statistics do not fit this scene");
+  resumed_ = true;
+}
+
+void SegmentStats::open_segment(std::size_t k) {
+  current_ = k;
+  moments_.clear();
+  if (k >= spans_.size()) return;
+  range_ = input_steps(spans_[k].t_start, spans_[k].t_end, dt_);
+  for (std::size_t s = 0; s < kSegmentSignals.size(); ++s)
+    moments_.emplace_back(range_.count(), blocks_);
+}
+
+void SegmentStats::finish_segment() {
+  const SegmentSpan& span = spans_[current_];
+  if (!moments_.empty() && moments_[0].added() > 0) {
+    SegmentRow row;
+    row.segment = static_cast<std::int64_t>(current_);
+    row.t_start = span.t_start;
+    row.t_end = span.t_end;
+    row.speed = span.speed;
+    for (std::size_t s = 0; s < moments_.size(); ++s) row.stats[s] = moments_[s].result();
+    csv_->row(segments_row(row));
+    rows_.push_back(row);
+  }
+  open_segment(current_ + 1);
+}
+
+void SegmentStats::on_step(const Step& s) {
+  while (current_ < spans_.size() && s.index > range_.last) finish_segment();
+  if (current_ >= spans_.size() || s.index < range_.first) return;
+  const ContinuousDriver& d = s.driver;
+  moments_[0].add(d.pad_friction());
+  moments_[1].add(d.state().x);
+  moments_[2].add(d.state().xd);
+}
+
+void SegmentStats::on_end(const RunEnd& end) {
+  if (!csv_) return;
+  // A finished run has filled its last segment; a stopped one writes no partial segment.
+  if (end.signal == 0 && current_ < spans_.size()) finish_segment();
+  csv_->close();
+}
+
+void SegmentStats::add_to_summary(Json& summary) const {
+  if (spans_.empty()) {
+    summary.set("segments", "none: a ramp has no speed segments");
+    return;
+  }
+  summary.set("segments", static_cast<std::int64_t>(rows_.size()));
+  summary.set("segment_blocks", blocks_);
+}
+
+void attach_segment_stats(Observers& obs, const Settings& settings, const OutputFolder& out) {
+  obs.attach<SegmentStats>(out.path("segments.csv"), settings);
+}
+
+}  // namespace bkq
