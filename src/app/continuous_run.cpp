@@ -30,7 +30,6 @@
 #include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output.hpp"
-#include "io/segments_csv.hpp"
 #include "io/timeseries.hpp"
 
 namespace bkq {
@@ -194,7 +193,7 @@ class ContinuousRun {
     observers_.attach<PadFrictionStats>();
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
-    attach_segment_stats(observers_, settings_, out_);
+    attach_segment_stats(observers_, settings_, out_, resumed);
     accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);
     observers_.attach<ContinuousSummary>(req_.scene, settings_, out_, hist.histogram(), observers_);
     if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
@@ -302,7 +301,7 @@ int resume_continuous(const RunRequest& req, const Settings& settings, const Out
   if (settings.output.blocks)
     files.push_back({out.path("blocks.csv"), blocks_header(settings.model.n),
                      find_csv_extent(saved, "blocks.csv")});
-  if (saved.find("segments.csv"))
+  if (writes_segments(settings))
     files.push_back(
         {out.path("segments.csv"), segments_header(), find_csv_extent(saved, "segments.csv")});
   for (const File& f : files) check_csv_prefix(f.path, f.header, f.extent.rows, f.extent.bytes);

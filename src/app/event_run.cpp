@@ -104,7 +104,7 @@ class EventRun {
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
     accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);
     observers_.attach<EventSummary>(req_.scene, settings_, out_, hist.histogram(), observers_,
-                                    [] { return detail::g_stop_signal != 0; });
+                                    stop_requested);
     if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
       observers_.attach<CheckpointTimer>([this] { save(engine_->snapshot()); }, r.checkpoint_events,
                                          r.checkpoint_seconds);

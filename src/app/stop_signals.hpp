@@ -20,6 +20,11 @@ inline void on_stop_signal(int sig) {
 }
 }  // namespace detail
 
+// Has a stop been asked for? For work outside the run loop that checks in (the fit).
+inline bool stop_requested() {
+  return detail::g_stop_signal != 0;
+}
+
 // Installs the handlers for its lifetime and restores the previous ones after.
 class StopSignals {
  public:

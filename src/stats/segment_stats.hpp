@@ -30,11 +30,10 @@ class BlockedMoments {
   int blocks() const { return static_cast<int>(parts_.size()); }
   // The statistics of what was added (all zero when nothing was).
   SegmentStat result() const;
-  // What was added so far as numbers (the count, then n, mean, m2 of each block), and back
-  // into moments made with the same n and blocks, so a checkpoint can carry them exactly.
-  // restore returns false when `s` does not fit.
+  // Its state, for checkpoints: the count added, then n, mean, m2 of each block; restored
+  // by set_state on an object built with the same n and blocks (false if it does not fit).
   std::vector<double> state() const;
-  bool restore(const std::vector<double>& s);
+  bool set_state(const std::vector<double>& s);
 
  private:
   struct Part {
