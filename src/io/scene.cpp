@@ -339,7 +339,8 @@ const std::vector<KeyDependency>& dependencies() {
       // Block scalings of Table 3.1; in carlson-langer units they only scale the pad.
       {{"model.s_m", "model.s_p"},
        {{"model.parameterisation", {"thesis"}}, {"model.kind", {"bkp"}}}},
-      {{"drive.speed", "drive.schedule", "run.duration", "output.every", "output.blocks"},
+      {{"drive.speed", "drive.schedule", "run.duration", "output.every", "output.blocks",
+        "output.block_first", "output.block_count", "output.segment_blocks"},
        {{"drive.mode", {"continuous"}}}},
       {{"run.events", "run.transient_events", "run.max_steps_per_event"},
        {{"drive.mode", {"events"}}}},
