@@ -198,14 +198,13 @@ class Sweep {
       run.scene = scene;
       run.out_dir = replica_dir(p, r).string();
       run.quiet = true;
-      const bool events = scene.choice("drive.mode") == "events";
-      if (events && CheckpointFiles(run.out_dir).exist())
+      if (CheckpointFiles(run.out_dir).exist())
         run.resume = true;  // an interrupted replica continues from its checkpoint
       else
         run.force = true;  // nothing to continue: start the replica over
       const int rc = run_scene(run);
       if (rc != 0) {
-        res.status = 2;
+        res.status = rc;
         res.error = "stopped by a signal (exit " + std::to_string(rc) + ")";
       }
       if (!spec_.keep_catalog && rc == 0) fs::remove(replica_dir(p, r) / "catalog.csv");
@@ -222,8 +221,8 @@ class Sweep {
   bool on_result(const TaskResult& r) {
     const std::size_t p = static_cast<std::size_t>(r.task) / spec_.replicas;
     --left_;
-    if (r.status == 2) {
-      interrupted_ = true;
+    if (r.status >= 128) {
+      interrupted_ = r.status;
       std::fprintf(stderr, "bkquake: sweep: point %zu replica %d %s; the sweep stops\n", p,
                    r.task % spec_.replicas, r.error.c_str());
       return false;
@@ -264,7 +263,7 @@ class Sweep {
           "rank to start and stop), idle at the end %.3g rank-seconds\n",
           stats.messages, stats.remote_tasks, stats.idle_at_end_seconds);
     std::fflush(stdout);
-    if (interrupted_) return 130;
+    if (interrupted_) return interrupted_;
     return failed ? kExitSweepFailures : 0;
   }
 
@@ -481,7 +480,7 @@ class Sweep {
   std::vector<std::string> replica_error_;
   std::vector<double> replica_seconds_;
   std::size_t left_ = 0, skipped_ = 0;
-  bool interrupted_ = false;
+  int interrupted_ = 0;  // the exit status of a replica stopped by a signal
   int ranks_ = 1;
   Clock::time_point start_ = Clock::now(), last_progress_{}, last_csv_{};
 };

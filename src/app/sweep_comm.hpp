@@ -15,7 +15,7 @@ namespace bkq {
 
 struct TaskResult {
   int task = -1;
-  int status = 0;  // 0 ok, 1 failed, 2 interrupted by a signal (the sweep stops)
+  int status = 0;  // 0 ok, 1 failed, 128 + signal: stopped by it (the sweep stops)
   double seconds = 0;
   std::string error;
 };

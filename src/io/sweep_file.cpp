@@ -141,16 +141,12 @@ SweepSpec parse_sweep(const std::string& text, const std::string& origin,
         throw Error("vary." + name + ": '" + name + "' is not a scene key (see bkquake run " +
                     "--dump-defaults)" + where);
       SweptKey k{name, {}};
-      std::set<std::string> distinct;
       for (const auto& v : expand_sweep_values(name, value)) {
         std::string raw = v;
         if (p->type == ParamType::Integer && v.find_first_of(".eE") != std::string::npos)
           raw = std::to_string(std::llround(std::strtod(v.c_str(), nullptr)));
         Scene check;
         check.set(name, raw, "vary." + name + " in " + origin);
-        if (!distinct.insert(check.text(name)).second)
-          throw Error("vary." + name + " = " + value + ": the value " + check.text(name) +
-                      " comes twice" + where);
         k.values.push_back(check.text(name));
       }
       spec.keys.push_back(std::move(k));
@@ -162,6 +158,15 @@ SweepSpec parse_sweep(const std::string& text, const std::string& origin,
     }
   }
   if (spec.keys.empty()) throw Error("no [vary] keys: nothing to sweep" + where);
+  // A product with a value twice would run the same points twice; a zip may repeat a value
+  // of one key (each point is a column of the lists).
+  if (spec.combine == SweepCombine::Product)
+    for (const auto& k : spec.keys) {
+      std::set<std::string> distinct;
+      for (const auto& v : k.values)
+        if (!distinct.insert(v).second)
+          throw Error("vary." + k.key + ": the value " + v + " comes twice" + where);
+    }
   if (spec.combine == SweepCombine::Zip)
     for (const auto& k : spec.keys)
       if (k.values.size() != spec.keys.front().values.size())

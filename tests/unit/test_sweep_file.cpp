@@ -3,6 +3,7 @@
 // the stated order, and replica seeds depend on the point and replica only.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -104,6 +105,35 @@ TEST(SweepFile, CollectChoosesWhatReplicasKeep) {
   EXPECT_NE(
       error_of("[sweep]\ncollect = everything\n[vary]\nfriction.alpha = 1\n").find("everything"),
       std::string::npos);
+}
+
+// The shipped sweep files read, and hold the points their comments promise.
+TEST(SweepFile, ShippedSweepsRead) {
+  const std::string dir = std::string(BKQUAKE_SOURCE_DIR) + "/data/sweeps/";
+  const SweepSpec cl = read_sweep_file(dir + "carlson-langer-table.ini", {});
+  const auto cl_points = cl.points();
+  ASSERT_EQ(cl_points.size(), 8u);
+  EXPECT_EQ(cl_points[7].scene.real("friction.alpha"), 3.0);
+  EXPECT_EQ(cl_points[7].scene.integer("model.blocks"), 200);
+  EXPECT_EQ(cl_points[0].scene.integer("run.events"), 1000000);
+  EXPECT_EQ(cl_points[0].scene.real_or_auto("stats.mu_min"), -7.6);
+
+  const SweepSpec fs = read_sweep_file(dir + "friction-study.ini", {});
+  EXPECT_EQ(fs.replicas, 5);
+  const auto runs = fs.points();
+  ASSERT_EQ(runs.size(), 5u);
+  // The last segment of every run, and the speeds the study must contain.
+  std::vector<double> speeds;
+  for (const auto& p : runs) {
+    const double v0 = p.scene.real("drive.speed"), inc = p.scene.real("drive.step_increment");
+    const double n = p.scene.real("run.duration") / p.scene.real("drive.step_interval");
+    for (int k = 0; k < static_cast<int>(std::lround(n)); ++k) speeds.push_back(v0 + k * inc);
+  }
+  for (const double v : {0.005, 0.045, 0.065, 0.08, 0.12, 0.16, 0.19, 0.28, 0.5, 0.88, 0.91, 1.0})
+    EXPECT_TRUE(std::any_of(speeds.begin(), speeds.end(), [v](double s) {
+      return std::fabs(s - v) < 1e-9;
+    })) << v;
+  for (const auto& p : runs) EXPECT_NO_THROW(p.scene.validate());
 }
 
 TEST(SweepSeeds, DependOnPointAndReplicaOnlyAndAreDistinct) {
