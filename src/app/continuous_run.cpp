@@ -10,6 +10,7 @@
 #include "app/observers/progress.hpp"
 #include "app/observers/summary.hpp"
 #include "app/observers/timeseries.hpp"
+#include "app/stability.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/continuous.hpp"
@@ -49,7 +50,10 @@ int run_continuous(const RunRequest& req, const Settings& settings, const Output
   const double every = settings.output.every;
   ContinuousDriver driver(
       forces, stepper, substrate_of(settings.drive),
-      initial_state(forces, settings.run.seed, settings.run.initial_disorder, false), dt);
+      settings.run.start.equilibrium
+          ? equilibrium_start(forces, settings)
+          : initial_state(forces, settings.run.seed, settings.run.initial_disorder, false),
+      dt);
   Observers observers;
   attach_observers(observers, req, settings, out);
 

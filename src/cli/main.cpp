@@ -21,6 +21,7 @@ Usage:
   bkquake fit CATALOG.csv [--mu-min A] [--mu-max B] [--bin-width W] [--blocks N] [--json OUT]
   bkquake merge RUN_DIR... --out DIR
   bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]
+  bkquake stability [SCENE] [--set section.key=value]... [--sweep KEY=FROM:TO:COUNT] [--out DIR]
   bkquake --help | --version
 
 Commands:
@@ -29,6 +30,7 @@ Commands:
   fit     fit the Gutenberg-Richter law R = A exp(-b mu) to an event catalogue
   merge   merge the histograms of runs of the same scene and fit the result
   accuracy  work-precision study: error against time per event for every scheme and dt
+  stability  steady sliding and the complex eigenvalues of its linearisation (stability.csv)
 
 Examples:
   bkquake run                                    the Carlson-Langer reference, event-driven
@@ -62,6 +64,7 @@ int main(int argc, char** argv) {
     if (command == "fit") return bkq::cmd_fit(args);
     if (command == "merge") return bkq::cmd_merge(args);
     if (command == "accuracy") return bkq::cmd_accuracy(args);
+    if (command == "stability") return bkq::cmd_stability(args);
     if (command == "readme-tables") return bkq::cmd_readme_tables(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {

@@ -9,6 +9,7 @@
 #include "io/catalog.hpp"
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
+#include "io/stability_csv.hpp"
 #include "io/timeseries.hpp"
 
 namespace bkq {
@@ -61,6 +62,9 @@ std::vector<ReadmeTable> readme_tables() {
       {"histogram.csv", column_table(histogram_schema())},
       {"timeseries.csv", column_table(timeseries_schema())},
       {"accuracy.csv", column_table(accuracy_schema())},
+      {"stability.csv", column_table(stability_schema())},
+      {"stability_summary.csv", column_table(stability_summary_schema())},
+      {"modes.csv", column_table(modes_schema())},
   };
 }
 

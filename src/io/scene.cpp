@@ -102,6 +102,11 @@ std::vector<ParamSpec> make_table() {
            "pulling-spring scaling s_p: k_p = s_p k_p0 / N"),
       real("model.s_c", "0.01", '[', 0, kInf, ')', "",
            "coupling scaling s_c: k_c = s_c k_p0 N (thesis only)"),
+      real("model.rayleigh_alpha", "0", '[', 0, kInf, ')', "1/time",
+           "Rayleigh damping alpha_M M + beta_K K of blocks and pad (K with k_c, k_p and the pad "
+           "row): alpha_M"),
+      real("model.rayleigh_beta", "0", '[', 0, kInf, ')', "time",
+           "Rayleigh damping alpha_M M + beta_K K: beta_K"),
 
       // --- friction: the law phi(y) of SPEC §1 ---
       choice("friction.law", "clst91", {"thesis", "clst91", "cl89", "none"},
@@ -144,6 +149,14 @@ std::vector<ParamSpec> make_table() {
       integer("run.seed", "20261121", 0, kMaxInt64, "", "random seed (initial disorder)"),
       real("run.initial_disorder", "0.01", '[', 0, 10, ']', "D0",
            "initial displacements uniform in +-value*D0, D0 = F0 m_u / k_p"),
+      choice("run.start", "disorder", {"disorder", "equilibrium"},
+             "disorder: random displacements (run.initial_disorder), all stuck; equilibrium: "
+             "steady sliding at the start speed plus run.start_mode (continuous mode)"),
+      choice("run.start_mode", "none", {"none", "chain", "pad", "1dof"},
+             "family of the mode added to the equilibrium start (bkquake stability lists them)"),
+      integer("run.start_mode_index", "0", 0, 1e7, "", "index of that mode"),
+      real("run.start_amplitude", "1e-4", '(', 0, 1, ']', "",
+           "largest speed of the perturbation as a fraction of the start speed"),
       integer("run.max_steps_per_event", "200000000", 1, 1e15, "",
               "give up on an event after this many relaxation steps (a runaway: dt or the scene is "
               "wrong)"),
@@ -301,6 +314,9 @@ const std::vector<Dependency>& dependencies() {
        "thesis"},
       {{"model.l", "friction.alpha"}, "model.parameterisation", "carlson-langer"},
       {{"drive.step_increment", "drive.step_interval"}, "drive.schedule", "steps"},
+      {{"run.start_mode", "run.start_mode_index", "run.start_amplitude"},
+       "run.start",
+       "equilibrium"},
       {{"drive.ramp_from", "drive.ramp_to", "drive.ramp_duration"}, "drive.schedule", "ramp"},
   };
   return deps;
@@ -407,6 +423,9 @@ void Scene::validate() const {
   if (choice("model.boundary") == "periodic" && integer("model.blocks") < 3)
     throw Error("model.boundary = periodic needs model.blocks >= 3, got model.blocks = " +
                 text("model.blocks") + where);
+  if (choice("run.start") == "equilibrium" && choice("drive.mode") != "continuous")
+    throw Error("run.start = equilibrium needs drive.mode = continuous, but drive.mode = " +
+                choice("drive.mode") + where);
   const auto lo = real_or_auto("stats.mu_min");
   const auto hi = real_or_auto("stats.mu_max");
   if (lo && hi && *lo >= *hi)

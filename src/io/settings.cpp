@@ -51,6 +51,8 @@ ModelParams model_from_scene(const Scene& scene) {
     k_p0 = p.n * p.k_p / s_p;
   }
   if (p.n == 1) p.k_c = 0;
+  p.rayleigh_alpha = scene.real("model.rayleigh_alpha");
+  p.rayleigh_beta = scene.real("model.rayleigh_beta");
   if (p.kind == ModelKind::BKP) {
     p.m_x = m_x;
     p.k_p0 = k_p0;
@@ -88,6 +90,14 @@ Settings settings_from_scene(const Scene& scene) {
   r.max_steps_per_event = scene.integer("run.max_steps_per_event");
   r.checkpoint_events = scene.integer("run.checkpoint_events");
   r.checkpoint_seconds = scene.real("run.checkpoint_seconds");
+  r.start.equilibrium = scene.choice("run.start") == "equilibrium";
+  const std::string& mode = scene.choice("run.start_mode");
+  if (mode != "none")
+    r.start.mode = mode == "pad"    ? ModeFamily::Pad
+                   : mode == "1dof" ? ModeFamily::OneDof
+                                    : ModeFamily::Chain;
+  r.start.mode_index = static_cast<int>(scene.integer("run.start_mode_index"));
+  r.start.amplitude = scene.real("run.start_amplitude");
 
   s.integrator.scheme = scene.choice("integrator.scheme");
   s.integrator.dt = scene.real("integrator.dt");

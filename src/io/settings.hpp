@@ -11,6 +11,7 @@
 #include "integrate/stepper.hpp"
 #include "model/parameters.hpp"
 #include "model/substrate.hpp"
+#include "stats/stability.hpp"
 
 namespace bkq {
 
@@ -29,6 +30,15 @@ struct DriveSettings {
   double ramp_from = 0, ramp_to = 0, ramp_duration = 0;
 };
 
+// run.start*: how a continuous run starts: random disorder (all stuck), or steady sliding
+// (model/equilibrium.hpp) plus one mode of its linearisation (stats/stability.hpp).
+struct StartSettings {
+  bool equilibrium = false;
+  std::optional<ModeFamily> mode;  // none: the equilibrium alone
+  int mode_index = 0;
+  double amplitude = 0;  // largest speed of the perturbation / the start speed
+};
+
 // run.*: length, seed, start and checkpoints.
 struct RunSettings {
   std::int64_t events = 0;            // recorded events (events mode)
@@ -39,6 +49,7 @@ struct RunSettings {
   std::int64_t max_steps_per_event = 0;
   std::int64_t checkpoint_events = 0;  // 0 = off
   double checkpoint_seconds = 0;       // 0 = off
+  StartSettings start;
 };
 
 // integrator.*: the stepper of the dynamic phase, by its registry keyword.
