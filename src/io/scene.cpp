@@ -172,6 +172,9 @@ std::vector<ParamSpec> make_table() {
       real("integrator.dt", "0.01", '(', 0, kInf, ')', "time", "time step"),
       real("integrator.tolerance", "1e-08", '[', 1e-14, 1e-2, ']', "",
            "local error tolerance (scheme adaptive)"),
+      real("integrator.theta", "0.5", '[', 0.5, 1, ']', "",
+           "implicit weight theta of the theta-method: 1/2 trapezoidal (conserves), 1 backward "
+           "Euler (damps) (scheme theta)"),
 
       // --- output ---
       real("output.every", "1", '(', 0, kInf, ')', "time",
@@ -313,6 +316,7 @@ const std::vector<Dependency>& dependencies() {
        "model.parameterisation",
        "thesis"},
       {{"model.l", "friction.alpha"}, "model.parameterisation", "carlson-langer"},
+      {{"integrator.theta"}, "integrator.scheme", "theta"},
       {{"drive.step_increment", "drive.step_interval"}, "drive.schedule", "steps"},
       {{"run.start_mode", "run.start_mode_index", "run.start_amplitude"},
        "run.start",

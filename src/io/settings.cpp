@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "integrate/theta.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -102,6 +103,7 @@ Settings settings_from_scene(const Scene& scene) {
   s.integrator.scheme = scene.choice("integrator.scheme");
   s.integrator.dt = scene.real("integrator.dt");
   s.integrator.tolerance = scene.real("integrator.tolerance");
+  s.integrator.theta = scene.real("integrator.theta");
 
   s.output.every = scene.real("output.every");
   s.output.blocks = scene.flag("output.blocks");
@@ -125,7 +127,9 @@ Substrate substrate_of(const DriveSettings& drive) {
 }
 
 std::unique_ptr<Stepper> stepper_of(const IntegratorSettings& integrator, int blocks) {
-  return make_stepper(integrator.scheme, blocks, integrator.tolerance);
+  std::unique_ptr<Stepper> s = make_stepper(integrator.scheme, blocks, integrator.tolerance);
+  if (auto* theta = dynamic_cast<Theta*>(s.get())) theta->set_theta(integrator.theta);
+  return s;
 }
 
 }  // namespace bkq

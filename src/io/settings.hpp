@@ -57,6 +57,7 @@ struct IntegratorSettings {
   std::string scheme;
   double dt = 0;
   double tolerance = 0;  // adaptive scheme only
+  double theta = 0.5;    // theta scheme only
 };
 
 // output.*: continuous-mode outputs.
