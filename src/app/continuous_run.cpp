@@ -7,7 +7,9 @@
 #include <cmath>
 
 #include "app/observers/catalog.hpp"
+#include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
+#include "app/observers/segments.hpp"
 #include "app/observers/summary.hpp"
 #include "app/observers/timeseries.hpp"
 #include "app/stability.hpp"
@@ -30,7 +32,10 @@ void attach_observers(Observers& obs, const RunRequest& req, const Settings& set
   if (settings.output.blocks)
     obs.attach<BlockTrajectories>(out.path("blocks.csv"), settings.model.n);
   obs.attach<PadFrictionStats>();
-  obs.attach<ContinuousSummary>(req.scene, settings, out, obs);
+  const auto& hist =
+      obs.attach<HistogramWriter>(settings.stats.bin_width, out.path("histogram.csv"));
+  attach_segment_stats(obs, settings, out);
+  obs.attach<ContinuousSummary>(req.scene, settings, out, hist.histogram(), obs);
   if (!req.quiet) obs.attach<ProgressLine>();
   for (RunObserver* o : req.observers) obs.attach_ref(*o);
 }
@@ -80,6 +85,7 @@ int run_continuous(const RunRequest& req, const Settings& settings, const Output
       msg += ": the integration is unstable (reduce integrator.dt)";
       throw Error(msg);
     }
+    if (observers.wants_steps()) observers.step({i + 1, driver});
     observers.advance({driver.state().t, episodes});
   }
   observers.phase_end({driver.state().t, episodes});

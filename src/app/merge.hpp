@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,7 +14,10 @@ namespace bkq {
 
 struct MergeRequest {
   std::vector<std::string> runs;  // run folders, each with summary.json and histogram.csv
-  std::filesystem::path out;      // created if missing
+  std::filesystem::path out;      // created if missing; neither an input nor inside one
+  bool force = false;             // write into an output folder that already holds files
+  std::optional<double> mu_min = std::nullopt;  // the fit window, else automatic
+  std::optional<double> mu_max = std::nullopt;
 };
 
 // Prints a line (and the fit table) to `out`. User errors throw bkq::Error.

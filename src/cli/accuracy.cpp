@@ -123,7 +123,7 @@ int cmd_accuracy(const std::vector<std::string>& args) {
 
   const std::string dir = vm["out"].as<std::string>();
   const bool force = vm.count("force") > 0;
-  const OutputFolder out(dir, force, false);
+  const OutputFolder out(dir, force, false, "accuracy");
   if (!force && std::filesystem::exists(out.path("accuracy.csv")))
     throw Error("accuracy: " + out.path("accuracy.csv") +
                 " already exists; use --force to overwrite it");

@@ -19,8 +19,12 @@ Usage:
   bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume] [--force]
   bkquake run --dump-defaults      print a commented scene with every key at its default
   bkquake fit CATALOG.csv [--mu-min A] [--mu-max B] [--bin-width W] [--blocks N] [--json OUT]
-  bkquake merge RUN_DIR... --out DIR
+  bkquake merge RUN_DIR... --out DIR [--force]
   bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]
+  bkquake spectrum RUN_DIR [--signal S] [--segment K | --from T0 --to T1] [--out FILE]
+  bkquake special-speed [SCENE] [--set section.key=value]...
+  bkquake special-law BK_RUN_DIR... > law.csv
+  bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume]
   bkquake stability [SCENE] [--set section.key=value]... [--sweep KEY=FROM:TO:COUNT] [--out DIR]
   bkquake --help | --version
 
@@ -30,6 +34,11 @@ Commands:
   fit     fit the Gutenberg-Richter law R = A exp(-b mu) to an event catalogue
   merge   merge the histograms of runs of the same scene and fit the result
   accuracy  work-precision study: error against time per event for every scheme and dt
+  spectrum  amplitude spectrum of a continuous run's signal, peaks beside the natural
+            frequencies (thesis §4.3)
+  special-speed  t_death and v_special = F0/(k_p t_death) of thesis eq. 4.8
+  special-law    the friction a held pad feels in BK runs, as a table (thesis Fig. 4.8)
+  sweep   run every point of a sweep file (also under mpirun) and write sweep.csv
   stability  steady sliding and the complex eigenvalues of its linearisation (stability.csv)
 
 Examples:
@@ -64,6 +73,10 @@ int main(int argc, char** argv) {
     if (command == "fit") return bkq::cmd_fit(args);
     if (command == "merge") return bkq::cmd_merge(args);
     if (command == "accuracy") return bkq::cmd_accuracy(args);
+    if (command == "spectrum") return bkq::cmd_spectrum(args);
+    if (command == "special-speed") return bkq::cmd_special_speed(args);
+    if (command == "special-law") return bkq::cmd_special_law(args);
+    if (command == "sweep") return bkq::cmd_sweep(args);
     if (command == "stability") return bkq::cmd_stability(args);
     if (command == "readme-tables") return bkq::cmd_readme_tables(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");

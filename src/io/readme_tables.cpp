@@ -9,7 +9,10 @@
 #include "io/catalog.hpp"
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
+#include "io/segments_csv.hpp"
+#include "io/spectrum_csv.hpp"
 #include "io/stability_csv.hpp"
+#include "io/sweep_file.hpp"
 #include "io/timeseries.hpp"
 
 namespace bkq {
@@ -62,6 +65,10 @@ std::vector<ReadmeTable> readme_tables() {
       {"histogram.csv", column_table(histogram_schema())},
       {"timeseries.csv", column_table(timeseries_schema())},
       {"accuracy.csv", column_table(accuracy_schema())},
+      {"segments.csv", column_table(segments_schema())},
+      {"spectrum.csv", column_table(spectrum_schema())},
+      {"special_law.csv", column_table(special_law_schema())},
+      {"sweep.csv", column_table(sweep_csv_schema())},
       {"stability.csv", column_table(stability_schema())},
       {"stability_summary.csv", column_table(stability_summary_schema())},
       {"modes.csv", column_table(modes_schema())},

@@ -180,6 +180,8 @@ std::vector<ParamSpec> make_table() {
       real("output.every", "1", '(', 0, kInf, ')', "time",
            "time between timeseries rows (continuous mode)"),
       boolean("output.blocks", "false", "also write block trajectories (continuous mode)"),
+      integer("output.segment_blocks", "4", 1, 1e6, "",
+              "blocks M of the segment statistics' errors in segments.csv (thesis eq. 4.3)"),
 
       // --- stats: magnitude histogram and fits ---
       real("stats.bin_width", "0.2", '(', 0, 10, ']', "", "magnitude bin width of the histogram"),

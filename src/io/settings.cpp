@@ -107,6 +107,7 @@ Settings settings_from_scene(const Scene& scene) {
 
   s.output.every = scene.real("output.every");
   s.output.blocks = scene.flag("output.blocks");
+  s.output.segment_blocks = static_cast<int>(scene.integer("output.segment_blocks"));
 
   s.stats.bin_width = scene.real("stats.bin_width");
   s.stats.mu_min = scene.real_or_auto("stats.mu_min");

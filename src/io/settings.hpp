@@ -62,8 +62,9 @@ struct IntegratorSettings {
 
 // output.*: continuous-mode outputs.
 struct OutputSettings {
-  double every = 0;     // time between timeseries rows
-  bool blocks = false;  // also write blocks.csv
+  double every = 0;        // time between timeseries rows
+  bool blocks = false;     // also write blocks.csv
+  int segment_blocks = 4;  // M of the segment statistics' block errors (thesis eq. 4.3)
 };
 
 // stats.*: histogram and Gutenberg-Richter fit window (nullopt: chosen automatically).

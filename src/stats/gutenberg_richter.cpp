@@ -142,7 +142,9 @@ BEstimate binned_mle(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
   const double w = h.bin_width();
   std::int64_t n = 0;
   double s = 0;
-  for (std::int64_t k = k_lo; k <= k_hi; ++k) {
+  // Only the populated bins contribute; the loops stay within them whatever the window.
+  const std::int64_t k_begin = std::max(k_lo, h.first_bin()), k_end = std::min(k_hi, h.last_bin());
+  for (std::int64_t k = k_begin; k <= k_end; ++k) {
     n += h.count(k);
     s += static_cast<double>(h.count(k)) * static_cast<double>(k - k_lo) * w;
   }
@@ -152,7 +154,7 @@ BEstimate binned_mle(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
   // Mean of (bin centre - centre of the first bin): Tinti & Mulargia 1987.
   const double mean = s / static_cast<double>(n);
   double var_sum = 0;
-  for (std::int64_t k = k_lo; k <= k_hi; ++k) {
+  for (std::int64_t k = k_begin; k <= k_end; ++k) {
     const double d = static_cast<double>(k - k_lo) * w - mean;
     var_sum += static_cast<double>(h.count(k)) * d * d;
   }
@@ -176,7 +178,12 @@ double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::i
   const double J = static_cast<double>(k_hi - k_lo + 1);
   double d = 0;
   std::int64_t above = n;
-  for (std::int64_t j = k_lo + 1; j <= k_hi + 1; ++j) {
+  // Below the populated bins the empirical survival is 1 and above them 0 while the fitted
+  // one decreases, so the largest distance outside them is at their edges: j runs over
+  // first_bin..last_bin + 1 only.
+  const std::int64_t j_begin = std::max(k_lo + 1, h.first_bin());
+  const std::int64_t j_end = std::min(k_hi + 1, h.last_bin() + 1);
+  for (std::int64_t j = j_begin; j <= j_end; ++j) {
     above -= h.count(j - 1);
     const double s_emp = static_cast<double>(above) / static_cast<double>(n);
     const double i = static_cast<double>(j - k_lo);
@@ -194,7 +201,10 @@ double tail_excess_p(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
   const double J = static_cast<double>(k_hi - k_lo + 1);
   double p_min = 1;
   std::int64_t above = 0;  // events in bins k..k_hi
-  for (std::int64_t k = k_hi; k > k_lo; --k) {
+  // Above last_bin nothing is observed; below first_bin every edge sees all n events and
+  // the one nearest first_bin expects the fewest: k runs over first_bin - 1..last_bin only.
+  const std::int64_t k_end = std::max(k_lo, h.first_bin() - 2);
+  for (std::int64_t k = std::min(k_hi, h.last_bin()); k > k_end; --k) {
     above += h.count(k);
     if (above == 0) continue;
     const double i = static_cast<double>(k - k_lo);
@@ -216,6 +226,28 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     throw Error("need at least 2 events to fit, found " + std::to_string(h.events()));
   const double w = h.bin_width();
   constexpr double eps = 1e-9;
+  const auto poll = [&opt] {
+    if (opt.cancelled && opt.cancelled()) throw FitCancelled();
+  };
+  const std::int64_t span = h.last_bin() - h.first_bin() + 1;
+  if (span > kMaxFitBins)
+    throw Error("the magnitudes " + fmt(h.min_mu()) + " .. " + fmt(h.max_mu()) + " span " +
+                std::to_string(span) + " bins of width " + fmt(w) + ", more than the " +
+                std::to_string(kMaxFitBins) + " a fit covers; use a wider bin width");
+  // A limit must be finite and within kMaxFitBins bins of the magnitudes, so that the bin
+  // indices below are exact integers and the window's loops are short.
+  const auto check_limit = [&](const char* name, double v) {
+    if (!std::isfinite(v))
+      throw Error(std::string("fit window: ") + name + " = " + fmt(v) + " is not a finite number");
+    const double k = v / w, lo = static_cast<double>(h.first_bin() - kMaxFitBins),
+                 hi = static_cast<double>(h.last_bin() + kMaxFitBins);
+    if (!(k >= lo && k <= hi))
+      throw Error(std::string("fit window: ") + name + " = " + fmt(v) + " lies more than " +
+                  std::to_string(kMaxFitBins) + " bins of width " + fmt(w) +
+                  " from the magnitudes " + fmt(h.min_mu()) + " .. " + fmt(h.max_mu()));
+  };
+  if (mu_min) check_limit("mu_min", *mu_min);
+  if (mu_max) check_limit("mu_max", *mu_max);
 
   // Explicit limits, snapped inward to whole bins.
   std::optional<std::int64_t> k_hi_given, k_lo_given;
@@ -248,6 +280,11 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       bool tail_ok;
     };
     std::vector<Candidate> cands;
+    if (!(mu_min && mu_max) && span > kMaxScanBins)
+      throw Error("automatic fit window: the magnitudes " + fmt(h.min_mu()) + " .. " +
+                  fmt(h.max_mu()) + " span " + std::to_string(span) + " bins of width " + fmt(w) +
+                  ", more than the " + std::to_string(kMaxScanBins) +
+                  " the window search covers; use a wider bin width or give mu_min and mu_max");
     const std::int64_t lo_first = k_lo_given.value_or(h.first_bin());
     const std::int64_t lo_last = k_lo_given.value_or(h.last_bin());
     const std::int64_t hi_first = k_hi_given.value_or(h.first_bin());
@@ -257,6 +294,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       for (std::int64_t hi = std::max(hi_first, lo + opt.min_window_bins - 1); hi <= hi_last;
            ++hi) {
         if (!k_hi_given && h.count(hi) == 0) continue;
+        poll();
         const std::int64_t n = h.count_range(lo, hi);
         if (n < opt.min_tail) continue;
         int populated = 0;
@@ -307,7 +345,12 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       k_hi = pick->hi;
     }
   }
+  poll();
   f.truncated = truncated_at(k_hi);
+  if (k_hi - k_lo + 1 > kMaxFitBins)
+    throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) + ") spans " +
+                std::to_string(k_hi - k_lo + 1) + " bins of width " + fmt(w) + ", more than the " +
+                std::to_string(kMaxFitBins) + " a fit covers");
   if (k_hi < k_lo)
     throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) + ") is empty");
   f.mu_min = h.mu_low(k_lo);
@@ -338,13 +381,17 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   // Least squares on ln R at the lower bin edges, weights R (Poisson).
   {
     std::vector<double> x, y, wt;
-    for (std::int64_t k = k_lo; k <= k_hi; ++k) {
-      const auto r = h.R(k);
+    std::int64_t r = h.R(k_hi + 1);  // R(k), kept as a running sum from the top down
+    for (std::int64_t k = k_hi; k >= k_lo; --k) {
+      r += h.count(k);
       if (r <= 0) continue;
       x.push_back(h.mu_low(k));
       y.push_back(std::log(static_cast<double>(r)));
       wt.push_back(static_cast<double>(r));
     }
+    std::reverse(x.begin(), x.end());
+    std::reverse(y.begin(), y.end());
+    std::reverse(wt.begin(), wt.end());
     const Line l = weighted_line(x, y, wt, 0, x.size());
     f.b_lsq = -l.slope;
     f.b_lsq_err = l.slope_err;
@@ -354,7 +401,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   {
     std::vector<double> x, y, wt;
     std::vector<std::int64_t> kk;
-    for (std::int64_t k = k_lo; k <= h.last_bin(); ++k) {
+    for (std::int64_t k = std::max(k_lo, h.first_bin()); k <= h.last_bin(); ++k) {
       if (h.count(k) <= 0) continue;
       x.push_back(0.5 * (h.mu_low(k) + h.mu_high(k)));
       y.push_back(std::log(h.D(k)));
@@ -363,7 +410,10 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     }
     constexpr std::size_t kMinSide = 3;
     double best = kInf;
-    for (std::size_t s = kMinSide; x.size() >= 2 * kMinSide && s + kMinSide <= x.size(); ++s) {
+    const bool scan = x.size() <= static_cast<std::size_t>(kMaxScanBins);
+    for (std::size_t s = kMinSide; scan && x.size() >= 2 * kMinSide && s + kMinSide <= x.size();
+         ++s) {
+      poll();
       const Line a = weighted_line(x, y, wt, 0, s);
       const Line b = weighted_line(x, y, wt, s, x.size());
       if (!std::isfinite(a.slope) || !std::isfinite(b.slope)) continue;
@@ -380,16 +430,27 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
         f.two_law_ln_A2 = b.intercept + b.slope * f.two_law_mu_high;
       }
     }
-    if (!f.two_law_ok)
+    if (!scan)
+      f.notes.push_back("two-power-law fit skipped: more than " + std::to_string(kMaxScanBins) +
+                        " populated bins above mu_min");
+    else if (!f.two_law_ok)
       f.notes.push_back("two-power-law fit skipped: fewer than 6 populated bins above mu_min");
   }
 
   // Large-event excess over the fitted line R = A e^{-b mu}. Inside a truncated window
   // the line is normalised to the window's events, so the scan stops at mu_max there.
   if (std::isfinite(f.b_mle)) {
-    const std::int64_t floor_k = f.truncated ? k_hi + 1 : k_lo;
+    // Edges below the populated bins are not scanned (the loops stay within them).
+    const std::int64_t floor_k = std::max(f.truncated ? k_hi + 1 : k_lo, h.first_bin());
+    std::vector<std::int64_t> R_of(static_cast<std::size_t>(span + 1), 0);  // R(first_bin + i)
+    for (std::int64_t i = span - 1; i >= 0; --i)
+      R_of[static_cast<std::size_t>(i)] =
+          R_of[static_cast<std::size_t>(i + 1)] + h.count(h.first_bin() + i);
+    const auto R = [&](std::int64_t k) {
+      return R_of[static_cast<std::size_t>(k - h.first_bin())];
+    };
     auto significant = [&](std::int64_t k) {
-      const auto r = h.R(k);
+      const auto r = R(k);
       const double expected = std::exp(f.ln_A - f.b_mle * h.mu_low(k));
       if (r <= 0 || !(static_cast<double>(r) > expected)) return false;
       // P(X >= r) for Poisson X of mean `expected` is the regularised lower incomplete
@@ -403,7 +464,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     for (; k >= floor_k && significant(k); --k) {
       f.excess_found = true;
       f.excess_mu = h.mu_low(k);
-      f.excess_observed = h.R(k);
+      f.excess_observed = R(k);
       f.excess_expected = std::exp(f.ln_A - f.b_mle * h.mu_low(k));
       f.excess_count =
           std::max(f.excess_count, static_cast<double>(f.excess_observed) - f.excess_expected);

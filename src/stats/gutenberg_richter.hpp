@@ -8,6 +8,8 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -16,6 +18,19 @@
 #include "stats/histogram.hpp"
 
 namespace bkq {
+
+// Bounds that keep every fit finite on any input (bkq::Error beyond them): a window, and
+// the populated range of the histogram, span at most kMaxFitBins bins; the automatic
+// window search (O(bins^3)) and the two-power-law scan (O(bins^2)) run on at most
+// kMaxScanBins bins (300 units of mu at the default width 0.2).
+inline constexpr std::int64_t kMaxFitBins = 100'000;
+inline constexpr std::int64_t kMaxScanBins = 1'500;
+
+// Thrown by the fits when GrFitOptions::cancelled says so (a run was asked to stop).
+class FitCancelled : public std::exception {
+ public:
+  const char* what() const noexcept override { return "fit cancelled"; }
+};
 
 struct GrFitOptions {
   std::int64_t min_tail = 50;  // CSN: fewest events above a candidate mu_min
@@ -30,6 +45,9 @@ struct GrFitOptions {
   // it (up to mu_max) than its own fit predicts, at one-sided Poisson probability below
   // window_excess_alpha / (number of interior edges) (Bonferroni).
   double window_excess_alpha = 0.05;
+  // Polled between the steps of the fit (well under a millisecond apart at <= kMaxScanBins
+  // bins); when it returns true the fit throws FitCancelled. Empty: never cancelled.
+  std::function<bool()> cancelled;
 };
 
 struct GrFit {

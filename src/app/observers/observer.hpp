@@ -8,7 +8,8 @@
 // Order of notifications:
 //   on_resume (resumed event runs only)  on_start
 //   for each phase: on_phase, then per event / step: on_event (recorded events and slip
-//   episodes), on_sample (continuous runs), on_advance; then on_phase_end
+//   episodes), on_sample (continuous runs), on_step (continuous runs, observers that want
+//   it), on_advance; then on_phase_end
 //   on_checkpoint (whenever a checkpoint is written)   on_end (finished or stopped)
 // Observers are notified in the order they were attached.
 #pragma once
@@ -47,6 +48,13 @@ struct Sample {
   const ContinuousDriver& driver;  // for what the row does not hold (block displacements)
 };
 
+// One integration step of a continuous run, for observers that want every step
+// (wants_steps()); runs with none of them pay nothing.
+struct Step {
+  std::int64_t index;              // steps done, 1, 2, ...: the nominal time is index * dt
+  const ContinuousDriver& driver;  // the state after the step
+};
+
 // The end of a run, finished or stopped by a signal.
 struct RunEnd {
   int signal = 0;                     // 0: finished; SIGINT or SIGTERM: stopped after a checkpoint
@@ -74,6 +82,9 @@ class RunObserver {
   // A recorded event (event runs) or a finished slip episode (continuous runs).
   virtual void on_event(const EventRecord&) {}
   virtual void on_sample(const Sample&) {}
+  // Every integration step of a continuous run; called only when wants_steps() is true.
+  virtual bool wants_steps() const { return false; }
+  virtual void on_step(const Step&) {}
   virtual void on_advance(const Advance&) {}
   virtual void on_phase_end(const Advance&) {}
   // A checkpoint is being written: put this observer's state into it (a new observer
@@ -95,11 +106,18 @@ class Observers {
     T& ref = *owned;
     owned_.push_back(std::move(owned));
     list_.push_back(&ref);
+    if (ref.wants_steps()) steppers_.push_back(&ref);
     return ref;
   }
-  void attach_ref(RunObserver& o) { list_.push_back(&o); }
+  void attach_ref(RunObserver& o) {
+    list_.push_back(&o);
+    if (o.wants_steps()) steppers_.push_back(&o);
+  }
   // Stops notifying `o` (the run keeps it alive if it owns it).
-  void detach(const RunObserver& o) { std::erase(list_, &o); }
+  void detach(const RunObserver& o) {
+    std::erase(list_, &o);
+    std::erase(steppers_, &o);
+  }
 
   std::size_t size() const { return list_.size(); }
   const std::vector<RunObserver*>& all() const { return list_; }
@@ -118,6 +136,10 @@ class Observers {
   }
   void sample(const Sample& s) const {
     for (RunObserver* o : list_) o->on_sample(s);
+  }
+  bool wants_steps() const { return !steppers_.empty(); }
+  void step(const Step& s) const {
+    for (RunObserver* o : steppers_) o->on_step(s);
   }
   void advance(const Advance& a) const {
     for (RunObserver* o : list_) o->on_advance(a);
@@ -138,6 +160,7 @@ class Observers {
  private:
   std::vector<std::unique_ptr<RunObserver>> owned_;
   std::vector<RunObserver*> list_;
+  std::vector<RunObserver*> steppers_;  // those of list_ that want every step
 };
 
 }  // namespace bkq

@@ -1,0 +1,62 @@
+// segments.csv (io/segments_csv.hpp): the statistics of each speed segment of a continuous
+// run (thesis §4.2), streamed per integration step. A segment is the stretch at one
+// substrate speed: each step of a steps schedule starts one (the last ends with the run),
+// a constant speed is one segment, a ramp has none (the summary says so). Only the
+// segment's last half enters (the "input signal", stats/segment_stats.hpp), in
+// output.segment_blocks blocks; nothing but per-block moments is kept.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/observers/observer.hpp"
+#include "io/output.hpp"
+#include "io/segments_csv.hpp"
+#include "io/settings.hpp"
+#include "stats/segment_stats.hpp"
+
+namespace bkq {
+
+class OutputFolder;
+
+// Where the segments of a run lie: [t_start, t_end] and the speed.
+struct SegmentSpan {
+  double t_start = 0, t_end = 0, speed = 0;
+};
+// The segments of a continuous run's schedule (empty for a ramp).
+std::vector<SegmentSpan> segment_spans(const DriveSettings& drive, double duration);
+
+class SegmentStats : public RunObserver {
+ public:
+  // Writes to `path` (nothing for a ramp); `blocks` = M of eqs. 4.3-4.4.
+  SegmentStats(std::string path, const Settings& settings);
+  bool wants_steps() const override { return !spans_.empty(); }
+  void on_start() override;
+  void on_step(const Step& s) override;
+  void on_end(const RunEnd& end) override;
+  void add_to_summary(Json& summary) const override;
+
+  // The rows written so far (also for tests and studies run in process).
+  const std::vector<SegmentRow>& rows() const { return rows_; }
+
+ private:
+  void open_segment(std::size_t k);
+  void finish_segment();
+
+  std::string path_;
+  double dt_;
+  int blocks_;
+  std::vector<SegmentSpan> spans_;
+  std::size_t current_ = 0;
+  StepRange range_;
+  std::vector<BlockedMoments> moments_;  // one per signal of kSegmentSignals
+  std::vector<SegmentRow> rows_;
+  std::unique_ptr<CsvStream> csv_;
+};
+
+// Attaches SegmentStats writing out/segments.csv.
+void attach_segment_stats(Observers& obs, const Settings& settings, const OutputFolder& out);
+
+}  // namespace bkq
