@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "app/observers/catalog.hpp"
+#include "app/observers/energy.hpp"
 #include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
 #include "app/observers/segments.hpp"
@@ -26,8 +27,11 @@ namespace {
 // The scene's outputs for a continuous run, in notification order (the summary, which
 // marks the run finished, after every file).
 void attach_observers(Observers& obs, const RunRequest& req, const Settings& settings,
-                      const OutputFolder& out) {
-  obs.attach<TimeSeriesWriter>(out.path("timeseries.csv"));
+                      const OutputFolder& out, const ChainForces& forces) {
+  obs.attach<TimeSeriesWriter>(out.path("timeseries.csv"), settings.output.status);
+  if (settings.output.energy)
+    obs.attach<EnergyDiagnostics>(forces, out.path("energy_samples.csv"), out.path("energy.csv"),
+                                  settings.output.energy_window, settings.output.energy_tol);
   obs.attach<CatalogWriter>(out.path("catalog.csv"), false);
   if (settings.output.blocks)
     obs.attach<BlockTrajectories>(out.path("blocks.csv"), settings.model.n);
@@ -60,7 +64,7 @@ int run_continuous(const RunRequest& req, const Settings& settings, const Output
           : initial_state(forces, settings.run.seed, settings.run.initial_disorder, false),
       dt);
   Observers observers;
-  attach_observers(observers, req, settings, out);
+  attach_observers(observers, req, settings, out, forces);
 
   const auto steps = static_cast<std::int64_t>(std::llround(std::ceil(duration / dt - 1e-9)));
   const auto t0 = std::chrono::steady_clock::now();

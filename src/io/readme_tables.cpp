@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "io/accuracy_schema.hpp"
 #include "io/catalog.hpp"
+#include "io/energy_csv.hpp"
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
 #include "io/segments_csv.hpp"
@@ -64,6 +65,9 @@ std::vector<ReadmeTable> readme_tables() {
       {"catalog.csv", column_table(catalog_schema())},
       {"histogram.csv", column_table(histogram_schema())},
       {"timeseries.csv", column_table(timeseries_schema())},
+      {"timeseries.csv status", column_table(timeseries_status_schema())},
+      {"energy.csv", column_table(energy_schema())},
+      {"energy_samples.csv", column_table(energy_samples_schema())},
       {"accuracy.csv", column_table(accuracy_schema())},
       {"segments.csv", column_table(segments_schema())},
       {"spectrum.csv", column_table(spectrum_schema())},

@@ -107,6 +107,10 @@ Settings settings_from_scene(const Scene& scene) {
 
   s.output.every = scene.real("output.every");
   s.output.blocks = scene.flag("output.blocks");
+  s.output.status = scene.flag("output.status");
+  s.output.energy = scene.flag("output.energy");
+  s.output.energy_window = scene.real("output.energy_window");
+  s.output.energy_tol = scene.real("output.energy_tol");
   s.output.segment_blocks = static_cast<int>(scene.integer("output.segment_blocks"));
 
   s.stats.bin_width = scene.real("stats.bin_width");

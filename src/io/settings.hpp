@@ -65,6 +65,9 @@ struct OutputSettings {
   double every = 0;        // time between timeseries rows
   bool blocks = false;     // also write blocks.csv
   int segment_blocks = 4;  // M of the segment statistics' block errors (thesis eq. 4.3)
+  bool status = false;     // node-status columns in timeseries.csv
+  bool energy = false;     // energy_samples.csv and energy.csv
+  double energy_window = 0, energy_tol = 0;
 };
 
 // stats.*: histogram and Gutenberg-Richter fit window (nullopt: chosen automatically).

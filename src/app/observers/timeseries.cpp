@@ -11,11 +11,27 @@
 namespace bkq {
 
 void TimeSeriesWriter::on_start() {
-  csv_ = std::make_unique<CsvStream>(path_, timeseries_header());
+  csv_ = std::make_unique<CsvStream>(path_,
+                                     timeseries_header() + (status_ ? status_header_suffix() : ""));
 }
 
 void TimeSeriesWriter::on_sample(const Sample& s) {
-  csv_->row(timeseries_row(s.values));
+  if (!status_) {
+    csv_->row(timeseries_row(s.values));
+    return;
+  }
+  // Node status by the sign of each block's relative velocity (stuck: exactly 0).
+  NodeStatus n;
+  const ChainState& st = s.driver.state();
+  for (int j = 0; j < st.n(); ++j) {
+    if (st.mobile[j] == 0.0)
+      ++n.stuck;
+    else if (st.wd[j] >= 0.0)
+      ++n.forward;
+    else
+      ++n.backward;
+  }
+  csv_->row(timeseries_row(s.values) + status_row_suffix(n));
 }
 
 void TimeSeriesWriter::on_end(const RunEnd&) {

@@ -15,13 +15,16 @@ namespace bkq {
 
 class TimeSeriesWriter : public RunObserver {
  public:
-  explicit TimeSeriesWriter(std::string path) : path_(std::move(path)) {}
+  // status: append the node-status columns (output.status).
+  explicit TimeSeriesWriter(std::string path, bool status = false)
+      : path_(std::move(path)), status_(status) {}
   void on_start() override;
   void on_sample(const Sample& s) override;
   void on_end(const RunEnd&) override;
 
  private:
   std::string path_;
+  bool status_ = false;
   std::unique_ptr<CsvStream> csv_;
 };
 
