@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "app/run.hpp"
+#include "app/stability.hpp"
 #include "cli/commands.hpp"
 #include "cli/scene_args.hpp"
 #include "core/error.hpp"
@@ -21,7 +22,9 @@ int cmd_run(const std::vector<std::string>& args) {
       "resume", "continue the run in the output folder from its checkpoint")(
       "force", "overwrite a finished run in the output folder")("quiet", "no progress output")(
       "dump-defaults", "print a commented scene with every key at its default, then exit")(
-      "help,h", "this help");
+      "mode", po::value<std::string>(),
+      "FAMILY,INDEX: start at steady sliding plus this mode of bkquake stability (sets "
+      "run.start = equilibrium, run.start_mode, run.start_mode_index)")("help,h", "this help");
   const po::variables_map vm = parse_scene_command_line("run", args, opts);
 
   if (vm.count("help")) {
@@ -38,6 +41,13 @@ int cmd_run(const std::vector<std::string>& args) {
 
   RunRequest request;
   request.scene = scene_from_command_line("run", vm);
+  if (vm.count("mode")) {
+    const std::string text = vm["mode"].as<std::string>();
+    const ModeSelect m = parse_mode(text, "run: --mode");
+    request.scene.set("run.start", "equilibrium", "--mode");
+    request.scene.set("run.start_mode", to_string(m.family), "--mode");
+    request.scene.set("run.start_mode_index", std::to_string(m.index), "--mode");
+  }
   request.scene.validate();
   request.out_dir = vm["out"].as<std::string>();
   request.resume = vm.count("resume") > 0;

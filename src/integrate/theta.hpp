@@ -28,6 +28,9 @@ class Theta final : public Stepper {
   TimeStepLimit time_step_limit(const ModelParams& p) const override;
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override;
+  // The factorisation kept across steps (and what it was made of).
+  std::vector<double> carried_state() const override;
+  void restore_carried_state(std::span<const double> s) override;
 
   // The implicit weight theta in [1/2, 1] (1/2 by default).
   void set_theta(double theta) { theta_ = theta; }

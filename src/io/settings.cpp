@@ -99,6 +99,7 @@ Settings settings_from_scene(const Scene& scene) {
                                     : ModeFamily::Chain;
   r.start.mode_index = static_cast<int>(scene.integer("run.start_mode_index"));
   r.start.amplitude = scene.real("run.start_amplitude");
+  r.accuracy_error = scene.choice("run.accuracy") == "error";
 
   s.integrator.scheme = scene.choice("integrator.scheme");
   s.integrator.dt = scene.real("integrator.dt");

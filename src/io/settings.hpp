@@ -50,6 +50,7 @@ struct RunSettings {
   std::int64_t checkpoint_events = 0;  // 0 = off
   double checkpoint_seconds = 0;       // 0 = off
   StartSettings start;
+  bool accuracy_error = false;  // run.accuracy = error: an indicator above threshold fails
 };
 
 // integrator.*: the stepper of the dynamic phase, by its registry keyword.

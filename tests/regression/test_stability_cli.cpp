@@ -66,5 +66,25 @@ TEST(StabilityCli, RefusesWhatHasNoAnswer) {
   }
 }
 
+TEST(StabilityCli, RunModeStartsAtSteadySlidingPlusTheMode) {
+  test::TempDir dir;
+  // thesis.ini's first speed step comes at t = 2000: the 5 time units run at v = 0.1.
+  const auto r = test::run_bkquake({"run", kThesis, "--set", "model.blocks=10", "--set",
+                                    "drive.speed=0.1", "--set", "run.duration=5", "--mode",
+                                    "chain,2", "--quiet", "--out", dir.file("r")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string scene = test::read_file(dir.file("r/scene.ini"));
+  EXPECT_NE(scene.find("start = equilibrium"), std::string::npos);
+  EXPECT_NE(scene.find("start_mode = chain"), std::string::npos);
+  EXPECT_NE(scene.find("start_mode_index = 2"), std::string::npos);
+  const auto ts = lines_of(test::read_file(dir.file("r/timeseries.csv")));
+  ASSERT_GT(ts.size(), 2u);
+  EXPECT_EQ(ts[1].substr(ts[1].rfind(',') + 1), "10");  // every block slides from the start
+  const auto bad =
+      test::run_bkquake({"run", kThesis, "--mode", "chain,100", "--out", dir.file("b")});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("mode chain,100 does not exist"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace bkq

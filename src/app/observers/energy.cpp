@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/continuous.hpp"
 #include "io/energy_csv.hpp"
@@ -73,6 +74,12 @@ EnergyDiagnostics::EnergyDiagnostics(const ChainForces& forces, std::string samp
       tol_(tol),
       means_(window) {
   delta_.resize(forces.n());
+}
+
+void EnergyDiagnostics::on_resume(const Checkpoint&) {
+  throw Error(
+      "--resume: output.energy = true is not resumable yet (its windows are not checkpointed); "
+      "rerun the scene without --resume");
 }
 
 void EnergyDiagnostics::on_start() {

@@ -54,6 +54,8 @@ class EnergyDiagnostics : public RunObserver {
  public:
   EnergyDiagnostics(const ChainForces& forces, std::string samples_path, std::string windows_path,
                     double window, double tol);
+  // Resuming is refused: the windows and the files are not checkpointed yet.
+  void on_resume(const Checkpoint&) override;
   void on_start() override;
   void on_sample(const Sample& s) override;
   void on_end(const RunEnd& end) override;
