@@ -16,11 +16,13 @@
 #include "app/observers/accuracy_check.hpp"
 #include "app/observers/catalog.hpp"
 #include "app/observers/checkpoint_timer.hpp"
+#include "app/observers/energy.hpp"
 #include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
 #include "app/observers/segments.hpp"
 #include "app/observers/summary.hpp"
 #include "app/observers/timeseries.hpp"
+#include "app/stability.hpp"
 #include "app/stop_signals.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
@@ -140,10 +142,13 @@ class ContinuousRun {
     } else {
       driver_ = std::make_unique<ContinuousDriver>(
           forces, stepper, substrate,
-          initial_state(forces, settings.run.seed, settings.run.initial_disorder, false), dt_);
+          settings.run.start.equilibrium
+              ? equilibrium_start(forces, settings)
+              : initial_state(forces, settings.run.seed, settings.run.initial_disorder, false),
+          dt_);
     }
     wall0_ = prog_.wall_total;
-    attach_observers(resumed != nullptr);
+    attach_observers(resumed != nullptr, forces);
     if (resumed) observers_.resume(*resumed);
   }
 
@@ -184,9 +189,14 @@ class ContinuousRun {
  private:
   // The scene's outputs for a continuous run, in notification order: the histogram before
   // the summary that fits it, the summary (which marks the run finished) after every file.
-  void attach_observers(bool resumed) {
+  void attach_observers(bool resumed, const ChainForces& forces) {
     const RunSettings& r = settings_.run;
-    observers_.attach<TimeSeriesWriter>(out_.path("timeseries.csv"), resumed);
+    observers_.attach<TimeSeriesWriter>(out_.path("timeseries.csv"), resumed,
+                                        settings_.output.status);
+    if (settings_.output.energy)
+      observers_.attach<EnergyDiagnostics>(forces, out_.path("energy_samples.csv"),
+                                           out_.path("energy.csv"), settings_.output.energy_window,
+                                           settings_.output.energy_tol);
     observers_.attach<CatalogWriter>(out_.path("catalog.csv"), resumed);
     if (settings_.output.blocks)
       observers_.attach<BlockTrajectories>(out_.path("blocks.csv"), resumed,
@@ -298,8 +308,9 @@ int resume_continuous(const RunRequest& req, const Settings& settings, const Out
     CsvExtent extent;
   };
   std::vector<File> files;
-  files.push_back(
-      {out.path("timeseries.csv"), timeseries_header(), find_csv_extent(saved, "timeseries.csv")});
+  files.push_back({out.path("timeseries.csv"),
+                   timeseries_header() + (settings.output.status ? status_header_suffix() : ""),
+                   find_csv_extent(saved, "timeseries.csv")});
   if (settings.output.blocks)
     files.push_back({out.path("blocks.csv"),
                      blocks_header(settings.output.block_first, settings.output.block_count),

@@ -27,6 +27,7 @@ Usage:
   bkquake special-law BK_RUN_DIR... > law.csv
   bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume]
   bkquake friction-study [--out DIR] [--seeds N] [--jobs J] [--segment T]
+  bkquake stability [SCENE] [--set section.key=value]... [--sweep KEY=FROM:TO:COUNT] [--out DIR]
   bkquake --help | --version
 
 Commands:
@@ -41,6 +42,7 @@ Commands:
   special-law    the friction a held pad feels in BK runs, as a table (thesis Fig. 4.8)
   sweep   run every point of a sweep file (also under mpirun) and write sweep.csv
   friction-study the four configurations of thesis Fig. 4.6 over the speed grid
+  stability  steady sliding and the complex eigenvalues of its linearisation (stability.csv)
 
 Examples:
   bkquake run                                    the Carlson-Langer reference, event-driven
@@ -79,6 +81,7 @@ int main(int argc, char** argv) {
     if (command == "special-law") return bkq::cmd_special_law(args);
     if (command == "sweep") return bkq::cmd_sweep(args);
     if (command == "friction-study") return bkq::cmd_friction_study(args);
+    if (command == "stability") return bkq::cmd_stability(args);
     if (command == "readme-tables") return bkq::cmd_readme_tables(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "app/run.hpp"
+#include "app/stability.hpp"
 #include "cli/commands.hpp"
 #include "cli/scene_args.hpp"
 #include "core/error.hpp"
@@ -22,7 +23,10 @@ int cmd_run(const std::vector<std::string>& args) {
       "force", "overwrite a finished run in the output folder")("quiet", "no progress output")(
       "dump-defaults",
       "print a commented scene with every key (at its default, or as SCENE and --set make "
-      "it), then exit")("help,h", "this help");
+      "it), then exit")("mode", po::value<std::string>(),
+                        "FAMILY,INDEX: start at steady sliding plus this mode of bkquake "
+                        "stability (sets run.start = equilibrium, run.start_mode, "
+                        "run.start_mode_index)")("help,h", "this help");
   const po::variables_map vm = parse_scene_command_line("run", args, opts);
 
   if (vm.count("help")) {
@@ -34,6 +38,13 @@ int cmd_run(const std::vector<std::string>& args) {
   }
   RunRequest request;
   request.scene = scene_from_command_line("run", vm);
+  if (vm.count("mode")) {
+    const std::string text = vm["mode"].as<std::string>();
+    const ModeSelect m = parse_mode(text, "run: --mode");
+    request.scene.set("run.start", "equilibrium", "--mode");
+    request.scene.set("run.start_mode", to_string(m.family), "--mode");
+    request.scene.set("run.start_mode_index", std::to_string(m.index), "--mode");
+  }
   request.scene.validate();
   if (vm.count("dump-defaults")) {
     // With a SCENE or --set: that scene, every key shown, those that do not apply commented.

@@ -80,7 +80,10 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   const Friction& fr = forces.friction();
   const SubstrateState s0 = sub.at(st.t), s1 = sub.at(st.t + dt);
   m_ = p.m_u;
-  b_ = 0.5 * dt;
+  // Implicit weight b = theta h; the explicit one is ratio_ b = (1 - theta) h (both h/2 at
+  // theta = 1/2, where ratio_ = 1 multiplies exactly).
+  b_ = theta_ * dt;
+  ratio_ = (1.0 - theta_) / theta_;
   neighbours_ = p.has_neighbours();
   periodic_ = p.boundary == Boundary::Periodic;
   kc_ = neighbours_ ? p.k_c : 0.0;
@@ -97,14 +100,15 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
     std::snprintf(msg, sizeof msg,
                   "integrator.dt: %g is too large for theta with this velocity-weakening friction: "
                   "the sliding "
-                  "speed is unique only for dt < 2 v_c/F0 = %.6g",
-                  dt, 2.0 / (k0_ * s_));
+                  "speed is unique only for dt < v_c/(theta F0) = %.6g",
+                  dt, 1.0 / (theta_ * k0_ * s_));
     throw Error(msg);
   }
 
   const double* w = st.w.data();
   const double x0 = pad_ ? st.x : 0.0;
-  const double x_pred = pad_ ? st.x + b_ * st.xd : 0.0;  // x+ without the new velocity's half
+  const double a = ratio_ * b_;                         // explicit weight (1 - theta) h
+  const double x_pred = pad_ ? st.x + a * st.xd : 0.0;  // x+ without the new velocity's part
   const double anchor0 = s0.s + x0, anchor_pred = s1.s + x_pred;
   for_each_block([&](int j) {
     const bool stuck = !frictionless_ && st.mobile[j] == 0.0;
@@ -114,10 +118,10 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   double sum_v0 = 0;
   for_each_block([&](int j) {
     const double v = v0_[j];
-    // L at the start, and L+ with the new velocities left out (w+ = w + b v here).
+    // L at the start, and L+ with the new velocities left out (w+ = w + a v here).
     const double L = forces.spring_force(w, j, anchor0) - p.c_u * (v - s0.v) + m_ * s0.a;
     const double L_pred = forces.spring_force(w, j, anchor_pred) +
-                          b_ * (forces.neighbour_force(v0_.data(), j) - p.k_p * v) + p.c_u * s1.v +
+                          a * (forces.neighbour_force(v0_.data(), j) - p.k_p * v) + p.c_u * s1.v +
                           m_ * s1.a;
     double r = 0;  // friction at the start of the step
     const int d = start_[j];
@@ -127,12 +131,12 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
       r = -m_ * d * fr.magnitude(std::max(d * v, 0.0));
     }
     const int nb = !neighbours_ ? 0 : periodic_ ? 2 : (j > 0) + (j < n_ - 1);
-    impulse0_[j] = m_ * v + b_ * (L + r);
+    impulse0_[j] = m_ * v + a * (L + r);
     force_pred_[j] = L_pred;
     diag0_[j] = m_ + b_ * p.c_u + b_ * b_ * (p.k_p + nb * p.k_c);
     status_[j] = static_cast<std::int8_t>(d);
     // Linearise friction about the speed predicted from the start's acceleration.
-    a_hat_[j] = d == 0 ? 0.0 : std::max(d * (v + 2.0 * b_ * (L + r) / m_), 0.0);
+    a_hat_[j] = d == 0 ? 0.0 : std::max(d * (v + (a + b_) * (L + r) / m_), 0.0);
     vn_[j] = v;
     sum_v0 += v;
   });
@@ -143,10 +147,10 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
     // m_x (xd+ - xd) = b (X + X+), X the pad force; X+ with the new velocities left out.
     const double X = p.m_x * forces.pad_acceleration(st.x, st.xd, st.sum_w, s0.s);
     const double X_pred =
-        p.k_p * (st.sum_w + b_ * sum_v0 - p.n * s1.s - p.n * x_pred) - p.k_p0 * x_pred;
+        p.k_p * (st.sum_w + a * sum_v0 - p.n * s1.s - p.n * x_pred) - p.k_p0 * x_pred;
     pad_col_ = b_ * b_ * kp_;
     pad_diag_ = p.m_x + b_ * p.c_p + b_ * b_ * (p.n * p.k_p + p.k_p0);
-    pad_rhs_ = p.m_x * st.xd + b_ * (X + X_pred);
+    pad_rhs_ = p.m_x * st.xd + b_ * (ratio_ * X + X_pred);
   }
   // The last factorisation serves this step if the matrix is the same but for friction slopes.
   factored_ = factored_ && segments_ == segments_f_ && link_ == link_f_ && pad_col_ == pad_col_f_ &&
@@ -363,7 +367,7 @@ void Theta::finish(ChainState& st, double dt) {
   double dsum = 0;
   for_each_block([&](int j) {
     const double v = status_[j] == 0 ? 0.0 : vn_[j];
-    const double dw = b_ * (v0_[j] + v);
+    const double dw = b_ * (ratio_ * v0_[j] + v);
     st.w[j] += dw;
     dsum += dw;
     if (frictionless_) {
@@ -379,7 +383,7 @@ void Theta::finish(ChainState& st, double dt) {
     v0_[j] = vn_[j] = 0.0;
   });
   if (pad_) {
-    st.x += b_ * (st.xd + xdn_);
+    st.x += b_ * (ratio_ * st.xd + xdn_);
     st.xd = xdn_;
     st.sum_w += dsum;
   }
@@ -400,10 +404,10 @@ Stepper::TimeStepLimit Theta::time_step_limit(const ModelParams& p) const {
   const Friction fr(p);
   const double slope = fr.kinetic0 * fr.inv_scale;  // steepest weakening, F0/v_c
   if (slope <= 0) return {HUGE_VAL, "theta is unconditionally stable on the linear part"};
-  // Strictly below: step() needs dt * slope / 2 < 1.
-  return {std::nextafter(2.0 / slope, 0.0),
-          "theta: the sliding speed under velocity-weakening friction is unique only for dt < 2 "
-          "v_c/F0"};
+  // Strictly below: step() needs dt * theta * slope < 1.
+  return {std::nextafter(1.0 / (theta_ * slope), 0.0),
+          "theta: the sliding speed under velocity-weakening friction is unique only for dt < "
+          "v_c/(theta F0)"};
 }
 
 // Layout: n, factored, the scalars, the segment count and (lo, len, cyclic) of each,

@@ -1,8 +1,10 @@
-// The theta-method (theta = 1/2) with set-valued friction: velocity-level Moreau–Jean time
-// stepping (seed 004 §3.3; Jean 1999). Keyword `theta`. Implicit (trapezoidal) in the
-// springs, the pad and the friction; one tridiagonal solve per contact iteration.
-// Order 2 in smooth phases, 1 across stick transitions. Stability: none on the linear part
-// (A-stable); under weakening friction dt < 2 v_c/F0 (unique sliding speed), checked.
+// The theta-method with set-valued friction: velocity-level Moreau–Jean time stepping
+// (seed 004 §3.3; Jean 1999). Keyword `theta`, theta in [1/2, 1] (integrator.theta,
+// default 1/2: trapezoidal). Implicit in the springs, the pad and the friction; one
+// tridiagonal solve per contact iteration. Order 2 in smooth phases at theta = 1/2 (1
+// otherwise), 1 across stick transitions. Stability: none on the linear part (A-stable;
+// theta > 1/2 damps, theta = 1/2 conserves an undamped chain's energy); under weakening
+// friction dt < v_c/(theta F0) (unique sliding speed), checked.
 // Stick rule: Projection, exact (v+ = 0, no threshold velocity). The scheme, the friction
 // rule, the contact solver and the order are set out in README.md, "The θ-method".
 #pragma once
@@ -19,7 +21,7 @@ class Theta final : public Stepper {
  public:
   explicit Theta(int n_blocks);
   std::string_view name() const override { return "theta"; }
-  int order() const override { return 2; }
+  int order() const override { return theta_ == 0.5 ? 2 : 1; }
   double stability_constant() const override { return HUGE_VAL; }
   StickRule stick_rule() const override { return StickRule::Projection; }
   // No linear limit; under velocity-weakening friction dt must stay below 2 v_c/F0.
@@ -29,6 +31,10 @@ class Theta final : public Stepper {
   // The factorisation kept across steps (and what it was made of).
   std::vector<double> carried_state() const override;
   void restore_carried_state(std::span<const double> s) override;
+
+  // The implicit weight theta in [1/2, 1] (1/2 by default).
+  void set_theta(double theta) { theta_ = theta; }
+  double theta() const { return theta_; }
 
   // Active-set rounds before falling back to projected Gauss–Seidel (0: Gauss–Seidel only).
   void set_max_active_set_iterations(int k) { max_active_set_ = k; }
@@ -74,6 +80,8 @@ class Theta final : public Stepper {
 
   int n_ = 0;
   int max_active_set_ = 50;
+  double theta_ = 0.5;
+  double ratio_ = 1;  // (1 - theta)/theta: the explicit weight over the implicit one
   std::vector<Segment> segments_;
 
   // Per block (indexed by block number; v0_ and vn_ are zero outside the ranges between

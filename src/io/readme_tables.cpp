@@ -7,10 +7,12 @@
 #include "core/error.hpp"
 #include "io/accuracy_schema.hpp"
 #include "io/catalog.hpp"
+#include "io/energy_csv.hpp"
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
 #include "io/segments_csv.hpp"
 #include "io/spectrum_csv.hpp"
+#include "io/stability_csv.hpp"
 #include "io/sweep_file.hpp"
 #include "io/timeseries.hpp"
 
@@ -63,12 +65,18 @@ std::vector<ReadmeTable> readme_tables() {
       {"catalog.csv", column_table(catalog_schema())},
       {"histogram.csv", column_table(histogram_schema())},
       {"timeseries.csv", column_table(timeseries_schema())},
+      {"timeseries.csv status", column_table(timeseries_status_schema())},
+      {"energy.csv", column_table(energy_schema())},
+      {"energy_samples.csv", column_table(energy_samples_schema())},
       {"accuracy.csv", column_table(accuracy_schema())},
       {"segments.csv", column_table(segments_schema())},
       {"spectrum.csv", column_table(spectrum_schema())},
       {"special_law.csv", column_table(special_law_schema())},
       {"sweep.csv", column_table(sweep_csv_schema())},
       {"friction_study.csv", column_table(friction_study_schema())},
+      {"stability.csv", column_table(stability_schema())},
+      {"stability_summary.csv", column_table(stability_summary_schema())},
+      {"modes.csv", column_table(modes_schema())},
   };
 }
 

@@ -111,6 +111,11 @@ std::vector<ParamSpec> make_table() {
            "pulling-spring scaling s_p: k_p = s_p k_p0 / N"),
       real("model.s_c", "0.01", '[', 0, 1e6, ']', "",
            "coupling scaling s_c: k_c = s_c k_p0 N (thesis only)"),
+      real("model.rayleigh_alpha", "0", '[', 0, kHuge, ']', "1/time",
+           "Rayleigh damping alpha_M M + beta_K K of blocks and pad (K with k_c, k_p and the pad "
+           "row): alpha_M"),
+      real("model.rayleigh_beta", "0", '[', 0, kHuge, ']', "time",
+           "Rayleigh damping alpha_M M + beta_K K: beta_K"),
 
       // --- friction: the law phi(y) of SPEC §1 ---
       choice("friction.law", "clst91", {"thesis", "clst91", "cl89", "none"},
@@ -154,6 +159,14 @@ std::vector<ParamSpec> make_table() {
       integer("run.seed", "20261121", 0, kMaxInt64, "", "random seed (initial disorder)"),
       real("run.initial_disorder", "0.01", '[', 0, 10, ']', "D0",
            "initial displacements uniform in +-value*D0, D0 = F0 m_u / k_p"),
+      choice("run.start", "disorder", {"disorder", "equilibrium"},
+             "disorder: random displacements (run.initial_disorder), all stuck; equilibrium: "
+             "steady sliding at the start speed plus run.start_mode (continuous mode)"),
+      choice("run.start_mode", "none", {"none", "chain", "pad", "1dof"},
+             "family of the mode added to the equilibrium start (bkquake stability lists them)"),
+      integer("run.start_mode_index", "0", 0, 1e7, "", "index of that mode"),
+      real("run.start_amplitude", "1e-4", '(', 0, 1, ']', "",
+           "largest speed of the perturbation as a fraction of the start speed"),
       integer("run.max_steps_per_event", "200000000", 1, 1e15, "",
               "give up on an event after this many relaxation steps (a runaway: dt or the scene is "
               "wrong)"),
@@ -175,6 +188,9 @@ std::vector<ParamSpec> make_table() {
       real("integrator.dt", "0.01", '(', 0, 1e6, ']', "time", "time step"),
       real("integrator.tolerance", "1e-08", '[', 1e-14, 1e-2, ']', "",
            "local error tolerance (scheme adaptive)"),
+      real("integrator.theta", "0.5", '[', 0.5, 1, ']', "",
+           "implicit weight theta of the theta-method: 1/2 trapezoidal (conserves), 1 backward "
+           "Euler (damps) (scheme theta)"),
 
       // --- output ---
       real("output.every", "1", '(', 0, kLongTime, ']', "time",
@@ -184,6 +200,16 @@ std::vector<ParamSpec> make_table() {
               "first block written to blocks.csv (output.blocks; 0-based)"),
       integer("output.block_count", "0", 0, 1e7, "",
               "how many adjacent blocks blocks.csv holds from output.block_first (0: to the end)"),
+      boolean("output.status", "false",
+              "append the node status (blocks stuck, sliding forward, sliding backward) to "
+              "timeseries.csv (continuous mode)"),
+      boolean("output.energy", "false",
+              "write energy_samples.csv and energy.csv: mechanical energy from the sliding "
+              "equilibrium, its windowed mean and rate, the braking force (continuous mode)"),
+      real("output.energy_window", "10", '(', 0, kLongTime, ']', "time",
+           "window dT of the energy means (50 % overlap)"),
+      real("output.energy_tol", "0.001", '(', 0, kHuge, ']', "1/time",
+           "the energy has settled once |tau_E| stays below this in every later window"),
       integer("output.segment_blocks", "4", 1, 1e6, "",
               "blocks M of the segment statistics' errors in segments.csv (thesis eq. 4.3)"),
 
@@ -340,13 +366,18 @@ const std::vector<KeyDependency>& dependencies() {
       {{"model.s_m", "model.s_p"},
        {{"model.parameterisation", {"thesis"}}, {"model.kind", {"bkp"}}}},
       {{"drive.speed", "drive.schedule", "run.duration", "output.every", "output.blocks",
-        "output.block_first", "output.block_count", "output.segment_blocks"},
+        "output.block_first", "output.block_count", "output.segment_blocks", "output.status",
+        "output.energy", "output.energy_window", "output.energy_tol"},
        {{"drive.mode", {"continuous"}}}},
       {{"run.events", "run.transient_events", "run.max_steps_per_event"},
        {{"drive.mode", {"events"}}}},
       {{"drive.step_increment", "drive.step_interval"}, {{"drive.schedule", {"steps"}}}},
       {{"drive.ramp_from", "drive.ramp_to", "drive.ramp_duration"}, {{"drive.schedule", {"ramp"}}}},
       {{"integrator.tolerance"}, {{"integrator.scheme", {"adaptive"}}}},
+      {{"integrator.theta"}, {{"integrator.scheme", {"theta"}}}},
+      {{"output.energy_window", "output.energy_tol"}, {{"output.energy", {"true"}}}},
+      {{"run.start_mode", "run.start_mode_index", "run.start_amplitude"},
+       {{"run.start", {"equilibrium"}}}},
   };
   return deps;
 }
@@ -514,6 +545,9 @@ void Scene::validate() const {
   if (choice("model.boundary") == "periodic" && integer("model.blocks") < 3)
     throw Error("model.boundary = periodic needs model.blocks >= 3, got model.blocks = " +
                 text("model.blocks") + where);
+  if (choice("run.start") == "equilibrium" && choice("drive.mode") != "continuous")
+    throw Error("run.start = equilibrium needs drive.mode = continuous, but drive.mode = " +
+                choice("drive.mode") + where);
   const auto lo = real_or_auto("stats.mu_min");
   const auto hi = real_or_auto("stats.mu_max");
   if (lo && hi && *lo >= *hi)

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "integrate/theta.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -53,6 +54,8 @@ ModelParams model_from_scene(const Scene& scene) {
     k_p0 = p.n * p.k_p / s_p;
   }
   if (p.n == 1) p.k_c = 0;
+  p.rayleigh_alpha = scene.real("model.rayleigh_alpha");
+  p.rayleigh_beta = scene.real("model.rayleigh_beta");
   if (p.kind == ModelKind::BKP) {
     p.m_x = m_x;
     p.k_p0 = k_p0;
@@ -90,11 +93,20 @@ Settings settings_from_scene(const Scene& scene) {
   r.max_steps_per_event = scene.integer("run.max_steps_per_event");
   r.checkpoint_events = scene.integer("run.checkpoint_events");
   r.checkpoint_seconds = scene.real("run.checkpoint_seconds");
+  r.start.equilibrium = scene.choice("run.start") == "equilibrium";
+  const std::string& mode = scene.choice("run.start_mode");
+  if (mode != "none")
+    r.start.mode = mode == "pad"    ? ModeFamily::Pad
+                   : mode == "1dof" ? ModeFamily::OneDof
+                                    : ModeFamily::Chain;
+  r.start.mode_index = static_cast<int>(scene.integer("run.start_mode_index"));
+  r.start.amplitude = scene.real("run.start_amplitude");
   r.accuracy_error = scene.choice("run.accuracy") == "error";
 
   s.integrator.scheme = scene.choice("integrator.scheme");
   s.integrator.dt = scene.real("integrator.dt");
   s.integrator.tolerance = scene.real("integrator.tolerance");
+  s.integrator.theta = scene.real("integrator.theta");
 
   s.output.every = scene.real("output.every");
   s.output.blocks = scene.flag("output.blocks");
@@ -109,6 +121,10 @@ Settings settings_from_scene(const Scene& scene) {
     const int left = n - s.output.block_first;
     s.output.block_count = count == 0 ? left : std::min(count, left);
   }
+  s.output.status = scene.flag("output.status");
+  s.output.energy = scene.flag("output.energy");
+  s.output.energy_window = scene.real("output.energy_window");
+  s.output.energy_tol = scene.real("output.energy_tol");
   s.output.segment_blocks = static_cast<int>(scene.integer("output.segment_blocks"));
 
   s.stats.bin_width = scene.real("stats.bin_width");
@@ -130,7 +146,9 @@ Substrate substrate_of(const DriveSettings& drive) {
 }
 
 std::unique_ptr<Stepper> stepper_of(const IntegratorSettings& integrator, int blocks) {
-  return make_stepper(integrator.scheme, blocks, integrator.tolerance);
+  std::unique_ptr<Stepper> s = make_stepper(integrator.scheme, blocks, integrator.tolerance);
+  if (auto* theta = dynamic_cast<Theta*>(s.get())) theta->set_theta(integrator.theta);
+  return s;
 }
 
 }  // namespace bkq

@@ -11,6 +11,7 @@
 #include "integrate/stepper.hpp"
 #include "model/parameters.hpp"
 #include "model/substrate.hpp"
+#include "stats/stability.hpp"
 
 namespace bkq {
 
@@ -29,6 +30,15 @@ struct DriveSettings {
   double ramp_from = 0, ramp_to = 0, ramp_duration = 0;
 };
 
+// run.start*: how a continuous run starts: random disorder (all stuck), or steady sliding
+// (model/equilibrium.hpp) plus one mode of its linearisation (stats/stability.hpp).
+struct StartSettings {
+  bool equilibrium = false;
+  std::optional<ModeFamily> mode;  // none: the equilibrium alone
+  int mode_index = 0;
+  double amplitude = 0;  // largest speed of the perturbation / the start speed
+};
+
 // run.*: length, seed, start and checkpoints.
 struct RunSettings {
   std::int64_t events = 0;            // recorded events (events mode)
@@ -39,7 +49,8 @@ struct RunSettings {
   std::int64_t max_steps_per_event = 0;
   std::int64_t checkpoint_events = 0;  // 0 = off
   double checkpoint_seconds = 0;       // 0 = off
-  bool accuracy_error = false;         // run.accuracy = error: an indicator above threshold fails
+  StartSettings start;
+  bool accuracy_error = false;  // run.accuracy = error: an indicator above threshold fails
 };
 
 // integrator.*: the stepper of the dynamic phase, by its registry keyword.
@@ -47,6 +58,7 @@ struct IntegratorSettings {
   std::string scheme;
   double dt = 0;
   double tolerance = 0;  // adaptive scheme only
+  double theta = 0.5;    // theta scheme only
 };
 
 // output.*: continuous-mode outputs.
@@ -55,6 +67,9 @@ struct OutputSettings {
   bool blocks = false;                   // also write blocks.csv
   int block_first = 0, block_count = 0;  // blocks.csv: these blocks (count resolved, > 0)
   int segment_blocks = 4;  // M of the segment statistics' block errors (thesis eq. 4.3)
+  bool status = false;     // node-status columns in timeseries.csv
+  bool energy = false;     // energy_samples.csv and energy.csv
+  double energy_window = 0, energy_tol = 0;
 };
 
 // stats.*: histogram and Gutenberg-Richter fit window (nullopt: chosen automatically).

@@ -35,6 +35,33 @@ std::string timeseries_row(const TimeSeriesRow& r) {
   return s;
 }
 
+const Schema& timeseries_status_schema() {
+  static const Schema schema = {
+      {"stuck", "", "blocks stuck at t (output.status)", kInteger},
+      {"slip_forward", "", "blocks sliding with relative velocity > 0 (output.status)", kInteger},
+      {"slip_backward", "", "blocks sliding with relative velocity < 0: backslip (output.status)",
+       kInteger},
+  };
+  return schema;
+}
+
+// Appended, not "," + ...: GCC 12 warns falsely (-Wrestrict) there.
+std::string status_header_suffix() {
+  std::string s(1, ',');
+  s += header_of(timeseries_status_schema());
+  return s;
+}
+
+std::string status_row_suffix(const NodeStatus& n) {
+  std::string s(1, ',');
+  s += std::to_string(n.stuck);
+  s += ',';
+  s += std::to_string(n.forward);
+  s += ',';
+  s += std::to_string(n.backward);
+  return s;
+}
+
 std::string blocks_header(int first, int count) {
   std::string header = "t";
   for (const char* what : {",u", ",v"})

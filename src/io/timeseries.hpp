@@ -22,6 +22,18 @@ std::string timeseries_header();
 // One CSV row (no newline), numbers printed round-trip exactly.
 std::string timeseries_row(const TimeSeriesRow& r);
 
+// Node status (issue 18 item 7, seed 004 §4.3.4): the columns output.status = true appends
+// to timeseries.csv: blocks stuck, sliding with positive relative velocity (the disc drags
+// them) and with negative relative velocity (backslip); they add up to N.
+struct NodeStatus {
+  int stuck = 0, forward = 0, backward = 0;
+};
+const Schema& timeseries_status_schema();
+// ",stuck,slip_forward,slip_backward" and ",<stuck>,<forward>,<backward>": appended to
+// the header and each row.
+std::string status_header_suffix();
+std::string status_row_suffix(const NodeStatus& n);
+
 // blocks.csv: one row of lab-frame displacements (and velocities) per sample.
 std::string blocks_row(double t, const std::vector<double>& u);
 // blocks.csv of the blocks first .. first+count-1 with their lab-frame velocities:

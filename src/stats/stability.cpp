@@ -283,4 +283,38 @@ double largest_growth(const std::vector<Eigenmode>& modes, ModeFamily family) {
   return g;
 }
 
+GrowthFit fit_growth(const std::vector<double>& t, const std::vector<double>& y) {
+  GrowthFit f;
+  const std::size_t n = std::min(t.size(), y.size());
+  double first = 0, last = 0;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if ((y[i - 1] < 0) != (y[i] < 0)) {
+      const double tc = t[i - 1] + (t[i] - t[i - 1]) * y[i - 1] / (y[i - 1] - y[i]);
+      if (f.crossings++ == 0) first = tc;
+      last = tc;
+    }
+    if (i + 1 < n && std::abs(y[i]) >= std::abs(y[i - 1]) && std::abs(y[i]) > std::abs(y[i + 1]) &&
+        (y[i - 1] < 0) == (y[i] < 0) && (y[i + 1] < 0) == (y[i] < 0)) {
+      // Parabola through the three samples (equally spaced in t).
+      const double a = y[i - 1], b = y[i], c = y[i + 1];
+      const double denom = a - 2 * b + c;
+      const double off = denom != 0 ? 0.5 * (a - c) / denom : 0.0;
+      const double peak = b - 0.25 * (a - c) * off;
+      const double tp = t[i] + off * (t[i + 1] - t[i]);
+      const double ly = std::log(std::abs(peak));
+      sx += tp;
+      sy += ly;
+      sxx += tp * tp;
+      sxy += tp * ly;
+      ++f.extrema;
+    }
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  f.frequency = f.crossings >= 2 ? (f.crossings - 1) / (2.0 * (last - first)) : nan;
+  const double m = f.extrema;
+  f.growth = f.extrema >= 2 ? (m * sxy - sx * sy) / (m * sxx - sx * sx) : nan;
+  return f;
+}
+
 }  // namespace bkq

@@ -71,4 +71,15 @@ std::vector<Eigenmode> dense_eigenmodes(const ModelParams& p, double slope,
 // The largest growth rate of the modes of one family (-inf when it has none).
 double largest_growth(const std::vector<Eigenmode>& modes, ModeFamily family);
 
+// Growth rate and frequency of a sampled signal y(t) = A e^{s t} cos(w t + c) (a modal
+// coordinate of a simulation): s from a least-squares line through ln |y| at the extrema
+// of |y| (parabolic interpolation between samples), w from the mean spacing pi/w of the
+// zero crossings (linear interpolation). NaN when the signal has fewer than two of either.
+struct GrowthFit {
+  double growth = 0;
+  double frequency = 0;  // w / 2 pi
+  int extrema = 0, crossings = 0;
+};
+GrowthFit fit_growth(const std::vector<double>& t, const std::vector<double>& y);
+
 }  // namespace bkq

@@ -44,11 +44,26 @@ void SampledCsv::on_checkpoint(Checkpoint& c) {
 }
 
 void TimeSeriesWriter::on_sample(const Sample& s) {
-  row(timeseries_row(s.values));
+  if (!status_) {
+    row(timeseries_row(s.values));
+    return;
+  }
+  // Node status by the sign of each block's relative velocity (stuck: exactly 0).
+  NodeStatus n;
+  const ChainState& st = s.driver.state();
+  for (int j = 0; j < st.n(); ++j) {
+    if (st.mobile[j] == 0.0)
+      ++n.stuck;
+    else if (st.wd[j] >= 0.0)
+      ++n.forward;
+    else
+      ++n.backward;
+  }
+  row(timeseries_row(s.values) + status_row_suffix(n));
 }
 
 std::string TimeSeriesWriter::header() const {
-  return timeseries_header();
+  return timeseries_header() + (status_ ? status_header_suffix() : "");
 }
 
 BlockTrajectories::BlockTrajectories(std::string path, bool append, int first, int count)

@@ -53,11 +53,14 @@ class SampledCsv : public RunObserver {
 
 class TimeSeriesWriter : public SampledCsv {
  public:
-  using SampledCsv::SampledCsv;
+  // status: append the node-status columns (output.status; io/timeseries.hpp).
+  TimeSeriesWriter(std::string path, bool append, bool status = false)
+      : SampledCsv(std::move(path), append), status_(status) {}
   void on_sample(const Sample& s) override;
 
  private:
   std::string header() const override;
+  bool status_ = false;
 };
 
 // Lab-frame displacement and velocity of the blocks first .. first+count-1 at each sample.

@@ -1,0 +1,81 @@
+// `bkquake stability [SCENE]`: steady sliding at drive.speed and the eigenvalues of its
+// linearisation, optionally over a sweep of one key (app/stability.hpp). Writes scene.ini
+// (the effective scene with provenance), stability.csv, stability_summary.csv and, with
+// --modes, modes.csv into --out, and prints the summary.
+#include <boost/program_options.hpp>
+#include <cstdio>
+#include <iostream>
+
+#include "app/stability.hpp"
+#include "cli/commands.hpp"
+#include "cli/scene_args.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/output.hpp"
+#include "io/scene.hpp"
+
+namespace bkq {
+
+namespace po = boost::program_options;
+
+int cmd_stability(const std::vector<std::string>& args) {
+  po::options_description opts("bkquake stability [SCENE] [options]");
+  // clang-format off
+  add_scene_options(opts);
+  opts.add_options()
+    ("sweep", po::value<std::string>(), "KEY=FROM:TO:COUNT: analyse at COUNT values of one real or integer key")
+    ("log", "space the sweep's values geometrically")
+    ("dense", "use the dense state matrix (N <= 1000) instead of the exact modal reduction")
+    ("modes", po::value<std::vector<std::string>>()->composing(),
+              "FAMILY,INDEX: write this mode's shape to modes.csv (repeatable)")
+    ("out", po::value<std::string>()->default_value("stability"), "output folder")
+    ("help,h", "this help");
+  // clang-format on
+  const po::variables_map vm = parse_scene_command_line("stability", args, opts);
+  if (vm.count("help")) {
+    std::cout
+        << "Usage: bkquake stability [SCENE] [--set section.key=value]... "
+           "[--sweep KEY=FROM:TO:COUNT] [--out DIR]\n"
+           "Steady sliding at the disc speed drive.speed and the complex eigenvalues of its\n"
+           "linearisation: each mode's growth rate Re lambda, frequency Im lambda / 2 pi and\n"
+           "whether it is unstable (README, Stability of steady sliding).\n\n"
+        << opts << "\n";
+    return 0;
+  }
+  Scene scene = scene_from_command_line("stability", vm);
+  scene.validate();
+  StabilityOptions opt;
+  if (vm.count("sweep")) opt.sweep = parse_sweep(vm["sweep"].as<std::string>(), vm.count("log"));
+  if (vm.count("log") && !opt.sweep) throw Error("stability: --log needs --sweep");
+  opt.dense = vm.count("dense") > 0;
+  if (vm.count("modes"))
+    for (const auto& m : vm["modes"].as<std::vector<std::string>>())
+      opt.shapes.push_back(parse_mode(m, "stability: --modes"));
+
+  const std::vector<StabilityPoint> points = run_stability(scene, opt);
+  const OutputFolder out(vm["out"].as<std::string>(), true, false);
+  write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
+  write_file_atomic(out.path("stability.csv"), stability_csv(points));
+  write_file_atomic(out.path("stability_summary.csv"), stability_summary_csv(points));
+  if (!opt.shapes.empty()) write_file_atomic(out.path("modes.csv"), modes_csv(points));
+
+  const std::string key = opt.sweep ? opt.sweep->key : "drive.speed";
+  std::printf("%-14s %6s %6s %12s %12s  %s\n", key.c_str(), "modes", "unst.", "max Re", "its freq.",
+              "mode");
+  for (const StabilityPoint& pt : points) {
+    int unstable = 0;
+    const Eigenmode* top = nullptr;
+    for (const Eigenmode& m : pt.modes) {
+      unstable += m.unstable() ? 1 : 0;
+      if (!top || m.growth() > top->growth()) top = &m;
+    }
+    std::printf("%-14s %6zu %6d %12.6g %12.6g  %s\n", format_real(pt.value).c_str(),
+                pt.modes.size(), unstable, top->growth(), top->frequency(),
+                mode_name(*top).c_str());
+  }
+  std::cout << "outputs in " << out.dir() << "/ (stability.csv, stability_summary.csv"
+            << (opt.shapes.empty() ? "" : ", modes.csv") << ", scene.ini)\n";
+  return 0;
+}
+
+}  // namespace bkq
