@@ -192,7 +192,9 @@ class ContinuousRun {
     observers_.attach<TimeSeriesWriter>(out_.path("timeseries.csv"), resumed);
     observers_.attach<CatalogWriter>(out_.path("catalog.csv"), resumed);
     if (settings_.output.blocks)
-      observers_.attach<BlockTrajectories>(out_.path("blocks.csv"), resumed, settings_.model.n);
+      observers_.attach<BlockTrajectories>(out_.path("blocks.csv"), resumed,
+                                           settings_.output.block_first,
+                                           settings_.output.block_count);
     observers_.attach<PadFrictionStats>();
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
@@ -302,7 +304,8 @@ int resume_continuous(const RunRequest& req, const Settings& settings, const Out
   files.push_back(
       {out.path("timeseries.csv"), timeseries_header(), find_csv_extent(saved, "timeseries.csv")});
   if (settings.output.blocks)
-    files.push_back({out.path("blocks.csv"), blocks_header(settings.model.n),
+    files.push_back({out.path("blocks.csv"),
+                     blocks_header(settings.output.block_first, settings.output.block_count),
                      find_csv_extent(saved, "blocks.csv")});
   if (writes_segments(settings))
     files.push_back(

@@ -38,8 +38,11 @@ std::vector<LawPoint> special_law(const std::vector<std::string>& run_dirs) {
   return law;
 }
 
-std::string special_law_csv(const std::vector<LawPoint>& law) {
-  std::string out = header_of(special_law_schema()) + "\n";
+std::string special_law_csv(const std::vector<LawPoint>& law,
+                            const std::vector<std::string>& comments) {
+  std::string out;
+  for (const auto& c : comments) out += "# " + c + "\n";
+  out += header_of(special_law_schema()) + "\n";
   for (const LawPoint& p : law) out += format_real(p.speed) + "," + format_real(p.friction) + "\n";
   return out;
 }

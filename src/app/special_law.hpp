@@ -17,7 +17,9 @@ struct LawPoint {
 
 // Throws bkq::Error for a folder that is not a continuous bk run with segments.csv.
 std::vector<LawPoint> special_law(const std::vector<std::string>& run_dirs);
-// The table as CSV text (io/segments_csv.hpp special_law_schema()).
-std::string special_law_csv(const std::vector<LawPoint>& law);
+// The table as CSV text (io/segments_csv.hpp special_law_schema()), each of `comments` as
+// a '# ' line first (friction.law = table skips them).
+std::string special_law_csv(const std::vector<LawPoint>& law,
+                            const std::vector<std::string>& comments = {});
 
 }  // namespace bkq

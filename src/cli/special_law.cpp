@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/special_law.hpp"
+#include "bkquake_version.hpp"
 #include "cli/commands.hpp"
 #include "cli/scene_args.hpp"
 #include "core/error.hpp"
@@ -21,8 +22,14 @@ int cmd_special_law(const std::vector<std::string>& args) {
     return 0;
   }
   if (!vm.count("runs")) throw Error("special-law: give at least one BK run folder");
-  const auto law = special_law(vm["runs"].as<std::vector<std::string>>());
-  std::cout << special_law_csv(law);
+  const auto runs = vm["runs"].as<std::vector<std::string>>();
+  const auto law = special_law(runs);
+  std::vector<std::string> comments = {std::string("bkquake ") + kVersion + " (git " +
+                                       kGitRevision +
+                                       ") special-law: -pad_friction_mean / (N m_u) "
+                                       "per segment speed of:"};
+  for (const auto& r : runs) comments.push_back("  " + r);
+  std::cout << special_law_csv(law, comments);
   std::cerr << "special-law: " << law.size() << " speeds from " << law.front().speed << " to "
             << law.back().speed << "\n";
   return 0;

@@ -39,6 +39,23 @@ const Schema& special_law_schema() {
   return schema;
 }
 
+const Schema& friction_study_schema() {
+  static const Schema schema = {
+      {"configuration", "", "bkp, bk, 1dof or special-1dof (data/scenes/brake/)", kText},
+      {"seed", "", "run.seed of the run", kInteger},
+      {"run", "", "which of the five runs of the speed grid (0-based)", kInteger},
+      {"speed", "length/time", "substrate speed of the segment"},
+      {"friction_mean", "force", "mean pad friction (segments.csv pad_friction_mean)"},
+      {"friction_mean_err", "force", "its block-averaging error"},
+      {"friction_amp", "force", "amplitude of the pad friction"},
+      {"friction_amp_err", "force", "its block-averaging error"},
+      {"position_amp_scaled", "force", "pad-position amplitude times m_x (0 without a pad)"},
+      {"position_amp_scaled_err", "force", "its block-averaging error times m_x"},
+      {"friction_law", "force", "N m_u phi(v): the friction law of Table 3.1 on the whole pad"},
+  };
+  return schema;
+}
+
 std::string segments_header() {
   return header_of(segments_schema());
 }

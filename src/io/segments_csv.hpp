@@ -36,6 +36,10 @@ std::vector<SegmentRow> read_segments_csv(const std::filesystem::path& path);
 // relative speed and friction per unit block mass, speeds increasing.
 const Schema& special_law_schema();
 
+// friction_study.csv (`bkquake friction-study`): one row per configuration, seed, run and
+// segment, the pad friction statistics and the pad-position amplitude scaled by m_x.
+const Schema& friction_study_schema();
+
 // A numeric CSV with a header line (lines starting with '#' skipped): the named columns,
 // in the order asked. bkq::Error "<file>: missing column '<name>'" or on a bad number.
 std::vector<std::vector<double>> read_numeric_columns(const std::filesystem::path& path,

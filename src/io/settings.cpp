@@ -3,8 +3,10 @@
 // dimensionless units (eq. 2.2).
 #include "io/settings.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -96,6 +98,17 @@ Settings settings_from_scene(const Scene& scene) {
 
   s.output.every = scene.real("output.every");
   s.output.blocks = scene.flag("output.blocks");
+  {
+    // The range of blocks.csv, clipped to the chain: count 0 means up to the last block.
+    const int n = s.model.n;
+    s.output.block_first = static_cast<int>(scene.integer("output.block_first"));
+    const auto count = static_cast<int>(scene.integer("output.block_count"));
+    if (scene.flag("output.blocks") && s.output.block_first >= n)
+      throw Error("output.block_first = " + std::to_string(s.output.block_first) +
+                  " is beyond the chain: the blocks are 0 .. " + std::to_string(n - 1));
+    const int left = n - s.output.block_first;
+    s.output.block_count = count == 0 ? left : std::min(count, left);
+  }
   s.output.segment_blocks = static_cast<int>(scene.integer("output.segment_blocks"));
 
   s.stats.bin_width = scene.real("stats.bin_width");

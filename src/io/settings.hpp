@@ -51,8 +51,9 @@ struct IntegratorSettings {
 
 // output.*: continuous-mode outputs.
 struct OutputSettings {
-  double every = 0;        // time between timeseries rows
-  bool blocks = false;     // also write blocks.csv
+  double every = 0;                      // time between timeseries rows
+  bool blocks = false;                   // also write blocks.csv
+  int block_first = 0, block_count = 0;  // blocks.csv: these blocks (count resolved, > 0)
   int segment_blocks = 4;  // M of the segment statistics' block errors (thesis eq. 4.3)
 };
 

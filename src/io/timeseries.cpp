@@ -35,13 +35,23 @@ std::string timeseries_row(const TimeSeriesRow& r) {
   return s;
 }
 
-std::string blocks_header(int n) {
+std::string blocks_header(int first, int count) {
   std::string header = "t";
-  for (int j = 0; j < n; ++j) {
-    header += ",u";
-    header += std::to_string(j);
-  }
+  for (const char* what : {",u", ",v"})
+    for (int j = first; j < first + count; ++j) {
+      header += what;
+      header += std::to_string(j);
+    }
   return header;
+}
+
+std::string blocks_row(double t, const std::vector<double>& u, const std::vector<double>& v) {
+  std::string row = blocks_row(t, u);
+  for (double x : v) {
+    row += ',';
+    row += format_real(x);
+  }
+  return row;
 }
 
 std::string blocks_row(double t, const std::vector<double>& u) {

@@ -168,6 +168,35 @@ TEST(SegmentStats, StepsRunHasTheScheduleSpeedsAndTheTimeSeriesStatistics) {
   EXPECT_NE(test::read_file(out + "/summary.json").find("\"segments\": 4"), std::string::npos);
 }
 
+TEST(BlockTrajectories, ChosenBlocksWithVelocitiesThatMatchThePositions) {
+  test::TempDir dir;
+  const std::string out = dir.file("run");
+  ASSERT_EQ(run_scene(thesis_run({{"drive.schedule", "constant"},
+                                  {"drive.speed", "0.1"},
+                                  {"run.duration", "20"},
+                                  {"output.every", "0.005"},
+                                  {"output.blocks", "true"},
+                                  {"output.block_first", "2"},
+                                  {"output.block_count", "3"}},
+                                 out)),
+            0);
+  const std::string csv = test::read_file(out + "/blocks.csv");
+  ASSERT_EQ(csv.substr(0, csv.find('\n')), "t,u2,u3,u4,v2,v3,v4");
+  const auto c = read_numeric_columns(out + "/blocks.csv", {"t", "u3", "v3"});
+  // Lab-frame velocity against the positions' finite differences (trapezoid rule).
+  ASSERT_GT(c[0].size(), 100u);
+  double worst = 0;
+  for (std::size_t i = 0; i + 1 < c[0].size(); ++i) {
+    const double h = c[0][i + 1] - c[0][i];
+    const double fd = (c[1][i + 1] - c[1][i]) / h;
+    worst = std::max(worst, std::abs(fd - 0.5 * (c[2][i] + c[2][i + 1])));
+  }
+  // (Stick transitions make the velocity jump within a step; a frame error would be 0.1.)
+  EXPECT_LT(worst, 0.01);
+  // Stuck at the start: the block moves with the substrate, u' = -v.
+  EXPECT_DOUBLE_EQ(c[2][0], -0.1);
+}
+
 TEST(SegmentStats, RampWritesNoSegmentsAndSaysSo) {
   test::TempDir dir;
   const std::string out = dir.file("run");

@@ -51,16 +51,25 @@ std::string TimeSeriesWriter::header() const {
   return timeseries_header();
 }
 
-BlockTrajectories::BlockTrajectories(std::string path, bool append, int blocks)
-    : SampledCsv(std::move(path), append), u_(static_cast<std::size_t>(blocks)) {}
+BlockTrajectories::BlockTrajectories(std::string path, bool append, int first, int count)
+    : SampledCsv(std::move(path), append),
+      first_(first),
+      u_(static_cast<std::size_t>(count)),
+      v_(static_cast<std::size_t>(count)) {}
 
 void BlockTrajectories::on_sample(const Sample& s) {
-  for (std::size_t j = 0; j < u_.size(); ++j) u_[j] = s.driver.displacement(static_cast<int>(j));
-  row(blocks_row(s.values.t, u_));
+  // Lab frame: u_j = w_j - s, u_j' = w_j' - v.
+  const ChainState& st = s.driver.state();
+  for (std::size_t j = 0; j < u_.size(); ++j) {
+    const int b = first_ + static_cast<int>(j);
+    u_[j] = s.driver.displacement(b);
+    v_[j] = st.wd[static_cast<std::size_t>(b)] - s.values.speed;
+  }
+  row(blocks_row(s.values.t, u_, v_));
 }
 
 std::string BlockTrajectories::header() const {
-  return blocks_header(static_cast<int>(u_.size()));
+  return blocks_header(first_, static_cast<int>(u_.size()));
 }
 
 void PadFrictionStats::on_resume(const Checkpoint& c) {

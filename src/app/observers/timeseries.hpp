@@ -60,15 +60,16 @@ class TimeSeriesWriter : public SampledCsv {
   std::string header() const override;
 };
 
-// Lab-frame displacement of every block at each sample.
+// Lab-frame displacement and velocity of the blocks first .. first+count-1 at each sample.
 class BlockTrajectories : public SampledCsv {
  public:
-  BlockTrajectories(std::string path, bool append, int blocks);
+  BlockTrajectories(std::string path, bool append, int first, int count);
   void on_sample(const Sample& s) override;
 
  private:
   std::string header() const override;
-  std::vector<double> u_;
+  int first_;
+  std::vector<double> u_, v_;
 };
 
 // Mean and amplitude sqrt(2) * RMS deviation of the sampled pad friction.
