@@ -86,6 +86,7 @@ std::string encode_state(const ContinuousSnapshot& d, double next_out) {
   w.f64(d.episode_x0);
   w.i64(d.episodes);
   w.f64s(d.stepper);
+  for (double x : {d.energy.e0, d.energy.work, d.energy.dissipated}) w.f64(x);
   return std::move(w.bytes());
 }
 
@@ -108,6 +109,7 @@ ContinuousSnapshot decode_state(const Checkpoint& c, double& next_out) {
   d.episode_x0 = r.f64();
   d.episodes = r.i64();
   d.stepper = r.f64s();
+  for (double* x : {&d.energy.e0, &d.energy.work, &d.energy.dissipated}) *x = r.f64();
   if (!r.done()) throw Error("--resume: the checkpoint's continuous-run state is malformed");
   return d;
 }
@@ -179,6 +181,7 @@ class ContinuousRun {
     }
     observers_.phase_end({driver_->state().t, episodes_});
     if (const int sig = signals.received()) return stop(sig);
+    accuracy_->set_run_energy_residual(driver_->energy_balance().residual(driver_->energy()));
     observers_.end(run_end(0));
     // summary.json marks the run finished; its checkpoints have served.
     files_.remove();

@@ -26,6 +26,8 @@ ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
       settle_contacts(forces_, st_, wd_old_.data(), anchor, Ranges(&all_, 1), false, [](int) {});
   sliding_ = scan.sliding;
   if (sliding_ > 0) start_episode(-1);
+  energy_.e0 = energy();
+  power_ = power();
 }
 
 ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
@@ -48,12 +50,53 @@ ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
   episode_t0_ = saved.episode_t0;
   episode_x0_ = saved.episode_x0;
   episodes_ = saved.episodes;
+  energy_ = saved.energy;
   stepper_.restore_carried_state(saved.stepper);
+  power_ = power();
 }
 
 ContinuousSnapshot ContinuousDriver::snapshot() const {
   return {st_,      sliding_,    in_episode_, w_start_,  slid_,
-          episode_, episode_t0_, episode_x0_, episodes_, stepper_.carried_state()};
+          episode_, episode_t0_, episode_x0_, episodes_, stepper_.carried_state(),
+          energy_};
+}
+
+double ContinuousDriver::energy() const {
+  // The chain state's own s is the event engine's; here the schedule gives it.
+  ChainState st = st_;
+  const SubstrateState sub = substrate();
+  st.s = sub.s;
+  return forces_.spring_energy(st) + forces_.kinetic_energy(st, sub.v);
+}
+
+ContinuousDriver::Power ContinuousDriver::power() const {
+  const ModelParams& p = forces_.params();
+  const Friction& fr = forces_.friction();
+  const SubstrateState sub = substrate();
+  const double x = p.pad_moves() ? st_.x : 0.0;
+  const int n = forces_.n();
+  const double* wd = st_.wd.data();
+  // Plain sums first (they vectorise), then friction over the sliding blocks.
+  double sum_w = 0, sum_wd = 0, sum_u2 = 0, friction = 0;
+  for (int j = 0; j < n; ++j) {
+    sum_w += st_.w[j];
+    sum_wd += wd[j];
+  }
+  if (p.c_u != 0)
+    for (int j = 0; j < n; ++j) sum_u2 += (wd[j] - sub.v) * (wd[j] - sub.v);
+  // A sliding block's friction opposes its frozen direction; a stuck one does no work
+  // against the substrate (w' = 0).
+  if (sliding_ > 0 && p.law != FrictionLaw::None)
+    for (int j = 0; j < n; ++j)
+      if (st_.mobile[j] != 0.0)
+        friction += fr.magnitude_at(wd[j]) * (fr.backslip ? st_.dir[j] : 1.0) * wd[j];
+  const double sum_u1 = sum_wd - n * sub.v;
+  Power w;
+  w.momentum = p.m_u * sum_u1;
+  w.force = p.k_p * (sum_w - p.n * sub.s - p.n * x) + p.c_u * sum_u1;
+  w.dissipation =
+      p.m_u * friction + p.c_u * sum_u2 + (p.pad_moves() ? p.c_p * st_.xd * st_.xd : 0.0);
+  return w;
 }
 
 double ContinuousDriver::pad_friction() const {
@@ -109,6 +152,15 @@ void ContinuousDriver::step() {
                       });
   const bool was_sliding = sliding_ > 0;
   sliding_ = scan.sliding;
+  // The balance over the step: the substrate's work -v * (friction impulse on the chain),
+  // the impulse and the dissipation by the trapezoidal rule.
+  const Power before = power_;
+  power_ = power();
+  const double v_mid = 0.5 * (substrate_.at(t0).v + sub.v);
+  const double impulse =
+      power_.momentum - before.momentum + 0.5 * dt_ * (before.force + power_.force);
+  energy_.work -= v_mid * impulse;
+  energy_.dissipated += 0.5 * dt_ * (before.dissipation + power_.dissipation);
   if (!was_sliding && sliding_ > 0) {
     start_episode(first_release);
     // w_start_ was taken after the step; the released blocks had not moved yet.

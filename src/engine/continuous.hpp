@@ -13,6 +13,21 @@
 
 namespace bkq {
 
+// The energy balance of a continuous run: the energy of the chain and pad (springs,
+// kinetic in the lab frame) at the start, the work done on them by the substrate and what
+// friction and the dampers dissipated, both summed per step by the trapezoidal rule. The
+// substrate acts through friction only, whose total force on the chain follows from the
+// chain's momentum balance (sum F_f = d/dt sum m u' + k_p sum (u_j - x) + c_u sum u'),
+// so only the sliding blocks' friction is evaluated. An exact integration ends with
+// E - e0 = work - dissipated; residual() is the relative error.
+struct EnergyBalance {
+  double e0 = 0, work = 0, dissipated = 0;
+  // (E_end - e0 - work + dissipated) / dissipated; 0 while nothing was dissipated.
+  double residual(double e_end) const {
+    return dissipated > 0 ? (e_end - e0 - work + dissipated) / dissipated : 0.0;
+  }
+};
+
 // What a driver needs to continue exactly where it stopped, between two steps: the chain
 // state, the slip episode under way and what the stepper carries from step to step.
 struct ContinuousSnapshot {
@@ -25,6 +40,7 @@ struct ContinuousSnapshot {
   double episode_t0 = 0, episode_x0 = 0;
   std::int64_t episodes = 0;    // episodes started
   std::vector<double> stepper;  // Stepper::carried_state()
+  EnergyBalance energy;
 };
 
 class ContinuousDriver {
@@ -53,7 +69,19 @@ class ContinuousDriver {
   // A slip episode that ended during the last step, if any.
   std::optional<EventRecord> finished_episode();
 
+  // The run's energy balance so far and the energy now (springs and lab-frame kinetic).
+  const EnergyBalance& energy_balance() const { return energy_; }
+  double energy() const;
+
  private:
+  // The terms of the balance at the current state: the friction impulse's parts (lab
+  // momentum of the blocks, pulling springs' and block dampers' total force) and the
+  // dissipation rate.
+  struct Power {
+    double momentum = 0, force = 0, dissipation = 0;
+  };
+  Power power() const;
+
   void start_episode(int trigger);
 
   const ChainForces& forces_;
@@ -73,6 +101,8 @@ class ContinuousDriver {
   double episode_t0_ = 0, episode_x0_ = 0;
   std::int64_t episodes_ = 0;
   std::optional<EventRecord> finished_;
+  EnergyBalance energy_;
+  Power power_;  // at the current state
 };
 
 }  // namespace bkq

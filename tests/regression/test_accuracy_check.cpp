@@ -5,6 +5,8 @@
 // change, and with run.accuracy = error it fails with exit 2, keeping its outputs.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -91,16 +93,35 @@ TEST(AccuracyCheck, ErrorModeFailsWithExitTwoAndKeepsTheOutputs) {
   }
 }
 
-TEST(AccuracyCheck, ContinuousRunsReportOmegaDtToo) {
+// A continuous run measures the energy balance of the whole run (the substrate's work,
+// friction and dampers against the change of energy): small on a sound run (rk4 at the
+// default dt: a few 1e-4), large for theta at omega*dt = 20, which also warns on omega_dt.
+TEST(AccuracyCheck, ContinuousRunsMeasureTheirEnergyBalanceAndOmegaDt) {
+  const std::vector<std::string> base = {"--set", "drive.mode=continuous", "--set",
+                                         "model.blocks=20"};
   test::TempDir tmp;
-  const auto r = run_bkquake(run_args(
-      {"--set", "drive.mode=continuous", "--set", "integrator.scheme=theta", "--set", "model.l=100",
-       "--set", "integrator.dt=0.1", "--set", "model.blocks=20", "--set", "run.duration=100"},
-      tmp.file("out")));
+  std::vector<std::string> sound = base;
+  sound.insert(sound.end(), {"--set", "run.duration=2000", "--set", "drive.speed=0.05"});
+  const auto ok = run_bkquake(run_args(sound, tmp.file("ok")));
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  EXPECT_TRUE(warnings(ok).empty()) << ok.err;
+  const std::string summary = read_file(tmp.file("ok/summary.json"));
+  const auto at = summary.find("\"energy_residual\": ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  const double residual = std::strtod(summary.c_str() + at + 19, nullptr);
+  EXPECT_LT(std::abs(residual), 0.01) << summary;
+  EXPECT_GT(std::abs(residual), 0.0) << "an integration is never exact";
+
+  std::vector<std::string> coarse = base;
+  coarse.insert(coarse.end(), {"--set", "integrator.scheme=theta", "--set", "model.l=100", "--set",
+                               "integrator.dt=0.1", "--set", "run.duration=1000"});
+  const auto r = run_bkquake(run_args(coarse, tmp.file("coarse")));
   ASSERT_EQ(r.status, 0) << r.err;
-  ASSERT_EQ(warnings(r).size(), 1u) << r.err;
-  EXPECT_NE(warnings(r)[0].find("omega_dt"), std::string::npos);
-  EXPECT_NE(read_file(tmp.file("out/summary.json")).find("\"omega_dt\": 20"), std::string::npos);
+  const auto w = warnings(r);
+  ASSERT_EQ(w.size(), 2u) << r.err;
+  EXPECT_NE(w[0].find("energy_residual = "), std::string::npos) << w[0];
+  EXPECT_NE(w[1].find("omega_dt = 20"), std::string::npos) << w[1];
+  EXPECT_NE(read_file(tmp.file("coarse/summary.json")).find("\"omega_dt\": 20"), std::string::npos);
 }
 
 }  // namespace

@@ -72,6 +72,15 @@ std::vector<AccuracyCheck::Finding> AccuracyCheck::findings() const {
                   format_real(kEnergyResidualLimit).c_str());
     f.push_back({"energy_residual_max", text});
   }
+  if (!events_mode_ && !(std::abs(run_residual_) <= kEnergyResidualLimit)) {
+    std::snprintf(text, sizeof text,
+                  "energy_residual = %s is above %s in magnitude (the relative energy-balance "
+                  "error of the whole run): reduce integrator.dt (or use integrator.scheme = "
+                  "adaptive)",
+                  shown(run_residual_, kEnergyResidualLimit).c_str(),
+                  format_real(kEnergyResidualLimit).c_str());
+    f.push_back({"energy_residual", text});
+  }
   if (fixed_step_ && omega_dt_ > kOmegaDtLimit) {
     std::snprintf(text, sizeof text,
                   "omega_dt = %s is above %s (the fastest mode's angular frequency times "
@@ -105,6 +114,9 @@ void AccuracyCheck::add_to_summary(Json& summary) const {
     a.set("energy_residual_limit", kEnergyResidualLimit);
     a.set("event_steps_max", steps_max_);
     a.set("event_steps_limit", kEventStepsShareLimit * static_cast<double>(max_steps_));
+  } else {
+    a.set("energy_residual", run_residual_);
+    a.set("energy_residual_limit", kEnergyResidualLimit);
   }
   std::vector<std::string> names;
   for (const Finding& f : findings()) names.push_back(f.indicator);

@@ -1,5 +1,6 @@
 // The accuracy indicators every run measures, as an observer: the largest |energy balance
-// residual| of a recorded event (event runs; EventRecord::energy_residual), the fastest
+// residual| of a recorded event (event runs; EventRecord::energy_residual) or the energy
+// balance of the whole run (continuous runs; engine/continuous.hpp), the fastest
 // linear mode's omega_max * dt (fixed-step schemes; also the theta-method, which is stable
 // far beyond the point where it resolves the motion) with dt over the scheme's stability
 // limit, and the most relaxation steps an event took over run.max_steps_per_event (event
@@ -19,7 +20,7 @@
 
 namespace bkq {
 
-inline constexpr double kEnergyResidualLimit = 0.05;  // largest |residual| of an event
+inline constexpr double kEnergyResidualLimit = 0.05;  // of an event, or of a continuous run
 inline constexpr double kOmegaDtLimit = 1.0;          // omega_max * dt, fixed-step schemes
 inline constexpr double kEventStepsShareLimit = 0.5;  // of run.max_steps_per_event
 
@@ -34,6 +35,9 @@ class AccuracyCheck : public RunObserver {
   void note_event_steps(std::int64_t steps) {
     if (steps > steps_max_) steps_max_ = steps;
   }
+  // Continuous runs: the energy balance of the whole run (ContinuousDriver), set before
+  // the run ends.
+  void set_run_energy_residual(double r) { run_residual_ = r; }
   // Once the outputs are written: a warning line on stderr per indicator above its
   // threshold, or, with run.accuracy = error, throws bkq::Error naming them.
   void verdict() const;
@@ -49,6 +53,7 @@ class AccuracyCheck : public RunObserver {
   std::int64_t max_steps_;
   double residual_max_ = 0, residual_sum_ = 0;
   std::int64_t residual_n_ = 0, steps_max_ = 0;
+  double run_residual_ = 0;
 };
 
 }  // namespace bkq
