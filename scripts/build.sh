@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake libboost-program-options-dev libboost-dev libgsl-dev
-          googletest libgtest-dev libbenchmark-dev clang-format python3-numpy python3-matplotlib)
+          googletest libgtest-dev libbenchmark-dev clang-format python3-numpy python3-matplotlib
+          libboost-mpi-dev openmpi-bin libopenmpi-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

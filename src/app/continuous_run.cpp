@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "app/observers/catalog.hpp"
+#include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
 #include "app/observers/segments.hpp"
 #include "app/observers/summary.hpp"
@@ -31,8 +32,10 @@ void attach_observers(Observers& obs, const RunRequest& req, const Settings& set
     obs.attach<BlockTrajectories>(out.path("blocks.csv"), settings.output.block_first,
                                   settings.output.block_count);
   obs.attach<PadFrictionStats>();
+  const auto& hist =
+      obs.attach<HistogramWriter>(settings.stats.bin_width, out.path("histogram.csv"));
   attach_segment_stats(obs, settings, out);
-  obs.attach<ContinuousSummary>(req.scene, settings, out, obs);
+  obs.attach<ContinuousSummary>(req.scene, settings, out, hist.histogram(), obs);
   if (!req.quiet) obs.attach<ProgressLine>();
   for (RunObserver* o : req.observers) obs.attach_ref(*o);
 }

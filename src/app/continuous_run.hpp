@@ -1,6 +1,7 @@
 // Continuously driven runs (SPEC §3): the loop steps the driver to run.duration, samples
 // it every output.every and notifies the observers it attaches (time series, block
-// trajectories, episode catalog, pad-friction statistics, summary, progress).
+// trajectories, episode catalog, magnitude histogram, pad-friction statistics, summary
+// with the Gutenberg-Richter fit of the episodes, progress).
 #pragma once
 
 #include "app/run.hpp"

@@ -121,6 +121,7 @@ class EventRun {
         observers_.event(e);
         observers_.advance(advance(prog_.events_done));
       }
+      events_end_ = Clock::now();  // the summary's fit at phase_end is not event time
       observers_.phase_end(advance(prog_.events_done));
     }
     if (const int sig = signals.received()) return stop(sig);
@@ -135,7 +136,8 @@ class EventRun {
     observers_.attach<CatalogWriter>(out_.path("catalog.csv"), resumed);
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
-    observers_.attach<EventSummary>(req_.scene, settings_, out_, hist.histogram(), observers_);
+    observers_.attach<EventSummary>(req_.scene, settings_, out_, hist.histogram(), observers_,
+                                    [] { return g_stop_signal != 0; });
     if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
       observers_.attach<CheckpointTimer>([this] { save(engine_->snapshot()); }, r.checkpoint_events,
                                          r.checkpoint_seconds);
@@ -210,7 +212,11 @@ class EventRun {
     end.transient_events = transient_;
     end.blocks = engine_->state().n();
     end.total_load = engine_->load() - prog_.load0;
-    end.wall_seconds = wall_events0_ + seconds_since(recording_t0_);
+    end.wall_seconds =
+        wall_events0_ +
+        std::chrono::duration<double>(
+            (events_end_ == Clock::time_point{} ? Clock::now() : events_end_) - recording_t0_)
+            .count();
     end.wall_seconds_total = wall_total0_ + seconds_since(session_t0_);
     end.resumes = prog_.resumes;
     end.steps_recorded = c.steps - c0.steps;
@@ -257,6 +263,7 @@ class EventRun {
 
   // Wall time: this session's clocks on top of what earlier sessions (before a resume) spent.
   Clock::time_point session_t0_ = Clock::now(), recording_t0_ = session_t0_;
+  Clock::time_point events_end_{};  // when the events loop ended, once it has
   double wall_total0_ = 0, wall_events0_ = 0;
 };
 

@@ -1,11 +1,13 @@
 // `bkquake merge`: merges the magnitude histograms of several runs of the same scene exactly
 // (counts add; loading adds) and writes histogram.csv and summary.json, with the
-// Gutenberg-Richter fit of the merged histogram, into an output folder. Runs with different
-// bin widths or chain lengths are refused.
+// Gutenberg-Richter fit of the merged histogram, into an output folder. Runs of different
+// scenes (the physics and the bins, compared in their scene.ini) and the same run twice (the
+// same seed) are refused; nothing is written into an input folder.
 #pragma once
 
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,7 +15,10 @@ namespace bkq {
 
 struct MergeRequest {
   std::vector<std::string> runs;  // run folders, each with summary.json and histogram.csv
-  std::filesystem::path out;      // created if missing
+  std::filesystem::path out;      // created if missing; neither an input nor inside one
+  bool force = false;             // write into an output folder that already holds files
+  std::optional<double> mu_min = std::nullopt;  // the fit window, else automatic
+  std::optional<double> mu_max = std::nullopt;
 };
 
 // Prints a line (and the fit table) to `out`. User errors throw bkq::Error.

@@ -19,12 +19,13 @@ Usage:
   bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume] [--force]
   bkquake run --dump-defaults      print a commented scene with every key at its default
   bkquake fit CATALOG.csv [--mu-min A] [--mu-max B] [--bin-width W] [--blocks N] [--json OUT]
-  bkquake merge RUN_DIR... --out DIR
+  bkquake merge RUN_DIR... --out DIR [--force]
   bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]
   bkquake spectrum RUN_DIR [--signal S] [--segment K | --from T0 --to T1] [--out FILE]
   bkquake special-speed [SCENE] [--set section.key=value]...
   bkquake special-law BK_RUN_DIR... > law.csv
   bkquake friction-study [--out DIR] [--seeds N] [--jobs J] [--segment T]
+  bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume]
   bkquake --help | --version
 
 Commands:
@@ -38,6 +39,7 @@ Commands:
   special-speed  t_death and v_special = F0/(k_p t_death) of thesis eq. 4.8
   special-law    the friction a held pad feels in BK runs, as a table (thesis Fig. 4.8)
   friction-study the four configurations of thesis Fig. 4.6 over the speed grid
+  sweep   run every point of a sweep file (also under mpirun) and write sweep.csv
 
 Examples:
   bkquake run                                    the Carlson-Langer reference, event-driven
@@ -75,6 +77,7 @@ int main(int argc, char** argv) {
     if (command == "special-speed") return bkq::cmd_special_speed(args);
     if (command == "special-law") return bkq::cmd_special_law(args);
     if (command == "friction-study") return bkq::cmd_friction_study(args);
+    if (command == "sweep") return bkq::cmd_sweep(args);
     if (command == "readme-tables") return bkq::cmd_readme_tables(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {

@@ -19,7 +19,8 @@ int cmd_merge(const std::vector<std::string>& args) {
       "bkquake merge RUN_DIR... --out DIR\n"
       "Merges the histograms of runs of the same scene and fits the result");
   opts.add_options()("help,h", "show this help")("out", po::value<std::string>(),
-                                                 "output folder (created if missing)");
+                                                 "output folder (created if missing)")(
+      "force", "write into an output folder that already holds files");
   const po::variables_map vm = parse_command_line("merge", args, opts, "runs", -1);
   if (vm.count("help")) {
     std::cout << opts << "\n";
@@ -27,7 +28,9 @@ int cmd_merge(const std::vector<std::string>& args) {
   }
   if (!vm.count("runs")) throw Error("merge: no RUN_DIR given (see bkquake merge --help)");
   if (!vm.count("out")) throw Error("merge: --out DIR is required");
-  merge_runs({vm["runs"].as<std::vector<std::string>>(), vm["out"].as<std::string>()}, std::cout);
+  merge_runs({vm["runs"].as<std::vector<std::string>>(), vm["out"].as<std::string>(),
+              vm.count("force") > 0},
+             std::cout);
   return 0;
 }
 

@@ -8,7 +8,6 @@
 #include "cli/commands.hpp"
 #include "cli/scene_args.hpp"
 #include "core/error.hpp"
-#include "io/output.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -45,9 +44,7 @@ int cmd_run(const std::vector<std::string>& args) {
   request.force = vm.count("force") > 0;
   request.quiet = vm.count("quiet") > 0;
   if (request.resume && request.force) throw Error("run: --resume and --force exclude each other");
-  // Check the output folder now, so a bad --out fails in a second rather than after the
-  // run has set up; the run opens the same folder again for writing.
-  OutputFolder(request.out_dir, request.force, request.resume);
+  // run_scene checks (and locks) the output folder right after the quick checks of the scene.
   return run_scene(request);
 }
 

@@ -17,3 +17,31 @@ inline std::string format_real(double x) {
 }
 
 }  // namespace bkq
+
+namespace bkq {
+
+// `s` in single quotes for an error message, with every byte that is not printable ASCII
+// written as \xHH and at most `max` characters kept (then "..."): a corrupt or binary file
+// never puts raw bytes on a terminal.
+inline std::string quote_printable(const std::string& s, std::size_t max = 80) {
+  static const char* hex = "0123456789abcdef";
+  std::string out = "'";
+  std::size_t kept = 0;
+  for (const char ch : s) {
+    if (kept++ == max) {
+      out += "...";
+      break;
+    }
+    const auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out + "'";
+}
+
+}  // namespace bkq

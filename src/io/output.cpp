@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <ctime>
@@ -13,6 +14,9 @@
 
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/checkpoint.hpp"
+#include "io/folder_lock.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -46,18 +50,20 @@ std::string folder_of(const std::string& path) {
 
 }  // namespace
 
-OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume)
+OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
+                           const std::string& command)
     : dir_(dir), resume_(resume) {
   if (dir.empty()) throw Error("output folder: empty path");
   std::error_code ec;
+  if (resume && !fs::exists(dir, ec))
+    throw Error("--resume: output folder '" + dir + "' does not exist: nothing to continue");
   fs::create_directories(dir, ec);
   if (ec) throw Error("cannot create output folder '" + dir + "': " + ec.message());
   if (!fs::is_directory(dir, ec))
     throw Error("cannot use output folder '" + dir + "': " + reason(ENOTDIR));
-  if (!force && !resume && fs::exists(path("summary.json"), ec))
-    throw Error("output folder '" + dir +
-                "' already holds a finished run (summary.json); use --force to overwrite or "
-                "--resume to continue");
+  // Locked before anything is looked at, so what is checked below stays true.
+  lock_ = std::make_unique<FolderLock>(dir, command,
+                                       force || resume ? StaleLock::TakeOver : StaleLock::Refuse);
   // Probe with a real file: permissions, read-only mounts and full disks all show up here,
   // before hours of simulation rather than after.
   std::string probe = path(".bkquake-probe-XXXXXX");
@@ -65,7 +71,43 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume)
   if (fd < 0) throw Error("cannot write to output folder '" + dir + "': " + reason(errno));
   ::close(fd);
   ::unlink(probe.c_str());
+  if (force || resume) return;
+  const bool can_resume = command == "run";
+  if (fs::exists(path("summary.json"), ec))
+    throw Error(
+        "output folder '" + dir + "' already holds a finished run (summary.json); use " +
+        (can_resume ? "--force to overwrite or --resume to continue" : "--force to overwrite it"));
+  const CheckpointFiles checkpoints(dir);
+  if (checkpoints.exist())
+    throw Error(
+        "output folder '" + dir + "' holds an interrupted run (" +
+        (fs::exists(checkpoints.current(), ec) ? checkpoints.current() : checkpoints.previous()) +
+        "); use " +
+        (can_resume ? "--resume to continue it or --force to start over"
+                    : "--force to write over it"));
+  // Any other file would be written over by a file of the same name, or would be mistaken
+  // for part of this run: a new run starts in a new or empty folder. Hidden files (the
+  // lock's and the atomic writes' temporaries, a file manager's) do not count.
+  std::vector<std::string> found;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name[0] == '.' || name == FolderLock::kFileName || entry.is_directory(ec))
+      continue;
+    found.push_back(name);
+  }
+  if (!found.empty()) {
+    std::sort(found.begin(), found.end());
+    std::string names;
+    for (std::size_t i = 0; i < found.size() && i < 3; ++i)
+      names += (i ? ", " : "") + quote_printable(found[i]);
+    if (found.size() > 3) names += ", ... (" + std::to_string(found.size()) + " files)";
+    throw Error("output folder '" + dir + "' already holds files bkquake did not write in this " +
+                command + " (" + names +
+                "); choose a new or empty folder, or use --force to write over them");
+  }
 }
+
+OutputFolder::~OutputFolder() = default;
 
 std::string OutputFolder::path(const std::string& name) const {
   return (fs::path(dir_) / name).string();

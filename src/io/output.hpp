@@ -9,18 +9,27 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace bkq {
 
 class Scene;
+class FolderLock;
 
 class OutputFolder {
  public:
-  // Creates `dir` (and its parents) and checks it can be written. Throws bkq::Error when it
-  // cannot, or when it holds a finished run (summary.json) and neither force nor resume is set.
-  OutputFolder(const std::string& dir, bool force, bool resume);
+  // Creates `dir` (and its parents), checks it can be written and locks it for `command`
+  // (io/folder_lock.hpp) until destroyed. Throws bkq::Error when it cannot, when another
+  // process holds the lock (a stale one of this host is taken over with force or resume),
+  // and, unless force or resume is set, when the folder already holds files: a finished run
+  // (summary.json), an interrupted one (a checkpoint), or any other file, which a new run
+  // would write over. With resume the folder must exist.
+  OutputFolder(const std::string& dir, bool force, bool resume, const std::string& command = "run");
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
   // dir/name.
   std::string path(const std::string& name) const;
   const std::string& dir() const { return dir_; }
@@ -29,6 +38,7 @@ class OutputFolder {
  private:
   std::string dir_;
   bool resume_ = false;
+  std::unique_ptr<FolderLock> lock_;
 };
 
 // Writes `content` to a temporary file in the same folder, fsyncs it and renames it over

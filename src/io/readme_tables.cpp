@@ -11,6 +11,7 @@
 #include "io/scene.hpp"
 #include "io/segments_csv.hpp"
 #include "io/spectrum_csv.hpp"
+#include "io/sweep_file.hpp"
 #include "io/timeseries.hpp"
 
 namespace bkq {
@@ -67,6 +68,7 @@ std::vector<ReadmeTable> readme_tables() {
       {"spectrum.csv", column_table(spectrum_schema())},
       {"special_law.csv", column_table(special_law_schema())},
       {"friction_study.csv", column_table(friction_study_schema())},
+      {"sweep.csv", column_table(sweep_csv_schema())},
   };
 }
 

@@ -26,6 +26,13 @@ struct ModelParams {
   double k_p0 = 0;  // caliper-pad spring (BKP)
   double c_p = 0;   // pad damper (BKP)
 
+  // Rayleigh damping alpha_M M + beta_K K of the whole linear structure (seed 004 §4.2): M
+  // and K are the mass and stiffness matrices of blocks and pad (K holds k_c, the k_p
+  // coupling and, for bkp, the pad row with k_p0). Off (0) by default; the analysis
+  // (stats/stability) applies it.
+  double rayleigh_alpha = 0;  // alpha_M [1/time]
+  double rayleigh_beta = 0;   // beta_K [time]
+
   FrictionLaw law = FrictionLaw::Clst91;
   double F0 = 1;       // static threshold per unit block mass: stuck while |f| <= F0*m_u
   double sigma = 0;    // drop from static to kinetic friction

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/error.hpp"
@@ -114,6 +115,11 @@ Line weighted_line(const std::vector<double>& x, const std::vector<double>& y,
 std::string fmt(double x) {
   return format_real(x);
 }
+std::string fmt_short(double x) {  // 3 decimals, for a value in a sentence
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", x);
+  return buf;
+}
 
 }  // namespace
 
@@ -142,7 +148,9 @@ BEstimate binned_mle(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
   const double w = h.bin_width();
   std::int64_t n = 0;
   double s = 0;
-  for (std::int64_t k = k_lo; k <= k_hi; ++k) {
+  // Only the populated bins contribute; the loops stay within them whatever the window.
+  const std::int64_t k_begin = std::max(k_lo, h.first_bin()), k_end = std::min(k_hi, h.last_bin());
+  for (std::int64_t k = k_begin; k <= k_end; ++k) {
     n += h.count(k);
     s += static_cast<double>(h.count(k)) * static_cast<double>(k - k_lo) * w;
   }
@@ -152,7 +160,7 @@ BEstimate binned_mle(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
   // Mean of (bin centre - centre of the first bin): Tinti & Mulargia 1987.
   const double mean = s / static_cast<double>(n);
   double var_sum = 0;
-  for (std::int64_t k = k_lo; k <= k_hi; ++k) {
+  for (std::int64_t k = k_begin; k <= k_end; ++k) {
     const double d = static_cast<double>(k - k_lo) * w - mean;
     var_sum += static_cast<double>(h.count(k)) * d * d;
   }
@@ -176,7 +184,12 @@ double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::i
   const double J = static_cast<double>(k_hi - k_lo + 1);
   double d = 0;
   std::int64_t above = n;
-  for (std::int64_t j = k_lo + 1; j <= k_hi + 1; ++j) {
+  // Below the populated bins the empirical survival is 1 and above them 0 while the fitted
+  // one decreases, so the largest distance outside them is at their edges: j runs over
+  // first_bin..last_bin + 1 only.
+  const std::int64_t j_begin = std::max(k_lo + 1, h.first_bin());
+  const std::int64_t j_end = std::min(k_hi + 1, h.last_bin() + 1);
+  for (std::int64_t j = j_begin; j <= j_end; ++j) {
     above -= h.count(j - 1);
     const double s_emp = static_cast<double>(above) / static_cast<double>(n);
     const double i = static_cast<double>(j - k_lo);
@@ -184,27 +197,6 @@ double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::i
     d = std::max(d, std::fabs(s_emp - s_fit));
   }
   return d;
-}
-
-double tail_excess_p(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi, double b,
-                     bool truncated) {
-  const double w = h.bin_width();
-  const std::int64_t n = h.count_range(k_lo, k_hi);
-  if (n == 0 || !std::isfinite(b)) return kNaN;
-  const double J = static_cast<double>(k_hi - k_lo + 1);
-  double p_min = 1;
-  std::int64_t above = 0;  // events in bins k..k_hi
-  for (std::int64_t k = k_hi; k > k_lo; --k) {
-    above += h.count(k);
-    if (above == 0) continue;
-    const double i = static_cast<double>(k - k_lo);
-    const double s_fit = fitted_survival(b, w, i, J, truncated);
-    const double expected = static_cast<double>(n) * s_fit;
-    if (static_cast<double>(above) <= expected) continue;
-    p_min = std::min(
-        p_min, expected > 0 ? boost::math::gamma_p(static_cast<double>(above), expected) : 0.0);
-  }
-  return p_min;
 }
 
 GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
@@ -216,6 +208,28 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     throw Error("need at least 2 events to fit, found " + std::to_string(h.events()));
   const double w = h.bin_width();
   constexpr double eps = 1e-9;
+  const auto poll = [&opt] {
+    if (opt.cancelled && opt.cancelled()) throw FitCancelled();
+  };
+  const std::int64_t span = h.last_bin() - h.first_bin() + 1;
+  if (span > kMaxFitBins)
+    throw Error("the magnitudes " + fmt(h.min_mu()) + " .. " + fmt(h.max_mu()) + " span " +
+                std::to_string(span) + " bins of width " + fmt(w) + ", more than the " +
+                std::to_string(kMaxFitBins) + " a fit covers; use a wider bin width");
+  // A limit must be finite and within kMaxFitBins bins of the magnitudes, so that the bin
+  // indices below are exact integers and the window's loops are short.
+  const auto check_limit = [&](const char* name, double v) {
+    if (!std::isfinite(v))
+      throw Error(std::string("fit window: ") + name + " = " + fmt(v) + " is not a finite number");
+    const double k = v / w, lo = static_cast<double>(h.first_bin() - kMaxFitBins),
+                 hi = static_cast<double>(h.last_bin() + kMaxFitBins);
+    if (!(k >= lo && k <= hi))
+      throw Error(std::string("fit window: ") + name + " = " + fmt(v) + " lies more than " +
+                  std::to_string(kMaxFitBins) + " bins of width " + fmt(w) +
+                  " from the magnitudes " + fmt(h.min_mu()) + " .. " + fmt(h.max_mu()));
+  };
+  if (mu_min) check_limit("mu_min", *mu_min);
+  if (mu_max) check_limit("mu_max", *mu_max);
 
   // Explicit limits, snapped inward to whole bins.
   std::optional<std::int64_t> k_hi_given, k_lo_given;
@@ -239,75 +253,96 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   std::int64_t k_hi = k_hi_given.value_or(h.last_bin());
   f.window_auto = !mu_min;
   f.mu_max_auto = !mu_max;
+  std::string no_window;  // why no acceptable window exists (empty: one does)
   if (!mu_min || !mu_max) {
-    // Candidate windows: both ends on populated bins (unless given), >= min_window_bins
-    // bins, >= min_tail events, >= 2 populated bins; b_mle and the KS distance on each.
-    struct Candidate {
+    if (span > kMaxScanBins)
+      throw Error("automatic fit window: the magnitudes " + fmt(h.min_mu()) + " .. " +
+                  fmt(h.max_mu()) + " span " + std::to_string(span) + " bins of width " + fmt(w) +
+                  ", more than the " + std::to_string(kMaxScanBins) +
+                  " the window search covers; use a wider bin width or give mu_min and mu_max");
+    // The rule (README "How b is fitted"): among the windows whose ends sit on populated
+    // bins (unless given), with >= min_window_bins bins, >= min_tail events and >= 2
+    // populated bins, keep those (1) in which, unless mu_max is given, the running sum S
+    // of the counts over smooth_width never rises to more than rise_factor times its
+    // lowest value further down the window (at rise_sigma Poisson standard deviations): no
+    // bump, and no climbing out of the dip before it; (2) whose binned MLE b is > 0; (3) whose KS
+    // distance is within ks_systematic + ks_tolerance / sqrt(n_window). The widest wins
+    // (most bins, then most events, then smallest KS distance).
+    const std::int64_t first = h.first_bin(), last = h.last_bin();
+    std::vector<std::int64_t> prefix(static_cast<std::size_t>(span + 1), 0);  // counts below
+    for (std::int64_t i = 0; i < span; ++i)
+      prefix[static_cast<std::size_t>(i + 1)] =
+          prefix[static_cast<std::size_t>(i)] + h.count(first + i);
+    const auto below = [&](std::int64_t k) {  // events in bins < k
+      return prefix[static_cast<std::size_t>(std::clamp(k, first, last + 1) - first)];
+    };
+    const std::int64_t half =
+        std::max<std::int64_t>(1, std::llround(0.5 * (opt.smooth_width / w - 1)));
+    const auto S = [&](std::int64_t k) {
+      return static_cast<double>(below(k + half + 1) - below(k - half));
+    };
+    const std::int64_t lo_first = k_lo_given.value_or(first);
+    const std::int64_t lo_last = k_lo_given.value_or(last);
+    const std::int64_t hi_first = k_hi_given.value_or(first);
+    const std::int64_t hi_last = k_hi_given.value_or(last);
+    struct Pick {
       std::int64_t lo, hi, n;
       double d;
-      bool tail_ok;
     };
-    std::vector<Candidate> cands;
-    const std::int64_t lo_first = k_lo_given.value_or(h.first_bin());
-    const std::int64_t lo_last = k_lo_given.value_or(h.last_bin());
-    const std::int64_t hi_first = k_hi_given.value_or(h.first_bin());
-    const std::int64_t hi_last = k_hi_given.value_or(h.last_bin());
+    std::optional<Pick> pick;
+    std::int64_t candidates = 0, positive = 0;
     for (std::int64_t lo = lo_first; lo <= lo_last; ++lo) {
       if (!k_lo_given && h.count(lo) == 0) continue;
-      for (std::int64_t hi = std::max(hi_first, lo + opt.min_window_bins - 1); hi <= hi_last;
-           ++hi) {
+      poll();
+      double s_min = S(lo);
+      for (std::int64_t hi = lo; hi <= hi_last; ++hi) {
+        const double s = S(hi);
+        // A rise inside [lo, hi] stays inside every wider window: stop here. A given mu_max
+        // includes what lies below it, rise or not.
+        if (!k_hi_given && s > opt.rise_factor * s_min &&
+            s - s_min > opt.rise_sigma * std::sqrt(s + s_min))
+          break;
+        s_min = std::min(s_min, s);
+        if (hi < hi_first || hi - lo + 1 < opt.min_window_bins) continue;
         if (!k_hi_given && h.count(hi) == 0) continue;
-        const std::int64_t n = h.count_range(lo, hi);
+        const std::int64_t n = below(hi + 1) - below(lo);
         if (n < opt.min_tail) continue;
         int populated = 0;
         for (std::int64_t j = lo; j <= hi && populated < 2; ++j) populated += h.count(j) > 0;
         if (populated < 2) continue;
+        poll();
+        ++candidates;
         const bool tr = truncated_at(hi);
         const BEstimate e = binned_mle(h, lo, hi, tr);
+        if (!(e.b > 0) || !std::isfinite(e.err)) continue;
+        ++positive;
         const double d = ks_distance_binned(h, lo, hi, e.b, tr);
-        if (!std::isfinite(d)) continue;
-        const double p = tail_excess_p(h, lo, hi, e.b, tr);
-        const bool tail_ok = p >= opt.window_excess_alpha / static_cast<double>(hi - lo);
-        cands.push_back({lo, hi, n, d, tail_ok});
+        if (!(d <= opt.ks_systematic + opt.ks_tolerance / std::sqrt(static_cast<double>(n))))
+          continue;
+        if (!pick || hi - lo > pick->hi - pick->lo ||
+            (hi - lo == pick->hi - pick->lo && (n > pick->n || (n == pick->n && d < pick->d))))
+          pick = Pick{lo, hi, n, d};
       }
     }
-    if (cands.empty()) {
-      f.notes.push_back("no candidate window with >= " + std::to_string(opt.min_tail) +
-                        " events and >= " + std::to_string(opt.min_window_bins) +
-                        " bins: window spans the populated range");
-    } else if (mu_max) {
-      // Upper end fixed: Clauset, Shalizi & Newman 2009, the smallest KS distance wins.
-      const auto best =
-          std::min_element(cands.begin(), cands.end(),
-                           [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
-      k_lo = best->lo;
-    } else {
-      // Upper end free: the widest window whose KS distance is within
-      // ks_tolerance / sqrt(n_window) of the best one (ties: more events, then smaller d).
-      // Windows whose upper tail holds a significant excess over their own fit are out,
-      // unless every candidate has one.
-      const bool any_tail_ok =
-          std::any_of(cands.begin(), cands.end(), [](const Candidate& c) { return c.tail_ok; });
-      if (!any_tail_ok)
-        f.notes.push_back(
-            "every candidate window shows an excess of large events over its own fit");
-      double d_best = kInf;
-      for (const auto& c : cands)
-        if (c.tail_ok || !any_tail_ok) d_best = std::min(d_best, c.d);
-      const Candidate* pick = nullptr;
-      for (const auto& c : cands) {
-        if (any_tail_ok && !c.tail_ok) continue;
-        if (c.d > d_best + opt.ks_tolerance / std::sqrt(static_cast<double>(c.n))) continue;
-        if (!pick || c.hi - c.lo > pick->hi - pick->lo ||
-            (c.hi - c.lo == pick->hi - pick->lo &&
-             (c.n > pick->n || (c.n == pick->n && c.d < pick->d))))
-          pick = &c;
-      }
+    if (pick) {
       k_lo = pick->lo;
       k_hi = pick->hi;
+    } else if (candidates == 0) {
+      no_window = "no window with >= " + std::to_string(opt.min_tail) +
+                  " events and >= " + std::to_string(opt.min_window_bins) +
+                  " bins lies below a rise of the distribution";
+    } else if (positive == 0) {
+      no_window = "the events do not decrease with magnitude in any window (b <= 0)";
+    } else {
+      no_window = "no window is fitted by one power law to within the KS tolerance";
     }
   }
+  poll();
   f.truncated = truncated_at(k_hi);
+  if (k_hi - k_lo + 1 > kMaxFitBins)
+    throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) + ") spans " +
+                std::to_string(k_hi - k_lo + 1) + " bins of width " + fmt(w) + ", more than the " +
+                std::to_string(kMaxFitBins) + " a fit covers");
   if (k_hi < k_lo)
     throw Error("fit window [" + fmt(h.mu_low(k_lo)) + ", " + fmt(h.mu_high(k_hi)) + ") is empty");
   f.mu_min = h.mu_low(k_lo);
@@ -319,6 +354,9 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   f.b_mle_err = e.err;
   if (!std::isfinite(e.b))
     f.notes.push_back("b_mle is unbounded: the window's events fill one bin");
+  if (no_window.empty() && !(e.b > 0))
+    no_window =
+        "b_mle = " + fmt_short(e.b) + " on the window: the events do not decrease with magnitude";
   f.ks_distance = ks_distance_binned(h, k_lo, k_hi, e.b, f.truncated);
   const double nw = static_cast<double>(f.n_in_window);
   f.ln_A = std::log(nw) + f.b_mle * f.mu_min;
@@ -338,13 +376,17 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   // Least squares on ln R at the lower bin edges, weights R (Poisson).
   {
     std::vector<double> x, y, wt;
-    for (std::int64_t k = k_lo; k <= k_hi; ++k) {
-      const auto r = h.R(k);
+    std::int64_t r = h.R(k_hi + 1);  // R(k), kept as a running sum from the top down
+    for (std::int64_t k = k_hi; k >= k_lo; --k) {
+      r += h.count(k);
       if (r <= 0) continue;
       x.push_back(h.mu_low(k));
       y.push_back(std::log(static_cast<double>(r)));
       wt.push_back(static_cast<double>(r));
     }
+    std::reverse(x.begin(), x.end());
+    std::reverse(y.begin(), y.end());
+    std::reverse(wt.begin(), wt.end());
     const Line l = weighted_line(x, y, wt, 0, x.size());
     f.b_lsq = -l.slope;
     f.b_lsq_err = l.slope_err;
@@ -354,7 +396,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   {
     std::vector<double> x, y, wt;
     std::vector<std::int64_t> kk;
-    for (std::int64_t k = k_lo; k <= h.last_bin(); ++k) {
+    for (std::int64_t k = std::max(k_lo, h.first_bin()); k <= h.last_bin(); ++k) {
       if (h.count(k) <= 0) continue;
       x.push_back(0.5 * (h.mu_low(k) + h.mu_high(k)));
       y.push_back(std::log(h.D(k)));
@@ -363,7 +405,10 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     }
     constexpr std::size_t kMinSide = 3;
     double best = kInf;
-    for (std::size_t s = kMinSide; x.size() >= 2 * kMinSide && s + kMinSide <= x.size(); ++s) {
+    const bool scan = x.size() <= static_cast<std::size_t>(kMaxScanBins);
+    for (std::size_t s = kMinSide; scan && x.size() >= 2 * kMinSide && s + kMinSide <= x.size();
+         ++s) {
+      poll();
       const Line a = weighted_line(x, y, wt, 0, s);
       const Line b = weighted_line(x, y, wt, s, x.size());
       if (!std::isfinite(a.slope) || !std::isfinite(b.slope)) continue;
@@ -380,16 +425,27 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
         f.two_law_ln_A2 = b.intercept + b.slope * f.two_law_mu_high;
       }
     }
-    if (!f.two_law_ok)
+    if (!scan)
+      f.notes.push_back("two-power-law fit skipped: more than " + std::to_string(kMaxScanBins) +
+                        " populated bins above mu_min");
+    else if (!f.two_law_ok)
       f.notes.push_back("two-power-law fit skipped: fewer than 6 populated bins above mu_min");
   }
 
   // Large-event excess over the fitted line R = A e^{-b mu}. Inside a truncated window
   // the line is normalised to the window's events, so the scan stops at mu_max there.
   if (std::isfinite(f.b_mle)) {
-    const std::int64_t floor_k = f.truncated ? k_hi + 1 : k_lo;
+    // Edges below the populated bins are not scanned (the loops stay within them).
+    const std::int64_t floor_k = std::max(f.truncated ? k_hi + 1 : k_lo, h.first_bin());
+    std::vector<std::int64_t> R_of(static_cast<std::size_t>(span + 1), 0);  // R(first_bin + i)
+    for (std::int64_t i = span - 1; i >= 0; --i)
+      R_of[static_cast<std::size_t>(i)] =
+          R_of[static_cast<std::size_t>(i + 1)] + h.count(h.first_bin() + i);
+    const auto R = [&](std::int64_t k) {
+      return R_of[static_cast<std::size_t>(k - h.first_bin())];
+    };
     auto significant = [&](std::int64_t k) {
-      const auto r = h.R(k);
+      const auto r = R(k);
       const double expected = std::exp(f.ln_A - f.b_mle * h.mu_low(k));
       if (r <= 0 || !(static_cast<double>(r) > expected)) return false;
       // P(X >= r) for Poisson X of mean `expected` is the regularised lower incomplete
@@ -403,16 +459,28 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     for (; k >= floor_k && significant(k); --k) {
       f.excess_found = true;
       f.excess_mu = h.mu_low(k);
-      f.excess_observed = h.R(k);
+      f.excess_observed = R(k);
       f.excess_expected = std::exp(f.ln_A - f.b_mle * h.mu_low(k));
       f.excess_count =
           std::max(f.excess_count, static_cast<double>(f.excess_observed) - f.excess_expected);
     }
   }
+  // No acceptable window: no b at all (a headline b is never <= 0 or from a rejected
+  // window); the window fields keep the range that was looked at, the two-law fit stays.
+  if (!no_window.empty()) {
+    f.b_ok = false;
+    f.no_b_reason = no_window;
+    f.b_mle = f.b_mle_err = f.b_aki = f.b_aki_err = f.b_lsq = f.b_lsq_err = kNaN;
+    f.ln_A = f.ks_distance = kNaN;
+    f.excess_found = false;
+    f.excess_observed = 0;
+    f.excess_expected = f.excess_count = 0;
+  }
   return f;
 }
 
 void add_unbinned(GrFit& fit, std::span<const double> mu) {
+  if (!fit.b_ok) return;
   const BEstimate a =
       aki_mle(mu, fit.mu_min, fit.truncated ? std::optional<double>(fit.mu_max) : std::nullopt);
   fit.b_aki = a.b;

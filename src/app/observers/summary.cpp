@@ -3,6 +3,8 @@
 
 #include <cstdio>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
@@ -31,18 +33,85 @@ Json provenance_json(const Scene& scene, const Settings& settings, const std::st
 
 }  // namespace
 
-EventSummary::EventSummary(const Scene& scene, const Settings& settings, const OutputFolder& out,
-                           const MagnitudeHistogram& hist, const Observers& all)
-    : scene_(scene), settings_(settings), out_(out), hist_(hist), all_(all) {}
+SummaryOfEvents::SummaryOfEvents(const Scene& scene, const Settings& settings,
+                                 const OutputFolder& out, const MagnitudeHistogram& hist,
+                                 const Observers& all, std::function<bool()> stop_requested)
+    : scene_(scene),
+      settings_(settings),
+      out_(out),
+      hist_(hist),
+      all_(all),
+      stop_requested_(std::move(stop_requested)) {}
 
-void EventSummary::on_resume(const Checkpoint& c) {
+void SummaryOfEvents::on_phase(const Phase& p) {
+  if (std::string_view(p.what) == "events") events_total_ = p.total;
+}
+
+void SummaryOfEvents::on_phase_end(const Advance& a) {
+  if (events_total_ < 0 || a.done < events_total_) return;
+  fit();
+}
+
+void SummaryOfEvents::fit() {
+  if (fitted_ || hist_.events() < 2) return;
+  GrFitOptions opt;
+  opt.cancelled = stop_requested_;
+  try {
+    fit_ = fit_histogram(hist_, settings_.stats.mu_min, settings_.stats.mu_max, opt);
+    if (!fit_->b_ok) {  // no b rather than a meaningless one (README "How b is fitted")
+      fit_error_ = "no acceptable fit window: " + fit_->no_b_reason;
+      fit_.reset();
+    }
+    fitted_ = true;
+  } catch (const FitCancelled&) {
+    // The run stops after this phase (a checkpoint, no summary); a resume fits again.
+  } catch (const Error& err) {
+    fit_error_ = err.what();
+    fitted_ = true;
+  }
+}
+
+void SummaryOfEvents::on_resume(const Checkpoint& c) {
   moment_sum_ = c.progress.moment_sum;
   nonpositive_ = c.progress.nonpositive;
 }
 
-void EventSummary::on_checkpoint(Checkpoint& c) {
+void SummaryOfEvents::on_checkpoint(Checkpoint& c) {
   c.progress.moment_sum = moment_sum_;
   c.progress.nonpositive = nonpositive_;
+}
+
+void SummaryOfEvents::add_moments(Json& summary) const {
+  summary.set("moment_sum", moment_sum_);
+  summary.set("nonpositive_moments", nonpositive_);
+  summary.set("bin_width", hist_.bin_width());
+}
+
+std::string SummaryOfEvents::add_fit(Json& summary) {
+  if (hist_.events() < 2) return "b: not fitted (fewer than 2 events)";
+  fit();
+  if (!fit_) {
+    summary.set("b_mle", Json::null());
+    summary.set("fit_error", fit_error_);
+    return "b: not fitted (" + fit_error_ + ")";
+  }
+  const GrFit& fit = *fit_;
+  summary.set("b_mle", fit.b_mle);
+  summary.set("b_mle_err", fit.b_mle_err);
+  summary.set("b_lsq", fit.b_lsq);
+  summary.set("b_lsq_err", fit.b_lsq_err);
+  Json window = Json::object();
+  window.set("mu_min", fit.mu_min);
+  window.set("mu_max", fit.mu_max);
+  window.set("automatic", fit.window_auto);
+  window.set("events", fit.n_in_window);
+  window.set("ks_distance", fit.ks_distance);
+  summary.set("fit_window", std::move(window));
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "b = %.3f ± %.3f (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.b_mle,
+                fit.b_mle_err, fit.mu_min, fit.mu_max, static_cast<long long>(fit.n_in_window));
+  return line;
 }
 
 void EventSummary::on_end(const RunEnd& end) {
@@ -53,9 +122,7 @@ void EventSummary::on_end(const RunEnd& end) {
   summary.set("transient_events", end.transient_events);
   summary.set("blocks", end.blocks);
   summary.set("total_load", end.total_load);
-  summary.set("moment_sum", moment_sum_);
-  summary.set("nonpositive_moments", nonpositive_);
-  summary.set("bin_width", hist_.bin_width());
+  add_moments(summary);
   summary.set("wall_seconds", wall);
   summary.set("wall_seconds_total", end.wall_seconds_total);
   summary.set("events_per_second", wall > 0 ? end.events / wall : 0.0);
@@ -65,32 +132,7 @@ void EventSummary::on_end(const RunEnd& end) {
   work.set("block_steps", end.block_steps);
   work.set("sliding_block_steps", end.sliding_block_steps);
   summary.set("work", std::move(work));
-
-  std::string fit_line = "b: not fitted (fewer than 2 events)";
-  if (hist_.events() >= 2) {
-    try {
-      const GrFit fit = fit_histogram(hist_, settings_.stats.mu_min, settings_.stats.mu_max);
-      summary.set("b_mle", fit.b_mle);
-      summary.set("b_mle_err", fit.b_mle_err);
-      summary.set("b_lsq", fit.b_lsq);
-      summary.set("b_lsq_err", fit.b_lsq_err);
-      Json window = Json::object();
-      window.set("mu_min", fit.mu_min);
-      window.set("mu_max", fit.mu_max);
-      window.set("automatic", fit.window_auto);
-      window.set("events", fit.n_in_window);
-      window.set("ks_distance", fit.ks_distance);
-      summary.set("fit_window", std::move(window));
-      char line[200];
-      std::snprintf(line, sizeof line,
-                    "b = %.3f ± %.3f (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.b_mle,
-                    fit.b_mle_err, fit.mu_min, fit.mu_max, static_cast<long long>(fit.n_in_window));
-      fit_line = line;
-    } catch (const Error& err) {
-      fit_line = std::string("b: not fitted (") + err.what() + ")";
-      summary.set("fit_error", err.what());
-    }
-  }
+  const std::string fit_line = add_fit(summary);
   all_.add_to_summary(summary);
   write_file_atomic(out_.path("summary.json"), summary.str() + "\n");
 
@@ -102,10 +144,6 @@ void EventSummary::on_end(const RunEnd& end) {
   std::printf("  %s\n  outputs in %s/\n", fit_line.c_str(), out_.dir().c_str());
 }
 
-ContinuousSummary::ContinuousSummary(const Scene& scene, const Settings& settings,
-                                     const OutputFolder& out, const Observers& all)
-    : scene_(scene), settings_(settings), out_(out), all_(all) {}
-
 void ContinuousSummary::on_end(const RunEnd& end) {
   if (end.signal != 0) return;
   const double wall = end.wall_seconds;
@@ -115,15 +153,17 @@ void ContinuousSummary::on_end(const RunEnd& end) {
   summary.set("blocks", end.blocks);
   summary.set("events", end.events);
   summary.set("total_load", end.total_load);
+  add_moments(summary);
   summary.set("wall_seconds", wall);
   summary.set("block_steps_per_second",
               wall > 0 ? static_cast<double>(end.steps) * end.blocks / wall : 0.0);
+  const std::string fit_line = add_fit(summary);
   all_.add_to_summary(summary);
   write_file_atomic(out_.path("summary.json"), summary.str() + "\n");
   std::printf("bkquake %s: continuous run to t = %.6g (%lld steps) in %.3g s; %lld slip episodes\n",
               kVersion, end.duration, static_cast<long long>(end.steps), wall,
               static_cast<long long>(end.events));
-  std::printf("  outputs in %s/\n", out_.dir().c_str());
+  std::printf("  %s\n  outputs in %s/\n", fit_line.c_str(), out_.dir().c_str());
 }
 
 }  // namespace bkq

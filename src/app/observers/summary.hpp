@@ -4,9 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
 
 #include "app/observers/observer.hpp"
 #include "io/settings.hpp"
+#include "stats/gutenberg_richter.hpp"
 
 namespace bkq {
 
@@ -14,21 +18,34 @@ class OutputFolder;
 class MagnitudeHistogram;
 class Scene;
 
-// Event runs: counts, load, moment sum, work, wall time and the Gutenberg-Richter fit of
-// the histogram (attached before this observer, so it is complete at on_end).
-class EventSummary : public RunObserver {
+// What both summaries report about the events (recorded events, or the slip episodes of
+// a continuous run): their moment sum, the count with moment <= 0, and the
+// Gutenberg-Richter fit of the histogram (attached before the summary, so it is complete
+// at on_end). The sums travel in the checkpoint. The fit of an event run is made when its
+// events phase ends complete, before on_end, so that a run asked to stop during it
+// (stop_requested turns true) can still checkpoint: the fit then stops and the run stops as
+// after any event; a resumed run fits again. Other runs fit at on_end.
+class SummaryOfEvents : public RunObserver {
  public:
-  EventSummary(const Scene& scene, const Settings& settings, const OutputFolder& out,
-               const MagnitudeHistogram& hist, const Observers& all);
+  SummaryOfEvents(const Scene& scene, const Settings& settings, const OutputFolder& out,
+                  const MagnitudeHistogram& hist, const Observers& all,
+                  std::function<bool()> stop_requested = {});
+  void on_phase(const Phase& p) override;
+  void on_phase_end(const Advance& a) override;
   void on_resume(const Checkpoint& c) override;
   void on_event(const EventRecord& e) override {
     moment_sum_ += e.moment;
     if (!(e.moment > 0)) ++nonpositive_;
   }
   void on_checkpoint(Checkpoint& c) override;
-  void on_end(const RunEnd& end) override;
 
- private:
+ protected:
+  // Sets moment_sum, nonpositive_moments and bin_width.
+  void add_moments(Json& summary) const;
+  // Sets the fit's fields (or fit_error); returns the line printed about it.
+  std::string add_fit(Json& summary);
+  void fit();
+
   const Scene& scene_;
   const Settings& settings_;
   const OutputFolder& out_;
@@ -36,20 +53,26 @@ class EventSummary : public RunObserver {
   const Observers& all_;
   double moment_sum_ = 0;
   std::int64_t nonpositive_ = 0;
+  std::function<bool()> stop_requested_;
+  double events_total_ = -1;  // the events phase's length, once it has begun
+  bool fitted_ = false;
+  std::optional<GrFit> fit_;
+  std::string fit_error_;
 };
 
-// Continuous runs: simulated time, steps, slip episodes, load and speed.
-class ContinuousSummary : public RunObserver {
+// Event runs: counts, load, moment sum, work, wall time and the fit.
+class EventSummary : public SummaryOfEvents {
  public:
-  ContinuousSummary(const Scene& scene, const Settings& settings, const OutputFolder& out,
-                    const Observers& all);
+  using SummaryOfEvents::SummaryOfEvents;
   void on_end(const RunEnd& end) override;
+};
 
- private:
-  const Scene& scene_;
-  const Settings& settings_;
-  const OutputFolder& out_;
-  const Observers& all_;
+// Continuous runs: simulated time, steps, slip episodes, load, speed, moment sum and the
+// fit of the episodes, so the two modes compare directly.
+class ContinuousSummary : public SummaryOfEvents {
+ public:
+  using SummaryOfEvents::SummaryOfEvents;
+  void on_end(const RunEnd& end) override;
 };
 
 }  // namespace bkq

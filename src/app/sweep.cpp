@@ -1,0 +1,570 @@
+// The sweep (see sweep.hpp). Every rank reads the sweep file and knows every task (point p,
+// replica r: task p * replicas + r); rank 0 alone owns the sweep folder: it takes the lock,
+// decides what is left to do, hands the tasks out slowest first, merges a point once its
+// replicas are in, and writes point.json, sweep.csv and the progress lines. A replica's
+// folder is written only by the rank that runs it.
+#include "app/sweep.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "app/merge.hpp"
+#include "app/run.hpp"
+#include "app/sweep_comm.hpp"
+#include "bkquake_version.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/checkpoint.hpp"
+#include "io/ini.hpp"
+#include "io/json.hpp"
+#include "io/output.hpp"
+#include "io/run_folder.hpp"
+
+namespace bkq {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string padded(std::size_t i, std::size_t count, int min_width) {
+  int width = 1;
+  for (std::size_t n = count > 0 ? count - 1 : 0; n >= 10; n /= 10) ++width;
+  width = std::max(width, min_width);
+  std::string s = std::to_string(i);
+  return std::string(width > static_cast<int>(s.size()) ? width - s.size() : 0, '0') + s;
+}
+
+std::string duration_text(double s) {
+  if (!std::isfinite(s) || s < 0) return "?";
+  const long long t = std::llround(s);
+  char buf[48];
+  if (t >= 3600)
+    std::snprintf(buf, sizeof buf, "%lldh%02lldm", t / 3600, (t / 60) % 60);
+  else if (t >= 60)
+    std::snprintf(buf, sizeof buf, "%lldm%02llds", t / 60, t % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%llds", t);
+  return buf;
+}
+
+// A CSV field: as it is, or double-quoted (quotes doubled) when it holds , " or a newline.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (const char c : s) {
+    if (c == '"') q += '"';
+    q += c == '\n' ? ' ' : c;
+  }
+  return q + "\"";
+}
+
+// A number from a JSON file, empty when absent or unreadable.
+std::optional<double> json_number(const fs::path& file, const std::string& key) {
+  try {
+    return read_json_number(file, key);
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+// The string value of a top-level "key" of a JSON file written by bkq::Json (one member
+// per line), for point.json's status and error.
+std::optional<std::string> json_string(const fs::path& file, const std::string& key) {
+  std::ifstream in(file);
+  std::string line;
+  const std::string start = "\"" + key + "\": \"";
+  while (std::getline(in, line)) {
+    const auto at = line.find(start);
+    if (at == std::string::npos || line.find_first_not_of(' ') != at) continue;
+    std::string out;
+    for (std::size_t i = at + start.size(); i < line.size(); ++i) {
+      if (line[i] == '\\' && i + 1 < line.size()) {
+        out += line[++i];
+        continue;
+      }
+      if (line[i] == '"') return out;
+      out += line[i];
+    }
+  }
+  return std::nullopt;
+}
+
+// The sweep-level lock: a file created exclusively, holding host and pid. A lock left by a
+// process of this host that no longer exists is taken over; any other is refused.
+class SweepLock {
+ public:
+  explicit SweepLock(const fs::path& path) : path_(path) {
+    char host[256] = {};
+    ::gethostname(host, sizeof host - 1);
+    const std::string me = std::string(host) + " " + std::to_string(::getpid()) + "\n";
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      std::FILE* f = std::fopen(path.c_str(), "wx");
+      if (f) {
+        const bool ok = std::fputs(me.c_str(), f) >= 0;
+        if (std::fclose(f) != 0 || !ok)
+          throw Error("cannot write the lock '" + path.string() + "'");
+        held_ = true;
+        return;
+      }
+      if (errno != EEXIST)
+        throw Error("cannot create the lock '" + path.string() + "': " + std::strerror(errno));
+      std::ifstream in(path);
+      std::string other_host;
+      long other_pid = 0;
+      in >> other_host >> other_pid;
+      const bool stale =
+          other_host == host && other_pid > 0 && ::kill(other_pid, 0) != 0 && errno == ESRCH;
+      if (!stale)
+        throw Error("output folder '" + path.parent_path().string() +
+                    "' is in use by another sweep (" + path.string() + ": host " + other_host +
+                    ", pid " + std::to_string(other_pid) +
+                    "); if no sweep runs there any more, delete the lock file");
+      std::fprintf(stderr, "bkquake: sweep: taking over the lock of pid %ld, which has ended\n",
+                   other_pid);
+      fs::remove(path);
+    }
+    throw Error("cannot take the lock '" + path.string() + "'");
+  }
+  ~SweepLock() {
+    std::error_code ec;
+    if (held_) fs::remove(path_, ec);
+  }
+  SweepLock(const SweepLock&) = delete;
+  SweepLock& operator=(const SweepLock&) = delete;
+
+ private:
+  fs::path path_;
+  bool held_ = false;
+};
+
+// What a point came to.
+struct PointResult {
+  enum class State { Pending, Ok, Failed } state = State::Pending;
+  std::string error;
+  std::int64_t events = 0;
+  std::optional<double> b, b_err, mu_min, mu_max;
+  double seconds = 0;
+};
+
+class Sweep {
+ public:
+  Sweep(const SweepRequest& req, SweepSpec spec)
+      : req_(req), spec_(std::move(spec)), points_(spec_.points()), out_(req.out_dir) {
+    seed_swept_ = std::any_of(spec_.keys.begin(), spec_.keys.end(),
+                              [](const SweptKey& k) { return k.key == "run.seed"; });
+    results_.resize(points_.size());
+    replica_done_.assign(points_.size(), 0);
+    replica_error_.resize(points_.size());
+    replica_seconds_.assign(points_.size(), 0.0);
+  }
+
+  std::size_t tasks() const { return points_.size() * spec_.replicas; }
+  void set_ranks(int n) { ranks_ = n; }
+
+  fs::path point_dir(std::size_t p) const {
+    return out_ / "points" / ("p" + padded(p, points_.size(), 4));
+  }
+  fs::path replica_dir(std::size_t p, int r) const {
+    return point_dir(p) / ("r" + padded(r, spec_.replicas, 2));
+  }
+
+  // Rank 0, before anything runs: the lock, the folder's state, sweep.ini; returns the
+  // tasks left in the order they are handed out.
+  std::vector<int> prepare() {
+    fs::create_directories(out_);
+    lock_ = std::make_unique<SweepLock>(out_ / "sweep.lock");
+    const fs::path ini = out_ / "sweep.ini";
+    const std::string plan = plan_text();
+    if (fs::exists(ini)) {
+      if (!req_.resume)
+        throw Error("output folder '" + out_.string() +
+                    "' holds a sweep (sweep.ini); use --resume to finish it, or another --out");
+      const std::string old = read_text_file(ini.string(), "sweep file");
+      if (plan_of(old) != plan_of(plan))
+        throw Error("--resume: '" + ini.string() +
+                    "' describes another sweep (other points, scenes or replicas); resume with "
+                    "the same sweep file and --set options");
+    } else if (req_.resume) {
+      throw Error("--resume: output folder '" + out_.string() +
+                  "' holds no sweep (no sweep.ini): nothing to continue");
+    }
+    if (req_.resume) remove_temporaries();
+    write_file_atomic(ini.string(), provenance() + plan);
+
+    std::vector<int> order;
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      if (req_.resume && load_point(p)) continue;
+      for (int r = 0; r < spec_.replicas; ++r) {
+        if (req_.resume && fs::exists(replica_dir(p, r) / "summary.json")) {
+          note_replica(p, TaskResult{task_of(p, r), 0, replica_seconds(p, r, 0), ""});
+          continue;
+        }
+        order.push_back(task_of(p, r));
+      }
+      if (replica_done_[p] == spec_.replicas) finish_point(p);
+    }
+    // Slowest first where the cost is predictable (events x blocks, or steps x blocks);
+    // equal costs keep the file's order.
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return cost(a / spec_.replicas) > cost(b / spec_.replicas);
+    });
+    left_ = order.size();
+    skipped_ = tasks() - order.size();
+    write_csv();
+    return order;
+  }
+
+  // Any rank: runs one replica into its folder.
+  TaskResult run_task(int task) const {
+    const std::size_t p = static_cast<std::size_t>(task) / spec_.replicas;
+    const int r = task % spec_.replicas;
+    const auto t0 = Clock::now();
+    TaskResult res{task, 0, 0, ""};
+    try {
+      Scene scene = points_[p].scene;
+      const auto seed = sweep_seed(static_cast<std::uint64_t>(scene.integer("run.seed")),
+                                   seed_swept_, p, spec_.replicas, r);
+      scene.set("run.seed", std::to_string(seed), "sweep");
+      scene.origin =
+          spec_.origin + ", point " + std::to_string(p) + ", replica " + std::to_string(r);
+      scene.validate();
+      RunRequest run;
+      run.scene = scene;
+      run.out_dir = replica_dir(p, r).string();
+      run.quiet = true;
+      const bool events = scene.choice("drive.mode") == "events";
+      if (events && CheckpointFiles(run.out_dir).exist())
+        run.resume = true;  // an interrupted replica continues from its checkpoint
+      else
+        run.force = true;  // nothing to continue: start the replica over
+      const int rc = run_scene(run);
+      if (rc != 0) {
+        res.status = 2;
+        res.error = "stopped by a signal (exit " + std::to_string(rc) + ")";
+      }
+      if (!spec_.keep_catalog && rc == 0) fs::remove(replica_dir(p, r) / "catalog.csv");
+    } catch (const std::exception& e) {
+      res.status = 1;
+      res.error = e.what();
+    }
+    const double measured = std::chrono::duration<double>(Clock::now() - t0).count();
+    res.seconds = res.status == 0 ? replica_seconds(p, r, measured) : measured;
+    return res;
+  }
+
+  // Rank 0: a replica's result came in. Returns false to stop handing out tasks.
+  bool on_result(const TaskResult& r) {
+    const std::size_t p = static_cast<std::size_t>(r.task) / spec_.replicas;
+    --left_;
+    if (r.status == 2) {
+      interrupted_ = true;
+      std::fprintf(stderr, "bkquake: sweep: point %zu replica %d %s; the sweep stops\n", p,
+                   r.task % spec_.replicas, r.error.c_str());
+      return false;
+    }
+    note_replica(p, r);
+    if (replica_done_[p] == spec_.replicas) {
+      finish_point(p);
+      write_csv();
+    }
+    progress(false);
+    return true;
+  }
+
+  // Rank 0, at the end: sweep.csv, the failures, the exit status.
+  int finish(const DispatchStats& stats, const std::string& ranks, int size) {
+    write_csv();
+    progress(true);
+    int failed = 0;
+    for (std::size_t p = 0; p < points_.size(); ++p)
+      if (results_[p].state == PointResult::State::Failed) {
+        ++failed;
+        std::fprintf(stderr, "bkquake: sweep: point %zu (%s) failed: %s\n", p,
+                     point_label(p).c_str(), results_[p].error.c_str());
+      }
+    std::printf(
+        "bkquake %s sweep: %zu points x %d replicas on %s in %.3g s; %d failed; sweep.csv in "
+        "%s/\n",
+        kVersion, points_.size(), spec_.replicas, ranks.c_str(), stats.dispatch_seconds, failed,
+        out_.string().c_str());
+    if (size > 1)
+      std::printf(
+          "  dispatcher: %lld messages for %d tasks run by other ranks (2 per task + 2 per "
+          "rank to start and stop), idle at the end %.3g rank-seconds\n",
+          stats.messages, stats.remote_tasks, stats.idle_at_end_seconds);
+    std::fflush(stdout);
+    if (interrupted_) return 130;
+    return failed ? kExitSweepFailures : 0;
+  }
+
+ private:
+  // A sweep killed while writing a file atomically leaves its temporary (name.tmp-XXXXXX,
+  // io/output.hpp) beside it; the file itself is either old or new, so the temporary goes.
+  void remove_temporaries() const {
+    std::vector<fs::path> stale;
+    for (const auto& e : fs::recursive_directory_iterator(out_))
+      if (e.is_regular_file() && e.path().filename().string().find(".tmp-") != std::string::npos)
+        stale.push_back(e.path());
+    for (const auto& f : stale) fs::remove(f);
+  }
+
+  int task_of(std::size_t p, int r) const { return static_cast<int>(p) * spec_.replicas + r; }
+
+  double cost(std::size_t p) const {
+    const Scene& s = points_[p].scene;
+    const double blocks = static_cast<double>(s.integer("model.blocks"));
+    if (s.choice("drive.mode") == "events")
+      return blocks *
+             static_cast<double>(s.integer("run.events") + s.integer("run.transient_events"));
+    return blocks * s.real("run.duration") / s.real("integrator.dt");
+  }
+
+  double replica_seconds(std::size_t p, int r, double fallback) const {
+    const fs::path s = replica_dir(p, r) / "summary.json";
+    if (auto v = json_number(s, "wall_seconds_total")) return *v;
+    if (auto v = json_number(s, "wall_seconds")) return *v;
+    return fallback;
+  }
+
+  void note_replica(std::size_t p, const TaskResult& r) {
+    ++replica_done_[p];
+    replica_seconds_[p] += r.seconds;
+    if (r.status != 0 && replica_error_[p].empty())
+      replica_error_[p] = "replica " + std::to_string(r.task % spec_.replicas) + ": " + r.error;
+  }
+
+  std::string point_label(std::size_t p) const {
+    std::string s;
+    for (const auto& [k, v] : points_[p].values) s += (s.empty() ? "" : ", ") + k + " = " + v;
+    return s;
+  }
+
+  // A point whose every replica is in: merge (event runs) and point.json.
+  void finish_point(std::size_t p) {
+    PointResult& res = results_[p];
+    res.seconds = replica_seconds_[p];
+    res.error = replica_error_[p];
+    res.state = res.error.empty() ? PointResult::State::Ok : PointResult::State::Failed;
+    const Scene& scene = points_[p].scene;
+    if (res.state == PointResult::State::Ok && scene.choice("drive.mode") == "events") {
+      try {
+        MergeRequest m;
+        for (int r = 0; r < spec_.replicas; ++r) m.runs.push_back(replica_dir(p, r).string());
+        m.out = point_dir(p);
+        m.mu_min = scene.real_or_auto("stats.mu_min");
+        m.mu_max = scene.real_or_auto("stats.mu_max");
+        std::ostringstream ignored;
+        merge_runs(m, ignored);
+        const fs::path s = point_dir(p) / "summary.json";
+        res.events = static_cast<std::int64_t>(json_number(s, "events").value_or(0));
+        res.b = json_number(s, "b_mle");
+        res.b_err = json_number(s, "b_mle_err");
+        res.mu_min = json_number(s, "mu_min");
+        res.mu_max = json_number(s, "mu_max");
+        if (!spec_.keep_histogram)
+          for (int r = 0; r < spec_.replicas; ++r) fs::remove(replica_dir(p, r) / "histogram.csv");
+      } catch (const std::exception& e) {
+        res.state = PointResult::State::Failed;
+        res.error = std::string("merge: ") + e.what();
+      }
+    } else if (res.state == PointResult::State::Ok) {
+      for (int r = 0; r < spec_.replicas; ++r)
+        res.events += static_cast<std::int64_t>(
+            json_number(replica_dir(p, r) / "summary.json", "events").value_or(0));
+    }
+    Json j = Json::object();
+    j.set("point", static_cast<std::int64_t>(p));
+    j.set("status", res.state == PointResult::State::Ok ? "ok" : "failed");
+    Json values = Json::object();
+    for (const auto& [k, v] : points_[p].values) values.set(k, v);
+    j.set("values", std::move(values));
+    j.set("replicas", spec_.replicas);
+    j.set("events", res.events);
+    j.set("b", Json::number(res.b.value_or(NAN)));
+    j.set("b_err", Json::number(res.b_err.value_or(NAN)));
+    j.set("mu_min", Json::number(res.mu_min.value_or(NAN)));
+    j.set("mu_max", Json::number(res.mu_max.value_or(NAN)));
+    j.set("run_seconds", res.seconds);
+    j.set("error", res.error);
+    fs::create_directories(point_dir(p));
+    write_file_atomic((point_dir(p) / "point.json").string(), j.str() + "\n");
+  }
+
+  // --resume: a point finished before (point.json says ok) is taken as it is.
+  bool load_point(std::size_t p) {
+    const fs::path f = point_dir(p) / "point.json";
+    if (json_string(f, "status").value_or("") != "ok") return false;
+    PointResult& res = results_[p];
+    res.state = PointResult::State::Ok;
+    res.events = static_cast<std::int64_t>(json_number(f, "events").value_or(0));
+    res.b = json_number(f, "b");
+    res.b_err = json_number(f, "b_err");
+    res.mu_min = json_number(f, "mu_min");
+    res.mu_max = json_number(f, "mu_max");
+    res.seconds = json_number(f, "run_seconds").value_or(0);
+    replica_done_[p] = spec_.replicas;
+    return true;
+  }
+
+  void write_csv() const {
+    std::vector<std::string> header;
+    for (const auto& c : sweep_csv_schema()) {
+      header.push_back(c.name);
+      if (c.name == std::string(sweep_col::point))
+        for (const auto& k : spec_.keys) header.push_back(k.key);
+    }
+    std::ostringstream out;
+    auto row = [&out](const std::vector<std::string>& fields) {
+      for (std::size_t i = 0; i < fields.size(); ++i) out << (i ? "," : "") << fields[i];
+      out << '\n';
+    };
+    row(header);
+    auto num = [](const std::optional<double>& x) { return x ? format_real(*x) : std::string(); };
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      const PointResult& r = results_[p];
+      const bool have = r.state != PointResult::State::Pending;
+      std::vector<std::string> f{std::to_string(p)};
+      for (const auto& [k, v] : points_[p].values) f.push_back(csv_field(v));
+      f.push_back(r.state == PointResult::State::Ok       ? "ok"
+                  : r.state == PointResult::State::Failed ? "failed"
+                                                          : "pending");
+      f.push_back(have ? std::to_string(spec_.replicas) : "");
+      f.push_back(have ? std::to_string(r.events) : "");
+      f.push_back(num(r.b));
+      f.push_back(num(r.b_err));
+      f.push_back(num(r.mu_min));
+      f.push_back(num(r.mu_max));
+      f.push_back(have ? format_real(r.seconds) : "");
+      f.push_back(csv_field(r.error));
+      row(f);
+    }
+    write_file_atomic((out_ / "sweep.csv").string(), out.str());
+  }
+
+  void progress(bool final) {
+    const auto now = Clock::now();
+    if (!final && (left_ == 0 || now - last_progress_ < std::chrono::seconds(1))) return;
+    last_progress_ = now;
+    std::size_t done = 0, failed = 0;
+    for (const auto& r : results_) {
+      done += r.state != PointResult::State::Pending;
+      failed += r.state == PointResult::State::Failed;
+    }
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const std::size_t ran = tasks() - skipped_ - left_;
+    // Every rank is busy while tasks remain (the hand-out is dynamic), so the ETA is the
+    // time per task so far times the tasks left.
+    const double eta = ran > 0 ? elapsed / static_cast<double>(ran) * left_ : NAN;
+    const std::size_t running = std::min(left_, static_cast<std::size_t>(ranks_));
+    std::fprintf(stderr,
+                 "sweep: points %zu/%zu done (%zu failed); replicas %zu done, %zu running, %zu "
+                 "left; elapsed %s, ETA %s\n",
+                 done, points_.size(), failed, tasks() - left_, running, left_ - running,
+                 duration_text(elapsed).c_str(), left_ == 0 ? "0s" : duration_text(eta).c_str());
+    std::fflush(stderr);
+  }
+
+  std::string provenance() const {
+    std::string s = "# bkquake " + std::string(kVersion) + " (git " + kGitRevision +
+                    ") sweep, written " + utc_now_iso() + "\n";
+    return s;
+  }
+
+  // The sweep as run: the file and the overrides, then the points' effective values (what
+  // --resume compares).
+  std::string plan_text() const {
+    std::string s = "# sweep file " + spec_.origin + "\n";
+    for (const auto& o : req_.overrides) s += "# --set " + o + "\n";
+    s += spec_.text;
+    if (!s.empty() && s.back() != '\n') s += '\n';
+    s += "# points: " + std::to_string(points_.size()) + " x " + std::to_string(spec_.replicas) +
+         " replicas\n";
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      char hash[32];
+      std::snprintf(hash, sizeof hash, "%016llx",
+                    static_cast<unsigned long long>(points_[p].scene.hash()));
+      s += "# point " + std::to_string(p) + ": " + point_label(p) + " (scene hash " + hash + ")\n";
+    }
+    return s;
+  }
+  // The lines of a plan that must match for --resume: the point lines.
+  static std::string plan_of(const std::string& text) {
+    std::string out, line;
+    std::istringstream in(text);
+    while (std::getline(in, line))
+      if (line.rfind("# point", 0) == 0) out += line + "\n";
+    return out;
+  }
+
+  const SweepRequest& req_;
+  SweepSpec spec_;
+  std::vector<SweepPoint> points_;
+  fs::path out_;
+  bool seed_swept_ = false;
+  std::unique_ptr<SweepLock> lock_;
+  std::vector<PointResult> results_;
+  std::vector<int> replica_done_;
+  std::vector<std::string> replica_error_;
+  std::vector<double> replica_seconds_;
+  std::size_t left_ = 0, skipped_ = 0;
+  bool interrupted_ = false;
+  int ranks_ = 1;
+  Clock::time_point start_ = Clock::now(), last_progress_{};
+};
+
+}  // namespace
+
+std::uint64_t sweep_seed(std::uint64_t point_seed, bool seed_swept, std::size_t point, int replicas,
+                         int replica) {
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << 63) - 1;
+  const std::uint64_t offset =
+      (seed_swept ? 0 : static_cast<std::uint64_t>(point) * static_cast<std::uint64_t>(replicas)) +
+      static_cast<std::uint64_t>(replica);
+  return (point_seed + offset) & kMask;
+}
+
+int run_sweep(const SweepRequest& req) {
+  std::string ranks;
+  const std::unique_ptr<SweepComm> comm = make_sweep_comm(ranks);
+  Sweep sweep(req, read_sweep_file(req.sweep_file, req.overrides));
+  std::vector<int> order;
+  std::string error;
+  sweep.set_ranks(comm->size());
+  if (comm->rank() == 0) {
+    try {
+      order = sweep.prepare();
+    } catch (const Error& e) {
+      error = e.what();
+    }
+  }
+  if (!comm->agree(error.empty())) {
+    if (comm->rank() == 0) throw Error(error);
+    return kExitBadInput;
+  }
+  if (comm->rank() == 0) {
+    std::fprintf(stderr, "sweep: %zu tasks to run on %s\n", order.size(), ranks.c_str());
+    std::fflush(stderr);
+  }
+  const DispatchStats stats = comm->dispatch(
+      order, [&](int task) { return sweep.run_task(task); },
+      [&](const TaskResult& r) { return sweep.on_result(r); });
+  if (comm->rank() != 0) return 0;
+  return sweep.finish(stats, ranks, comm->size());
+}
+
+}  // namespace bkq

@@ -1,0 +1,209 @@
+// The output-folder lock (see folder_lock.hpp). A new lock is written complete into a
+// temporary file, flock()ed, and published with link(), which fails if a lock exists: no
+// reader ever sees a half-written lock, and a published lock is always flocked. Taking over
+// a stale lock flocks the existing file (only one process can) and rewrites its content.
+#include "io/folder_lock.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/output.hpp"
+
+namespace bkq {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string host_name() {
+  char buf[256] = {};
+  if (::gethostname(buf, sizeof buf - 1) != 0) return "unknown";
+  return buf;
+}
+
+// Printable ASCII only, at most 120 characters: the file may be anything, the message not.
+std::string printable(const std::string& s) {
+  std::string out;
+  for (const char c : s)
+    if (c >= 0x20 && c < 0x7f && out.size() < 120) out += c;
+  return out;
+}
+
+LockHolder parse_holder(const std::string& text) {
+  LockHolder h;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const auto sp = line.find(' ');
+    if (sp == std::string::npos) continue;
+    const std::string key = line.substr(0, sp);
+    const std::string value = printable(line.substr(sp + 1));
+    if (key == "host") h.host = value;
+    if (key == "command") h.command = value;
+    if (key == "since") h.since = value;
+    if (key == "pid") h.pid = std::strtol(value.c_str(), nullptr, 10);
+  }
+  return h;
+}
+
+std::string read_fd(int fd) {
+  std::string text;
+  char buf[512];
+  ssize_t n = 0;
+  ::lseek(fd, 0, SEEK_SET);
+  while (text.size() < 4096 && (n = ::read(fd, buf, sizeof buf)) > 0)
+    text.append(buf, static_cast<std::size_t>(n));
+  return text;
+}
+
+bool write_fd(int fd, const std::string& text) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return ::fsync(fd) == 0 || errno == EINVAL;
+}
+
+// True when `fd` and `path` are the same file (the lock was not replaced under us).
+bool same_file(int fd, const std::string& path) {
+  struct stat a {
+  }, b{};
+  return ::fstat(fd, &a) == 0 && ::stat(path.c_str(), &b) == 0 && a.st_dev == b.st_dev &&
+         a.st_ino == b.st_ino;
+}
+
+// Whether a process still holds the lock open on `fd`: its flock, or where the file
+// system has no flock, whether its pid lives (same host only).
+bool holder_alive(int fd, const LockHolder& h, bool same_host) {
+  if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return false;
+  if (errno == EWOULDBLOCK || errno == EINTR) return true;
+  // No flock here (ENOLCK, EINVAL): judge by the pid.
+  return same_host && h.pid > 0 && (::kill(static_cast<pid_t>(h.pid), 0) == 0 || errno == EPERM);
+}
+
+}  // namespace
+
+std::string LockHolder::describe() const {
+  if (host.empty() || pid <= 0) return "an unknown process (the lock file is garbled)";
+  return "bkquake " + (command.empty() ? std::string("?") : command) + " (pid " +
+         std::to_string(pid) + " on host " + host + (since.empty() ? "" : ", since " + since) + ")";
+}
+
+FolderLock::FolderLock(const std::string& dir, const std::string& command, StaleLock stale)
+    : path_((fs::path(dir) / kFileName).string()) {
+  const std::string me = host_name();
+  const std::string content = "bkquake folder lock\nhost " + me + "\npid " +
+                              std::to_string(::getpid()) + "\ncommand " + command + "\nsince " +
+                              utc_now_iso() + "\n";
+  // A few rounds: a lock released (unlinked) between our attempts sends us round again.
+  for (int round = 0; round < 5; ++round) {
+    std::string tmp = (fs::path(dir) / ".bkquake.lock.tmp-XXXXXX").string();
+    const int fd = ::mkstemp(tmp.data());
+    if (fd < 0) throw Error("cannot write to output folder '" + dir + "': " + std::strerror(errno));
+    ::fchmod(fd, 0644);
+    const bool ok = write_fd(fd, content) && ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+    const int err = errno;
+    int linked = ok ? ::link(tmp.c_str(), path_.c_str()) : -1;
+    int link_err = errno;
+    if (ok && linked != 0 && (link_err == EPERM || link_err == EOPNOTSUPP)) {
+      // No hard links here (some FUSE and FAT mounts): create the lock in place; a reader
+      // may then see it empty for a moment, which reads as "an unknown process".
+      const int direct = ::open(path_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+      link_err = errno;
+      if (direct >= 0) {
+        linked = ::flock(direct, LOCK_EX | LOCK_NB) == 0 && write_fd(direct, content) ? 0 : -1;
+        link_err = errno;
+        if (linked == 0) {
+          ::unlink(tmp.c_str());
+          ::close(fd);
+          fd_ = direct;
+          return;
+        }
+        ::unlink(path_.c_str());
+        ::close(direct);
+      }
+    }
+    ::unlink(tmp.c_str());
+    if (!ok) {
+      ::close(fd);
+      throw Error("cannot write to output folder '" + dir + "': " + std::strerror(err));
+    }
+    if (linked == 0) {
+      fd_ = fd;
+      return;
+    }
+    ::close(fd);
+    if (link_err != EEXIST)
+      throw Error("cannot create the lock file '" + path_ + "': " + std::strerror(link_err));
+
+    // A lock exists: whose, and is it alive?
+    const int old = ::open(path_.c_str(), O_RDWR | O_CLOEXEC);
+    if (old < 0) {
+      if (errno == ENOENT) continue;  // released meanwhile
+      throw Error("cannot open the lock file '" + path_ + "': " + std::strerror(errno));
+    }
+    const LockHolder h = parse_holder(read_fd(old));
+    const bool same_host = h.host == me;
+    if (holder_alive(old, h, same_host)) {
+      ::close(old);
+      throw Error("output folder '" + dir + "' is in use by " + h.describe() +
+                  "; wait for it to finish or choose another --out");
+    }
+    if (!same_file(old, path_)) {  // released and replaced between open and flock
+      ::close(old);
+      continue;
+    }
+    if (!same_host && !h.host.empty()) {
+      ::close(old);
+      throw Error("output folder '" + dir + "' is locked by " + h.describe() +
+                  "; a lock of another host is never taken over: if that run is gone, delete '" +
+                  path_ + "' by hand");
+    }
+    if (stale == StaleLock::Refuse) {
+      ::close(old);
+      throw Error("output folder '" + dir + "' holds the stale lock of " + h.describe() +
+                  ", which is gone (killed?); use --resume to continue its run or --force to "
+                  "start over");
+    }
+    // We hold the flock of the stale file: nobody else can take it over now.
+    if (::ftruncate(old, 0) != 0 || !write_fd(old, content)) {
+      const int e = errno;
+      ::close(old);
+      throw Error("cannot rewrite the lock file '" + path_ + "': " + std::strerror(e));
+    }
+    std::fprintf(stderr, "bkquake: taking over the stale lock of '%s' left by %s, which is gone\n",
+                 dir.c_str(), h.describe().c_str());
+    fd_ = old;
+    return;
+  }
+  throw Error("cannot take the lock '" + path_ + "': it keeps changing under us");
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ < 0) return;
+  if (same_file(fd_, path_)) ::unlink(path_.c_str());
+  ::close(fd_);
+}
+
+std::optional<LockHolder> read_folder_lock(const std::string& dir) {
+  const std::string path = (fs::path(dir) / FolderLock::kFileName).string();
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  const LockHolder h = parse_holder(read_fd(fd));
+  ::close(fd);
+  return h;
+}
+
+}  // namespace bkq

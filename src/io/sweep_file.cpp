@@ -1,0 +1,235 @@
+// Implementation of sweep files (see sweep_file.hpp).
+#include "io/sweep_file.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/ini.hpp"
+
+namespace bkq {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const auto at = s.find(sep, start);
+    parts.push_back(
+        trim(s.substr(start, at == std::string::npos ? std::string::npos : at - start)));
+    if (at == std::string::npos) return parts;
+    start = at + 1;
+  }
+}
+
+double range_number(const std::string& key, const std::string& text, const std::string& part) {
+  char* end = nullptr;
+  const double x = std::strtod(part.c_str(), &end);
+  if (part.empty() || *end != '\0' || !std::isfinite(x))
+    throw Error(key + " = " + text + ": '" + part +
+                "' is not a number (ranges are lo:hi:count or log:lo:hi:count)");
+  return x;
+}
+
+int range_count(const std::string& key, const std::string& text, const std::string& part) {
+  char* end = nullptr;
+  const long n = std::strtol(part.c_str(), &end, 10);
+  if (part.empty() || *end != '\0' || n < 1 || n > 1000000)
+    throw Error(key + " = " + text + ": count '" + part + "' must be an integer in [1, 1000000]");
+  return static_cast<int>(n);
+}
+
+}  // namespace
+
+std::vector<std::string> expand_sweep_values(const std::string& key, const std::string& text) {
+  const std::string t = trim(text);
+  if (t.empty()) throw Error(key + ": empty list of values to sweep");
+  if (t.find(':') == std::string::npos) {
+    std::vector<std::string> values = split(t, ',');
+    for (const auto& v : values)
+      if (v.empty()) throw Error(key + " = " + text + ": empty entry in the list of values");
+    return values;
+  }
+  std::vector<std::string> parts = split(t, ':');
+  const bool log = parts.front() == "log";
+  if (log) parts.erase(parts.begin());
+  if (parts.size() != 3)
+    throw Error(key + " = " + text + ": a range is lo:hi:count or log:lo:hi:count");
+  const double lo = range_number(key, text, parts[0]);
+  const double hi = range_number(key, text, parts[1]);
+  const int n = range_count(key, text, parts[2]);
+  if (log && !(lo > 0 && hi > 0))
+    throw Error(key + " = " + text + ": a log range needs lo > 0 and hi > 0");
+  if (n == 1 && lo != hi) throw Error(key + " = " + text + ": a range with count 1 needs lo = hi");
+  std::vector<std::string> values;
+  for (int i = 0; i < n; ++i) {
+    // Both ends exactly as written; the points between evenly spaced (in log for log:).
+    const double f = n == 1 ? 0.0 : static_cast<double>(i) / (n - 1);
+    double x =
+        log ? std::exp(std::log(lo) + f * (std::log(hi) - std::log(lo))) : lo + f * (hi - lo);
+    if (i == 0) x = lo;
+    if (i == n - 1) x = hi;
+    values.push_back(format_real(x));
+  }
+  return values;
+}
+
+SweepSpec read_sweep_file(const std::string& path, const std::vector<std::string>& overrides) {
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return parse_sweep(read_text_file(path, "sweep file"), path, dir, overrides);
+}
+
+SweepSpec parse_sweep(const std::string& text, const std::string& origin,
+                      const std::string& base_dir, const std::vector<std::string>& overrides) {
+  SweepSpec spec;
+  spec.origin = origin;
+  spec.text = text;
+  const std::string where = " (in " + origin + ")";
+  std::string scene_file;
+  std::vector<IniEntry> sets;
+  std::set<std::string> seen;
+  for (const auto& [key, value] : parse_ini(text, "in " + origin)) {
+    if (!seen.insert(key).second) throw Error(key + ": given more than once" + where);
+    const auto dot = key.find('.');
+    const std::string section = key.substr(0, dot);
+    const std::string name = dot == std::string::npos ? "" : key.substr(dot + 1);
+    if (section == "sweep") {
+      if (name == "scene") {
+        scene_file = value;
+      } else if (name == "combine") {
+        if (value == "product")
+          spec.combine = SweepCombine::Product;
+        else if (value == "zip")
+          spec.combine = SweepCombine::Zip;
+        else
+          throw Error("sweep.combine = " + value + ": expected product|zip" + where);
+      } else if (name == "replicas") {
+        char* end = nullptr;
+        const long r = std::strtol(value.c_str(), &end, 10);
+        if (value.empty() || *end != '\0' || r < 1 || r > 100000)
+          throw Error("sweep.replicas = " + value + ": expected an integer in [1, 100000]" + where);
+        spec.replicas = static_cast<int>(r);
+      } else if (name == "collect") {
+        spec.keep_catalog = spec.keep_histogram = false;
+        for (const auto& item : split(value, ',')) {
+          if (item == "catalog")
+            spec.keep_catalog = true;
+          else if (item == "histogram")
+            spec.keep_histogram = true;
+          else if (item != "summary" && !item.empty())
+            throw Error("sweep.collect = " + value + ": '" + item +
+                        "' is not one of catalog, histogram, summary" + where);
+        }
+      } else {
+        throw Error("sweep." + name + ": unknown key; the [sweep] keys are scene, combine, " +
+                    "replicas, collect" + where);
+      }
+    } else if (section == "vary") {
+      const ParamSpec* p = find_param(name);
+      if (!p)
+        throw Error("vary." + name + ": '" + name + "' is not a scene key (see bkquake run " +
+                    "--dump-defaults)" + where);
+      SweptKey k{name, {}};
+      std::set<std::string> distinct;
+      for (const auto& v : expand_sweep_values(name, value)) {
+        std::string raw = v;
+        if (p->type == ParamType::Integer && v.find_first_of(".eE") != std::string::npos)
+          raw = std::to_string(std::llround(std::strtod(v.c_str(), nullptr)));
+        Scene check;
+        check.set(name, raw, "vary." + name + " in " + origin);
+        if (!distinct.insert(check.text(name)).second)
+          throw Error("vary." + name + " = " + value + ": the value " + check.text(name) +
+                      " comes twice" + where);
+        k.values.push_back(check.text(name));
+      }
+      spec.keys.push_back(std::move(k));
+    } else if (section == "set") {
+      sets.push_back({name, value});
+    } else {
+      throw Error(key + ": unknown section '[" + section + "]'; a sweep file has [sweep], " +
+                  "[vary] and [set]" + where);
+    }
+  }
+  if (spec.keys.empty()) throw Error("no [vary] keys: nothing to sweep" + where);
+  if (spec.combine == SweepCombine::Zip)
+    for (const auto& k : spec.keys)
+      if (k.values.size() != spec.keys.front().values.size())
+        throw Error("sweep.combine = zip needs lists of one length: " + k.key + " has " +
+                    std::to_string(k.values.size()) + " values, " + spec.keys.front().key +
+                    " has " + std::to_string(spec.keys.front().values.size()) + where);
+
+  if (!scene_file.empty()) {
+    const std::filesystem::path sp(scene_file);
+    spec.base = Scene::from_file(
+        (sp.is_absolute() || base_dir.empty() ? sp : std::filesystem::path(base_dir) / sp)
+            .string());
+  }
+  for (const auto& [key, value] : sets) spec.base.set(key, value, "set." + key + " in " + origin);
+  for (const auto& o : overrides) spec.base.apply_override(o);
+  for (const auto& k : spec.keys)
+    for (const auto& o : sets)
+      if (o.key == k.key) throw Error(k.key + ": both in [set] and in [vary]" + where);
+  return spec;
+}
+
+std::vector<SweepPoint> SweepSpec::points() const {
+  std::size_t count = 1;
+  if (combine == SweepCombine::Zip)
+    count = keys.front().values.size();
+  else
+    for (const auto& k : keys) count *= k.values.size();
+  std::vector<SweepPoint> out;
+  out.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    SweepPoint p{{}, base};
+    std::size_t rest = i;
+    std::vector<std::size_t> pick(keys.size());
+    for (std::size_t j = keys.size(); j-- > 0;) {
+      if (combine == SweepCombine::Zip) {
+        pick[j] = i;
+      } else {
+        pick[j] = rest % keys[j].values.size();
+        rest /= keys[j].values.size();
+      }
+    }
+    for (std::size_t j = 0; j < keys.size(); ++j) {
+      const std::string& v = keys[j].values[pick[j]];
+      p.values.emplace_back(keys[j].key, v);
+      p.scene.set(keys[j].key, v, "vary." + keys[j].key + " in " + origin);
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+const Schema& sweep_csv_schema() {
+  static const Schema schema = {
+      {sweep_col::point, "", "0-based point number; the point's folder is points/p<number>",
+       kInteger},
+      {"status", "", "ok, failed (the error is in the last column) or pending (not run yet)",
+       kText},
+      {"replicas", "", "replicas run and merged into the point", kInteger},
+      {"events", "", "recorded events over all replicas (slip episodes in continuous mode)",
+       kInteger},
+      {"b", "", "binned maximum-likelihood b of the merged histogram; empty when no window fits"},
+      {"b_err", "", "its standard error (Shi & Bolt); empty when no window fits"},
+      {"mu_min", "", "lower end of the fit window (the scene's stats.mu_min, or automatic)"},
+      {"mu_max", "", "upper end of the fit window"},
+      {"run_seconds", "wall s", "wall-clock seconds of the point's replicas, summed"},
+      {"error", "", "why the point failed (double-quoted), empty when ok", kText},
+  };
+  return schema;
+}
+
+}  // namespace bkq

@@ -1,0 +1,194 @@
+// Output folders as concurrent and interrupted users meet them (issue 19, item 2): two runs
+// on one --out (the second refuses naming the first), a run killed by SIGKILL (its stale
+// lock is refused without --resume and taken over with it), a stray file in an otherwise
+// empty folder (refused without --force), and merge, which writes nothing into its inputs.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "../cli_helpers.hpp"
+
+namespace bkq {
+namespace {
+
+namespace fs = std::filesystem;
+using test::read_file;
+using test::run_bkquake;
+
+// Every file under `dir` with its bytes.
+std::map<std::string, std::string> tree_bytes(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files[e.path().string()] = read_file(e.path().string());
+  return files;
+}
+
+void expect_refused(const test::ProcessResult& r, std::initializer_list<std::string> parts) {
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << r.err;
+  for (const auto& p : parts)
+    EXPECT_NE(lines[0].find(p), std::string::npos) << lines[0] << " lacks " << p;
+}
+
+// A run long enough to be caught in the act (it is stopped by a signal).
+const std::vector<std::string> kLong = {"run",
+                                        "--set",
+                                        "model.blocks=50",
+                                        "--set",
+                                        "run.events=100000000",
+                                        "--set",
+                                        "run.checkpoint_events=2000",
+                                        "--quiet"};
+
+std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& more) {
+  a.insert(a.end(), more.begin(), more.end());
+  return a;
+}
+
+TEST(Folders, SecondRunOnTheSameOutRefusesNamingTheFirst) {
+  test::TempDir tmp;
+  const std::string out = tmp.file("out");
+  test::ProcessResult second;
+  const int first = test::run_and_signal_when(
+      with(kLong, {"--out", out}),
+      [&] {
+        if (!fs::exists(out + "/catalog.csv")) return false;
+        second = run_bkquake({"run", "--quiet", "--set", "run.events=10", "--out", out});
+        return true;
+      },
+      SIGTERM);
+  EXPECT_EQ(first, 143);
+  expect_refused(second, {"'" + out + "' is in use by bkquake run (pid "});
+  EXPECT_FALSE(fs::exists(out + "/bkquake.lock")) << "the first run's lock went with it";
+  // The first run's outputs are its own: its scene, its checkpoint, its rows.
+  EXPECT_NE(read_file(out + "/scene.ini").find("events = 100000000"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out + "/checkpoint.bin"));
+  EXPECT_GT(read_file(out + "/catalog.csv").size(), 1000u);
+}
+
+TEST(Folders, SigkilledRunIsResumableAndItsStaleLockIsTakenOver) {
+  test::TempDir tmp;
+  const std::string out = tmp.file("out");
+  const std::vector<std::string> scene = {"run",
+                                          "--set",
+                                          "model.blocks=50",
+                                          "--set",
+                                          "run.events=400000",
+                                          "--set",
+                                          "run.checkpoint_events=2000",
+                                          "--quiet"};
+  const int killed = test::run_and_signal_when(
+      with(scene, {"--out", out}), [&] { return fs::exists(out + "/checkpoint.bin"); }, SIGKILL);
+  ASSERT_EQ(killed, 128 + SIGKILL);
+  ASSERT_TRUE(fs::exists(out + "/bkquake.lock"));
+  const auto before = tree_bytes(out);
+  expect_refused(run_bkquake(with(scene, {"--out", out})), {"stale lock", "--resume", "--force"});
+  EXPECT_TRUE(tree_bytes(out) == before) << "a refusal changes nothing";
+  const auto r = run_bkquake(with(scene, {"--out", out, "--resume"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("taking over the stale lock"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(out + "/summary.json"));
+  EXPECT_FALSE(fs::exists(out + "/bkquake.lock"));
+}
+
+TEST(Folders, StrayCatalogInAnEmptyFolderIsNotOverwritten) {
+  test::TempDir tmp;
+  const std::string stray = tmp.write("catalog.csv", "my own notes\n");
+  expect_refused(run_bkquake({"run", "--quiet", "--out", tmp.path().string()}),
+                 {"already holds files", "catalog.csv", "--force"});
+  EXPECT_EQ(read_file(stray), "my own notes\n");
+  EXPECT_FALSE(fs::exists(tmp.file("scene.ini")));
+}
+
+TEST(Folders, MergeWritesNothingIntoItsInputs) {
+  test::TempDir tmp;
+  const std::string a = tmp.file("a"), b = tmp.file("b"), m = tmp.file("m");
+  for (const auto& [dir, seed] : {std::pair{a, "1"}, {b, "2"}}) {
+    const auto r = run_bkquake({"run", "--quiet", "--set", "model.blocks=20", "--set",
+                                "run.events=2000", "--set", "run.transient_events=10", "--set",
+                                std::string("run.seed=") + seed, "--out", dir});
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  const auto inputs = tree_bytes(tmp.path().string());
+  expect_refused(run_bkquake({"merge", a, b, "--out", a}), {"is the input", a});
+  expect_refused(run_bkquake({"merge", a, b, "--out", b + "/../b/"}), {"is the input"});
+  expect_refused(run_bkquake({"merge", a, b, "--out", b + "/sub"}), {"lies inside the input"});
+  EXPECT_TRUE(tree_bytes(tmp.path().string()) == inputs);
+
+  ASSERT_EQ(run_bkquake({"merge", a, b, "--out", m}).status, 0);
+  expect_refused(run_bkquake({"merge", a, b, "--out", m}), {"finished run", "--force"});
+  EXPECT_EQ(run_bkquake({"merge", a, b, "--out", m, "--force"}).status, 0);
+  EXPECT_FALSE(fs::exists(m + "/bkquake.lock"));
+}
+
+}  // namespace
+}  // namespace bkq
+
+namespace bkq {
+namespace {
+
+// Issue 19, item 3: merge accepts only runs of one scene (the physics and the bins; seeds,
+// lengths, checkpoints, outputs and fit windows may differ) and never the same run twice.
+class MergeUnlike : public ::testing::Test {
+ protected:
+  // A short run into tmp_/name with the given extra --set overrides.
+  std::string run(const std::string& name, const std::vector<std::string>& sets) {
+    std::vector<std::string> args = {"run",   "--quiet",        "--set", "model.blocks=20",
+                                     "--set", "run.events=500", "--set", "run.transient_events=10"};
+    for (const auto& s : sets) args.insert(args.end(), {"--set", s});
+    const std::string out = tmp_.file(name);
+    args.insert(args.end(), {"--out", out});
+    const auto r = run_bkquake(args);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return out;
+  }
+  test::ProcessResult merge(const std::vector<std::string>& runs) {
+    std::vector<std::string> args = {"merge"};
+    args.insert(args.end(), runs.begin(), runs.end());
+    std::string name = "m";
+    name += std::to_string(++merges_);
+    args.insert(args.end(), {"--out", tmp_.file(name)});
+    return run_bkquake(args);
+  }
+  test::TempDir tmp_;
+  int merges_ = 0;
+};
+
+TEST_F(MergeUnlike, RefusesOtherPhysicsNamingTheKeysAndNeverChangesAnInput) {
+  const std::string a = run("a", {"run.seed=1"});
+  const std::string alpha = run("alpha", {"run.seed=2", "friction.alpha=2", "model.l=9"});
+  const std::string bkp = run("bkp", {"run.seed=3", "model.kind=bkp"});
+  const std::string bins = run("bins", {"run.seed=4", "stats.bin_width=0.1"});
+  const auto inputs = tree_bytes(tmp_.path().string());
+  expect_refused(merge({a, alpha}),
+                 {"another scene", "model.l = 9 (not 10)", "friction.alpha = 2 (not 2.5)"});
+  expect_refused(merge({a, bkp}), {"model.kind = bkp (not bk)"});
+  expect_refused(merge({a, bins}), {"stats.bin_width = 0.1 (not 0.2)"});
+  EXPECT_TRUE(tree_bytes(tmp_.path().string()) == inputs) << "merge wrote into an input";
+}
+
+TEST_F(MergeUnlike, RefusesTheSameRunTwice) {
+  const std::string a = run("a", {"run.seed=1"});
+  fs::copy(a, tmp_.file("copy"));
+  expect_refused(merge({a, a}), {"the same run.seed = 1", "twice"});
+  expect_refused(merge({a, tmp_.file("copy")}), {"the same run.seed = 1"});
+}
+
+TEST_F(MergeUnlike, AcceptsOtherSeedsLengthsAndFitWindows) {
+  const std::string a = run("a", {"run.seed=1"});
+  const std::string b =
+      run("b", {"run.seed=2", "run.events=700", "stats.mu_min=-5", "run.checkpoint_events=100"});
+  const auto inputs = tree_bytes(tmp_.path().string());
+  const auto r = merge({a, b});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(read_file(tmp_.file("m1/summary.json")).find("\"events\": 1200"), std::string::npos);
+  for (const auto& [path, bytes] : inputs) EXPECT_EQ(read_file(path), bytes) << path;
+}
+
+}  // namespace
+}  // namespace bkq
