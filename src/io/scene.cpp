@@ -157,10 +157,16 @@ std::vector<ParamSpec> make_table() {
       integer("run.max_steps_per_event", "200000000", 1, 1e15, "",
               "give up on an event after this many relaxation steps (a runaway: dt or the scene is "
               "wrong)"),
-      integer("run.checkpoint_events", "0", 0, 1e12, "",
-              "write a checkpoint every this many events (0 = off)"),
+      integer(
+          "run.checkpoint_events", "0", 0, 1e12, "",
+          "write a checkpoint every this many events (continuous runs: slip episodes; 0 = off)"),
       real("run.checkpoint_seconds", "600", '[', 0, 1e9, ']', "wall s",
-           "write a checkpoint at least this often in wall-clock seconds (0 = off)"),
+           "write a checkpoint at least this often in wall-clock seconds, the first after 30 s "
+           "(0 = off)"),
+      choice("run.accuracy", "warn", {"warn", "error"},
+             "what a run does when an accuracy indicator (energy residual, omega_max*dt, event "
+             "steps) is above its threshold: warn on stderr, or fail with exit 2 keeping the "
+             "outputs (unattended runs)"),
 
       // --- integrator: the stepper of the dynamic phase ---
       choice("integrator.scheme", "rk4", {"rk2", "rk4", "verlet", "theta", "adaptive"},

@@ -157,6 +157,7 @@ void ContinuousSummary::on_end(const RunEnd& end) {
   summary.set("wall_seconds", wall);
   summary.set("block_steps_per_second",
               wall > 0 ? static_cast<double>(end.steps) * end.blocks / wall : 0.0);
+  summary.set("resumes", end.resumes);
   const std::string fit_line = add_fit(summary);
   all_.add_to_summary(summary);
   write_file_atomic(out_.path("summary.json"), summary.str() + "\n");

@@ -3,34 +3,59 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
+#include "core/error.hpp"
 #include "engine/continuous.hpp"
+#include "io/checkpoint.hpp"
 #include "io/json.hpp"
 #include "io/timeseries.hpp"
 
 namespace bkq {
 
-void TimeSeriesWriter::on_start() {
-  csv_ = std::make_unique<CsvStream>(path_, timeseries_header());
+void put_csv_extent(Checkpoint& c, const std::string& name, const CsvExtent& e) {
+  StateWriter w;
+  w.i64(e.rows);
+  w.u64(e.bytes);
+  c.put(name, std::move(w.bytes()));
+}
+
+CsvExtent find_csv_extent(const Checkpoint& c, const std::string& name) {
+  const std::string* bytes = c.find(name);
+  if (!bytes) throw Error("the checkpoint does not cover '" + name + "'");
+  StateReader r(*bytes, name);
+  CsvExtent e;
+  e.rows = r.i64();
+  e.bytes = r.u64();
+  return e;
+}
+
+std::string SampledCsv::name() const {
+  return std::filesystem::path(path_).filename().string();
+}
+
+void SampledCsv::on_resume(const Checkpoint& c) {
+  rows_ = find_csv_extent(c, name()).rows;
+}
+
+// Synced first, so a checkpoint never counts rows that are not on disk.
+void SampledCsv::on_checkpoint(Checkpoint& c) {
+  put_csv_extent(c, name(), {rows_, csv_->sync()});
 }
 
 void TimeSeriesWriter::on_sample(const Sample& s) {
-  csv_->row(timeseries_row(s.values));
+  row(timeseries_row(s.values));
 }
 
-void TimeSeriesWriter::on_end(const RunEnd&) {
-  csv_->close();
+std::string TimeSeriesWriter::header() const {
+  return timeseries_header();
 }
 
-BlockTrajectories::BlockTrajectories(std::string path, int first, int count)
-    : path_(std::move(path)),
+BlockTrajectories::BlockTrajectories(std::string path, bool append, int first, int count)
+    : SampledCsv(std::move(path), append),
       first_(first),
       u_(static_cast<std::size_t>(count)),
       v_(static_cast<std::size_t>(count)) {}
-
-void BlockTrajectories::on_start() {
-  csv_ = std::make_unique<CsvStream>(path_, blocks_header(first_, static_cast<int>(u_.size())));
-}
 
 void BlockTrajectories::on_sample(const Sample& s) {
   // Lab frame: u_j = w_j - s, u_j' = w_j' - v.
@@ -40,11 +65,28 @@ void BlockTrajectories::on_sample(const Sample& s) {
     u_[j] = s.driver.displacement(b);
     v_[j] = st.wd[static_cast<std::size_t>(b)] - s.values.speed;
   }
-  csv_->row(blocks_row(s.values.t, u_, v_));
+  row(blocks_row(s.values.t, u_, v_));
 }
 
-void BlockTrajectories::on_end(const RunEnd&) {
-  csv_->close();
+std::string BlockTrajectories::header() const {
+  return blocks_header(first_, static_cast<int>(u_.size()));
+}
+
+void PadFrictionStats::on_resume(const Checkpoint& c) {
+  const std::string* bytes = c.find("pad_friction");
+  if (!bytes) throw Error("the checkpoint holds no pad friction statistics");
+  StateReader r(*bytes, "pad_friction");
+  sum_ = r.f64();
+  sum_sq_ = r.f64();
+  samples_ = r.i64();
+}
+
+void PadFrictionStats::on_checkpoint(Checkpoint& c) {
+  StateWriter w;
+  w.f64(sum_);
+  w.f64(sum_sq_);
+  w.i64(samples_);
+  c.put("pad_friction", std::move(w.bytes()));
 }
 
 void PadFrictionStats::add_to_summary(Json& summary) const {
