@@ -69,7 +69,8 @@ def fit_window(summary):
     """(b, mu_min, mu_max) of the Gutenberg-Richter fit recorded in summary.json, or None.
 
     Accepts the run summary ("b_mle" + "fit_window": {mu_min, mu_max}) and the summary of
-    `bkquake merge` ("b_mle", "mu_min", "mu_max", "fit": {...}).
+    `bkquake merge` ("b_mle", "mu_min", "mu_max", "fit": {...}). None also when the run
+    found no acceptable window ("b_mle": null; see no_fit_reason).
     """
     b = summary.get("b_mle")
     if b is None and isinstance(summary.get("fit"), dict):
@@ -79,6 +80,27 @@ def fit_window(summary):
     if b is None or lo is None or hi is None:
         return None
     return float(b), float(lo), float(hi)
+
+
+def no_fit_reason(summary):
+    """Why summary.json has no b ("fit_error" of a run, no_b_reason of a merge), or None."""
+    fit = summary.get("fit") if isinstance(summary.get("fit"), dict) else {}
+    return summary.get("fit_error") or fit.get("no_b_reason")
+
+
+class WrongFolder(Exception):
+    """A folder that is not the kind a script reads; the message is one line for the user."""
+
+
+def require_files(run_dir, names, what):
+    """Raises WrongFolder unless run_dir is a folder holding every file in names."""
+    if not os.path.isdir(run_dir):
+        raise WrongFolder(f"{run_dir}: not a folder")
+    missing = [n for n in names if not os.path.exists(_path(run_dir, n))]
+    if missing:
+        mode = load_summary(run_dir).get("mode") if os.path.exists(_path(run_dir, "summary.json")) else None
+        kind = f" (a {mode} run)" if mode else ""
+        raise WrongFolder(f"{run_dir}{kind} has no {', '.join(missing)}: {what}")
 
 
 def label(run_dir, scene=None):

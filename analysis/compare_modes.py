@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env -S /usr/bin/python3
 """Event-driven against continuous driving: magnitude distributions of the same chain.
 
     analysis/compare_modes.py [--bkquake BIN] [--out-dir DIR] [--speeds NU...]
@@ -110,6 +110,10 @@ def main(argv=None):
     ap.add_argument("--png")
     args = ap.parse_args(argv)
 
+    if args.events_run and not os.path.isfile(os.path.join(args.events_run, "catalog.csv")):
+        print(f"compare_modes.py: {args.events_run} has no catalog.csv: --events-run needs the "
+              "folder of an event-driven run", file=sys.stderr)
+        return 2
     os.makedirs(args.out_dir, exist_ok=True)
     if args.events_run:
         ev_dir = args.events_run

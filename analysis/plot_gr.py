@@ -1,15 +1,22 @@
-#!/usr/bin/python3
+#!/usr/bin/env -S /usr/bin/python3
 """Plot the magnitude distributions of bkquake runs (Gutenberg-Richter plots).
 
     analysis/plot_gr.py RUN_DIR... [--out PNG] [--rates]
 
-For each run folder it reads histogram.csv and summary.json and draws D(mu) (events per
-unit magnitude) and R(mu) (events with magnitude >= mu) on logarithmic y-axes, in two
-panels, with the fitted line R = A exp(-b mu) over the fit window (b = b_mle from
-summary.json, A normalised to R at the window's lower edge; thesis eqs. 2.7-2.8).
---rates plots the per-unit-loading-per-block columns D_rate, R_rate instead, so runs of
-different lengths compare. The legend label is taken from scene.ini (alpha, N) or the
-folder name. Default output: RUN_DIR/gr.png for one run, gr.png for several.
+For each run folder (an event run or a merge; any folder with histogram.csv) it reads
+histogram.csv and summary.json and draws D(mu) (events per unit magnitude) and R(mu)
+(events with magnitude >= mu) on logarithmic y-axes, in two panels, with the fit of
+summary.json (b = b_mle on the window [mu_min, mu_max), thesis eqs. 2.7-2.8; README "How b
+is fitted"): the window is shaded (several runs: a strip per run at the bottom), and the fitted law is drawn where it applies, over the
+window, so that it passes through the data there:
+  D(mu): the expected counts per unit magnitude of the window's (truncated) geometric law;
+  R(mu): the same law's survival function times the window's events, plus the events
+         above the window (R counts them too).
+A run whose summary has no b (no acceptable window) gets the reason in the legend and no
+line. --rates plots the per-unit-loading-per-block columns D_rate, R_rate instead, so runs
+of different lengths compare. The legend label is taken from scene.ini (alpha, N) or the
+folder name. Default output: RUN_DIR/gr.png for one run, gr.png for several. A folder
+without histogram.csv is refused with a one-line message (exit 2).
 
 Runs with Debian's python3 (/usr/bin/python3, with python3-numpy and
 python3-matplotlib); the python3 first on PATH may lack numpy and matplotlib.
@@ -18,6 +25,7 @@ python3-matplotlib); the python3 first on PATH may lack numpy and matplotlib.
 import argparse
 import os
 import sys
+import textwrap
 
 import matplotlib
 
@@ -29,6 +37,69 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bkquake_io  # noqa: E402
 
 
+def fitted_law(h, b, lo, hi):
+    """The window's fitted law on its bins: (edges, centres, expected D, expected R).
+
+    The counts in [lo, hi) follow a geometric law in the bin index (exponential in mu),
+    truncated at hi when events lie above it; R adds the events at or above hi.
+    """
+    w = float(h["mu_high"][0] - h["mu_low"][0])
+    edges = np.arange(np.round(lo / w), np.round(hi / w) + 1) * w  # lo, lo + w, ..., hi
+    above_lo = h["mu_low"] >= lo - 1e-9 * max(1.0, abs(lo))
+    below_hi = h["mu_low"] < hi - 1e-9 * max(1.0, abs(hi))
+    n_win = float(h["count"][above_lo & below_hi].sum())
+    n_above = float(h["count"][~below_hi].sum())
+    span = hi - lo
+    truncated = n_above > 0
+    x = edges - lo
+    if truncated:
+        surv = (np.exp(-b * x) - np.exp(-b * span)) / -np.expm1(-b * span)
+    else:
+        surv = np.exp(-b * x)
+    r_fit = n_above + n_win * surv
+    d_fit = n_win * (surv[:-1] - surv[1:]) / w  # expected count per bin / bin width
+    centres = 0.5 * (edges[:-1] + edges[1:])
+    return edges, centres, d_fit, r_fit
+
+
+def plot_run(run, i, args, ax_d, ax_r, dcol, rcol):
+    bkquake_io.require_files(
+        run, ["histogram.csv"], "plot_gr.py needs a run or merge folder with a histogram")
+    colour = f"C{i % 10}"
+    h = bkquake_io.load_histogram(run)
+    summary = bkquake_io.load_summary(run)
+    name = bkquake_io.label(run)
+    if h["count"].size == 0:
+        print(f"{run}: empty histogram, skipped", file=sys.stderr)
+        return
+    centre = 0.5 * (h["mu_low"] + h["mu_high"])
+    d, r = h[dcol], h[rcol]
+    # Rates are the counts over (load * N): one factor for the whole histogram.
+    scale = float(r[0] / h["R"][0]) if args.rates and h["R"][0] > 0 else 1.0
+    keep = h["count"] > 0
+    ax_d.plot(centre[keep], d[keep], "o", ms=3, color=colour, label=name)
+    ax_r.plot(h["mu_low"][r > 0], r[r > 0], "o", ms=3, color=colour, label=name)
+    fit = bkquake_io.fit_window(summary)
+    if fit is None:
+        reason = bkquake_io.no_fit_reason(summary) or "no fit in summary.json"
+        ax_r.plot([], [], " ", label=textwrap.fill(f"no b: {reason}", 60))
+        return
+    b, lo, hi = fit
+    err = summary.get("b_mle_err", float("nan"))
+    # One run: the window shaded over the whole height; several: a strip per run at the
+    # bottom, so that the windows stay apart.
+    for ax in (ax_d, ax_r):
+        if len(args.runs) == 1:
+            ax.axvspan(lo, hi, color=colour, alpha=0.08, lw=0)
+        else:
+            ax.axvspan(lo, hi, ymin=0.025 * i, ymax=0.025 * (i + 1), color=colour, alpha=0.6, lw=0)
+    edges, centres, d_fit, r_fit = fitted_law(h, b, lo, hi)
+    mark = "shaded" if len(args.runs) == 1 else "strip at the bottom"
+    text = f"b = {b:.3f} ± {err:.3f} on [{lo:.1f}, {hi:.1f}) ({mark})"
+    ax_d.plot(centres, d_fit * scale, "-", color=colour, lw=1.5, label=text)
+    ax_r.plot(edges, r_fit * scale, "-", color=colour, lw=1.5, label=text)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("runs", nargs="+", metavar="RUN_DIR")
@@ -36,38 +107,26 @@ def main(argv=None):
     ap.add_argument("--rates", action="store_true", help="plot D_rate and R_rate")
     args = ap.parse_args(argv)
 
-    fig, (ax_d, ax_r) = plt.subplots(1, 2, figsize=(11, 4.5))
+    fig, (ax_d, ax_r) = plt.subplots(1, 2, figsize=(12, 5))
     dcol, rcol = ("D_rate", "R_rate") if args.rates else ("D", "R")
-    for i, run in enumerate(args.runs):
-        colour = f"C{i % 10}"
-        h = bkquake_io.load_histogram(run)
-        summary = bkquake_io.load_summary(run)
-        name = bkquake_io.label(run)
-        if h["count"].size == 0:
-            print(f"{run}: empty histogram, skipped", file=sys.stderr)
-            continue
-        centre = 0.5 * (h["mu_low"] + h["mu_high"])
-        d, r = h[dcol], h[rcol]
-        keep = h["count"] > 0
-        ax_d.plot(centre[keep], d[keep], "o", ms=3, color=colour, label=name)
-        ax_r.plot(h["mu_low"], r, "o", ms=3, color=colour, label=name)
-        fit = bkquake_io.fit_window(summary)
-        if fit is not None:
-            b, lo, hi = fit
-            at = np.argmin(np.abs(h["mu_low"] - lo))
-            if r[at] > 0 and np.isfinite(r[at]):
-                mu = np.linspace(lo, hi, 50)
-                ax_r.plot(mu, r[at] * np.exp(-b * (mu - h["mu_low"][at])), "-", color=colour,
-                          label=f"b = {b:.3f} ± {summary.get('b_mle_err', float('nan')):.3f}, "
-                                f"[{lo:g}, {hi:g})")
+    try:
+        for i, run in enumerate(args.runs):
+            plot_run(run, i, args, ax_d, ax_r, dcol, rcol)
+    except bkquake_io.WrongFolder as e:
+        print(f"plot_gr.py: {e}", file=sys.stderr)
+        return 2
+    except (OSError, ValueError, KeyError) as e:
+        print(f"plot_gr.py: {run}: cannot read the run ({e})".replace("\n", " "), file=sys.stderr)
+        return 2
     unit = " per unit load per block" if args.rates else ""
-    ax_d.set(yscale="log", xlabel="magnitude mu = ln M", ylabel=f"D(mu){unit}",
-             title="D(mu): events per unit magnitude")
-    ax_r.set(yscale="log", xlabel="magnitude mu = ln M", ylabel=f"R(mu){unit}",
-             title="R(mu): events with magnitude >= mu")
+    ax_d.set(yscale="log", xlabel="magnitude μ = ln M", ylabel=f"D(μ){unit}",
+             title="D(μ): events per unit magnitude")
+    ax_r.set(yscale="log", xlabel="magnitude μ = ln M", ylabel=f"R(μ){unit}",
+             title="R(μ): events with magnitude ≥ μ")
     for ax in (ax_d, ax_r):
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+    # One legend, where R(mu) leaves room: above the curves on the right.
+    ax_r.legend(fontsize=7, loc="upper right")
     fig.tight_layout()
     out = args.out or (os.path.join(args.runs[0], "gr.png") if len(args.runs) == 1 else "gr.png")
     fig.savefig(out, dpi=120)

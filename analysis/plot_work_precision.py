@@ -1,15 +1,17 @@
-#!/usr/bin/python3
+#!/usr/bin/env -S /usr/bin/python3
 """Work-precision plot of a `bkquake accuracy` folder: error against time per event.
 
 Left panel: median relative error of the event moment against the event-located
 reference (per-event errors from identical pre-event states), log-log, one curve per
-scheme, each point labelled with its dt (adaptive: its tolerance). Right panel: the
+scheme, each point labelled with its dt (adaptive: its tolerance); labels are placed
+where they overlap neither each other nor the points. Right panel: the
 Kolmogorov-Smirnov distance of each long run's magnitude distribution from the
-reference run's, with the noise floor (the reference from another seed) as a band:
-points under it are statistically as good as the reference. Unstable or failed points
-are drawn as crosses on the bottom axis, not dropped.
+reference run's, on a log axis (the distances span two decades or more), with the noise
+floor (the reference from another seed) as a band: points in it are statistically as
+good as the reference. Unstable or failed points are listed in the legend, not dropped.
 
-Usage: /usr/bin/python3 analysis/plot_work_precision.py ACCURACY_DIR [--out FILE.png] [--title T]
+Usage: /usr/bin/python3 analysis/plot_work_precision.py ACCURACY_DIR|accuracy.csv [--out FILE.png] [--title T]
+A folder without accuracy.csv (or a CSV without its columns) is refused with one line.
 Needs numpy and matplotlib: use Debian's /usr/bin/python3 (python3-numpy,
 python3-matplotlib); the python3 first on PATH may lack them.
 """
@@ -33,16 +35,52 @@ STYLE = {
 }
 
 
+def fail(message):
+    print(f"plot_work_precision.py: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
 def read_rows(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except (OSError, UnicodeDecodeError, csv.Error) as e:
+        fail(f"{path}: cannot read ({e})")
     if not rows:
-        sys.exit(f"{path}: no rows")
+        fail(f"{path}: no rows")
     need = {"scheme", "dt", "tolerance", "status", "moment_error_median", "ks_distance", "seconds_per_event"}
     missing = need - set(rows[0].keys())
     if missing:
-        sys.exit(f"{path}: missing columns {sorted(missing)}")
+        fail(f"{path}: missing columns {sorted(missing)} (not an accuracy.csv of bkquake accuracy)")
     return rows
+
+
+def place_labels(ax, items, fontsize=7):
+    """Annotates (text, x, y, colour) items at the first offset where the label overlaps
+    no earlier label and no point (display coordinates, after the axes are final)."""
+    fig = ax.figure
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    points = [ax.transData.transform((x, y)) for _, x, y, _ in items]
+    taken = []
+    frame = ax.get_window_extent(renderer)
+    offsets = [(4, 3), (4, -11), (-4, 3), (-4, -11), (4, 12), (4, -20), (-4, 12), (-4, -20),
+               (4, 21), (4, -29), (-4, 21), (-4, -29)]
+    for text, x, y, colour in items:
+        for dx, dy in offsets:
+            a = ax.annotate(text, (x, y), textcoords="offset points", xytext=(dx, dy),
+                            ha="left" if dx > 0 else "right", fontsize=fontsize, color=colour)
+            box = a.get_window_extent(renderer).expanded(1.05, 1.1)
+            hits_point = any(box.contains(px, py) for px, py in points)
+            inside = frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1
+            if inside and not hits_point and not any(box.overlaps(t) for t in taken):
+                taken.append(box)
+                break
+            a.remove()
+        else:  # nowhere free: the first place, as before
+            a = ax.annotate(text, (x, y), textcoords="offset points", xytext=offsets[0],
+                            fontsize=fontsize, color=colour)
+            taken.append(a.get_window_extent(renderer))
 
 
 def num(row, key):
@@ -56,10 +94,20 @@ def main():
     ap.add_argument("--out", help="PNG to write (default: FOLDER/work_precision.png)")
     ap.add_argument("--title", default=None)
     args = ap.parse_args()
-    rows = read_rows(os.path.join(args.folder, "accuracy.csv"))
-    out = args.out or os.path.join(args.folder, "work_precision.png")
+    if os.path.isdir(args.folder):
+        csv_path = os.path.join(args.folder, "accuracy.csv")
+        if not os.path.exists(csv_path):
+            fail(f"{args.folder} has no accuracy.csv: not an output folder of bkquake accuracy")
+        out = args.out or os.path.join(args.folder, "work_precision.png")
+    elif os.path.isfile(args.folder):
+        csv_path = args.folder
+        out = args.out or os.path.splitext(csv_path)[0] + "_work_precision.png"
+    else:
+        fail(f"{args.folder}: no such folder or file")
+    rows = read_rows(csv_path)
 
-    fig, (ax_e, ax_ks) = plt.subplots(1, 2, figsize=(12, 5))
+    fig, (ax_e, ax_ks) = plt.subplots(1, 2, figsize=(13, 5.5))
+    labels = []
     floor = next((r for r in rows if r["scheme"] == "noise-floor"), None)
     reference = next((r for r in rows if r["scheme"] == "reference"), None)
     for scheme, (color, marker) in STYLE.items():
@@ -74,15 +122,23 @@ def main():
         err = [max(num(r, "moment_error_median"), 1e-16) for r in ok]
         ks = [num(r, "ks_distance") for r in ok]
         ax_e.loglog(t, err, marker=marker, color=color, label=scheme)
-        ax_ks.semilogx(t, ks, marker=marker, color=color, label=scheme)
+        # A KS distance of exactly 0 (the same histogram) has no place on a log axis.
+        pos = [(x, k) for x, k in zip(t, ks) if k is not None and k > 0]
+        zero = len(ks) - len(pos)
+        ax_ks.loglog([x for x, _ in pos], [k for _, k in pos], marker=marker, color=color,
+                     label=scheme + (f" ({zero} point{'s' * (zero > 1)} at KS = 0 not drawn)" if zero else ""))
         for r, x, y in zip(ok, t, err):
             tag = f"tol {r['tolerance']}" if scheme == "adaptive" else f"dt {r['dt']}"
-            ax_e.annotate(tag, (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7, color=color)
+            labels.append((tag, x, y, color))
         if bad:
             label = f"{scheme}: " + ", ".join(f"dt {r['dt']} {r['status']}" for r in bad)
             ax_e.plot([], [], "x", color=color, label=label)
     if floor is not None:
-        ax_ks.axhspan(0, num(floor, "ks_distance"), color="0.85", label="noise floor (reference, other seed)")
+        positive = [num(r, "ks_distance") for r in rows if (num(r, "ks_distance") or 0) > 0]
+        bottom = min(positive) / 2
+        ax_ks.set_ylim(bottom=bottom)
+        ax_ks.axhspan(bottom, num(floor, "ks_distance"), color="0.85",
+                      label="noise floor (reference, other seed)")
     if reference is not None:
         ax_e.axvline(num(reference, "seconds_per_event"), color="0.6", ls=":", label="reference long run")
         ax_ks.axvline(num(reference, "seconds_per_event"), color="0.6", ls=":")
@@ -90,13 +146,14 @@ def main():
     ax_e.set_ylabel("median |M - M_ref| / M_ref per event")
     ax_e.set_title("per-event error vs cost")
     ax_ks.set_xlabel("wall seconds per event")
-    ax_ks.set_ylabel("KS distance of the magnitude distribution")
+    ax_ks.set_ylabel("KS distance of the magnitude distribution (log)")
     ax_ks.set_title("statistics vs cost")
     ax_e.legend(fontsize=7)
     ax_ks.legend(fontsize=7)
     if args.title:
         fig.suptitle(args.title)
     fig.tight_layout()
+    place_labels(ax_e, labels)
     fig.savefig(out, dpi=120)
     print(f"wrote {out}")
 

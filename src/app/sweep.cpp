@@ -5,15 +5,10 @@
 // folder is written only by the rank that runs it.
 #include "app/sweep.hpp"
 
-#include <signal.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -28,6 +23,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "io/checkpoint.hpp"
+#include "io/folder_lock.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
@@ -104,54 +100,6 @@ std::optional<std::string> json_string(const fs::path& file, const std::string& 
   return std::nullopt;
 }
 
-// The sweep-level lock: a file created exclusively, holding host and pid. A lock left by a
-// process of this host that no longer exists is taken over; any other is refused.
-class SweepLock {
- public:
-  explicit SweepLock(const fs::path& path) : path_(path) {
-    char host[256] = {};
-    ::gethostname(host, sizeof host - 1);
-    const std::string me = std::string(host) + " " + std::to_string(::getpid()) + "\n";
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      std::FILE* f = std::fopen(path.c_str(), "wx");
-      if (f) {
-        const bool ok = std::fputs(me.c_str(), f) >= 0;
-        if (std::fclose(f) != 0 || !ok)
-          throw Error("cannot write the lock '" + path.string() + "'");
-        held_ = true;
-        return;
-      }
-      if (errno != EEXIST)
-        throw Error("cannot create the lock '" + path.string() + "': " + std::strerror(errno));
-      std::ifstream in(path);
-      std::string other_host;
-      long other_pid = 0;
-      in >> other_host >> other_pid;
-      const bool stale =
-          other_host == host && other_pid > 0 && ::kill(other_pid, 0) != 0 && errno == ESRCH;
-      if (!stale)
-        throw Error("output folder '" + path.parent_path().string() +
-                    "' is in use by another sweep (" + path.string() + ": host " + other_host +
-                    ", pid " + std::to_string(other_pid) +
-                    "); if no sweep runs there any more, delete the lock file");
-      std::fprintf(stderr, "bkquake: sweep: taking over the lock of pid %ld, which has ended\n",
-                   other_pid);
-      fs::remove(path);
-    }
-    throw Error("cannot take the lock '" + path.string() + "'");
-  }
-  ~SweepLock() {
-    std::error_code ec;
-    if (held_) fs::remove(path_, ec);
-  }
-  SweepLock(const SweepLock&) = delete;
-  SweepLock& operator=(const SweepLock&) = delete;
-
- private:
-  fs::path path_;
-  bool held_ = false;
-};
-
 // What a point came to.
 struct PointResult {
   enum class State { Pending, Ok, Failed } state = State::Pending;
@@ -187,7 +135,10 @@ class Sweep {
   // tasks left in the order they are handed out.
   std::vector<int> prepare() {
     fs::create_directories(out_);
-    lock_ = std::make_unique<SweepLock>(out_ / "sweep.lock");
+    // The folder's lock (io/folder_lock): a second sweep on it is refused; --resume takes
+    // over the lock of a killed sweep of this host.
+    lock_ = std::make_unique<FolderLock>(out_.string(), "sweep",
+                                         req_.resume ? StaleLock::TakeOver : StaleLock::Refuse);
     const fs::path ini = out_ / "sweep.ini";
     const std::string plan = plan_text();
     if (fs::exists(ini)) {
@@ -280,7 +231,8 @@ class Sweep {
     note_replica(p, r);
     if (replica_done_[p] == spec_.replicas) {
       finish_point(p);
-      write_csv();
+      // At most once a second (each write is synced to disk), and always at the end.
+      if (Clock::now() - last_csv_ >= std::chrono::seconds(1)) write_csv();
     }
     progress(false);
     return true;
@@ -289,7 +241,11 @@ class Sweep {
   // Rank 0, at the end: sweep.csv, the failures, the exit status.
   int finish(const DispatchStats& stats, const std::string& ranks, int size) {
     write_csv();
-    progress(true);
+    if (interrupted_)
+      std::fprintf(stderr,
+                   "bkquake: sweep: stopped; the same command with --resume continues it\n");
+    else
+      progress(true);
     int failed = 0;
     for (std::size_t p = 0; p < points_.size(); ++p)
       if (results_[p].state == PointResult::State::Failed) {
@@ -361,11 +317,13 @@ class Sweep {
     res.error = replica_error_[p];
     res.state = res.error.empty() ? PointResult::State::Ok : PointResult::State::Failed;
     const Scene& scene = points_[p].scene;
-    if (res.state == PointResult::State::Ok && scene.choice("drive.mode") == "events") {
+    // Event runs, and continuous runs with slip episodes, write histogram.csv: merged.
+    if (res.state == PointResult::State::Ok && fs::exists(replica_dir(p, 0) / "histogram.csv")) {
       try {
         MergeRequest m;
         for (int r = 0; r < spec_.replicas; ++r) m.runs.push_back(replica_dir(p, r).string());
         m.out = point_dir(p);
+        m.force = true;  // a merge cut short by a kill is done again
         m.mu_min = scene.real_or_auto("stats.mu_min");
         m.mu_max = scene.real_or_auto("stats.mu_max");
         std::ostringstream ignored;
@@ -421,7 +379,8 @@ class Sweep {
     return true;
   }
 
-  void write_csv() const {
+  void write_csv() {
+    last_csv_ = Clock::now();
     std::vector<std::string> header;
     for (const auto& c : sweep_csv_schema()) {
       header.push_back(c.name);
@@ -516,7 +475,7 @@ class Sweep {
   std::vector<SweepPoint> points_;
   fs::path out_;
   bool seed_swept_ = false;
-  std::unique_ptr<SweepLock> lock_;
+  std::unique_ptr<FolderLock> lock_;
   std::vector<PointResult> results_;
   std::vector<int> replica_done_;
   std::vector<std::string> replica_error_;
@@ -524,7 +483,7 @@ class Sweep {
   std::size_t left_ = 0, skipped_ = 0;
   bool interrupted_ = false;
   int ranks_ = 1;
-  Clock::time_point start_ = Clock::now(), last_progress_{};
+  Clock::time_point start_ = Clock::now(), last_progress_{}, last_csv_{};
 };
 
 }  // namespace

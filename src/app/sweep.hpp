@@ -6,7 +6,7 @@
 //
 // DIR/sweep.ini         the sweep file as read, with provenance and the --set options
 // DIR/sweep.csv         one row per point (sweep_csv_schema()), rewritten as points finish
-// DIR/sweep.lock        while a sweep runs: host and pid (a second sweep is refused)
+// DIR/bkquake.lock      while a sweep runs (io/folder_lock: a second sweep is refused)
 // DIR/points/pNNNN/     point.json, and the merged histogram.csv and summary.json
 // DIR/points/pNNNN/rNN/ one replica: scene.ini, catalog.csv, histogram.csv, summary.json
 #pragma once

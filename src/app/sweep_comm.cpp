@@ -3,9 +3,10 @@
 // result (empty the first time) and receives the next task number, or -1 to stop: two
 // messages per task run away from rank 0, none for rank 0's own. Rank 0's main thread
 // polls for requests without spinning (Open MPI's blocking receive would keep a core busy
-// that rank 0's own worker thread needs), sleeping 1 ms when nothing is waiting.
+// that rank 0's own worker thread needs), sleeping 1 to 8 ms when nothing is waiting.
 #include "app/sweep_comm.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <string>
@@ -15,6 +16,7 @@
 #if BKQUAKE_HAVE_MPI
 #include <boost/mpi.hpp>
 #include <deque>
+#include <exception>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -143,9 +145,22 @@ class MpiComm final : public SweepComm {
     int workers_left = world_.size() - 1;
     std::vector<Clock::time_point> stopped_at;
     std::string msg;
+    constexpr std::chrono::microseconds kMaxSleep(8000);
+    std::chrono::microseconds idle_sleep(500);
     mpi::request pending = world_.irecv(mpi::any_source, kTagRequest, msg);
+    // An error in on_result (a failed write) stops the hand-out; it is thrown again once
+    // every rank has stopped, so the local thread is never left running.
+    std::exception_ptr failure;
     auto handle = [&](const TaskResult& r) {
-      if (!on_result(r)) {
+      bool go_on = false;
+      if (!failure) {
+        try {
+          go_on = on_result(r);
+        } catch (...) {
+          failure = std::current_exception();
+        }
+      }
+      if (!go_on) {
         std::lock_guard<std::mutex> lock(m);
         stopping = true;
       }
@@ -192,9 +207,13 @@ class MpiComm final : public SweepComm {
         if (local_results.empty()) break;
         continue;
       }
-      if (!busy) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      // Idle: sleep 1 ms, doubling up to 8 ms while nothing comes (a request waits at most
+      // that long; the wake-ups cost rank 0's core almost nothing).
+      idle_sleep = busy ? std::chrono::microseconds(500) : std::min(2 * idle_sleep, kMaxSleep);
+      if (!busy) std::this_thread::sleep_for(idle_sleep);
     }
     local.join();
+    if (failure) std::rethrow_exception(failure);
     const auto end = Clock::now();
     for (const auto& t : stopped_at) stats.idle_at_end_seconds += seconds_between(t, end);
     stats.idle_at_end_seconds += seconds_between(local_done_at, end);

@@ -99,6 +99,7 @@ int cmd_accuracy(const std::vector<std::string>& args) {
   Scene scene = scene_from_command_line("accuracy", vm);
   // The study relaxes events one at a time, whatever mode the scene runs in.
   scene.set("drive.mode", "events", "bkquake accuracy");
+  drop_inapplicable_keys(scene);
   scene.validate();
 
   AccuracyOptions opt;

@@ -15,8 +15,8 @@ int cmd_accuracy(const std::vector<std::string>& args);        // src/cli/accura
 int cmd_spectrum(const std::vector<std::string>& args);        // src/cli/spectrum.cpp
 int cmd_special_speed(const std::vector<std::string>& args);   // src/cli/special_speed.cpp
 int cmd_special_law(const std::vector<std::string>& args);     // src/cli/special_law.cpp
-int cmd_friction_study(const std::vector<std::string>& args);  // src/cli/friction_study.cpp
 int cmd_sweep(const std::vector<std::string>& args);           // src/cli/sweep.cpp
+int cmd_friction_study(const std::vector<std::string>& args);  // src/cli/friction_study.cpp
 // Hidden: regenerates the README's key and column tables.
 int cmd_readme_tables(const std::vector<std::string>& args);  // src/cli/readme_tables.cpp
 

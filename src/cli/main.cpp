@@ -9,6 +9,7 @@
 #include "bkquake_version.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace {
 
@@ -24,8 +25,8 @@ Usage:
   bkquake spectrum RUN_DIR [--signal S] [--segment K | --from T0 --to T1] [--out FILE]
   bkquake special-speed [SCENE] [--set section.key=value]...
   bkquake special-law BK_RUN_DIR... > law.csv
-  bkquake friction-study [--out DIR] [--seeds N] [--jobs J] [--segment T]
   bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume]
+  bkquake friction-study [--out DIR] [--seeds N] [--jobs J] [--segment T]
   bkquake --help | --version
 
 Commands:
@@ -38,8 +39,8 @@ Commands:
             frequencies (thesis §4.3)
   special-speed  t_death and v_special = F0/(k_p t_death) of thesis eq. 4.8
   special-law    the friction a held pad feels in BK runs, as a table (thesis Fig. 4.8)
-  friction-study the four configurations of thesis Fig. 4.6 over the speed grid
   sweep   run every point of a sweep file (also under mpirun) and write sweep.csv
+  friction-study the four configurations of thesis Fig. 4.6 over the speed grid
 
 Examples:
   bkquake run                                    the Carlson-Langer reference, event-driven
@@ -76,15 +77,16 @@ int main(int argc, char** argv) {
     if (command == "spectrum") return bkq::cmd_spectrum(args);
     if (command == "special-speed") return bkq::cmd_special_speed(args);
     if (command == "special-law") return bkq::cmd_special_law(args);
-    if (command == "friction-study") return bkq::cmd_friction_study(args);
     if (command == "sweep") return bkq::cmd_sweep(args);
+    if (command == "friction-study") return bkq::cmd_friction_study(args);
     if (command == "readme-tables") return bkq::cmd_readme_tables(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {
-    std::cerr << "bkquake: error: " << e.what() << "\n";
+    // One line of printable text, whatever file content or value the message quotes.
+    std::cerr << "bkquake: error: " << bkq::escape_unprintable(e.what()) << "\n";
     return bkq::kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "bkquake: internal error: " << e.what() << "\n";
+    std::cerr << "bkquake: internal error: " << bkq::escape_unprintable(e.what()) << "\n";
     return 1;
   }
 }

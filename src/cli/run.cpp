@@ -20,8 +20,9 @@ int cmd_run(const std::vector<std::string>& args) {
   opts.add_options()("out", po::value<std::string>()->default_value("out"), "output folder")(
       "resume", "continue the run in the output folder from its checkpoint")(
       "force", "overwrite a finished run in the output folder")("quiet", "no progress output")(
-      "dump-defaults", "print a commented scene with every key at its default, then exit")(
-      "help,h", "this help");
+      "dump-defaults",
+      "print a commented scene with every key (at its default, or as SCENE and --set make "
+      "it), then exit")("help,h", "this help");
   const po::variables_map vm = parse_scene_command_line("run", args, opts);
 
   if (vm.count("help")) {
@@ -31,14 +32,19 @@ int cmd_run(const std::vector<std::string>& args) {
               << opts << "\n";
     return 0;
   }
-  if (vm.count("dump-defaults")) {
-    std::cout << dump_defaults();
-    return 0;
-  }
-
   RunRequest request;
   request.scene = scene_from_command_line("run", vm);
   request.scene.validate();
+  if (vm.count("dump-defaults")) {
+    // With a SCENE or --set: that scene, every key shown, those that do not apply commented.
+    if (!vm.count("scene") && !vm.count("set"))
+      std::cout << dump_defaults();
+    else
+      std::cout << request.scene.to_ini(
+          {"bkquake scene: " + request.scene.origin + ", with the --set overrides applied",
+           "keys shown as comments do not apply to this scene"});
+    return 0;
+  }
   request.out_dir = vm["out"].as<std::string>();
   request.resume = vm.count("resume") > 0;
   request.force = vm.count("force") > 0;

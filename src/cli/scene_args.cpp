@@ -1,7 +1,10 @@
 // The shared SCENE / --set command line; see scene_args.hpp.
 #include "cli/scene_args.hpp"
 
+#include <iostream>
+
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace bkq {
 
@@ -52,7 +55,13 @@ Scene scene_from_command_line(const std::string& command, const po::variables_ma
   if (vm.count("set"))
     for (const auto& assignment : vm["set"].as<std::vector<std::string>>())
       scene.apply_override(assignment);
+  drop_inapplicable_keys(scene);
   return scene;
+}
+
+void drop_inapplicable_keys(Scene& scene) {
+  for (const auto& w : scene.drop_inapplicable())
+    std::cerr << "bkquake: warning: " << escape_unprintable(w) << "\n";
 }
 
 }  // namespace bkq

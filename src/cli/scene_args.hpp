@@ -30,9 +30,14 @@ boost::program_options::variables_map parse_scene_command_line(
     const std::string& command, const std::vector<std::string>& args,
     const boost::program_options::options_description& opts);
 
-// The scene file (or the built-in default) with the --set overrides applied; the caller
-// validates it (after settings of its own, if any).
+// The scene file (or the built-in default) with the --set overrides applied and the keys
+// that do not apply dropped (drop_inapplicable_keys); the caller validates it (after
+// settings of its own, if any).
 Scene scene_from_command_line(const std::string& command,
                               const boost::program_options::variables_map& vm);
+
+// Scene::drop_inapplicable, its warnings printed to stderr; call again after a command
+// changes the scene itself (accuracy sets drive.mode = events).
+void drop_inapplicable_keys(Scene& scene);
 
 }  // namespace bkq

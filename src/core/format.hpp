@@ -16,16 +16,12 @@ inline std::string format_real(double x) {
   return std::string(buf, res.ptr);
 }
 
-}  // namespace bkq
-
-namespace bkq {
-
-// `s` in single quotes for an error message, with every byte that is not printable ASCII
-// written as \xHH and at most `max` characters kept (then "..."): a corrupt or binary file
-// never puts raw bytes on a terminal.
-inline std::string quote_printable(const std::string& s, std::size_t max = 80) {
+// `s` with every byte that is not printable ASCII written as \xHH, at most
+// `max` characters of it kept (then "..."): file content and user values in a message
+// never put raw bytes on a terminal.
+inline std::string escape_unprintable(const std::string& s, std::size_t max = 1000) {
   static const char* hex = "0123456789abcdef";
-  std::string out = "'";
+  std::string out;
   std::size_t kept = 0;
   for (const char ch : s) {
     if (kept++ == max) {
@@ -33,7 +29,7 @@ inline std::string quote_printable(const std::string& s, std::size_t max = 80) {
       break;
     }
     const auto c = static_cast<unsigned char>(ch);
-    if (c >= 0x20 && c < 0x7f && c != '\\') {
+    if (c >= 0x20 && c < 0x7f) {
       out += static_cast<char>(c);
     } else {
       out += "\\x";
@@ -41,7 +37,15 @@ inline std::string quote_printable(const std::string& s, std::size_t max = 80) {
       out += hex[c & 15];
     }
   }
-  return out + "'";
+  return out;
+}
+
+// `s` in single quotes for an error message, escaped and shortened as above.
+inline std::string quote_printable(const std::string& s, std::size_t max = 80) {
+  std::string out(1, '\'');  // appended, not "'" + ...: GCC 12 warns falsely (-Wrestrict)
+  out += escape_unprintable(s, max);
+  out += '\'';
+  return out;
 }
 
 }  // namespace bkq

@@ -183,7 +183,8 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
       ::close(old);
       throw Error("cannot rewrite the lock file '" + path_ + "': " + std::strerror(e));
     }
-    std::fprintf(stderr, "bkquake: taking over the stale lock of '%s' left by %s, which is gone\n",
+    std::fprintf(stderr,
+                 "bkquake: warning: taking over the stale lock of '%s' left by %s, which is gone\n",
                  dir.c_str(), h.describe().c_str());
     fd_ = old;
     return;

@@ -67,8 +67,8 @@ std::vector<ReadmeTable> readme_tables() {
       {"segments.csv", column_table(segments_schema())},
       {"spectrum.csv", column_table(spectrum_schema())},
       {"special_law.csv", column_table(special_law_schema())},
-      {"friction_study.csv", column_table(friction_study_schema())},
       {"sweep.csv", column_table(sweep_csv_schema())},
+      {"friction_study.csv", column_table(friction_study_schema())},
   };
 }
 

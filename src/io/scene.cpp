@@ -310,33 +310,84 @@ std::string normalise(const ParamSpec& p, const std::string& raw, const std::str
   return text;
 }
 
-// Keys that only mean something under another key's value. validate() rejects them when
-// given explicitly; to_ini() comments them out so the written scene reads back cleanly.
-struct Dependency {
-  std::vector<std::string> keys;
+}  // namespace
+
+struct KeyCondition {
   std::string controller;
-  std::string needed;
+  std::vector<std::string> values;
 };
 
-const std::vector<Dependency>& dependencies() {
-  static const std::vector<Dependency> deps = {
+struct KeyDependency {
+  std::vector<std::string> keys;
+  std::vector<KeyCondition> any_of;
+};
+
+namespace {
+
+// Keys that only mean something under other keys' values (the applies-when part of the
+// declarations): a key applies when every row that lists it holds, and a row holds when
+// any of its conditions does. A key given where it does not apply is refused when it came
+// from --set and ignored with a warning when it came from a scene file (drop_inapplicable);
+// to_ini() comments it out, so a run's own scene.ini reads back to the same scene.
+const std::vector<KeyDependency>& dependencies() {
+  static const std::vector<KeyDependency> deps = {
       {{"model.pad_mass", "model.caliper_stiffness", "model.s_c", "friction.F0", "friction.vc"},
-       "model.parameterisation",
-       "thesis"},
-      {{"model.l", "friction.alpha"}, "model.parameterisation", "carlson-langer"},
-      {{"drive.step_increment", "drive.step_interval"}, "drive.schedule", "steps"},
-      {{"drive.ramp_from", "drive.ramp_to", "drive.ramp_duration"}, "drive.schedule", "ramp"},
+       {{"model.parameterisation", {"thesis"}}}},
+      {{"model.l", "friction.alpha"}, {{"model.parameterisation", {"carlson-langer"}}}},
+      // The pad (bkp) and the single block (1dof) have dampers; the plain chain has none.
+      {{"model.damping_ratio"}, {{"model.kind", {"bkp", "1dof"}}}},
+      // Block scalings of Table 3.1; in carlson-langer units they only scale the pad.
+      {{"model.s_m", "model.s_p"},
+       {{"model.parameterisation", {"thesis"}}, {"model.kind", {"bkp"}}}},
+      {{"drive.speed", "drive.schedule", "run.duration", "output.every", "output.blocks",
+        "output.block_first", "output.block_count", "output.segment_blocks"},
+       {{"drive.mode", {"continuous"}}}},
+      {{"run.events", "run.transient_events", "run.max_steps_per_event"},
+       {{"drive.mode", {"events"}}}},
+      {{"drive.step_increment", "drive.step_interval"}, {{"drive.schedule", {"steps"}}}},
+      {{"drive.ramp_from", "drive.ramp_to", "drive.ramp_duration"}, {{"drive.schedule", {"ramp"}}}},
+      {{"integrator.tolerance"}, {{"integrator.scheme", {"adaptive"}}}},
   };
   return deps;
 }
 
-const Dependency* dependency_of(const std::string& key) {
-  for (const auto& d : dependencies())
-    if (std::find(d.keys.begin(), d.keys.end(), key) != d.keys.end()) return &d;
-  return nullptr;
+std::string join(const std::vector<std::string>& parts, const std::string& sep) {
+  std::string out;
+  for (const auto& p : parts) out += (out.empty() ? "" : sep) + p;
+  return out;
+}
+
+// "drive.schedule = steps", "model.parameterisation = thesis or model.kind = bkp".
+std::string needs_text(const KeyDependency& d) {
+  std::vector<std::string> parts;
+  for (const auto& c : d.any_of) parts.push_back(c.controller + " = " + join(c.values, "|"));
+  return join(parts, " or ");
 }
 
 }  // namespace
+
+// The first row listing `key` that does not hold in this scene, or nullptr.
+const KeyDependency* Scene::failing_dependency(const std::string& key) const {
+  for (const auto& d : dependencies()) {
+    if (std::find(d.keys.begin(), d.keys.end(), key) == d.keys.end()) continue;
+    bool holds = false;
+    for (const auto& c : d.any_of)
+      holds = holds ||
+              std::find(c.values.begin(), c.values.end(), text(c.controller)) != c.values.end();
+    if (!holds) return &d;
+  }
+  return nullptr;
+}
+
+// Why `key` does not apply: "needs drive.schedule = steps, but drive.schedule = constant".
+std::string Scene::why_not(const std::string& key) const {
+  if (key == "model.blocks") return "model.kind = 1dof has one block";
+  const KeyDependency* d = failing_dependency(key);
+  if (!d) return "";
+  std::vector<std::string> now;
+  for (const auto& c : d->any_of) now.push_back(c.controller + " = " + text(c.controller));
+  return "needs " + needs_text(*d) + ", but " + join(now, " and ");
+}
 
 const std::vector<ParamSpec>& parameter_table() {
   static const std::vector<ParamSpec> table = make_table();
@@ -411,6 +462,7 @@ void Scene::set(const std::string& key, const std::string& value, const std::str
   if (!p) unknown_key(key, where);
   values_[key] = normalise(*p, value, where);
   given_[key] = true;
+  set_by_[key] = where;
 }
 
 void Scene::apply_override(const std::string& assignment) {
@@ -424,8 +476,24 @@ void Scene::apply_override(const std::string& assignment) {
 
 bool Scene::applies(const std::string& key) const {
   if (key == "model.blocks") return choice("model.kind") != "1dof" || integer(key) == 1;
-  const Dependency* d = dependency_of(key);
-  return !d || text(d->controller) == d->needed;
+  return failing_dependency(key) == nullptr;
+}
+
+std::vector<std::string> Scene::drop_inapplicable() {
+  std::vector<std::string> warnings;
+  // In table order, so a controller is settled before the keys that depend on it.
+  for (const auto& p : parameter_table()) {
+    if (!is_set(p.key) || applies(p.key) || p.key == "model.blocks") continue;
+    const std::string& from = set_by_.at(p.key);
+    if (from == "--set")
+      throw Error("--set " + p.key + "=" + text(p.key) + " does not apply to this scene: it " +
+                  why_not(p.key) + "; remove it or change what it depends on");
+    warnings.push_back(p.key + " = " + text(p.key) + " (" + from + ") does not apply to this " +
+                       "scene: it " + why_not(p.key) + "; ignored");
+    values_[p.key] = normalise(p, p.default_value, "default");
+    given_[p.key] = false;
+  }
+  return warnings;
 }
 
 void Scene::validate() const {
@@ -437,9 +505,11 @@ void Scene::validate() const {
                   " contradicts model.kind = 1dof (a single block); remove model.blocks or set "
                   "it to 1" +
                   where);
-    const Dependency* d = dependency_of(p.key);
-    throw Error(p.key + " = " + text(p.key) + " applies only with " + d->controller + " = " +
-                d->needed + ", but " + d->controller + " = " + text(d->controller) + where);
+    const KeyDependency* d = failing_dependency(p.key);
+    std::vector<std::string> now;
+    for (const auto& c : d->any_of) now.push_back(c.controller + " = " + text(c.controller));
+    throw Error(p.key + " = " + text(p.key) + " applies only with " + needs_text(*d) + ", but " +
+                join(now, " and ") + where);
   }
   if (choice("model.boundary") == "periodic" && integer("model.blocks") < 3)
     throw Error("model.boundary = periodic needs model.blocks >= 3, got model.blocks = " +
@@ -551,15 +621,10 @@ std::string Scene::to_ini(const std::vector<std::string>& header) const {
     if (!p.units.empty()) out << " [" << p.units << "]";
     out << " (allowed: " << allowed_text(p) << ")\n";
     const std::string& v = values_.at(p.key);
-    if (applies(p.key) || is_set(p.key)) {
+    if (applies(p.key))
       out << name << " = " << v << "\n";
-    } else if (p.key == "model.blocks") {
-      out << "# " << name << " = " << v << "  (unused: model.kind = 1dof has one block)\n";
-    } else {
-      const Dependency* d = dependency_of(p.key);
-      out << "# " << name << " = " << v << "  (unused: needs " << d->controller << " = "
-          << d->needed << ")\n";
-    }
+    else
+      out << "# " << name << " = " << v << "  (unused: " << why_not(p.key) << ")\n";
   }
   return out.str();
 }

@@ -14,6 +14,8 @@ namespace bkq {
 
 enum class ParamType { Real, Integer, Choice, Boolean };
 
+struct KeyDependency;  // an applies-when row of the table (io/scene.cpp)
+
 // One row of the parameter table. Ranges are inclusive unless the *_open flag is set.
 struct ParamSpec {
   std::string key;  // "section.key"
@@ -47,7 +49,14 @@ class Scene {
   // Applies "section.key=value" (the --set syntax).
   void apply_override(const std::string& assignment);
 
-  // Cross-key checks (contradictory combinations); throws bkq::Error. Call after all sets.
+  // Keys given where they do not apply (the applies-when part of their declaration: a
+  // damping ratio for the plain chain, run.events in a continuous run, ...): one given by
+  // --set throws bkq::Error (an explicit request that would have no effect); one from a scene
+  // file, which may be shared between scenes, is reset to its default and reported in the
+  // returned warnings. Call after all sets, before validate().
+  std::vector<std::string> drop_inapplicable();
+  // Cross-key checks (contradictory combinations, a key given where it does not apply);
+  // throws bkq::Error. Call after all sets.
   void validate() const;
 
   double real(const std::string& key) const;
@@ -80,9 +89,14 @@ class Scene {
  private:
   // validate()'s checks of a continuous run: its step count, its speed schedule.
   void check_continuous_run(const std::string& where) const;
+  // The first applies-when row of `key` that does not hold (nullptr when it applies), and
+  // why in words ("needs drive.schedule = steps, but drive.schedule = constant").
+  const KeyDependency* failing_dependency(const std::string& key) const;
+  std::string why_not(const std::string& key) const;
 
   std::map<std::string, std::string> values_;
   std::map<std::string, bool> given_;
+  std::map<std::string, std::string> set_by_;  // where each given key came from
 };
 
 // The allowed values of a key as text: "[0, 1)", "thesis|clst91|cl89", "true|false".

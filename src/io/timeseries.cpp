@@ -35,15 +35,6 @@ std::string timeseries_row(const TimeSeriesRow& r) {
   return s;
 }
 
-std::string blocks_header(int n) {
-  std::string header = "t";
-  for (int j = 0; j < n; ++j) {
-    header += ",u";
-    header += std::to_string(j);
-  }
-  return header;
-}
-
 std::string blocks_header(int first, int count) {
   std::string header = "t";
   for (const char* what : {",u", ",v"})

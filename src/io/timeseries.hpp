@@ -22,8 +22,7 @@ std::string timeseries_header();
 // One CSV row (no newline), numbers printed round-trip exactly.
 std::string timeseries_row(const TimeSeriesRow& r);
 
-// blocks.csv: "t,u0,u1,...,u{n-1}" and one row of lab-frame displacements per sample.
-std::string blocks_header(int n);
+// blocks.csv: one row of lab-frame displacements (and velocities) per sample.
 std::string blocks_row(double t, const std::vector<double>& u);
 // blocks.csv of the blocks first .. first+count-1 with their lab-frame velocities:
 // "t,u{first},...,v{first},..." (output.block_first, output.block_count).

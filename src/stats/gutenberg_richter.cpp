@@ -211,6 +211,12 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   const auto poll = [&opt] {
     if (opt.cancelled && opt.cancelled()) throw FitCancelled();
   };
+  // Bin indices far from the int64 limits (a bin width of 1e-300 puts every magnitude in
+  // the lowest one), so that k +- kMaxFitBins and k * w are exact and no loop wraps round.
+  constexpr std::int64_t kMaxBinIndex = std::int64_t{1} << 52;
+  if (h.first_bin() < -kMaxBinIndex || h.last_bin() > kMaxBinIndex)
+    throw Error("the bin width " + fmt(w) + " is too small for the magnitudes " + fmt(h.min_mu()) +
+                " .. " + fmt(h.max_mu()));
   const std::int64_t span = h.last_bin() - h.first_bin() + 1;
   if (span > kMaxFitBins)
     throw Error("the magnitudes " + fmt(h.min_mu()) + " .. " + fmt(h.max_mu()) + " span " +

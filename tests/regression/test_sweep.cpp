@@ -1,7 +1,7 @@
-// `bkquake sweep` as users run it: the outputs of a sweep on two MPI ranks and on one rank
-// without mpirun are the same bytes (provenance and wall-clock timings aside); a bad point
-// fails alone and the exit status says so; a sweep killed mid-way and resumed runs only
-// what was missing and ends with the outputs of a sweep that never stopped; a second
+// `bkquake sweep` as users run it: the outputs of a sweep on two and four MPI ranks and
+// on one rank without mpirun are the same bytes (provenance and wall-clock timings aside);
+// a bad point fails alone and the exit status says so; a sweep killed mid-way and resumed
+// runs only what was missing and ends with the outputs of a sweep that never stopped; a second
 // sweep on a folder in use is refused.
 //
 // The MPI tests run through ctest's `SweepMpi` test (CMakeLists.txt), which sets
@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "../cli_helpers.hpp"
+#include "io/folder_lock.hpp"
 
 namespace bkq {
 namespace {
@@ -135,7 +136,7 @@ class SweepMpi : public ::testing::Test {
   std::string mpirun_;
 };
 
-TEST_F(SweepMpi, TwoRanksWriteTheBytesOfOne) {
+TEST_F(SweepMpi, TwoAndFourRanksWriteTheBytesOfOne) {
   TempDir dir;
   const std::string sweep = dir.write("small.ini", kSmall);
   const auto one = run_bkquake({"sweep", sweep, "--out", dir.file("one")});
@@ -145,10 +146,14 @@ TEST_F(SweepMpi, TwoRanksWriteTheBytesOfOne) {
   ASSERT_EQ(two.status, 0) << two.out << two.err;
   EXPECT_NE(two.out.find("MPI, 2 ranks"), std::string::npos) << two.out;
   expect_same_outputs(dir.path() / "one", dir.path() / "two");
+  // More ranks than this machine has cores, and more than half the tasks in flight at once.
+  const auto four = mpi_sweep(4, {sweep, "--out", dir.file("four")});
+  ASSERT_EQ(four.status, 0) << four.out << four.err;
+  expect_same_outputs(dir.path() / "one", dir.path() / "four");
   // Every point and replica ran and was merged; no lock is left behind.
   EXPECT_TRUE(fs::exists(dir.path() / "two/points/p0003/r01/catalog.csv"));
   EXPECT_TRUE(fs::exists(dir.path() / "two/points/p0003/histogram.csv"));
-  EXPECT_FALSE(fs::exists(dir.path() / "two/sweep.lock"));
+  EXPECT_FALSE(fs::exists(dir.path() / "two/bkquake.lock"));
 }
 
 // Done-when of the sweep issue: the Carlson-Langer table from the shipped sweep file, the
@@ -198,6 +203,27 @@ run.transient_events = 50
   EXPECT_EQ(lines[3].rfind("2,0.02,ok,1,500,", 0), 0u) << lines[3];
 }
 
+TEST(Sweep, AWindowWithoutEventsIsNoFailureButAContradictoryPointIs) {
+  TempDir dir;
+  // Point 0 contradicts the base scene (mu_min above mu_max): refused alone. Point 1's fit
+  // window holds no event: its b is empty, the reason in its summary.json, and it is ok.
+  const std::string sweep = dir.write("w.ini", R"([vary]
+stats.mu_max = -2, 4.4
+[set]
+run.events = 300
+run.transient_events = 10
+stats.mu_min = 4
+)");
+  const auto r = run_bkquake({"sweep", sweep, "--out", dir.file("out")});
+  EXPECT_EQ(r.status, 3) << r.err;
+  const std::string csv = read_file(dir.file("out/sweep.csv"));
+  EXPECT_NE(csv.find("\n0,-2,failed,1,0,,,,,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("must be below stats.mu_max"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n1,4.4,ok,1,300,,,,,"), std::string::npos) << csv;
+  EXPECT_NE(read_file(dir.file("out/points/p0001/summary.json")).find("\"fit_error\""),
+            std::string::npos);
+}
+
 TEST(Sweep, KilledAndResumedRunsOnlyWhatWasMissing) {
   TempDir dir;
   const std::string sweep = dir.write("s.ini", R"([vary]
@@ -224,7 +250,7 @@ run.checkpoint_events = 5000
   }
   ASSERT_GE(finished.size(), 1u);
   ASSERT_LT(finished.size(), 4u) << "the sweep finished before the kill landed";
-  EXPECT_TRUE(fs::exists(out / "sweep.lock"));  // left by the killed process
+  EXPECT_TRUE(fs::exists(out / "bkquake.lock"));  // left by the killed process
 
   // A new sweep into the folder is refused; --resume takes over the dead process's lock.
   const auto again = run_bkquake({"sweep", sweep, "--out", out.string()});
@@ -243,13 +269,11 @@ TEST(Sweep, TwoSweepsOnOneFolderAreRefused) {
   TempDir dir;
   const std::string sweep = dir.write("s.ini", "[vary]\nfriction.alpha = 1, 2\n");
   fs::create_directories(dir.path() / "out");
-  char host[256] = {};
-  ::gethostname(host, sizeof host - 1);
-  // A live process (this test) holds the lock.
-  dir.write("out/sweep.lock", std::string(host) + " " + std::to_string(::getpid()) + "\n");
+  // A live process (this test) holds the folder's lock, as a running sweep does.
+  const FolderLock held(dir.file("out"), "sweep", StaleLock::Refuse);
   const auto r = run_bkquake({"sweep", sweep, "--out", dir.file("out"), "--set", "run.events=100"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("in use by another sweep"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is in use by bkquake sweep"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("pid " + std::to_string(::getpid())), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "out/sweep.csv"));
   EXPECT_FALSE(fs::exists(dir.path() / "out/points"));

@@ -132,7 +132,7 @@ TEST(OutputFolder, ResumeNeedsAnExistingFolder) {
 
 TEST(QuotePrintable, EscapesEverythingButPrintableAscii) {
   EXPECT_EQ(quote_printable("abc"), "'abc'");
-  EXPECT_EQ(quote_printable(std::string("a\x00\x1b\xff\\", 5)), "'a\\x00\\x1b\\xff\\x5c'");
+  EXPECT_EQ(quote_printable(std::string("a\x00\x1b\xff\\", 5)), "'a\\x00\\x1b\\xff\\'");
   EXPECT_EQ(quote_printable("abcdef", 3), "'abc...'");
 }
 

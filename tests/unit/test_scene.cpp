@@ -87,7 +87,7 @@ TEST(Scene, Defaults) {
 TEST(Scene, FileThenOverridesInOrder) {
   Scene s = from(
       "# a comment\n[model]\nblocks = 50\nl = 3\n\n[friction]\nalpha = 1\n"
-      "[output]\nblocks = yes\n[stats]\nmu_min = -2.5\n");
+      "[drive]\nmode = continuous\n[output]\nblocks = yes\n[stats]\nmu_min = -2.5\n");
   EXPECT_EQ(s.origin, "x.ini");
   EXPECT_EQ(s.integer("model.blocks"), 50);
   EXPECT_TRUE(s.is_set("model.blocks"));
@@ -211,12 +211,78 @@ TEST(SceneValidate, ParameterisationOnlyKeys) {
 }
 
 TEST(SceneValidate, ScheduleOnlyKeys) {
-  EXPECT_ERROR_HAS(from("[drive]\nstep_interval = 10\n").validate(), "drive.step_interval",
+  const std::string c = "[drive]\nmode = continuous\n";
+  EXPECT_ERROR_HAS(from(c + "step_interval = 10\n").validate(), "drive.step_interval",
                    "drive.schedule = steps", "drive.schedule = constant");
-  EXPECT_ERROR_HAS(from("[drive]\nschedule = steps\nramp_to = 2\n").validate(), "drive.ramp_to",
+  EXPECT_ERROR_HAS(from(c + "schedule = steps\nramp_to = 2\n").validate(), "drive.ramp_to",
                    "drive.schedule");
-  EXPECT_NO_THROW(from("[drive]\nschedule = ramp\nramp_to = 0\nramp_from = 1\n").validate());
-  EXPECT_NO_THROW(from("[drive]\nschedule = steps\nstep_interval = 10\n").validate());
+  EXPECT_NO_THROW(from(c + "schedule = ramp\nramp_to = 0\nramp_from = 1\n").validate());
+  EXPECT_NO_THROW(from(c + "schedule = steps\nstep_interval = 10\n").validate());
+}
+
+TEST(SceneValidate, KindModeAndSchemeOnlyKeys) {
+  // Issue 19, item 8: these were read and silently ignored.
+  EXPECT_ERROR_HAS(from("[model]\ndamping_ratio = 0.2\n").validate(), "model.damping_ratio",
+                   "model.kind = bkp|1dof", "model.kind = bk");
+  EXPECT_NO_THROW(from("[model]\nkind = bkp\ndamping_ratio = 0.2\n").validate());
+  EXPECT_NO_THROW(from("[model]\nkind = 1dof\ndamping_ratio = 0.2\n").validate());
+  EXPECT_ERROR_HAS(from("[model]\ns_m = 2\n").validate(), "model.s_m",
+                   "model.parameterisation = thesis or model.kind = bkp",
+                   "model.parameterisation = carlson-langer and model.kind = bk");
+  EXPECT_NO_THROW(from("[model]\nkind = bkp\ns_p = 2\n").validate());
+  EXPECT_ERROR_HAS(from("[drive]\nmode = continuous\n[run]\nevents = 5\n").validate(), "run.events",
+                   "drive.mode = events");
+  EXPECT_ERROR_HAS(from("[run]\nduration = 5\n").validate(), "run.duration",
+                   "drive.mode = continuous");
+  EXPECT_ERROR_HAS(from("[integrator]\ntolerance = 1e-6\n").validate(), "integrator.tolerance",
+                   "integrator.scheme = adaptive");
+}
+
+TEST(SceneValidate, FileKeysThatDoNotApplyAreDroppedWithAWarningSetKeysAreRefused) {
+  Scene s = from(
+      "[model]\ndamping_ratio = 0.2\n[drive]\nmode = events\nschedule = steps\n"
+      "step_interval = 10\n");
+  const auto warnings = s.drop_inapplicable();
+  ASSERT_EQ(warnings.size(), 3u);
+  EXPECT_NE(warnings[0].find("model.damping_ratio = 0.2 (in x.ini) does not apply"),
+            std::string::npos)
+      << warnings[0];
+  EXPECT_NE(warnings[0].find("needs model.kind = bkp|1dof, but model.kind = bk; ignored"),
+            std::string::npos)
+      << warnings[0];
+  // The schedule goes first, so the step keys are judged against the default schedule.
+  EXPECT_NE(warnings[2].find("drive.step_interval"), std::string::npos) << warnings[2];
+  EXPECT_NO_THROW(s.validate());
+  EXPECT_EQ(s, Scene()) << "ignored keys hold their defaults";
+  EXPECT_FALSE(s.is_set("model.damping_ratio"));
+
+  Scene t;
+  t.apply_override("run.duration=5");
+  EXPECT_ERROR_HAS(t.drop_inapplicable(), "--set run.duration=5 does not apply",
+                   "drive.mode = continuous");
+  // A --set of the controller makes the file's key apply.
+  Scene u = from("[model]\ndamping_ratio = 0.2\n");
+  u.apply_override("model.kind=bkp");
+  EXPECT_TRUE(u.drop_inapplicable().empty());
+  EXPECT_DOUBLE_EQ(u.real("model.damping_ratio"), 0.2);
+}
+
+TEST(SceneIni, KeysThatDoNotApplyAreWrittenAsCommentsAndReadBack) {
+  Scene s = from("[model]\nkind = bkp\ndamping_ratio = 0.2\n");
+  s.apply_override("model.kind=bk");
+  ASSERT_EQ(s.drop_inapplicable().size(), 1u);
+  const std::string ini = s.to_ini();
+  EXPECT_NE(ini.find("# damping_ratio = 0.0833333333333333  (unused: needs model.kind = "
+                     "bkp|1dof, but model.kind = bk)"),
+            std::string::npos)
+      << ini;
+  EXPECT_NE(ini.find("\nevents = 100000\n"), std::string::npos) << "events applies: " << ini;
+  EXPECT_NE(ini.find("# duration = 1000  (unused: needs drive.mode = continuous"),
+            std::string::npos);
+  Scene back = Scene::from_text(ini, "scene.ini");
+  EXPECT_TRUE(back.drop_inapplicable().empty());
+  EXPECT_NO_THROW(back.validate());
+  EXPECT_EQ(back, s);
 }
 
 TEST(SceneValidate, OneDofBoundaryFitWindowAndEventsWithAnyScheme) {

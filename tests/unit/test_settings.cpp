@@ -92,7 +92,7 @@ TEST(TimeSeries, HeaderFollowsSchemaAndContract) {
   EXPECT_EQ(timeseries_header(), "t,speed,substrate,pad_x,pad_v,pad_friction,sliding");
   for (const auto& c : timeseries_schema()) EXPECT_STRNE(c.doc, "") << c.name;
   EXPECT_EQ(timeseries_row({0.5, 0.01, 0.005, -1e-3, 0, 2.5, 3}), "0.5,0.01,0.005,-0.001,0,2.5,3");
-  EXPECT_EQ(blocks_header(3), "t,u0,u1,u2");
+  EXPECT_EQ(blocks_header(0, 3), "t,u0,u1,u2,v0,v1,v2");
   EXPECT_EQ(blocks_row(1.5, {0.1, -2}), "1.5,0.1,-2");
 }
 

@@ -71,6 +71,13 @@ TEST(FitBounds, TooManyBinsForTheWindowSearchIsAnError) {
   EXPECT_NEAR(f.b_mle, 1.0, 4 * f.b_mle_err);
 }
 
+TEST(FitBounds, ABinWidthTooSmallForTheMagnitudesIsAnError) {
+  // Every magnitude lands in a bin index near the int64 limit; the loops used to wrap.
+  MagnitudeHistogram h(1e-300);
+  for (double mu : {-2.0, -1.0, 0.5, 1.5}) h.add(mu);
+  expect_error(h, std::nullopt, std::nullopt, "too small");
+}
+
 TEST(FitBounds, ACancelledFitStops) {
   const MagnitudeHistogram h = sample();
   GrFitOptions opt;

@@ -1,0 +1,98 @@
+// The plot scripts (issue 19, item 12), run with Debian's /usr/bin/python3 as users do:
+// plot_gr.py draws the fitted law so that it passes through the data in the window (R at
+// both window edges exactly: the window's law plus the events above it; D's expected
+// counts adding up to the window's events) and writes its PNG; every script answers a
+// folder of the wrong kind with one line and exit 2, not a traceback.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "../cli_helpers.hpp"
+
+namespace bkq {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kPython = "/usr/bin/python3";
+
+std::string script(const std::string& name) {
+  return std::string(BKQUAKE_SOURCE_DIR) + "/analysis/" + name;
+}
+
+void expect_one_line_refusal(const test::ProcessResult& r, const std::string& fragment) {
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  ASSERT_EQ(r.err_lines().size(), 1u) << r.err;
+  EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("Traceback"), std::string::npos) << r.err;
+}
+
+class Plots : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (test::run_process(kPython, {"-c", "import numpy, matplotlib"}).status != 0)
+      GTEST_SKIP() << "no numpy/matplotlib for /usr/bin/python3";
+  }
+  test::TempDir dir_;
+};
+
+TEST_F(Plots, GrFitLinePassesThroughTheDataInTheWindow) {
+  const std::string run = dir_.file("run");
+  const auto r = test::run_bkquake({"run", "--set", "model.blocks=50", "--set", "run.events=20000",
+                                    "--set", "run.transient_events=500", "--out", run, "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string png = dir_.file("gr.png");
+  const auto p = test::run_process(kPython, {script("plot_gr.py"), run, "--out", png});
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_GT(fs::file_size(png), 10000u);
+  // The law drawn on R(mu) meets R at the window's edges; D's expected counts sum to the
+  // window's events.
+  const std::string check =
+      "import sys; sys.path.insert(0, '" + script("") +
+      "')\n"
+      "import numpy as np, bkquake_io, plot_gr\n"
+      "h = bkquake_io.load_histogram(sys.argv[1]); s = bkquake_io.load_summary(sys.argv[1])\n"
+      "b, lo, hi = bkquake_io.fit_window(s)\n"
+      "edges, centres, d_fit, r_fit = plot_gr.fitted_law(h, b, lo, hi)\n"
+      "R = lambda mu: h['count'][h['mu_low'] >= mu - 1e-9].sum()\n"
+      "w = h['mu_high'][0] - h['mu_low'][0]\n"
+      "n_win = R(lo) - R(hi)\n"
+      "assert abs(r_fit[0] - R(lo)) < 1e-6 * R(lo), (r_fit[0], R(lo))\n"
+      "assert abs(r_fit[-1] - R(hi)) < 1e-6 * R(lo), (r_fit[-1], R(hi))\n"
+      "assert abs(d_fit.sum() * w - n_win) < 1e-6 * n_win, (d_fit.sum() * w, n_win)\n"
+      "assert np.all(np.diff(r_fit) < 0) and b > 0\n";
+  const auto c = test::run_process(kPython, {"-c", check, run});
+  EXPECT_EQ(c.status, 0) << c.err;
+}
+
+TEST_F(Plots, AFolderOfTheWrongKindIsOneLine) {
+  // A continuous run's folder as it was before it had a histogram: no histogram.csv.
+  const std::string cont = dir_.file("continuous");
+  fs::create_directories(cont);
+  dir_.write("continuous/summary.json", "{\"mode\": \"continuous\"}\n");
+  dir_.write("continuous/timeseries.csv", "t,load\n0,0\n");
+  expect_one_line_refusal(test::run_process(kPython, {script("plot_gr.py"), cont}),
+                          "has no histogram.csv");
+  expect_one_line_refusal(test::run_process(kPython, {script("plot_work_precision.py"), cont}),
+                          "has no accuracy.csv");
+  expect_one_line_refusal(
+      test::run_process(kPython, {script("plot_work_precision.py"), cont + "/timeseries.csv"}),
+      "missing columns");
+  expect_one_line_refusal(test::run_process(kPython, {script("compare_modes.py"), "--events-run",
+                                                      cont, "--out-dir", dir_.file("modes")}),
+                          "has no catalog.csv");
+}
+
+TEST_F(Plots, WorkPrecisionOfTheReferenceStudy) {
+  const std::string png = dir_.file("wp.png");
+  const auto p = test::run_process(
+      kPython,
+      {script("plot_work_precision.py"),
+       std::string(BKQUAKE_SOURCE_DIR) + "/data/reference/accuracy/thesis.csv", "--out", png});
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_GT(fs::file_size(png), 10000u);
+}
+
+}  // namespace
+}  // namespace bkq
