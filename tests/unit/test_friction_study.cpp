@@ -23,13 +23,14 @@ TEST(FrictionStudy, ShippedBrakeScenesLoadAndValidate) {
     EXPECT_NO_THROW(s.validate()) << name;
     EXPECT_EQ(s.choice("drive.mode"), "continuous") << name;
   }
-  // The 1DOF reading: one body of the pad's and the blocks' mass on the caliper spring,
-  // with the caliper damper and the friction of all N blocks.
+  // The 1DOF reading: one body of the pad's mass (= the blocks' total) on the caliper spring
+  // with the pad's damping ratio, feeling the friction of all N blocks.
   const ModelParams one = model_from_scene(Scene::from_file(dir + "1dof.ini"));
   const ModelParams bkp = model_from_scene(Scene::from_file(dir + "bkp.ini"));
-  EXPECT_DOUBLE_EQ(one.m_u, bkp.m_x + bkp.n * bkp.m_u);
+  EXPECT_DOUBLE_EQ(one.m_u, bkp.m_x);
+  EXPECT_DOUBLE_EQ(one.m_u, bkp.n * bkp.m_u);
   EXPECT_DOUBLE_EQ(one.k_p, bkp.k_p0);
-  EXPECT_NEAR(one.c_u, bkp.c_p, 1e-9);
+  EXPECT_NEAR(one.c_u, critical_damping(1.0 / 12, bkp.k_p0, bkp.m_x), 1e-9);
   EXPECT_DOUBLE_EQ(one.threshold(), bkp.n * bkp.threshold());
 }
 
