@@ -1,11 +1,13 @@
 // The summary observers; see summary.hpp.
 #include "app/observers/summary.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "io/checkpoint.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
@@ -82,10 +84,14 @@ void EventSummary::on_end(const RunEnd& end) {
       window.set("ks_distance", fit.ks_distance);
       summary.set("fit_window", std::move(window));
       char line[200];
-      std::snprintf(line, sizeof line,
-                    "b = %.3f ± %.3f (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.b_mle,
-                    fit.b_mle_err, fit.mu_min, fit.mu_max, static_cast<long long>(fit.n_in_window));
-      fit_line = line;
+      std::snprintf(line, sizeof line, " (binned MLE) on mu in [%.2f, %.2f], %lld events",
+                    fit.mu_min, fit.mu_max, static_cast<long long>(fit.n_in_window));
+      // Issue 19 item 9: an error that rounds to zero gets more digits; no estimate, a reason.
+      fit_line = std::isfinite(fit.b_mle) && std::isfinite(fit.b_mle_err)
+                     ? "b = " + format_with_error(fit.b_mle, fit.b_mle_err) + line
+                     : "b: no fit (the estimate is not finite: too few events or too few bins "
+                       "in the window" +
+                           std::string(line) + ")";
     } catch (const Error& err) {
       fit_line = std::string("b: not fitted (") + err.what() + ")";
       summary.set("fit_error", err.what());
