@@ -11,6 +11,7 @@
 
 #include "app/continuous_run.hpp"
 #include "app/event_run.hpp"
+#include "app/observers/catalog.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "engine/event_engine.hpp"
@@ -50,7 +51,7 @@ int run_scene(const RunRequest& req) {
     check_checkpoint_matches(saved, scene, from);
     const std::string catalog = out.path("catalog.csv");
     check_csv_prefix(catalog, catalog_header(), saved.progress.events_done,
-                     saved.progress.catalog_bytes);
+                     saved.progress.catalog_bytes, saved_catalog_checksum(saved));
     if (saved.git_revision != kGitRevision)
       std::fprintf(stderr,
                    "bkquake: warning: the checkpoint was written by git revision %s, this is %s; "

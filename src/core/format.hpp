@@ -2,8 +2,10 @@
 // that reads back to the same double ("nan", "inf", "-inf" for the non-finite ones).
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace bkq {
@@ -14,6 +16,19 @@ inline std::string format_real(double x) {
   char buf[64];
   const auto res = std::to_chars(buf, buf + sizeof buf, x);
   return std::string(buf, res.ptr);
+}
+
+// "0.90012 ± 0.00040": a value and its standard error with enough decimals that the error
+// shows two significant digits (at least `min_decimals`), so an error never rounds to zero.
+// Both must be finite (a caller says why there is no estimate otherwise).
+inline std::string format_with_error(double value, double error, int min_decimals = 3) {
+  int decimals = min_decimals;
+  if (error > 0 && std::isfinite(error))
+    decimals =
+        std::max(decimals, std::min(15, 1 - static_cast<int>(std::floor(std::log10(error)))));
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.*f ± %.*f", decimals, value, decimals, error);
+  return buf;
 }
 
 // `s` with every byte that is not printable ASCII written as \xHH, at most

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "integrate/adaptive.hpp"
 #include "integrate/rk2.hpp"
 #include "integrate/rk4.hpp"
@@ -67,11 +68,10 @@ double stability_limit(const Stepper& stepper, const ModelParams& p) {
 void check_time_step(const Stepper& stepper, const ModelParams& p, double dt) {
   const Stepper::TimeStepLimit limit = stepper.time_step_limit(p);
   if (dt > limit.dt) {
-    char msg[400];
-    std::snprintf(msg, sizeof msg,
-                  "integrator.dt: %g is above the stability limit %.6g of %s for this scene (%s)",
-                  dt, limit.dt, std::string(stepper.name()).c_str(), limit.why.c_str());
-    throw Error(msg);
+    // Shortest round-trip text: a dt just above the limit never reads as equal to it.
+    throw Error("integrator.dt: " + format_real(dt) + " is above the stability limit " +
+                format_real(limit.dt) + " of " + std::string(stepper.name()) + " for this scene (" +
+                limit.why + ")");
   }
 }
 

@@ -227,7 +227,7 @@ void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std
 }
 
 void check_csv_prefix(const std::string& path, const std::string& header, std::int64_t rows,
-                      std::uint64_t bytes) {
+                      std::uint64_t bytes, std::optional<std::uint64_t> checksum) {
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) throw Error("cannot resume: '" + path + "': " + ec.message());
@@ -243,11 +243,13 @@ void check_csv_prefix(const std::string& path, const std::string& header, std::i
   // Count line ends in the prefix: it must be the header and exactly `rows` whole rows.
   std::int64_t lines = 0;
   char last = '\n';
+  std::uint64_t hash = fnv1a64("");
   std::vector<char> buf(1 << 20);
   for (std::uint64_t left = bytes; left > 0;) {
     const auto n = static_cast<std::streamsize>(std::min<std::uint64_t>(left, buf.size()));
     if (!in.read(buf.data(), n)) throw Error("cannot resume: read error on '" + path + "'");
     for (std::streamsize i = 0; i < n; ++i) lines += buf[static_cast<std::size_t>(i)] == '\n';
+    hash = fnv1a64(std::string_view(buf.data(), static_cast<std::size_t>(n)), hash);
     last = buf[static_cast<std::size_t>(n - 1)];
     left -= static_cast<std::uint64_t>(n);
   }
@@ -256,6 +258,10 @@ void check_csv_prefix(const std::string& path, const std::string& header, std::i
                 "' hold " + std::to_string(lines) +
                 " lines, the checkpoint expects the header and " + std::to_string(rows) +
                 " rows (the file was changed after the checkpoint)");
+  if (checksum && *checksum != hash)
+    throw Error("cannot resume: the first " + std::to_string(bytes) + " bytes of '" + path +
+                "' are not those the checkpoint saw (their checksum differs: a row was changed "
+                "after the checkpoint)");
 }
 
 CheckpointFiles::CheckpointFiles(std::string dir) : dir_(std::move(dir)) {}

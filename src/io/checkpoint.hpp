@@ -32,7 +32,9 @@
 
 #include <bit>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -182,10 +184,20 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
 // another scene, naming the versions or the keys whose values differ.
 void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std::string& origin);
 
+// FNV-1a, 64 bit, of `data` continuing from `h`: the checksum of catalog.csv's rows that a
+// checkpoint keeps (observer state "catalog.checksum"), so an edited row is found.
+inline std::uint64_t fnv1a64(std::string_view data, std::uint64_t h = 14695981039346656037ull) {
+  for (const unsigned char c : data) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
 // Throws bkq::Error unless the first `bytes` bytes of the CSV file `path` are the line
-// `header` followed by exactly `rows` complete lines; only reads the file.
+// `header` followed by exactly `rows` complete lines, whose fnv1a64 is `checksum` when one is
+// given; only reads the file.
 void check_csv_prefix(const std::string& path, const std::string& header, std::int64_t rows,
-                      std::uint64_t bytes);
+                      std::uint64_t bytes, std::optional<std::uint64_t> checksum = std::nullopt);
 
 // The checkpoint files of one output folder.
 class CheckpointFiles {

@@ -18,6 +18,7 @@
 
 #include "../scene_sim.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "engine/contacts.hpp"
 #include "engine/continuous.hpp"
 #include "integrate/rk4.hpp"
@@ -317,9 +318,7 @@ TEST(HardCases, StiffChainDtAboveTheLimitIsRefusedWithTheLimit) {
       check_time_step(*stepper, p, limit * 1.01);
       ADD_FAILURE() << scheme << ": dt above the limit accepted";
     } catch (const Error& e) {
-      char text[32];
-      std::snprintf(text, sizeof text, "%.6g", limit);
-      EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(format_real(limit)), std::string::npos) << e.what();
     }
     EXPECT_NO_THROW(check_time_step(*stepper, p, limit));
   }

@@ -7,11 +7,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "../cli_helpers.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "integrate/stepper.hpp"
 #include "io/scene.hpp"
+#include "io/settings.hpp"
 
 namespace bkq {
 namespace {
@@ -120,6 +125,32 @@ TEST(Boundaries, AccuracyOptionsAreCheckedLikeTheirSceneKeys) {
   expect_refused(test::run_bkquake_for(
                      30, {"accuracy", "--reference-tolerance", "nan", "--out", tmp.file("a")}),
                  {"accuracy: --reference-tolerance", "nan", "integrator.tolerance"});
+}
+
+// Issue 19 item 9: numbers in messages and summaries with enough digits to mean something.
+TEST(Boundaries, ADtJustAboveTheStabilityLimitReadsAsAbove) {
+  const Settings settings = settings_from_scene(Scene());
+  const auto stepper = stepper_of(settings.integrator, settings.model.n);
+  const double limit = stability_limit(*stepper, settings.model);
+  const double dt = std::nextafter(limit, 1.0);
+  try {
+    check_time_step(*stepper, settings.model, dt);
+    FAIL() << "dt above the limit accepted";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("integrator.dt: " + format_real(dt) + " is above the stability limit " +
+                       format_real(limit)),
+              std::string::npos)
+        << msg;
+    EXPECT_NE(format_real(dt), format_real(limit));
+  }
+}
+
+TEST(Boundaries, AnErrorNeverRoundsToZero) {
+  EXPECT_EQ(format_with_error(0.9, 0.0004), "0.90000 ± 0.00040");
+  EXPECT_EQ(format_with_error(0.975, 0.015), "0.975 ± 0.015");
+  EXPECT_EQ(format_with_error(0.9, 0.2), "0.900 ± 0.200");
+  EXPECT_EQ(format_with_error(1.5, 0), "1.500 ± 0.000");
 }
 
 }  // namespace

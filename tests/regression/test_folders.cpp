@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -188,6 +190,38 @@ TEST_F(MergeUnlike, AcceptsOtherSeedsLengthsAndFitWindows) {
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(read_file(tmp_.file("m1/summary.json")).find("\"events\": 1200"), std::string::npos);
   for (const auto& [path, bytes] : inputs) EXPECT_EQ(read_file(path), bytes) << path;
+}
+
+}  // namespace
+}  // namespace bkq
+
+namespace bkq {
+namespace {
+
+// Issue 19 item 9: a row of catalog.csv edited after the checkpoint, keeping its length,
+// passed the resume check (it counted bytes and lines); the checkpoint now keeps a checksum.
+TEST(Folders, ResumeFindsAnEditedCatalogRowOfTheSameLength) {
+  test::TempDir tmp;
+  const std::string out = tmp.file("out");
+  const std::vector<std::string> scene = {
+      "run",   "--quiet",           "--set", "model.blocks=20",
+      "--set", "run.events=400000", "--set", "run.checkpoint_events=2000"};
+  ASSERT_EQ(test::run_and_signal_when(
+                with(scene, {"--out", out}), [&] { return fs::exists(out + "/checkpoint.bin"); },
+                SIGTERM),
+            143);
+  std::string catalog = read_file(out + "/catalog.csv");
+  // The last digit of the third row's last field, changed in place.
+  std::size_t at = 0;
+  for (int line = 0; line < 4; ++line) at = catalog.find('\n', at) + 1;
+  at -= 2;
+  ASSERT_TRUE(std::isdigit(static_cast<unsigned char>(catalog[at]))) << catalog.substr(0, at + 2);
+  catalog[at] = catalog[at] == '1' ? '2' : '1';
+  std::ofstream(out + "/catalog.csv", std::ios::binary) << catalog;
+  const auto before = tree_bytes(out);
+  expect_refused(run_bkquake(with(scene, {"--out", out, "--resume"})),
+                 {"cannot resume", "catalog.csv", "checksum differs"});
+  EXPECT_TRUE(tree_bytes(out) == before) << "a refused resume changes nothing";
 }
 
 }  // namespace

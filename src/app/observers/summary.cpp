@@ -1,6 +1,7 @@
 // The summary observers; see summary.hpp.
 #include "app/observers/summary.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -8,6 +9,7 @@
 
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "io/checkpoint.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
@@ -108,10 +110,13 @@ std::string SummaryOfEvents::add_fit(Json& summary) {
   window.set("ks_distance", fit.ks_distance);
   summary.set("fit_window", std::move(window));
   char line[200];
-  std::snprintf(line, sizeof line,
-                "b = %.3f ± %.3f (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.b_mle,
-                fit.b_mle_err, fit.mu_min, fit.mu_max, static_cast<long long>(fit.n_in_window));
-  return line;
+  std::snprintf(line, sizeof line, " (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.mu_min,
+                fit.mu_max, static_cast<long long>(fit.n_in_window));
+  // An error that rounds to zero gets more digits; no estimate, a reason (issue 19 item 9).
+  if (std::isfinite(fit.b_mle) && std::isfinite(fit.b_mle_err))
+    return "b = " + format_with_error(fit.b_mle, fit.b_mle_err) + line;
+  return "b: no fit (the estimate is not finite: too few events or too few bins in the window" +
+         std::string(line) + ")";
 }
 
 void EventSummary::on_end(const RunEnd& end) {
