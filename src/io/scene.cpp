@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
+#include "model/friction_laws.hpp"
 
 namespace bkq {
 
@@ -104,7 +105,7 @@ std::vector<ParamSpec> make_table() {
            "coupling scaling s_c: k_c = s_c k_p0 N (thesis only)"),
 
       // --- friction: the law phi(y) of SPEC §1 ---
-      choice("friction.law", "clst91", {"thesis", "clst91", "cl89", "none"},
+      choice("friction.law", "clst91", law_names(),
              "thesis (eq. 3.5, backslip allowed), clst91 (Carlson et al. 1991 eq. 2.9, no "
              "backslip), cl89 (Carlson-Langer 1989 eq. 2.3), none (frictionless, continuous "
              "verification runs only)"),

@@ -5,12 +5,12 @@
 
 #include <string>
 
+#include "model/law_list.hpp"
+
 namespace bkq {
 
 enum class ModelKind { BK, BKP, OneDof };
 enum class Boundary { Free, Periodic };
-// None is frictionless (verification runs only: every block slides freely).
-enum class FrictionLaw { Thesis, Clst91, Cl89, None };
 
 struct ModelParams {
   ModelKind kind = ModelKind::BK;
@@ -26,7 +26,7 @@ struct ModelParams {
   double k_p0 = 0;  // caliper-pad spring (BKP)
   double c_p = 0;   // pad damper (BKP)
 
-  FrictionLaw law = FrictionLaw::Clst91;
+  FrictionLaw law = law_id<law::Clst91>;  // model/laws/: phi(y) and the stick threshold
   double F0 = 1;       // static threshold per unit block mass: stuck while |f| <= F0*m_u
   double sigma = 0;    // drop from static to kinetic friction
   double v_c = 1e300;  // characteristic velocity (Carlson–Langer: 1/(2 alpha)); huge = flat law
@@ -45,6 +45,5 @@ struct ModelParams {
 double critical_damping(double zeta, double k, double m);
 
 const char* to_string(ModelKind k);
-const char* to_string(FrictionLaw f);
 
 }  // namespace bkq
