@@ -13,6 +13,7 @@
 
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
+#include "io/friction_table.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -123,13 +124,18 @@ std::string utc_now_iso() {
 std::vector<std::string> provenance_lines(const Scene& scene) {
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(scene.hash()));
-  return {
+  std::vector<std::string> lines = {
       std::string("bkquake ") + kVersion + " (git " + kGitRevision + ")",
       "seed " + scene.text("run.seed"),
       "scene " + scene.origin,
       std::string("scene hash ") + hash,
-      "written " + utc_now_iso(),
   };
+  // The table law's file by its contents too (the scene holds only its path).
+  if (scene.choice("friction.law") == "table")
+    lines.push_back("friction table " + scene.text("friction.table") + " fnv1a64 " +
+                    file_checksum(scene.text("friction.table")));
+  lines.push_back("written " + utc_now_iso());
+  return lines;
 }
 
 CsvStream::CsvStream(const std::string& path, const std::string& header, bool append,

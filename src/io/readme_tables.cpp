@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "io/accuracy_schema.hpp"
 #include "io/catalog.hpp"
+#include "io/friction_table.hpp"
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
 #include "io/timeseries.hpp"
@@ -61,6 +62,7 @@ std::vector<ReadmeTable> readme_tables() {
       {"histogram.csv", column_table(histogram_schema())},
       {"timeseries.csv", column_table(timeseries_schema())},
       {"accuracy.csv", column_table(accuracy_schema())},
+      {"friction-table.csv", column_table(friction_table_schema())},
   };
 }
 

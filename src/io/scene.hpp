@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
@@ -12,7 +13,9 @@
 
 namespace bkq {
 
-enum class ParamType { Real, Integer, Choice, Boolean };
+// Path: a file name; a relative one is taken from the folder of the scene file that gives
+// it (from the working directory on the command line) and kept absolute.
+enum class ParamType { Real, Integer, Choice, Boolean, Path };
 
 // One row of the parameter table. Ranges are inclusive unless the *_open flag is set.
 struct ParamSpec {
@@ -78,6 +81,9 @@ class Scene {
   std::string origin;  // the file it came from, or "built-in default"
 
  private:
+  // Makes the relative Path values absolute, taken from `folder`.
+  void resolve_paths(const std::filesystem::path& folder);
+
   std::map<std::string, std::string> values_;
   std::map<std::string, bool> given_;
 };

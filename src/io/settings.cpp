@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "io/friction_table.hpp"
 #include "io/scene.hpp"
 #include "model/friction_laws.hpp"
 
@@ -19,6 +20,7 @@ ModelParams model_from_scene(const Scene& scene) {
 
   // The scene has checked the keyword against the registry's names.
   p.law = law_named(scene.choice("friction.law")).value();
+  if (p.law == law_id<law::Table>) p.table = read_friction_table(scene.text("friction.table"));
   p.sigma = scene.real("friction.sigma");
 
   const double s_m = scene.real("model.s_m");

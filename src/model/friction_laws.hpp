@@ -28,6 +28,7 @@
 #include "model/laws/cl89.hpp"
 #include "model/laws/clst91.hpp"
 #include "model/laws/none.hpp"
+#include "model/laws/table.hpp"
 #include "model/laws/thesis.hpp"
 #include "model/parameters.hpp"
 

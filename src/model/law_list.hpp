@@ -10,7 +10,7 @@
 namespace bkq {
 
 namespace law {
-using All = TypeList<struct Thesis, struct Clst91, struct Cl89, struct None>;
+using All = TypeList<struct Thesis, struct Clst91, struct Cl89, struct None, struct Table>;
 }  // namespace law
 
 // Which law a scene uses: its place in law::All.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "model/law_list.hpp"
 
@@ -11,6 +12,12 @@ namespace bkq {
 
 enum class ModelKind { BK, BKP, OneDof };
 enum class Boundary { Free, Periodic };
+
+// The rows of a tabulated friction law (friction.law = table, model/laws/table.hpp):
+// |phi| per unit block mass at increasing relative speeds >= 0.
+struct FrictionTable {
+  std::vector<double> speed, friction;
+};
 
 struct ModelParams {
   ModelKind kind = ModelKind::BK;
@@ -27,9 +34,10 @@ struct ModelParams {
   double c_p = 0;   // pad damper (BKP)
 
   FrictionLaw law = law_id<law::Clst91>;  // model/laws/: phi(y) and the stick threshold
-  double F0 = 1;       // static threshold per unit block mass: stuck while |f| <= F0*m_u
-  double sigma = 0;    // drop from static to kinetic friction
-  double v_c = 1e300;  // characteristic velocity (Carlson–Langer: 1/(2 alpha)); huge = flat law
+  double F0 = 1;        // static threshold per unit block mass: stuck while |f| <= F0*m_u
+  double sigma = 0;     // drop from static to kinetic friction
+  double v_c = 1e300;   // characteristic velocity (Carlson–Langer: 1/(2 alpha)); huge = flat law
+  FrictionTable table;  // the table law's rows (empty for the other laws)
 
   bool pad_moves() const { return kind == ModelKind::BKP; }
   bool has_neighbours() const { return k_c != 0 && n > 1; }

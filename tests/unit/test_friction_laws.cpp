@@ -20,6 +20,7 @@ ModelParams params_with(FrictionLaw law) {
   p.F0 = 1.5;
   p.sigma = 0.1;
   p.v_c = 0.25;
+  p.table = FrictionTable{{0.1, 1.0}, {0.8, 0.5}};  // for the table law
   return p;
 }
 
