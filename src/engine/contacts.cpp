@@ -73,13 +73,13 @@ InteriorPass settle_interior(const ChainForces& forces, ChainState& st, const do
 namespace bkq {
 namespace {
 
-template <bool Backslip>
-double range_power(Friction fr, double damper, const double* __restrict mobile,
+// The law by value: a local copy whose numbers the stores cannot change.
+template <class Law>
+double range_power(const Law law, double damper, const double* __restrict mobile,
                    const double* __restrict dir, const double* __restrict y0,
                    const double* __restrict y1, int lo, int hi) {
-  fr.backslip = Backslip;
   RangePowerSum sum;
-  auto power = [&](int j) { return mobile[j] * fr.step_power(y0[j], y1[j], dir[j], damper); };
+  auto power = [&](int j) { return mobile[j] * step_power(law, y0[j], y1[j], dir[j], damper); };
   // Four blocks at a time, the place modulo 4 a constant in the body: it vectorises.
   int j = lo;
   for (; j + 4 <= hi; j += 4)
@@ -92,16 +92,16 @@ double range_power(Friction fr, double damper, const double* __restrict mobile,
 
 double dissipated_power(const ChainForces& forces, const ChainState& st, const double* wd_old,
                         Ranges ranges) {
-  const Friction& fr = forces.friction();
   const double damper = forces.params().c_u / forces.params().m_u;
   const double* mobile = st.mobile.data();
   const double* dir = st.dir.data();
   const double* wd = st.wd.data();
-  double sum = 0;
-  for (const Range& r : ranges)
-    sum += fr.backslip ? range_power<true>(fr, damper, mobile, dir, wd_old, wd, r.lo, r.hi)
-                       : range_power<false>(fr, damper, mobile, dir, wd_old, wd, r.lo, r.hi);
-  return sum;
+  return forces.with_law([&](const auto& law) {
+    double sum = 0;
+    for (const Range& r : ranges)
+      sum += range_power(law, damper, mobile, dir, wd_old, wd, r.lo, r.hi);
+    return sum;
+  });
 }
 
 }  // namespace bkq

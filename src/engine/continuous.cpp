@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "engine/contacts.hpp"
+#include "model/friction_laws.hpp"
 
 namespace bkq {
 
@@ -71,7 +72,6 @@ double ContinuousDriver::energy() const {
 
 ContinuousDriver::Power ContinuousDriver::power() const {
   const ModelParams& p = forces_.params();
-  const Friction& fr = forces_.friction();
   const SubstrateState sub = substrate();
   const double x = p.pad_moves() ? st_.x : 0.0;
   const int n = forces_.n();
@@ -86,10 +86,13 @@ ContinuousDriver::Power ContinuousDriver::power() const {
     for (int j = 0; j < n; ++j) sum_u2 += (wd[j] - sub.v) * (wd[j] - sub.v);
   // A sliding block's friction opposes its frozen direction; a stuck one does no work
   // against the substrate (w' = 0).
-  if (sliding_ > 0 && p.law != FrictionLaw::None)
-    for (int j = 0; j < n; ++j)
-      if (st_.mobile[j] != 0.0)
-        friction += fr.magnitude_at(wd[j]) * (fr.backslip ? st_.dir[j] : 1.0) * wd[j];
+  if (sliding_ > 0 && p.law != law_id<law::None>)
+    visit_law(p.law, [&]<class L>() {
+      const L law(p);
+      for (int j = 0; j < n; ++j)
+        if (st_.mobile[j] != 0.0)
+          friction += law.magnitude(wd[j]) * (L::backslip ? st_.dir[j] : 1.0) * wd[j];
+    });
   const double sum_u1 = sum_wd - n * sub.v;
   Power w;
   w.momentum = p.m_u * sum_u1;

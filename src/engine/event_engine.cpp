@@ -69,23 +69,7 @@ void EventEngine::allocate_bookkeeping() {
 }
 
 void EventEngine::check_model(const ModelParams& p) {
-  if (p.law == FrictionLaw::None)
-    throw Error(
-        "friction.law: 'none' cannot drive events (nothing ever sticks); use drive.mode = "
-        "continuous");
-  // The loader puts the failing block exactly at the threshold; without a drop from static
-  // to kinetic friction the net force there is zero and the block never moves (the v -> 0
-  // limit is singular, which is why Carlson et al. 1991 introduced sigma).
-  if (p.law == FrictionLaw::Cl89)
-    throw Error(
-        "friction.law: 'cl89' has no drop from static to kinetic friction, so event-driven runs "
-        "never start an event; use thesis or clst91 with friction.sigma > 0, or drive.mode = "
-        "continuous");
-  if (p.sigma <= 0)
-    throw Error(
-        "friction.sigma: 0 leaves no drop from static to kinetic friction, so event-driven runs "
-        "never "
-        "start an event; event-driven mode needs friction.sigma in (0, 1)");
+  check_law_drives_events(p);
 }
 
 void EventEngine::rebuild_tree() {

@@ -24,7 +24,7 @@ inline ChainState initial_state(const ChainForces& forces, std::uint64_t seed, d
   std::mt19937_64 rng(seed);
   const double amplitude = disorder * p.F0 * p.m_u / p.k_p;
   for (int j = 0; j < p.n; ++j) st.w[j] = amplitude * (2.0 * uniform01(rng) - 1.0);
-  if (p.law == FrictionLaw::None) st.mobile.assign(p.n, 1.0);
+  if (law_traits(p.law).frictionless) st.mobile.assign(p.n, 1.0);
   st.recompute_sum_w();
   if (p.pad_moves() && pad_at_rest) st.x = forces.pad_equilibrium(st.sum_w, st.s);
   return st;

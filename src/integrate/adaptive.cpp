@@ -414,7 +414,7 @@ void Adaptive::transit(const ChainForces& forces, const Substrate& sub, ChainSta
 void Adaptive::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                     Ranges ranges) {
   const bool pad = forces.params().pad_moves();
-  const bool located = forces.params().law != FrictionLaw::None;
+  const bool located = !law_traits(forces.params().law).frictionless;
   const double t_end = st.t + dt;
 
   ++stamp_;

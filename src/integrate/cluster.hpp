@@ -81,10 +81,11 @@ using ClusterArray = std::array<double, K + 2>;
 template <int K, bool FreeLeft, bool FreeRight, class Advance>
 bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&& advance) {
   static_assert(K >= 1 && K <= kMaxCluster);
-  return forces.with_switches([&]<FrictionLaw Law, bool Neighbours, bool Damper>() {
-    if constexpr (Law == FrictionLaw::Cl89 || Law == FrictionLaw::None) {
+  return forces.with_switches([&]<class Law, class Terms>(const Law& law_in) {
+    if constexpr (!Law::drives_events) {
       return false;
     } else {
+      const Law law = law_in;  // a local, which the stores cannot change
       using Array = ClusterArray<K>;
       const Friction& fr = forces.friction();
       const double damper = forces.params().c_u / forces.params().m_u;
@@ -110,9 +111,9 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       // Each block's friction magnitude |phi(y)| at its current velocity: the power at the
       // end of one step needs it, and the first stage of the next step and the power at
       // its start need it again (the same value, so it is divided out once).
-      const double magnitude_at_rest = forces.friction_magnitude<Law>(0.0);
+      const double magnitude_at_rest = law.magnitude(0.0);
       Array magnitude{};
-      for (int i = first; i <= last; ++i) magnitude[i] = forces.friction_magnitude<Law>(y[i]);
+      for (int i = first; i <= last; ++i) magnitude[i] = law.magnitude(y[i]);
       // A lone block slides throughout the run (it ends at the step where it sticks), and
       // 1 * acc is acc: the product is left out of its critical path.
       auto flagged = [&](int i, double acc) { return K == 1 ? acc : mobile[i] * acc; };
@@ -121,24 +122,24 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       // round twice.
       auto force = [&](const Array& x, int i) {
         if constexpr (FreeLeft) {
-          if (i == 1) return forces.interior_force<Neighbours>(x[1], x[1], x[2], anchor);
+          if (i == 1) return forces.interior_force<Terms>(x[1], x[1], x[2], anchor);
         }
         if constexpr (FreeRight) {
-          if (i == K) return forces.interior_force<Neighbours>(x[K], x[K], x[K - 1], anchor);
+          if (i == K) return forces.interior_force<Terms>(x[K], x[K], x[K - 1], anchor);
         }
-        return forces.interior_force<Neighbours>(x[i - 1], x[i], x[i + 1], anchor);
+        return forces.interior_force<Terms>(x[i - 1], x[i], x[i + 1], anchor);
       };
       auto acceleration = [&](const Array& x, const Array& v, Array& a) {
         for (int i = 1; i <= K; ++i)
-          a[i] =
-              flagged(i, forces.acceleration<Law, Damper, false>(force(x, i), v[i], dir[i], sub));
+          a[i] = flagged(
+              i, forces.acceleration<Law, Terms, false>(law, force(x, i), v[i], dir[i], sub));
       };
       for (bool done = false; !done;) {
         const Array y0 = y, magnitude0 = magnitude;
         Array a;  // the first stage's accelerations, at the start of the step
         for (int i = 1; i <= K; ++i)
-          a[i] = flagged(i, forces.acceleration_given<Law, Damper, false>(force(w, i), magnitude[i],
-                                                                          y[i], dir[i], sub));
+          a[i] = flagged(i, forces.acceleration_given<Law, Terms, false>(force(w, i), magnitude[i],
+                                                                         y[i], dir[i], sub));
         advance(acceleration, w, y, a, dt);
         t += dt;
         ++steps;
@@ -147,9 +148,10 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
         // dissipated_power's sum, in the same order.
         RangePowerSum power;
         for (int i = first; i <= last; ++i) {
-          magnitude[i] = forces.friction_magnitude<Law>(y[i]);
-          power.add(i - first, mobile[i] * fr.step_power_given(magnitude0[i], y0[i], magnitude[i],
-                                                               y[i], dir[i], damper));
+          magnitude[i] = law.magnitude(y[i]);
+          power.add(i - first,
+                    mobile[i] * step_power_given<Law::backslip>(magnitude0[i], y0[i], magnitude[i],
+                                                                y[i], dir[i], damper));
         }
         dissipated += half_dt_m * power.total();
 

@@ -34,10 +34,9 @@ class ExplicitScheme final : public Stepper {
       const SubstrateState frozen = sub.at(st.t);
       // The anchor as the general step forms it (substrate + held pad at 0).
       const HeldInput in{st.mobile.data(), st.dir.data(), frozen.s + 0.0, frozen};
-      forces.with_switches([&]<FrictionLaw Law, bool Neighbours, bool Damper>() {
+      forces.with_switches([&]<class Law, class Terms>(const Law&) {
         for (const Range& r : ranges) {
-          HeldRangeLayout<typename Method::Round, Law, Neighbours, Damper> layout(forces, in, r, st,
-                                                                                  scratch_);
+          HeldRangeLayout<typename Method::Round, Law, Terms> layout(forces, in, r, st, scratch_);
           Method::advance(layout, dt);
         }
       });

@@ -35,7 +35,7 @@ struct ExplicitScratch {
 
 // Does the scene have a velocity-dependent force (verlet's closing kick needs it)?
 inline bool velocity_dependent(const ModelParams& p, bool pad_moves) {
-  return p.law != FrictionLaw::None || p.c_u != 0 || (pad_moves && p.c_p != 0);
+  return !law_traits(p.law).frictionless || p.c_u != 0 || (pad_moves && p.c_p != 0);
 }
 
 namespace layout_detail {
@@ -194,13 +194,14 @@ namespace layout_detail {
 // At the state (AtState) the stage point is (w, wd) itself and x, v are not read.
 // Kept out of line: inlined into the scheme's advance(), the restrict qualifiers no
 // longer tell the compiler the arrays are apart and the pass stays scalar.
-template <FrictionLaw Law, bool Neighbours, bool Damper, class B, bool AtState, class Update>
+template <class Law, class Terms, class B, bool AtState, class Update>
 [[gnu::noinline]] void fused_stage(const ChainForces& forces, const HeldInput& in, int lo, int hi,
                                    double* __restrict w, double* __restrict wd,
                                    const double* __restrict x_in, const double* __restrict v_in,
                                    double* __restrict xo, double* __restrict yo,
                                    double* __restrict cw, double* __restrict cv,
                                    double* __restrict u, Update& update) {
+  const Law& law = forces.law<Law>();
   const double* x = AtState ? w : x_in;
   const double* v = AtState ? wd : v_in;
   const double* __restrict mobile = in.mobile;
@@ -209,8 +210,8 @@ template <FrictionLaw Law, bool Neighbours, bool Damper, class B, bool AtState, 
   const SubstrateState frozen = in.frozen;
   for (int j = lo; j < hi; ++j) {
     const double a =
-        mobile[j] * forces.acceleration<Law, Damper, false>(
-                        forces.interior_force<Neighbours>(x[j - 1], x[j], x[j + 1], anchor), v[j],
+        mobile[j] * forces.acceleration<Law, Terms, false>(
+                        law, forces.interior_force<Terms>(x[j - 1], x[j], x[j + 1], anchor), v[j],
                         dir[j], frozen);
     StageElement<B> e{w[j], wd[j], x[j], v[j], xo[j], yo[j], cw[j], cv[j], u[j]};
     update(e, a);
@@ -219,7 +220,7 @@ template <FrictionLaw Law, bool Neighbours, bool Damper, class B, bool AtState, 
 
 }  // namespace layout_detail
 
-template <class Round, FrictionLaw Law, bool Neighbours, bool Damper>
+template <class Round, class Law, class Terms>
 class HeldRangeLayout {
  public:
   HeldRangeLayout(const ChainForces& forces, const HeldInput& in, Range r, ChainState& st,
@@ -250,7 +251,7 @@ class HeldRangeLayout {
         Point::positions == Buf::W ? Point::velocities == Buf::V : Point::velocities == Buf::Y,
         "a held range evaluates at the state or at the last stage point");
     constexpr bool at_state = Point::positions == Buf::W;
-    layout_detail::fused_stage<Law, Neighbours, Damper, typename Round::BlockRound, at_state>(
+    layout_detail::fused_stage<Law, Terms, typename Round::BlockRound, at_state>(
         forces_, in_, lo_, hi_, w_, wd_, x_in_, y_in_, x_out_, y_out_, cw_, cv_, u_, update);
     std::swap(x_in_, x_out_);
     std::swap(y_in_, y_out_);

@@ -4,12 +4,29 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <type_traits>
 
 #include "core/error.hpp"
 
 namespace bkq {
 
 namespace {
+
+// The scene's law as the velocity-weakening family (model/laws/rational.hpp) whose
+// friction the implicit step solves for in closed form; theta takes no other law.
+law::Rational rational_law(const ModelParams& p) {
+  return visit_law(p.law, [&]<class L>() -> law::Rational {
+    if constexpr (std::is_base_of_v<law::Rational, L>)
+      return L(p);
+    else
+      throw Error(
+          "integrator.scheme: theta solves its step in closed form for the laws thesis, "
+          "clst91, cl89 and none, not friction.law = " +
+          std::string(L::name) + "; use rk2, rk4, verlet or adaptive");
+  });
+}
+
 // The iteration on the weakening friction has converged when s |a - a_hat| <= this: the
 // sliding speeds are then within ~1e-10/s of the solution (a chord step contracts the
 // error at least as fast as its update shrinks) and friction within ~1e-10 of itself.
@@ -78,6 +95,7 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
                     double dt) {
   const ModelParams& p = forces.params();
   const Friction& fr = forces.friction();
+  const law::Rational law = rational_law(p);
   const SubstrateState s0 = sub.at(st.t), s1 = sub.at(st.t + dt);
   m_ = p.m_u;
   // Implicit weight b = theta h; the explicit one is ratio_ b = (1 - theta) h (both h/2 at
@@ -89,11 +107,11 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   kc_ = neighbours_ ? p.k_c : 0.0;
   kp_ = p.k_p;
   link_ = b_ * b_ * (periodic_ && n_ == 2 ? 2.0 * kc_ : kc_);
-  frictionless_ = p.law == FrictionLaw::None;
+  frictionless_ = law_traits(p.law).frictionless;
   backslip_ = fr.backslip;
   thr_ = fr.threshold;
-  k0_ = fr.kinetic0;
-  s_ = fr.inv_scale;
+  k0_ = law.kinetic0;
+  s_ = law.inv_scale;
   pad_ = p.pad_moves();
   if (b_ * k0_ * s_ >= 1.0) {
     char msg[300];
@@ -128,7 +146,7 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
     if (d == 0) {
       r = std::clamp(-L, -thr_, backslip_ ? thr_ : HUGE_VAL);
     } else {
-      r = -m_ * d * fr.magnitude(std::max(d * v, 0.0));
+      r = -m_ * d * law.at(std::max(d * v, 0.0));
     }
     const int nb = !neighbours_ ? 0 : periodic_ ? 2 : (j > 0) + (j < n_ - 1);
     impulse0_[j] = m_ * v + a * (L + r);
@@ -401,8 +419,8 @@ void Theta::step(const ChainForces& forces, const Substrate& sub, ChainState& st
 }
 
 Stepper::TimeStepLimit Theta::time_step_limit(const ModelParams& p) const {
-  const Friction fr(p);
-  const double slope = fr.kinetic0 * fr.inv_scale;  // steepest weakening, F0/v_c
+  const law::Rational law = rational_law(p);
+  const double slope = law.kinetic0 * law.inv_scale;  // steepest weakening, F0/v_c
   if (slope <= 0) return {HUGE_VAL, "theta is unconditionally stable on the linear part"};
   // Strictly below: step() needs dt * theta * slope < 1.
   return {std::nextafter(1.0 / (theta_ * slope), 0.0),

@@ -17,6 +17,7 @@
 #include "core/format.hpp"
 #include "io/checkpoint.hpp"
 #include "io/folder_lock.hpp"
+#include "io/friction_table.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -165,13 +166,18 @@ std::string utc_now_iso() {
 std::vector<std::string> provenance_lines(const Scene& scene) {
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(scene.hash()));
-  return {
+  std::vector<std::string> lines = {
       std::string("bkquake ") + kVersion + " (git " + kGitRevision + ")",
       "seed " + scene.text("run.seed"),
       "scene " + scene.origin,
       std::string("scene hash ") + hash,
-      "written " + utc_now_iso(),
   };
+  // The table law's file by its contents too (the scene holds only its path).
+  if (scene.choice("friction.law") == "table")
+    lines.push_back("friction table " + scene.text("friction.table") + " fnv1a64 " +
+                    file_checksum(scene.text("friction.table")));
+  lines.push_back("written " + utc_now_iso());
+  return lines;
 }
 
 CsvStream::CsvStream(const std::string& path, const std::string& header, bool append,

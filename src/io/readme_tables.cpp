@@ -8,6 +8,7 @@
 #include "io/accuracy_schema.hpp"
 #include "io/catalog.hpp"
 #include "io/energy_csv.hpp"
+#include "io/friction_table.hpp"
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
 #include "io/segments_csv.hpp"
@@ -77,6 +78,7 @@ std::vector<ReadmeTable> readme_tables() {
       {"stability.csv", column_table(stability_schema())},
       {"stability_summary.csv", column_table(stability_summary_schema())},
       {"modes.csv", column_table(modes_schema())},
+      {"friction-table.csv", column_table(friction_table_schema())},
   };
 }
 

@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -19,6 +20,7 @@
 #include "core/format.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
+#include "model/friction_laws.hpp"
 
 namespace bkq {
 
@@ -81,6 +83,10 @@ ParamSpec boolean(const char* key, const char* def, const char* doc) {
   return spec(key, ParamType::Boolean, def, "", doc);
 }
 
+ParamSpec path(const char* key, const char* doc) {
+  return spec(key, ParamType::Path, "", "", doc);
+}
+
 ParamSpec auto_real(const char* key, double limit, const char* units, const char* doc) {
   ParamSpec p = real(key, "auto", '[', -limit, limit, ']', units, doc);
   p.allow_auto = true;
@@ -118,10 +124,10 @@ std::vector<ParamSpec> make_table() {
            "Rayleigh damping alpha_M M + beta_K K: beta_K"),
 
       // --- friction: the law phi(y) of SPEC §1 ---
-      choice("friction.law", "clst91", {"thesis", "clst91", "cl89", "none"},
+      choice("friction.law", "clst91", law_names(),
              "thesis (eq. 3.5, backslip allowed), clst91 (Carlson et al. 1991 eq. 2.9, no "
              "backslip), cl89 (Carlson-Langer 1989 eq. 2.3), none (frictionless, continuous "
-             "verification runs only)"),
+             "verification runs only), table (tabulated, friction.table; thesis Fig. 4.8)"),
       real("friction.F0", "1", '(', 0, kHuge, ']', "force/mass",
            "static threshold per unit block mass F0 (thesis only)"),
       real("friction.sigma", "0.01", '[', 0, 1, ')', "",
@@ -130,6 +136,9 @@ std::vector<ParamSpec> make_table() {
            "velocity weakening alpha, v_c = 1/(2 alpha) (carlson-langer only)"),
       real("friction.vc", "1", '(', 0, kHuge, ']', "length/time",
            "characteristic velocity v_c (thesis only)"),
+      path("friction.table",
+           "CSV file of the table law (friction.law = table): columns speed, friction (README, "
+           "Friction laws); relative to the scene file's folder"),
 
       // --- drive: how the substrate moves ---
       choice("drive.mode", "events", {"events", "continuous"},
@@ -290,6 +299,8 @@ std::string normalise(const ParamSpec& p, const std::string& raw, const std::str
         throw Error(p.key + ": expected one of " + allowed_text(p) + ", got '" + text + "'" +
                     where);
       return text;
+    case ParamType::Path:
+      return text;
     case ParamType::Boolean: {
       const std::string t = lower(text);
       if (t == "true" || t == "yes" || t == "1" || t == "on") return "true";
@@ -378,6 +389,7 @@ const std::vector<KeyDependency>& dependencies() {
       {{"output.energy_window", "output.energy_tol"}, {{"output.energy", {"true"}}}},
       {{"run.start_mode", "run.start_mode_index", "run.start_amplitude"},
        {{"run.start", {"equilibrium"}}}},
+      {{"friction.table"}, {{"friction.law", {"table"}}}},
   };
   return deps;
 }
@@ -440,6 +452,8 @@ std::string allowed_text(const ParamSpec& p) {
     }
     case ParamType::Boolean:
       return "true|false";
+    case ParamType::Path:
+      return "a file path";
     case ParamType::Integer:
     case ParamType::Real: {
       std::string s = std::string(p.min_open ? "(" : "[") + bound_text(p, p.min) + ", " +
@@ -472,7 +486,17 @@ Scene::Scene() : origin("built-in default (carlson-langer, event-driven)") {
 }
 
 Scene Scene::from_file(const std::string& path) {
-  return from_text(read_text_file(path, "scene file"), path);
+  Scene scene = from_text(read_text_file(path, "scene file"), path);
+  scene.resolve_paths(std::filesystem::absolute(path).parent_path());
+  return scene;
+}
+
+void Scene::resolve_paths(const std::filesystem::path& folder) {
+  for (const auto& p : parameter_table()) {
+    std::string& v = values_[p.key];
+    if (p.type == ParamType::Path && !v.empty() && std::filesystem::path(v).is_relative())
+      v = (folder / v).lexically_normal().string();
+  }
 }
 
 Scene Scene::from_text(const std::string& text, const std::string& origin_name) {
@@ -503,6 +527,7 @@ void Scene::apply_override(const std::string& assignment) {
   const std::string key = trim(assignment.substr(0, eq));
   if (key.empty()) throw Error("--set expects section.key=value, got '" + assignment + "'");
   set(key, assignment.substr(eq + 1), "--set");
+  resolve_paths(std::filesystem::current_path());
 }
 
 bool Scene::applies(const std::string& key) const {
@@ -542,6 +567,8 @@ void Scene::validate() const {
     throw Error(p.key + " = " + text(p.key) + " applies only with " + needs_text(*d) + ", but " +
                 join(now, " and ") + where);
   }
+  if (choice("friction.law") == "table" && text("friction.table").empty())
+    throw Error("friction.table: friction.law = table needs the table's file, got none" + where);
   if (choice("model.boundary") == "periodic" && integer("model.blocks") < 3)
     throw Error("model.boundary = periodic needs model.blocks >= 3, got model.blocks = " +
                 text("model.blocks") + where);
@@ -666,6 +693,8 @@ std::string Scene::to_ini(const std::vector<std::string>& header) const {
 std::uint64_t Scene::hash() const {
   std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64-bit offset basis
   for (const auto& p : parameter_table()) {
+    // An unset file key leaves the hash of the scenes that do not use it as it was.
+    if (p.type == ParamType::Path && values_.at(p.key).empty()) continue;
     const std::string line = p.key + "=" + values_.at(p.key) + "\n";
     for (unsigned char c : line) {
       h ^= c;

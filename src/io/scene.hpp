@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
@@ -12,7 +13,9 @@
 
 namespace bkq {
 
-enum class ParamType { Real, Integer, Choice, Boolean };
+// Path: a file name; a relative one is taken from the folder of the scene file that gives
+// it (from the working directory on the command line) and kept absolute.
+enum class ParamType { Real, Integer, Choice, Boolean, Path };
 
 struct KeyDependency;  // an applies-when row of the table (io/scene.cpp)
 
@@ -93,6 +96,8 @@ class Scene {
   // why in words ("needs drive.schedule = steps, but drive.schedule = constant").
   const KeyDependency* failing_dependency(const std::string& key) const;
   std::string why_not(const std::string& key) const;
+  // Makes the relative Path values absolute, taken from `folder`.
+  void resolve_paths(const std::filesystem::path& folder);
 
   std::map<std::string, std::string> values_;
   std::map<std::string, bool> given_;

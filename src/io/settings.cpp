@@ -8,7 +8,9 @@
 
 #include "core/error.hpp"
 #include "integrate/theta.hpp"
+#include "io/friction_table.hpp"
 #include "io/scene.hpp"
+#include "model/friction_laws.hpp"
 
 namespace bkq {
 
@@ -19,11 +21,9 @@ ModelParams model_from_scene(const Scene& scene) {
   p.boundary = scene.choice("model.boundary") == "periodic" ? Boundary::Periodic : Boundary::Free;
   p.n = p.kind == ModelKind::OneDof ? 1 : static_cast<int>(scene.integer("model.blocks"));
 
-  const std::string& law = scene.choice("friction.law");
-  p.law = law == "thesis" ? FrictionLaw::Thesis
-          : law == "cl89" ? FrictionLaw::Cl89
-          : law == "none" ? FrictionLaw::None
-                          : FrictionLaw::Clst91;
+  // The scene has checked the keyword against the registry's names.
+  p.law = law_named(scene.choice("friction.law")).value();
+  if (p.law == law_id<law::Table>) p.table = read_friction_table(scene.text("friction.table"));
   p.sigma = scene.real("friction.sigma");
 
   const double s_m = scene.real("model.s_m");

@@ -13,20 +13,22 @@ double ChainState::recompute_sum_w() {
   return s;
 }
 
-ChainForces::ChainForces(const ModelParams& p) : p_(p), friction_(p), inv_m_(1.0 / p.m_u) {
+ChainForces::ChainForces(const ModelParams& p)
+    : p_(p), law_(make_law(p)), friction_(friction_of(p)), inv_m_(1.0 / p.m_u) {
   kernel_ = select_kernel(false);
   kernel_inertial_ = select_kernel(true);
 }
 
-template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
+template <class Law, class Terms, bool Inertial>
 void ChainForces::kernel(const ChainForces& self, const double* __restrict w,
                          const double* __restrict wd, const double* __restrict mobile,
                          const double* __restrict dir, double anchor, const SubstrateState& sub,
                          int lo, int hi, double* __restrict a) {
   const int n = self.p_.n;
+  const Law& law = self.law<Law>();
   // The chain ends (and the periodic wrap) go through the scalar path.
   auto at = [&](int j, double f) {
-    a[j] = mobile[j] * self.acceleration<Law, Damper, Inertial>(f, wd[j], dir[j], sub);
+    a[j] = mobile[j] * self.acceleration<Law, Terms, Inertial>(law, f, wd[j], dir[j], sub);
   };
   if (lo == 0 && hi > 0) {
     at(0, self.spring_force(w, 0, anchor));
@@ -37,13 +39,12 @@ void ChainForces::kernel(const ChainForces& self, const double* __restrict w,
     hi = n - 1;
   }
   // Interior blocks: branch-free so the compiler vectorises it.
-  for (int j = lo; j < hi; ++j)
-    at(j, self.interior_force<Neighbours>(w[j - 1], w[j], w[j + 1], anchor));
+  for (int j = lo; j < hi; ++j) at(j, self.interior_force<Terms>(w[j - 1], w[j], w[j + 1], anchor));
 }
 
 ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
-  return with_switches([&]<FrictionLaw L, bool Nb, bool D>() -> Kernel {
-    return inertial ? &kernel<L, Nb, D, true> : &kernel<L, Nb, D, false>;
+  return with_switches([&]<class L, class Terms>(const L&) -> Kernel {
+    return inertial ? &kernel<L, Terms, true> : &kernel<L, Terms, false>;
   });
 }
 

@@ -8,7 +8,8 @@
 //   m_x x''   = -c_p x' + k_p (sum_j w_j - N s - N x) - k_p0 x
 //
 // Only the terms a scene switches on are compiled into the kernel that runs (templates
-// on the friction law, neighbour springs, damper and substrate acceleration).
+// on the friction law's policy type, model/friction_laws.hpp; on the optional terms,
+// ForceTerms; and on the substrate acceleration).
 #pragma once
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "model/friction.hpp"
+#include "model/friction_laws.hpp"
 #include "model/parameters.hpp"
 
 namespace bkq {
@@ -65,11 +67,22 @@ struct SubstrateState {
   double a = 0;  // acceleration (non-zero during a ramp)
 };
 
+// The optional terms of the force on a block, as compile-time switches: a kernel is
+// instantiated for each combination and computes only what is on. A new optional term is
+// one more switch here, its pick in ChainForces::with_switches and its use in
+// interior_force / acceleration_given.
+template <bool Neighbours, bool Damper>
+struct ForceTerms {
+  static constexpr bool neighbours = Neighbours;  // neighbour springs k_c (k_c != 0, N > 1)
+  static constexpr bool damper = Damper;          // the 1DOF block damper c_u (c_u != 0)
+};
+
 class ChainForces {
  public:
   explicit ChainForces(const ModelParams& p);
 
   const ModelParams& params() const { return p_; }
+  // The static side of the law (threshold, backslip), for the stick rule and the loader.
   const Friction& friction() const { return friction_; }
   int n() const { return p_.n; }
 
@@ -97,36 +110,42 @@ class ChainForces {
   double local_force(const double* w, int j) const { return neighbour_force(w, j) - p_.k_p * w[j]; }
 
   // Spring force on an interior block at w with neighbours at wl and wr (what the kernels
-  // compute; Neighbours = false when k_c = 0).
-  template <bool Neighbours>
+  // compute).
+  template <class Terms>
   double interior_force(double wl, double w, double wr, double anchor) const {
     double f = p_.k_p * (anchor - w);
-    if constexpr (Neighbours) f += p_.k_c * (wl - 2.0 * w + wr);
+    if constexpr (Terms::neighbours) f += p_.k_c * (wl - 2.0 * w + wr);
     return f;
   }
   // Acceleration of a sliding block with spring force f and relative velocity y.
-  template <FrictionLaw Law, bool Damper, bool Inertial>
-  double acceleration(double f, double y, double dir, const SubstrateState& sub) const {
-    return acceleration_given<Law, Damper, Inertial>(f, friction_magnitude<Law>(y), y, dir, sub);
+  template <class Law, class Terms, bool Inertial>
+  double acceleration(const Law& law, double f, double y, double dir,
+                      const SubstrateState& sub) const {
+    return acceleration_given<Law, Terms, Inertial>(f, law.magnitude(y), y, dir, sub);
   }
-  // The same with |phi(y)| already known (friction_magnitude), bit for bit.
-  template <FrictionLaw Law, bool Damper, bool Inertial>
+  // The same with |phi(y)| = law.magnitude(y) already known, bit for bit.
+  template <class Law, class Terms, bool Inertial>
   double acceleration_given(double f, double magnitude, double y, double dir,
                             const SubstrateState& sub) const;
-  // |phi(y)| as acceleration() forms it (Friction::magnitude_at for the law).
-  template <FrictionLaw Law>
-  double friction_magnitude(double y) const {
-    if constexpr (Law == FrictionLaw::None)
-      return 0.0;
-    else if constexpr (Law == FrictionLaw::Clst91)
-      return friction_.magnitude(std::max(y, 0.0));
-    else
-      return friction_.magnitude(std::abs(y));
-  }
-  // Calls `f.template operator()<Law, Neighbours, Damper>()` with the scene's switches as
-  // compile-time constants, so the code it instantiates computes only what is on.
+  // Calls `f.template operator()<Law, Terms>(law)` with the scene's law (its policy type
+  // and its numbers) and a ForceTerms of the scene's switches, so the code it instantiates
+  // computes only what is on.
   template <class F>
   decltype(auto) with_switches(F&& f) const;
+  // The scene's law as type Law, which must be the scene's (the callers dispatch on it).
+  // Said so to the compiler: a pointer that might be null keeps GCC from hoisting the
+  // law's numbers out of the kernels' loops.
+  template <class Law>
+  const Law& law() const {
+    const Law* law = std::get_if<Law>(&law_);
+    if (law == nullptr) __builtin_unreachable();
+    return *law;
+  }
+  // Calls `f(law)` with the scene's law.
+  template <class F>
+  decltype(auto) with_law(F&& f) const {
+    return visit_law(p_.law, [&]<class L>() -> decltype(auto) { return f(law<L>()); });
+  }
 
   // Block accelerations a[j] for every j in `ranges`; stuck blocks get exactly 0.
   void block_accelerations(const double* w, const double* wd, const double* mobile,
@@ -150,30 +169,26 @@ class ChainForces {
  private:
   using Kernel = void (*)(const ChainForces&, const double*, const double*, const double*,
                           const double*, double, const SubstrateState&, int, int, double*);
-  template <FrictionLaw Law, bool Neighbours, bool Damper, bool Inertial>
+  template <class Law, class Terms, bool Inertial>
   static void kernel(const ChainForces& self, const double* w, const double* wd,
                      const double* mobile, const double* dir, double anchor,
                      const SubstrateState& sub, int lo, int hi, double* a);
   Kernel select_kernel(bool inertial) const;
 
   ModelParams p_;
+  LawVariant law_;
   Friction friction_;
   double inv_m_ = 1;
   Kernel kernel_ = nullptr;
   Kernel kernel_inertial_ = nullptr;
 };
 
-template <FrictionLaw Law, bool Damper, bool Inertial>
+template <class Law, class Terms, bool Inertial>
 double ChainForces::acceleration_given(double f, double magnitude, double y, double dir,
                                        const SubstrateState& sub) const {
   double acc = f * inv_m_;
-  if constexpr (Law == FrictionLaw::None) {
-  } else if constexpr (Law == FrictionLaw::Clst91) {
-    acc -= magnitude;
-  } else {
-    acc -= std::copysign(magnitude, dir);
-  }
-  if constexpr (Damper) acc -= p_.c_u * inv_m_ * (y - sub.v);
+  if constexpr (!Law::frictionless) acc -= signed_friction<Law::backslip>(magnitude, dir);
+  if constexpr (Terms::damper) acc -= p_.c_u * inv_m_ * (y - sub.v);
   if constexpr (Inertial) acc += sub.a;
   return acc;
 }
@@ -182,24 +197,13 @@ template <class F>
 decltype(auto) ChainForces::with_switches(F&& f) const {
   const bool nb = p_.has_neighbours();
   const bool damper = p_.c_u != 0;
-  auto pick = [&]<FrictionLaw L>() -> decltype(auto) {
+  return with_law([&]<class L>(const L& law) -> decltype(auto) {
     if (nb)
-      return damper ? f.template operator()<L, true, true>()
-                    : f.template operator()<L, true, false>();
-    return damper ? f.template operator()<L, false, true>()
-                  : f.template operator()<L, false, false>();
-  };
-  switch (p_.law) {
-    case FrictionLaw::Thesis:
-      return pick.template operator()<FrictionLaw::Thesis>();
-    case FrictionLaw::Clst91:
-      return pick.template operator()<FrictionLaw::Clst91>();
-    case FrictionLaw::Cl89:
-      return pick.template operator()<FrictionLaw::Cl89>();
-    case FrictionLaw::None:
-      break;
-  }
-  return pick.template operator()<FrictionLaw::None>();
+      return damper ? f.template operator()<L, ForceTerms<true, true>>(law)
+                    : f.template operator()<L, ForceTerms<true, false>>(law);
+    return damper ? f.template operator()<L, ForceTerms<false, true>>(law)
+                  : f.template operator()<L, ForceTerms<false, false>>(law);
+  });
 }
 
 }  // namespace bkq

@@ -13,20 +13,15 @@ KineticBranch kinetic_branch(const ModelParams& p, double v, NoEquilibrium* why)
   if (!(v > 0)) return fail(NoEquilibrium::NotSliding);
   // All laws of friction.hpp are k0 / (1 + v/s) on y > 0: phi' = -k0/(s (1 + v/s)^2).
   double k0 = 0, scale = HUGE_VAL;
-  switch (p.law) {
-    case FrictionLaw::None:
-      return KineticBranch{};
-    case FrictionLaw::Cl89:
-      k0 = p.F0;
-      scale = p.v_c;
-      break;
-    case FrictionLaw::Thesis:
-    case FrictionLaw::Clst91:
-      k0 = p.F0 * (1.0 - p.sigma);
-      scale = (1.0 - p.sigma) * p.v_c;
-      break;
-    default:
-      return fail(NoEquilibrium::NoKinetic);
+  if (p.law == law_id<law::None>) return KineticBranch{};
+  if (p.law == law_id<law::Cl89>) {
+    k0 = p.F0;
+    scale = p.v_c;
+  } else if (p.law == law_id<law::Thesis> || p.law == law_id<law::Clst91>) {
+    k0 = p.F0 * (1.0 - p.sigma);
+    scale = (1.0 - p.sigma) * p.v_c;
+  } else {
+    return fail(NoEquilibrium::NoKinetic);
   }
   if (!std::isfinite(scale)) return KineticBranch{k0, 0.0};
   const double d = 1.0 + v / scale;

@@ -42,18 +42,4 @@ const char* to_string(ModelKind k) {
   return "?";
 }
 
-const char* to_string(FrictionLaw f) {
-  switch (f) {
-    case FrictionLaw::Thesis:
-      return "thesis";
-    case FrictionLaw::Clst91:
-      return "clst91";
-    case FrictionLaw::Cl89:
-      return "cl89";
-    case FrictionLaw::None:
-      return "none";
-  }
-  return "?";
-}
-
 }  // namespace bkq

@@ -4,13 +4,20 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include "model/law_list.hpp"
 
 namespace bkq {
 
 enum class ModelKind { BK, BKP, OneDof };
 enum class Boundary { Free, Periodic };
-// None is frictionless (verification runs only: every block slides freely).
-enum class FrictionLaw { Thesis, Clst91, Cl89, None };
+
+// The rows of a tabulated friction law (friction.law = table, model/laws/table.hpp):
+// |phi| per unit block mass at increasing relative speeds >= 0.
+struct FrictionTable {
+  std::vector<double> speed, friction;
+};
 
 struct ModelParams {
   ModelKind kind = ModelKind::BK;
@@ -33,10 +40,11 @@ struct ModelParams {
   double rayleigh_alpha = 0;  // alpha_M [1/time]
   double rayleigh_beta = 0;   // beta_K [time]
 
-  FrictionLaw law = FrictionLaw::Clst91;
-  double F0 = 1;       // static threshold per unit block mass: stuck while |f| <= F0*m_u
-  double sigma = 0;    // drop from static to kinetic friction
-  double v_c = 1e300;  // characteristic velocity (Carlson–Langer: 1/(2 alpha)); huge = flat law
+  FrictionLaw law = law_id<law::Clst91>;  // model/laws/: phi(y) and the stick threshold
+  double F0 = 1;        // static threshold per unit block mass: stuck while |f| <= F0*m_u
+  double sigma = 0;     // drop from static to kinetic friction
+  double v_c = 1e300;   // characteristic velocity (Carlson–Langer: 1/(2 alpha)); huge = flat law
+  FrictionTable table;  // the table law's rows (empty for the other laws)
 
   bool pad_moves() const { return kind == ModelKind::BKP; }
   bool has_neighbours() const { return k_c != 0 && n > 1; }
@@ -52,6 +60,5 @@ struct ModelParams {
 double critical_damping(double zeta, double k, double m);
 
 const char* to_string(ModelKind k);
-const char* to_string(FrictionLaw f);
 
 }  // namespace bkq

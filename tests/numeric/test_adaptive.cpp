@@ -185,7 +185,7 @@ SmoothRun harmonic_chain(double tolerance) {
   p.m_u = 1.5;
   p.k_p = 1;
   p.k_c = 6;
-  p.law = FrictionLaw::None;
+  p.law = law_id<law::None>;
   const ChainForces forces(p);
   std::mt19937_64 rng(20240917);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
@@ -229,7 +229,7 @@ TEST(AdaptiveSmooth, PadFreeDecayFollowsThesisEq314) {
   p.k_p0 = 100;
   p.m_x = 100;
   p.c_p = 20;
-  p.law = FrictionLaw::Thesis;
+  p.law = law_id<law::Thesis>;
   p.sigma = 0.01;
   p.v_c = 1;
   const ChainForces forces(p);
@@ -257,7 +257,7 @@ TEST(AdaptiveSmooth, PadFreeDecayFollowsThesisEq314) {
 
 TEST(AdaptiveOrder, LocatedStickKeepsOrderFiveWhereTheCrossingRuleDropsToOne) {
   const std::vector<double> hs = {M_PI / 10.5, M_PI / 20.5, M_PI / 40.5};  // stick mid-step
-  for (FrictionLaw law : {FrictionLaw::Clst91, FrictionLaw::Thesis}) {
+  for (FrictionLaw law : {law_id<law::Clst91>, law_id<law::Thesis>}) {
     const std::string tag = to_string(law);
     std::vector<SingleBlockErrors> dp5, rk4, rk2;
     for (double h : hs) {
@@ -295,7 +295,7 @@ TEST(AdaptiveOrder, LocatedStickKeepsOrderFiveWhereTheCrossingRuleDropsToOne) {
 // below it; block 0's slip pulls block 1 over the threshold (a located release), then both
 // stick. No closed form: the reference is the adaptive stepper at tolerance 1e-12.
 ModelParams two_blocks() {
-  ModelParams p = single_block(FrictionLaw::Clst91);
+  ModelParams p = single_block(law_id<law::Clst91>);
   p.n = 2;
   p.k_c = 1;
   return p;
@@ -365,7 +365,7 @@ EventResult ten_block_event(Stepper& stepper, double dt, bool pad) {
   p.kind = pad ? ModelKind::BKP : ModelKind::BK;
   p.n = 10;
   p.k_c = 100;
-  p.law = FrictionLaw::Clst91;
+  p.law = law_id<law::Clst91>;
   p.sigma = 0.01;
   p.v_c = 0.2;
   if (pad) {
@@ -431,7 +431,7 @@ TEST(AdaptiveAgreement, TenBlockEventMatchesRk4ToItsFirstOrderTransitionError) {
 // ---- 4. accuracy at tolerance 1e-10 ----
 
 TEST(AdaptiveAccuracy, SingleBlockSlipsTwoSigmaAndSticksAtPi) {
-  for (FrictionLaw law : {FrictionLaw::Clst91, FrictionLaw::Thesis}) {
+  for (FrictionLaw law : {law_id<law::Clst91>, law_id<law::Thesis>}) {
     for (double dt : {0.01, 4.0}) {  // the engine's macro step, or one call for the whole slip
       Adaptive a(1, 1e-10);
       const SingleBlockErrors e = single_block_errors(law, a, dt);
@@ -453,7 +453,7 @@ TEST(AdaptiveAccuracy, OvershootingBlockTurnsBackOrSticksAtTheTurningPoint) {
   const double V = 3.0, kin = 1.0 - kSigma;
   const double t1 = std::atan2(V, kin), w1 = std::hypot(kin, V) - kin;
   ASSERT_GT(w1, 1.0);
-  for (FrictionLaw law : {FrictionLaw::Thesis, FrictionLaw::Clst91}) {
+  for (FrictionLaw law : {law_id<law::Thesis>, law_id<law::Clst91>}) {
     const ChainForces forces(single_block(law));
     ChainState st;
     st.resize(1);
@@ -461,7 +461,7 @@ TEST(AdaptiveAccuracy, OvershootingBlockTurnsBackOrSticksAtTheTurningPoint) {
     st.mobile[0] = 1.0;
     Adaptive a(1, 1e-10);
     const Driven run = drive(forces, a, st, 0.5, 8.0, false);
-    const bool backslip = law == FrictionLaw::Thesis;
+    const bool backslip = law == law_id<law::Thesis>;
     EXPECT_NEAR(run.st.w[0], backslip ? 2.0 * kin - w1 : w1, 1e-9) << to_string(law);
     EXPECT_NEAR(run.stick_time, backslip ? t1 + M_PI : t1, 1e-8) << to_string(law);
     EXPECT_EQ(a.located_transitions(), backslip ? 2 : 1) << to_string(law);
@@ -515,7 +515,7 @@ TEST(AdaptiveRanges, BlocksOutsideTheRangesAreHeldAndSumWFollowsThePad) {
   p.m_x = 5;
   p.k_p0 = 8;
   p.c_p = 1;
-  p.law = FrictionLaw::Clst91;
+  p.law = law_id<law::Clst91>;
   p.sigma = 0.01;
   p.v_c = 0.2;
   const ChainForces forces(p);
@@ -556,7 +556,7 @@ TEST(AdaptiveGuards, ToleranceOutOfRangeIsAnErrorNamingTheKey) {
 }
 
 TEST(AdaptiveGuards, MinimumStepThrowsWithAClearMessage) {
-  const ChainForces forces(single_block(FrictionLaw::Thesis));
+  const ChainForces forces(single_block(law_id<law::Thesis>));
   ChainState st = released_at_threshold();
   st.wd[0] = std::nan("");  // no step size can meet the tolerance
   Adaptive a(1, 1e-8);

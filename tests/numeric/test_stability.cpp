@@ -94,7 +94,7 @@ TEST(SlidingEquilibrium, SaysWhenThereIsNone) {
   loose.k_p0 = 0;
   EXPECT_EQ(sliding_equilibrium(loose, 0.1).why, NoEquilibrium::NoPadSpring);
   ModelParams frictionless = loose;
-  frictionless.law = FrictionLaw::None;
+  frictionless.law = law_id<law::None>;
   EXPECT_TRUE(sliding_equilibrium(frictionless, 0.1).exists());
 }
 

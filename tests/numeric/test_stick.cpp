@@ -48,7 +48,7 @@ ModelParams single_block() {
   p.k_p = 1;
   p.k_c = 0;
   p.F0 = 1;
-  p.law = FrictionLaw::Clst91;
+  p.law = law_id<law::Clst91>;
   p.sigma = kSigma;
   p.v_c = HUGE_VAL;  // alpha = 0: flat kinetic friction 1 - sigma
   return p;
@@ -126,7 +126,7 @@ TEST(StickRule, BackslipLawSticksAtTheTurningPoint) {
   for (const char* scheme : {"rk2", "rk4", "verlet"}) {
     for (double dt : {0.004, 0.002, 0.001, 0.0005}) {
       ModelParams p = single_block();
-      p.law = FrictionLaw::Thesis;
+      p.law = law_id<law::Thesis>;
       const ChainForces forces(p);
       auto stepper = make_stepper(scheme, 1);
       ChainState st;
@@ -150,7 +150,7 @@ TEST(StickRule, BackslipLawSticksAtTheTurningPoint) {
 Friction law_with(FrictionLaw law) {
   ModelParams p = single_block();
   p.law = law;
-  return Friction(p);
+  return friction_of(p);
 }
 
 TEST(StickRuleUnit, CrossingIsASignChangeOrZeroWithBackslipAndNonPositiveWithout) {
@@ -166,7 +166,7 @@ TEST(StickRuleUnit, CrossingIsASignChangeOrZeroWithBackslipAndNonPositiveWithout
 }
 
 TEST(StickRuleUnit, SlidingBlockThatCrossesSticksIfFrictionHolds) {
-  for (FrictionLaw law : {FrictionLaw::Thesis, FrictionLaw::Clst91}) {
+  for (FrictionLaw law : {law_id<law::Thesis>, law_id<law::Clst91>}) {
     const Friction fr = law_with(law);
     const stick::Outcome o = stick::settle(fr, true, 1.0, 1.0, 0.5, -0.25, 0.9);
     EXPECT_EQ(o.y, 0.0);
@@ -180,14 +180,14 @@ TEST(StickRuleUnit, SlidingBlockThatCrossesSticksIfFrictionHolds) {
 TEST(StickRuleUnit, SlidingBlockThatCrossesUnderTooLargeAForceSlidesOn) {
   // Backslip: it slides the other way, with its velocity and a new direction.
   const stick::Outcome back =
-      stick::settle(law_with(FrictionLaw::Thesis), true, 1.0, 1.0, 0.5, -0.25, -1.5);
+      stick::settle(law_with(law_id<law::Thesis>), true, 1.0, 1.0, 0.5, -0.25, -1.5);
   EXPECT_EQ(back.y, -0.25);
   EXPECT_EQ(back.mobile, 1.0);
   EXPECT_EQ(back.dir, -1.0);
   EXPECT_TRUE(back.slides);
   // No backslip: it stays at zero velocity, still sliding, its direction unchanged.
   const stick::Outcome none =
-      stick::settle(law_with(FrictionLaw::Clst91), true, 1.0, 1.0, 0.5, -0.25, 1.5);
+      stick::settle(law_with(law_id<law::Clst91>), true, 1.0, 1.0, 0.5, -0.25, 1.5);
   EXPECT_EQ(none.y, 0.0);
   EXPECT_EQ(none.mobile, 1.0);
   EXPECT_EQ(none.dir, 1.0);
@@ -195,7 +195,7 @@ TEST(StickRuleUnit, SlidingBlockThatCrossesUnderTooLargeAForceSlidesOn) {
 }
 
 TEST(StickRuleUnit, SlidingBlockThatDoesNotCrossSlidesOnTheWayItMoves) {
-  const Friction fr = law_with(FrictionLaw::Thesis);
+  const Friction fr = law_with(law_id<law::Thesis>);
   const stick::Outcome o = stick::settle(fr, true, 1.0, 1.0, -0.5, -0.25, 0.0);
   EXPECT_EQ(o.y, -0.25);
   EXPECT_EQ(o.dir, -1.0);
@@ -208,7 +208,7 @@ TEST(StickRuleUnit, SlidingBlockThatDoesNotCrossSlidesOnTheWayItMoves) {
 }
 
 TEST(StickRuleUnit, StuckBlockBreaksLooseOnlyBeyondTheThreshold) {
-  const Friction thesis = law_with(FrictionLaw::Thesis), clst91 = law_with(FrictionLaw::Clst91);
+  const Friction thesis = law_with(law_id<law::Thesis>), clst91 = law_with(law_id<law::Clst91>);
   EXPECT_TRUE(stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, 1.5).breaks);
   EXPECT_TRUE(stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, -1.5).breaks);
   EXPECT_FALSE(stick::settle(thesis, true, 0.0, 1.0, 0.0, 0.0, 1.0).breaks);  // at it: holds
@@ -231,7 +231,7 @@ TEST(StickRuleUnit, SettleOneIsSettleWithTheReleaseApplied) {
   // Threshold F0 = 1: below, at and above it, both ways, and zero.
   const double kF[] = {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5};
   int cases = 0;
-  for (FrictionLaw law : {FrictionLaw::Thesis, FrictionLaw::Clst91}) {
+  for (FrictionLaw law : {law_id<law::Thesis>, law_id<law::Clst91>}) {
     const Friction fr = law_with(law);
     for (bool crossing_rule : {true, false})
       for (double mobile : {0.0, 1.0})

@@ -129,7 +129,7 @@ ModelParams frictionless_chain(int n, Boundary boundary, bool pad) {
   p.m_u = 1.5;
   p.k_p = 1;
   p.k_c = 4;
-  p.law = FrictionLaw::None;
+  p.law = law_id<law::None>;
   if (pad) {
     p.m_x = 3;
     p.k_p0 = 2;
@@ -270,7 +270,7 @@ TEST(ThetaOrder, SlidingWithWeakeningFrictionDamperAndRampIsSecondOrder) {
   p.k_p = 1;
   p.k_c = 2;
   p.c_u = 0.2;
-  p.law = FrictionLaw::Thesis;
+  p.law = law_id<law::Thesis>;
   p.F0 = 1;
   p.sigma = 0.1;
   p.v_c = 0.5;
@@ -314,7 +314,7 @@ TEST(ThetaStability, StiffUndampedChainKeepsItsEnergyWhereRk2IsRejected) {
   p.m_u = 1;
   p.k_p = 1;
   p.k_c = 1e4;
-  p.law = FrictionLaw::None;
+  p.law = law_id<law::None>;
   const double dt = 0.005;
   EXPECT_THROW(check_time_step(Rk2(p.n), p, dt), Error);
   Theta theta(p.n);
@@ -346,7 +346,7 @@ TEST(ThetaStability, RejectsAStepTooLargeForTheWeakeningFriction) {
   ModelParams p;
   p.kind = ModelKind::BK;
   p.n = 1;
-  p.law = FrictionLaw::Clst91;
+  p.law = law_id<law::Clst91>;
   p.sigma = 0.01;
   p.v_c = 0.2;  // alpha = 2.5: the sliding speed is unique for dt < 2 v_c/F0 = 0.4
   const ChainForces forces(p);
@@ -372,7 +372,7 @@ double pad_error(double dt, bool blocks_in_range) {
   p.c_p = 9;
   // Frictionless with no block advanced, or friction holding every block while the pad
   // swings (k_p |x| <= 0.5 < F0 m_u).
-  p.law = blocks_in_range ? FrictionLaw::Thesis : FrictionLaw::None;
+  p.law = blocks_in_range ? law_id<law::Thesis> : law_id<law::None>;
   p.sigma = 0.01;
   p.v_c = 1;
   const ChainForces forces(p);
@@ -460,7 +460,7 @@ StickHistory slip_and_hold(FrictionLaw law, double alpha, double dt, int steps) 
 }
 
 TEST(ThetaStick, SingleBlockResticksExactlyOnceAndStaysAtZeroVelocity) {
-  for (FrictionLaw law : {FrictionLaw::Clst91, FrictionLaw::Thesis}) {
+  for (FrictionLaw law : {law_id<law::Clst91>, law_id<law::Thesis>}) {
     for (double alpha : {0.0, 2.5}) {
       for (double dt : {0.05, 0.005}) {
         // The slip takes about pi; then many steps more at rest.
@@ -482,7 +482,7 @@ TEST(ThetaStick, Clst91NeverSlidesBackwardsThesisDoesWhenPulledBack) {
   // A block sliding backwards against a spring that pulls it back hard: clst91 friction
   // stops it at once and holds it (any backward push is held); the thesis law lets it
   // slide back.
-  for (FrictionLaw law : {FrictionLaw::Clst91, FrictionLaw::Thesis}) {
+  for (FrictionLaw law : {law_id<law::Clst91>, law_id<law::Thesis>}) {
     const ModelParams p = carlson_langer_block(law, 2.5);
     const ChainForces forces(p);
     Theta theta(1);
@@ -496,11 +496,11 @@ TEST(ThetaStick, Clst91NeverSlidesBackwardsThesisDoesWhenPulledBack) {
     for (int i = 0; i < 2000; ++i) {
       theta.step(forces, Substrate::frozen(0.0), st, 0.01, std::vector<Range>{{0, 1}});
       w_min = std::min(w_min, st.w[0]);
-      if (law == FrictionLaw::Clst91) {
+      if (law == law_id<law::Clst91>) {
         ASSERT_GE(st.wd[0], 0.0) << "step " << i;
       }
     }
-    if (law == FrictionLaw::Clst91) {
+    if (law == law_id<law::Clst91>) {
       EXPECT_EQ(st.mobile[0], 0.0);
       EXPECT_EQ(st.wd[0], 0.0);
       EXPECT_GT(st.w[0], 3.0);  // it went forward until it stopped, never back
@@ -517,7 +517,7 @@ TEST(ThetaStick, ChainEventEndsWithEveryBlockExactlyStuckAndNoChattering) {
   // spring force is within the threshold, except for a block that stopped in this very
   // step while pulled back beyond it (theta.hpp), which must slide at the next step.
   // Once all are stuck, nothing moves any more.
-  ModelParams p = carlson_langer_block(FrictionLaw::Thesis, 2.5);
+  ModelParams p = carlson_langer_block(law_id<law::Thesis>, 2.5);
   p.n = 12;
   p.k_c = 9;  // l = 3
   const ChainForces forces(p);
@@ -576,7 +576,7 @@ TEST(ThetaStick, SingleBlockSlipConvergesToTwoSigmaThroughTheEventEngine) {
   const double sigma = 0.01;
   std::vector<double> err;
   for (double dt : {0.02, 0.002}) {
-    const ModelParams p = carlson_langer_block(FrictionLaw::Clst91, 0.0);
+    const ModelParams p = carlson_langer_block(law_id<law::Clst91>, 0.0);
     const ChainForces forces(p);
     Theta theta(1);
     ChainState st;
@@ -600,7 +600,7 @@ TEST(ThetaStick, SingleBlockSlipConvergesToTwoSigmaThroughTheEventEngine) {
 // ---- the contact solver's fallback ----
 
 TEST(ThetaContacts, GaussSeidelFallbackAgreesWithTheActiveSet) {
-  ModelParams p = carlson_langer_block(FrictionLaw::Clst91, 2.5);
+  ModelParams p = carlson_langer_block(law_id<law::Clst91>, 2.5);
   p.kind = ModelKind::BKP;
   p.n = 16;
   p.k_c = 25;

@@ -72,7 +72,7 @@ TEST(ThetaKey, HalfConservesAndOneDissipatesTheEnergyOfAFrictionlessChain) {
 
 TEST(ThetaKey, ScalesTheWeakeningLimitAndIsRefusedOutsideItsRange) {
   ModelParams p;
-  p.law = FrictionLaw::Thesis;
+  p.law = law_id<law::Thesis>;
   p.F0 = 1;
   p.v_c = 1;
   Theta t(1);

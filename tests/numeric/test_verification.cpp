@@ -108,7 +108,7 @@ Errors run_pulling_springs(const char* scheme, double dt) {
   p.m_u = 2;
   p.k_p = 8;  // omega = 2
   p.k_c = 0;
-  p.law = FrictionLaw::None;
+  p.law = law_id<law::None>;
   const double omega = std::sqrt(p.k_p / p.m_u);
   const ChainForces forces(p);
   auto stepper = make_stepper(scheme, p.n);
@@ -193,7 +193,7 @@ NeighbourRun run_neighbour_springs(const char* scheme, double dt) {
   p.m_u = 1.5;
   p.k_p = 0;
   p.k_c = 6;  // omega_max = sqrt(4 k_c/m_u) = 4
-  p.law = FrictionLaw::None;
+  p.law = law_id<law::None>;
   const ChainForces forces(p);
   auto stepper = make_stepper(scheme, p.n);
   check_time_step(*stepper, p, dt);
@@ -266,7 +266,7 @@ ModelParams pad_test_params() {
   p.k_p0 = 100;  // K = k_p0 + N k_p = 200
   p.m_x = 100;
   p.c_p = 20;
-  p.law = FrictionLaw::Thesis;
+  p.law = law_id<law::Thesis>;
   p.sigma = 0.01;
   p.v_c = 1;
   return p;
@@ -473,7 +473,7 @@ double amplitude_growth(const char* scheme, double omega_dt, int periods) {
   p.n = 1;
   p.k_p = 1;
   p.m_u = 1;
-  p.law = FrictionLaw::None;
+  p.law = law_id<law::None>;
   const ChainForces forces(p);
   auto stepper = make_stepper(scheme, 1);
   ChainState st;

@@ -80,6 +80,8 @@ class Abuse : public ::testing::Test {
         return kind == 2 ? p.choices[0] + "x" : p.choices[pick(p.choices.size())];
       case ParamType::Boolean:
         return kind == 2 ? "maybe" : (chance(0.5) ? "true" : "false");
+      case ParamType::Path:  // a missing file, a folder, or none
+        return kind == 2 ? "/nonexistent/table.csv" : (chance(0.5) ? "/" : "");
       case ParamType::Integer:
       case ParamType::Real: {
         std::ostringstream out;
