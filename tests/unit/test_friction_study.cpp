@@ -18,7 +18,7 @@ namespace {
 TEST(FrictionStudy, ShippedBrakeScenesLoadAndValidate) {
   const std::string dir = BKQUAKE_SOURCE_DIR "/data/scenes/brake/";
   for (const char* name :
-       {"bkp", "bk", "1dof", "bkp-descent", "bkp-ascent", "bkp-descent-linear"}) {
+       {"bkp", "bk", "1dof", "special-1dof", "bkp-descent", "bkp-ascent", "bkp-descent-linear"}) {
     const Scene s = Scene::from_file(dir + name + ".ini");
     EXPECT_NO_THROW(s.validate()) << name;
     EXPECT_EQ(s.choice("drive.mode"), "continuous") << name;
