@@ -1,6 +1,7 @@
 // The spectrum of a run's signal; see spectrum.hpp.
 #include "app/spectrum.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <ostream>
@@ -12,6 +13,7 @@
 #include "io/segments_csv.hpp"
 #include "io/settings.hpp"
 #include "io/spectrum_csv.hpp"
+#include "model/equilibrium.hpp"
 
 namespace bkq {
 
@@ -71,6 +73,18 @@ SpectrumReport spectrum_of_run(const SpectrumRequest& req) {
     lo = 0.5 * (s.t_start + s.t_end);
     hi = s.t_end;
     r.speed = s.speed;
+  }
+  if (r.speed < 0 && settings.drive.schedule == Schedule::Constant) r.speed = settings.drive.speed;
+  if (r.speed > 0) {
+    NoEquilibrium why = NoEquilibrium::None;
+    const KineticBranch branch = kinetic_branch(settings.model, r.speed, &why);
+    if (why == NoEquilibrium::None) {
+      r.linear = modal_eigenmodes(settings.model, branch.slope);
+      std::erase_if(r.linear, [](const Eigenmode& m) { return !(m.frequency() > 0); });
+      std::stable_sort(
+          r.linear.begin(), r.linear.end(),
+          [](const Eigenmode& a, const Eigenmode& b) { return a.frequency() < b.frequency(); });
+    }
   }
   if (req.from) lo = *req.from;
   if (req.to) hi = *req.to;
@@ -145,6 +159,16 @@ void print_spectrum_report(const SpectrumReport& r, std::ostream& out) {
   std::snprintf(line, sizeof line, "    block    %.5f (thesis eq. 4.7)%s\n", r.natural.block,
                 r.natural.block > 0.5 / r.dt ? ", above the Nyquist frequency" : "");
   out << line << "  written " << r.out << "\n";
+  if (!r.linear.empty()) {
+    out << "  linear modes of steady sliding at v = " << format_real(r.speed)
+        << " (bkquake stability), lowest frequencies:\n";
+    for (std::size_t i = 0; i < r.linear.size() && i < 5; ++i) {
+      const Eigenmode& m = r.linear[i];
+      std::snprintf(line, sizeof line, "    %-6s %-4d %.5f  growth %+.4g%s\n", to_string(m.family),
+                    m.index, m.frequency(), m.growth(), m.unstable() ? "  unstable" : "");
+      out << line;
+    }
+  }
 }
 
 }  // namespace bkq

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stats/spectrum.hpp"
+#include "stats/stability.hpp"
 
 namespace bkq {
 
@@ -33,6 +34,9 @@ struct SpectrumReport {
   std::string signal, out;
   double t_from = 0, t_to = 0, dt = 0, speed = -1;  // speed: the segment's, -1 if none
   std::size_t samples = 0;
+  // The linear modes of steady sliding at that speed (bkquake stability), lowest frequency
+  // first, when the speed is known and a sliding equilibrium exists there.
+  std::vector<Eigenmode> linear;
 };
 
 // Throws bkq::Error for a folder that is not a finished continuous run, an unknown signal,

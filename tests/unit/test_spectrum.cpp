@@ -87,6 +87,9 @@ TEST(Spectrum, CommandRefusesAnEventRunAndWritesSpectrumCsv) {
   r = test::run_bkquake({"spectrum", cont, "--segment", "1", "--signal", "pad_velocity"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("strongest peaks"), std::string::npos);
+  // The linear modes at the segment's speed are printed beside the peaks.
+  EXPECT_NE(r.out.find("linear modes of steady sliding at v = "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("chain  0"), std::string::npos) << r.out;
   const std::string csv = test::read_file(cont + "/spectrum.csv");
   EXPECT_NE(csv.find("# window hann, mean removed, resolution"), std::string::npos);
   EXPECT_NE(csv.find("\nfrequency,amplitude\n"), std::string::npos);
