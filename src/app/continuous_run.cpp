@@ -27,7 +27,8 @@ namespace {
 void attach_observers(Observers& obs, const RunRequest& req, const Settings& settings,
                       const OutputFolder& out) {
   obs.attach<TimeSeriesWriter>(out.path("timeseries.csv"));
-  obs.attach<CatalogWriter>(out.path("catalog.csv"), false);
+  if (const char* catalog = catalog_file_name(settings.output.catalog))
+    obs.attach<CatalogWriter>(settings.output.catalog, out.path(catalog), req.scene);
   if (settings.output.blocks)
     obs.attach<BlockTrajectories>(out.path("blocks.csv"), settings.model.n);
   obs.attach<PadFrictionStats>();

@@ -16,7 +16,7 @@ namespace po = boost::program_options;
 
 int cmd_fit(const std::vector<std::string>& args) {
   po::options_description opts(
-      "bkquake fit CATALOG.csv [options]\n"
+      "bkquake fit CATALOG.csv|CATALOG.h5 [options]\n"
       "Fits R(mu) = A exp(-b mu), mu = ln(moment), to an event catalogue");
   // clang-format off
   opts.add_options()
@@ -37,7 +37,8 @@ int cmd_fit(const std::vector<std::string>& args) {
     std::cout << opts << "\n";
     return 0;
   }
-  if (!vm.count("catalog")) throw Error("fit: missing CATALOG.csv (see bkquake fit --help)");
+  if (!vm.count("catalog"))
+    throw Error("fit: missing CATALOG.csv or CATALOG.h5 (see bkquake fit --help)");
   const double w = vm["bin-width"].as<double>();
   if (!(w > 0)) throw Error("fit: --bin-width: expected a value > 0, got " + std::to_string(w));
   std::optional<double> mu_min, mu_max;

@@ -164,6 +164,9 @@ std::vector<ParamSpec> make_table() {
       real("output.every", "1", '(', 0, kInf, ')', "time",
            "time between timeseries rows (continuous mode)"),
       boolean("output.blocks", "false", "also write block trajectories (continuous mode)"),
+      choice("output.catalog", "csv", {"csv", "hdf5", "none"},
+             "the event catalogue: csv (catalog.csv), hdf5 (catalog.h5, one compressed table), "
+             "none (no catalogue; the histogram and the fit are still written)"),
       integer("output.segment_blocks", "4", 1, 1e6, "",
               "blocks M of the segment statistics' errors in segments.csv (thesis eq. 4.3)"),
 

@@ -95,6 +95,10 @@ Settings settings_from_scene(const Scene& scene) {
 
   s.output.every = scene.real("output.every");
   s.output.blocks = scene.flag("output.blocks");
+  const std::string& catalog = scene.choice("output.catalog");
+  s.output.catalog = catalog == "hdf5"   ? CatalogFormat::Hdf5
+                     : catalog == "none" ? CatalogFormat::None
+                                         : CatalogFormat::Csv;
   s.output.segment_blocks = static_cast<int>(scene.integer("output.segment_blocks"));
 
   s.stats.bin_width = scene.real("stats.bin_width");

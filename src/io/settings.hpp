@@ -49,9 +49,13 @@ struct IntegratorSettings {
 };
 
 // output.*: continuous-mode outputs.
+// output.catalog: the event catalogue's format.
+enum class CatalogFormat { Csv, Hdf5, None };
+
 struct OutputSettings {
-  double every = 0;        // time between timeseries rows
-  bool blocks = false;     // also write blocks.csv
+  double every = 0;     // time between timeseries rows
+  bool blocks = false;  // also write blocks.csv
+  CatalogFormat catalog = CatalogFormat::Csv;
   int segment_blocks = 4;  // M of the segment statistics' block errors (thesis eq. 4.3)
 };
 

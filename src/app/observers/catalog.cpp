@@ -1,29 +1,44 @@
 // The catalog writer; see catalog.hpp.
 #include "app/observers/catalog.hpp"
 
-#include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
+#include "io/output.hpp"
+#include "io/scene.hpp"
 
 namespace bkq {
 
-CatalogWriter::CatalogWriter(std::string path, bool append)
-    : path_(std::move(path)), append_(append) {}
+namespace {
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& line : lines) s += line + "\n";
+  return s;
+}
+
+}  // namespace
+
+CatalogWriter::CatalogWriter(CatalogFormat format, std::string path, const Scene& scene,
+                             std::int64_t resumed_rows)
+    : format_(format), path_(std::move(path)), resumed_rows_(resumed_rows) {
+  if (format_ == CatalogFormat::Hdf5)
+    attributes_ = {{"provenance", joined(provenance_lines(scene))}, {"scene", scene.to_ini()}};
+}
 
 void CatalogWriter::on_start() {
-  csv_ = std::make_unique<CsvStream>(path_, catalog_header(), append_);
+  file_ = open_catalog_file(format_, path_, attributes_, resumed_rows_);
 }
 
 void CatalogWriter::on_event(const EventRecord& e) {
-  csv_->row(catalog_row(e));
+  file_->append(e);
 }
 
 // Synced first, so a checkpoint never counts rows that are not on disk.
 void CatalogWriter::on_checkpoint(Checkpoint& c) {
-  c.progress.catalog_bytes = csv_->sync();
+  c.progress.catalog_bytes = file_->sync();
 }
 
 void CatalogWriter::on_end(const RunEnd&) {
-  csv_->close();
+  file_->close();
 }
 
 }  // namespace bkq

@@ -1,29 +1,40 @@
-// catalog.csv as an observer: one row per recorded event (event runs) or slip episode
-// (continuous runs), streamed; the columns are io/catalog.hpp's schema. A checkpoint
-// records how many bytes of the file belong to it, so a resumed run appends after them.
+// The event catalogue as an observer: one row per recorded event (event runs) or slip
+// episode (continuous runs), streamed to the file of the scene's output.catalog
+// (io/catalog_file.hpp: catalog.csv or catalog.h5; with none no observer is attached). A
+// checkpoint syncs the file first and records how much of it belongs to it (the bytes of
+// catalog.csv; catalog.h5's rows are the events done), so a resumed run continues after it.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/observers/observer.hpp"
-#include "io/output.hpp"
+#include "io/catalog_file.hpp"
 
 namespace bkq {
 
+class Scene;
+
 class CatalogWriter : public RunObserver {
  public:
-  // `append`: continue the file of a resumed run (already cut back to its checkpoint).
-  CatalogWriter(std::string path, bool append);
+  // `resumed_rows` >= 0: continue the file of a resumed run after that many rows (a csv
+  // file is already cut back to its checkpoint). `scene`: for catalog.h5's attributes.
+  CatalogWriter(CatalogFormat format, std::string path, const Scene& scene,
+                std::int64_t resumed_rows = -1);
   void on_start() override;
   void on_event(const EventRecord& e) override;
   void on_checkpoint(Checkpoint& c) override;
   void on_end(const RunEnd&) override;
 
  private:
+  CatalogFormat format_;
   std::string path_;
-  bool append_;
-  std::unique_ptr<CsvStream> csv_;
+  std::vector<std::pair<std::string, std::string>> attributes_;
+  std::int64_t resumed_rows_;
+  std::unique_ptr<CatalogFile> file_;
 };
 
 }  // namespace bkq
