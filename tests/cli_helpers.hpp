@@ -27,6 +27,10 @@ struct ProcessResult {
   int status = -1;  // exit status; 128 + signal when killed by a signal
   std::string out;  // stdout
   std::string err;  // stderr
+  // With a time limit: whether it was reached (SIGTERM sent), and how long the program
+  // then took to exit (SIGKILL follows after `kill_after` seconds).
+  bool timed_out = false;
+  double exit_after_term_s = 0;
   // stderr split into lines (without the newlines).
   std::vector<std::string> err_lines() const {
     std::vector<std::string> lines;
@@ -37,9 +41,11 @@ struct ProcessResult {
 };
 
 // Runs `program` with `args` (no shell involved, so no quoting worries), optionally in
-// `cwd`, and waits for it. stdin is /dev/null.
+// `cwd`, and waits for it. stdin is /dev/null. With `timeout_s` > 0 the program gets SIGTERM
+// once that many seconds have passed, and SIGKILL `kill_after` seconds later.
 inline ProcessResult run_process(const std::string& program, const std::vector<std::string>& args,
-                                 const std::string& cwd = "") {
+                                 const std::string& cwd = "", double timeout_s = 0,
+                                 double kill_after = 5) {
   int out_pipe[2], err_pipe[2];
   if (::pipe(out_pipe) != 0 || ::pipe(err_pipe) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = ::fork();
@@ -64,12 +70,28 @@ inline ProcessResult run_process(const std::string& program, const std::vector<s
   ::close(out_pipe[1]);
   ::close(err_pipe[1]);
   ProcessResult r;
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  Clock::time_point termed;
+  bool killed = false;
   // Read both pipes together so a chatty child cannot block on a full pipe.
   pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
   std::string* sinks[2] = {&r.out, &r.err};
   int open_fds = 2;
   while (open_fds > 0) {
-    if (::poll(fds, 2, -1) < 0) {
+    if (timeout_s > 0) {
+      const auto now = Clock::now();
+      if (!r.timed_out && now - start >= std::chrono::duration<double>(timeout_s)) {
+        ::kill(pid, SIGTERM);
+        r.timed_out = true;
+        termed = now;
+      } else if (r.timed_out && !killed &&
+                 now - termed >= std::chrono::duration<double>(kill_after)) {
+        ::kill(pid, SIGKILL);
+        killed = true;
+      }
+    }
+    if (::poll(fds, 2, timeout_s > 0 ? 20 : -1) < 0) {
       if (errno == EINTR) continue;
       break;
     }
@@ -87,8 +109,26 @@ inline ProcessResult run_process(const std::string& program, const std::vector<s
     }
   }
   int wstatus = 0;
-  while (::waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+  // The pipes close when the program exits (or closes them itself): keep the clock going.
+  while (true) {
+    const pid_t w = ::waitpid(pid, &wstatus, timeout_s > 0 ? WNOHANG : 0);
+    if (w == pid || (w < 0 && errno != EINTR)) break;
+    if (w == 0) {
+      const auto now = Clock::now();
+      if (!r.timed_out && now - start >= std::chrono::duration<double>(timeout_s)) {
+        ::kill(pid, SIGTERM);
+        r.timed_out = true;
+        termed = now;
+      } else if (r.timed_out && !killed &&
+                 now - termed >= std::chrono::duration<double>(kill_after)) {
+        ::kill(pid, SIGKILL);
+        killed = true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
   }
+  if (r.timed_out)
+    r.exit_after_term_s = std::chrono::duration<double>(Clock::now() - termed).count();
   r.status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
   return r;
 }
@@ -97,6 +137,13 @@ inline ProcessResult run_process(const std::string& program, const std::vector<s
 inline ProcessResult run_bkquake(const std::vector<std::string>& args,
                                  const std::string& cwd = "") {
   return run_process(BKQUAKE_BINARY, args, cwd);
+}
+
+// The same with a time limit: SIGTERM after `timeout_s`, SIGKILL `kill_after` s later, so a
+// hang fails the test instead of stalling the suite.
+inline ProcessResult run_bkquake_for(double timeout_s, const std::vector<std::string>& args,
+                                     const std::string& cwd = "", double kill_after = 5) {
+  return run_process(BKQUAKE_BINARY, args, cwd, timeout_s, kill_after);
 }
 
 // Starts bkquake with `args` (in `cwd` when given; stdout and stderr to the file `log`, or

@@ -1,43 +1,113 @@
 // The continuous-run loop; see continuous_run.hpp. The step count is fixed up front, so
 // the end time does not depend on the rounding of t += dt; a sample is taken whenever t
-// reaches the next multiple of output.every.
+// reaches the next multiple of output.every. The loop owns the driver, the run's
+// bookkeeping (steps and episodes done, the next sample time, wall time over all
+// sessions) and the checkpoint files; everything written is an observer's.
 #include "app/continuous_run.hpp"
+
+#include <signal.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
 
+#include "app/observers/accuracy_check.hpp"
 #include "app/observers/catalog.hpp"
+#include "app/observers/checkpoint_timer.hpp"
 #include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
 #include "app/observers/segments.hpp"
 #include "app/observers/summary.hpp"
 #include "app/observers/timeseries.hpp"
+#include "app/stop_signals.hpp"
+#include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/continuous.hpp"
 #include "engine/initial_state.hpp"
+#include "io/catalog.hpp"
+#include "io/checkpoint.hpp"
 #include "io/output.hpp"
+#include "io/timeseries.hpp"
 
 namespace bkq {
 
 namespace {
 
-// The scene's outputs for a continuous run, in notification order (the summary, which
-// marks the run finished, after every file).
-void attach_observers(Observers& obs, const RunRequest& req, const Settings& settings,
-                      const OutputFolder& out) {
-  obs.attach<TimeSeriesWriter>(out.path("timeseries.csv"));
-  if (const char* catalog = catalog_file_name(settings.output.catalog))
-    obs.attach<CatalogWriter>(settings.output.catalog, out.path(catalog), req.scene);
-  if (settings.output.blocks)
-    obs.attach<BlockTrajectories>(out.path("blocks.csv"), settings.model.n);
-  obs.attach<PadFrictionStats>();
-  const auto& hist =
-      obs.attach<HistogramWriter>(settings.stats.bin_width, out.path("histogram.csv"));
-  attach_segment_stats(obs, settings, out);
-  obs.attach<ContinuousSummary>(req.scene, settings, out, hist.histogram(), obs);
-  if (!req.quiet) obs.attach<ProgressLine>();
-  for (RunObserver* o : req.observers) obs.attach_ref(*o);
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// The run's own named state in a checkpoint: what the driver holds besides the chain
+// state (which goes into the checkpoint's engine.state, the steps and episodes done into
+// engine.counters) and the next sample time.
+constexpr const char* kStateName = "continuous";
+
+void put_record(StateWriter& w, const EventRecord& e) {
+  w.i64(e.event);
+  w.f64(e.load);
+  w.i64(e.trigger);
+  w.i64(e.blocks);
+  for (double x : {e.moment, e.magnitude, e.duration, e.max_speed, e.pad_displacement}) w.f64(x);
+  w.i64(e.first_block);
+  w.i64(e.last_block);
+  w.f64(e.energy_residual);
+}
+
+EventRecord get_record(StateReader& r) {
+  EventRecord e;
+  e.event = r.i64();
+  e.load = r.f64();
+  e.trigger = static_cast<int>(r.i64());
+  e.blocks = static_cast<int>(r.i64());
+  for (double* x : {&e.moment, &e.magnitude, &e.duration, &e.max_speed, &e.pad_displacement})
+    *x = r.f64();
+  e.first_block = static_cast<int>(r.i64());
+  e.last_block = static_cast<int>(r.i64());
+  e.energy_residual = r.f64();
+  return e;
+}
+
+std::string encode_state(const ContinuousSnapshot& d, double next_out) {
+  StateWriter w;
+  w.f64(next_out);
+  w.i64(d.sliding);
+  w.u32(d.in_episode ? 1 : 0);
+  w.f64s(d.w_start);
+  w.str(std::string(d.slid.begin(), d.slid.end()));
+  put_record(w, d.episode);
+  w.f64(d.episode_t0);
+  w.f64(d.episode_x0);
+  w.i64(d.episodes);
+  w.f64s(d.stepper);
+  return std::move(w.bytes());
+}
+
+// The driver's snapshot from a checkpoint of a continuous run, and the next sample time.
+ContinuousSnapshot decode_state(const Checkpoint& c, double& next_out) {
+  const std::string* bytes = c.find(kStateName);
+  if (!bytes)
+    throw Error("--resume: the checkpoint holds no continuous-run state (it is an event run's)");
+  StateReader r(*bytes, kStateName);
+  ContinuousSnapshot d;
+  d.state = c.engine.state;
+  next_out = r.f64();
+  d.sliding = static_cast<int>(r.i64());
+  d.in_episode = r.u32() != 0;
+  d.w_start = r.f64s();
+  const std::string slid = r.str();
+  d.slid.assign(slid.begin(), slid.end());
+  d.episode = get_record(r);
+  d.episode_t0 = r.f64();
+  d.episode_x0 = r.f64();
+  d.episodes = r.i64();
+  d.stepper = r.f64s();
+  if (!r.done()) throw Error("--resume: the checkpoint's continuous-run state is malformed");
+  return d;
 }
 
 Sample sample_of(const ContinuousDriver& driver) {
@@ -46,56 +116,206 @@ Sample sample_of(const ContinuousDriver& driver) {
   return {{st.t, sub.v, sub.s, st.x, st.xd, driver.pad_friction(), driver.sliding()}, driver};
 }
 
+class ContinuousRun {
+ public:
+  ContinuousRun(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+                const ChainForces& forces, Stepper& stepper, const Checkpoint* resumed)
+      : req_(req),
+        settings_(settings),
+        stepper_(stepper),
+        out_(out),
+        files_(out.dir()),
+        dt_(settings.integrator.dt),
+        duration_(settings.run.duration),
+        every_(settings.output.every),
+        steps_(static_cast<std::int64_t>(std::llround(std::ceil(duration_ / dt_ - 1e-9)))) {
+    const Substrate substrate = substrate_of(settings.drive);
+    if (resumed) {
+      driver_ = std::make_unique<ContinuousDriver>(forces, stepper, substrate,
+                                                   decode_state(*resumed, next_out_), dt_);
+      done_ = resumed->engine.counters.steps;
+      episodes_ = resumed->engine.counters.events;
+      prog_ = resumed->progress;
+      ++prog_.resumes;
+    } else {
+      driver_ = std::make_unique<ContinuousDriver>(
+          forces, stepper, substrate,
+          initial_state(forces, settings.run.seed, settings.run.initial_disorder, false), dt_);
+    }
+    wall0_ = prog_.wall_total;
+    attach_observers(resumed != nullptr);
+    if (resumed) observers_.resume(*resumed);
+  }
+
+  int run() {
+    StopSignals signals;
+    observers_.start();
+    observers_.phase({"time", driver_->state().t, duration_});
+    while (true) {
+      if (driver_->state().t >= next_out_ - 1e-9 * dt_) {
+        observers_.sample(sample_of(*driver_));
+        next_out_ += every_;
+      }
+      if (done_ == steps_ || signals.received()) break;
+      driver_->step();
+      ++done_;
+      if (auto e = driver_->finished_episode()) {
+        ++episodes_;
+        observers_.event(*e);
+      }
+      if (!std::isfinite(driver_->state().x) || !std::isfinite(driver_->state().w[0])) {
+        std::string msg = "non-finite state at time ";
+        msg += format_real(driver_->state().t);
+        msg += ": the integration is unstable (reduce integrator.dt)";
+        throw Error(msg);
+      }
+      if (observers_.wants_steps()) observers_.step({done_, *driver_});
+      observers_.advance({driver_->state().t, episodes_});
+    }
+    observers_.phase_end({driver_->state().t, episodes_});
+    if (const int sig = signals.received()) return stop(sig);
+    observers_.end(run_end(0));
+    // summary.json marks the run finished; its checkpoints have served.
+    files_.remove();
+    accuracy_->verdict();
+    return 0;
+  }
+
+ private:
+  // The scene's outputs for a continuous run, in notification order: the histogram before
+  // the summary that fits it, the summary (which marks the run finished) after every file.
+  void attach_observers(bool resumed) {
+    const RunSettings& r = settings_.run;
+    observers_.attach<TimeSeriesWriter>(out_.path("timeseries.csv"), resumed);
+    if (const char* catalog = catalog_file_name(settings_.output.catalog))
+      observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
+                                       resumed ? prog_.events_done : -1);
+    if (settings_.output.blocks)
+      observers_.attach<BlockTrajectories>(out_.path("blocks.csv"), resumed, settings_.model.n);
+    observers_.attach<PadFrictionStats>();
+    const auto& hist =
+        observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
+    attach_segment_stats(observers_, settings_, out_, resumed);
+    accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);
+    observers_.attach<ContinuousSummary>(req_.scene, settings_, out_, hist.histogram(), observers_);
+    if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
+      observers_.attach<CheckpointTimer>([this] { save(); }, r.checkpoint_events,
+                                         r.checkpoint_seconds);
+    if (!req_.quiet) observers_.attach<ProgressLine>();
+    for (RunObserver* o : req_.observers) observers_.attach_ref(*o);
+  }
+
+  // Writes a checkpoint of the run as it stands, between two steps; the observers add
+  // their state and sync their files.
+  void save() {
+    prog_.wall_total = prog_.wall_events = wall0_ + seconds_since(session_t0_);
+    prog_.events_done = episodes_;
+    prog_.transient_done = 0;
+    ContinuousSnapshot d = driver_->snapshot();
+    Checkpoint c;
+    c.version = kVersion;
+    c.git_revision = kGitRevision;
+    c.scene_hash = req_.scene.hash();
+    c.scene_ini = req_.scene.to_ini();
+    c.seed = settings_.run.seed;
+    c.progress = prog_;
+    c.engine.counters.steps = done_;
+    c.engine.counters.events = episodes_;
+    c.put(kStateName, encode_state(d, next_out_));
+    c.engine.state = std::move(d.state);
+    observers_.checkpoint(c);
+    files_.write(c);
+  }
+
+  RunEnd run_end(int signal) const {
+    RunEnd end;
+    end.signal = signal;
+    end.events = episodes_;
+    end.steps = steps_;
+    end.blocks = settings_.model.n;
+    end.total_load = driver_->substrate().s;
+    end.duration = driver_->state().t;
+    end.wall_seconds = end.wall_seconds_total = wall0_ + seconds_since(session_t0_);
+    end.resumes = prog_.resumes;
+    return end;
+  }
+
+  int stop(int sig) {
+    save();
+    observers_.end(run_end(sig));
+    std::fprintf(stderr,
+                 "bkquake: stopped by %s at t = %s of %s (%lld of %lld steps); checkpoint in "
+                 "'%s'; to continue: bkquake run %s --out %s --resume\n",
+                 sig == SIGINT ? "SIGINT" : "SIGTERM", format_real(driver_->state().t).c_str(),
+                 format_real(duration_).c_str(), static_cast<long long>(done_),
+                 static_cast<long long>(steps_), files_.current().c_str(),
+                 out_.path("scene.ini").c_str(), out_.dir().c_str());
+    return 128 + sig;
+  }
+
+  const RunRequest& req_;
+  const Settings& settings_;
+  const Stepper& stepper_;
+  const OutputFolder& out_;
+  const CheckpointFiles files_;
+  const double dt_, duration_, every_;
+  const std::int64_t steps_;
+
+  std::unique_ptr<ContinuousDriver> driver_;
+  AccuracyCheck* accuracy_ = nullptr;     // one of the observers
+  std::int64_t done_ = 0, episodes_ = 0;  // steps and finished episodes, all sessions
+  double next_out_ = 0;                   // time of the next sample
+  RunProgress prog_;  // wall time and resumes; catalog_bytes and the moment sums are the observers'
+  Observers observers_;
+  Clock::time_point session_t0_ = Clock::now();
+  double wall0_ = 0;  // wall seconds of the sessions before this one
+};
+
+// Cuts `path` back to the `bytes` its checkpoint covers (rows written after it are
+// computed again).
+void cut_back(const std::string& path, std::uint64_t bytes) {
+  std::error_code ec;
+  std::filesystem::resize_file(path, bytes, ec);
+  if (ec) throw Error("cannot truncate '" + path + "' to its checkpoint: " + ec.message());
+}
+
 }  // namespace
 
 int run_continuous(const RunRequest& req, const Settings& settings, const OutputFolder& out,
                    const ChainForces& forces, Stepper& stepper) {
-  const double dt = settings.integrator.dt;
-  const double duration = settings.run.duration;
-  const double every = settings.output.every;
-  ContinuousDriver driver(
-      forces, stepper, substrate_of(settings.drive),
-      initial_state(forces, settings.run.seed, settings.run.initial_disorder, false), dt);
-  Observers observers;
-  attach_observers(observers, req, settings, out);
+  return ContinuousRun(req, settings, out, forces, stepper, nullptr).run();
+}
 
-  const auto steps = static_cast<std::int64_t>(std::llround(std::ceil(duration / dt - 1e-9)));
-  const auto t0 = std::chrono::steady_clock::now();
-  observers.start();
-  observers.phase({"time", 0.0, duration});
-  double next_out = 0;
-  std::int64_t episodes = 0;
-  for (std::int64_t i = 0; i <= steps; ++i) {
-    if (driver.state().t >= next_out - 1e-9 * dt) {
-      observers.sample(sample_of(driver));
-      next_out += every;
-    }
-    if (i == steps) break;
-    driver.step();
-    if (auto e = driver.finished_episode()) {
-      ++episodes;
-      observers.event(*e);
-    }
-    if (!std::isfinite(driver.state().x) || !std::isfinite(driver.state().w[0])) {
-      std::string msg = "non-finite state at time ";
-      msg += format_real(driver.state().t);
-      msg += ": the integration is unstable (reduce integrator.dt)";
-      throw Error(msg);
-    }
-    if (observers.wants_steps()) observers.step({i + 1, driver});
-    observers.advance({driver.state().t, episodes});
-  }
-  observers.phase_end({driver.state().t, episodes});
-
-  RunEnd end;
-  end.events = episodes;
-  end.steps = steps;
-  end.blocks = forces.params().n;
-  end.total_load = driver.substrate().s;
-  end.duration = driver.state().t;
-  end.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  observers.end(end);
-  return 0;
+int resume_continuous(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+                      const ChainForces& forces, Stepper& stepper, const Checkpoint& saved,
+                      const std::string& from) {
+  // Everything is checked before anything is changed (the catalog was checked by the
+  // caller): the run reads every state from the checkpoint without touching a file, then
+  // each sampled file is checked against its extent.
+  ContinuousRun run(req, settings, out, forces, stepper, &saved);
+  struct File {
+    std::string path, header;
+    CsvExtent extent;
+  };
+  std::vector<File> files;
+  files.push_back(
+      {out.path("timeseries.csv"), timeseries_header(), find_csv_extent(saved, "timeseries.csv")});
+  if (settings.output.blocks)
+    files.push_back({out.path("blocks.csv"), blocks_header(settings.model.n),
+                     find_csv_extent(saved, "blocks.csv")});
+  if (writes_segments(settings))
+    files.push_back(
+        {out.path("segments.csv"), segments_header(), find_csv_extent(saved, "segments.csv")});
+  for (const File& f : files) check_csv_prefix(f.path, f.header, f.extent.rows, f.extent.bytes);
+  for (const File& f : files) cut_back(f.path, f.extent.bytes);
+  if (settings.output.catalog == CatalogFormat::Csv)  // catalog.h5: cut back when opened
+    cut_back(out.path("catalog.csv"), saved.progress.catalog_bytes);
+  std::printf("bkquake: resuming '%s' from %s at t = %s of %s (%lld slip episodes so far)\n",
+              out.dir().c_str(), from.c_str(), format_real(saved.engine.state.t).c_str(),
+              format_real(settings.run.duration).c_str(),
+              static_cast<long long>(saved.progress.events_done));
+  std::fflush(stdout);
+  return run.run();
 }
 
 }  // namespace bkq

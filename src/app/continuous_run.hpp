@@ -1,8 +1,14 @@
-// Continuously driven runs (SPEC §3): the loop steps the driver to run.duration, samples
-// it every output.every and notifies the observers it attaches (time series, block
-// trajectories, episode catalog, magnitude histogram, pad-friction statistics, summary
-// with the Gutenberg-Richter fit of the episodes, progress).
+// Continuously driven runs (SPEC §3), fresh or continued from a checkpoint: the loop
+// steps the driver to run.duration, samples it every output.every and notifies the
+// observers it attaches (time series, block trajectories, episode catalog, magnitude
+// histogram, pad-friction statistics, summary with the Gutenberg-Richter fit of the
+// episodes, checkpoint timing, progress). Checkpoints are written between two time steps
+// when the timer asks and on SIGINT/SIGTERM (then exit 130/143); they hold the driver's
+// state (the stepper's carried state included) and each observer's, so a resumed run
+// writes the files of a run that never stopped, byte for byte.
 #pragma once
+
+#include <string>
 
 #include "app/run.hpp"
 #include "integrate/stepper.hpp"
@@ -12,9 +18,17 @@
 namespace bkq {
 
 class OutputFolder;
+struct Checkpoint;
 
-// Returns 0; throws bkq::Error when the integration turns non-finite.
+// Returns the exit status: 0 when finished, 128 + signal when stopped by one; throws
+// bkq::Error when the integration turns non-finite.
 int run_continuous(const RunRequest& req, const Settings& settings, const OutputFolder& out,
                    const ChainForces& forces, Stepper& stepper);
+// Continues the run of checkpoint `saved` (read from the file `from`, already checked
+// against the scene, and the catalog against it): checks the sampled files, cuts every
+// file back to the checkpoint (nothing is changed when a check fails) and runs on.
+int resume_continuous(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+                      const ChainForces& forces, Stepper& stepper, const Checkpoint& saved,
+                      const std::string& from);
 
 }  // namespace bkq

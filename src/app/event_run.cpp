@@ -4,18 +4,18 @@
 #include "app/event_run.hpp"
 
 #include <signal.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 
+#include "app/observers/accuracy_check.hpp"
 #include "app/observers/catalog.hpp"
 #include "app/observers/checkpoint_timer.hpp"
 #include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
 #include "app/observers/summary.hpp"
+#include "app/stop_signals.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "engine/event_engine.hpp"
@@ -33,41 +33,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// SIGINT and SIGTERM during an event run. The first asks the run to stop after the current
-// event (checkpoint, flush, exit 128 + signal); a second one exits at once, leaving the
-// last checkpoint intact (checkpoints are renamed into place atomically).
-volatile std::sig_atomic_t g_stop_signal = 0;
-
-void on_stop_signal(int sig) {
-  if (g_stop_signal != 0) ::_exit(128 + sig);
-  g_stop_signal = sig;
-}
-
-// Installs the handlers for its lifetime and restores the previous ones after.
-class StopSignals {
- public:
-  StopSignals() {
-    g_stop_signal = 0;
-    struct sigaction sa {};
-    sa.sa_handler = on_stop_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART;  // a write or fsync under way completes instead of failing with EINTR
-    ::sigaction(SIGINT, &sa, &old_int_);
-    ::sigaction(SIGTERM, &sa, &old_term_);
-  }
-  ~StopSignals() {
-    ::sigaction(SIGINT, &old_int_, nullptr);
-    ::sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-  int received() const { return g_stop_signal; }
-
- private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
-};
-
 class EventRun {
  public:
   EventRun(const RunRequest& req, const Settings& settings, const OutputFolder& out,
@@ -75,6 +40,7 @@ class EventRun {
       : req_(req),
         settings_(settings),
         forces_(forces),
+        stepper_(stepper),
         out_(out),
         files_(out.dir()),
         scene_ini_(req.scene.to_ini()),
@@ -138,8 +104,9 @@ class EventRun {
                                        resumed ? prog_.events_done : -1);
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
+    accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);
     observers_.attach<EventSummary>(req_.scene, settings_, out_, hist.histogram(), observers_,
-                                    [] { return g_stop_signal != 0; });
+                                    stop_requested);
     if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
       observers_.attach<CheckpointTimer>([this] { save(engine_->snapshot()); }, r.checkpoint_events,
                                          r.checkpoint_seconds);
@@ -161,8 +128,11 @@ class EventRun {
   // saves the state before the event as the checkpoint, then propagates, saying where.
   EventRecord next_event() {
     const std::int64_t done = engine_->counters().events;
+    const std::int64_t steps0 = engine_->counters().steps;
     try {
-      return engine_->next_event();
+      EventRecord e = engine_->next_event();
+      accuracy_->note_event_steps(engine_->counters().steps - steps0);
+      return e;
     } catch (const Error& e) {
       throw Error(e.what() + save_before_failure(done));
     }
@@ -245,19 +215,22 @@ class EventRun {
     observers_.end(run_end(0));
     // summary.json marks the run finished; its checkpoints have served.
     files_.remove();
+    accuracy_->verdict();
     return 0;
   }
 
   const RunRequest& req_;
   const Settings& settings_;
   const ChainForces& forces_;
+  const Stepper& stepper_;
   const OutputFolder& out_;
   const CheckpointFiles files_;
   const std::string scene_ini_;
   const std::int64_t transient_, events_;
 
   std::unique_ptr<EventEngine> engine_;
-  EngineSnapshot last_saved_;  // the engine at the last checkpoint, or at the start
+  AccuracyCheck* accuracy_ = nullptr;  // one of the observers
+  EngineSnapshot last_saved_;          // the engine at the last checkpoint, or at the start
   // The run's own part of the checkpoint; catalog_bytes, moment_sum and nonpositive are the
   // observers' (filled in by them at each checkpoint, read back by them on resume).
   RunProgress prog_;

@@ -22,6 +22,8 @@ std::string pm(double b, double err) {
 }
 }  // namespace
 
+static std::string two_laws_and_notes(const GrFit& f);
+
 Json gr_fit_json(const GrFit& f) {
   Json two = Json::object(), excess = Json::object(), o = Json::object();
   two.set("ok", f.two_law_ok)
@@ -38,6 +40,8 @@ Json gr_fit_json(const GrFit& f) {
       .set("observed", f.excess_observed)
       .set("expected", fit_number(f.excess_expected))
       .set("count", fit_number(f.excess_count));
+  o.set("b_ok", f.b_ok);
+  if (!f.b_ok) o.set("no_b_reason", f.no_b_reason);
   o.set("bin_width", fit_number(f.bin_width))
       .set("events", f.n_total)
       .set("mu_min", fit_number(f.mu_min))
@@ -76,11 +80,15 @@ std::string gr_fit_table(const GrFit& f) {
   t += "events            " + std::to_string(f.n_total) + "\n";
   t += "window            [" + fixed(f.mu_min, 3) + ", " + fixed(f.mu_max, 3) + ")  " +
        std::to_string(f.n_in_window) + " events, " +
-       (f.window_auto ? (f.mu_max_auto ? "mu_min and mu_max by KS scan"
-                                       : "mu_min by KS scan (Clauset et al. 2009)")
-                      : (f.mu_max_auto ? "mu_min given, mu_max by KS scan" : "mu_min given")) +
+       (f.window_auto ? (f.mu_max_auto ? "mu_min and mu_max automatic" : "mu_min automatic")
+                      : (f.mu_max_auto ? "mu_min given, mu_max automatic" : "mu_min given")) +
        (f.truncated ? ", truncated at mu_max" : "") + "\n";
   t += "bin width         " + fixed(f.bin_width, 3) + "\n";
+  if (!f.b_ok) {
+    t += "b                 none: " + f.no_b_reason + "\n";
+    t += two_laws_and_notes(f);
+    return t;
+  }
   t += "b  binned MLE     " + pm(f.b_mle, f.b_mle_err) +
        "   (Tinti & Mulargia 1987; Shi & Bolt error)\n";
   if (std::isnan(f.b_aki))
@@ -89,13 +97,21 @@ std::string gr_fit_table(const GrFit& f) {
     t += "b  unbinned MLE   " + pm(f.b_aki, f.b_aki_err) + "   (Aki 1965)\n";
   t += "b  least squares  " + pm(f.b_lsq, f.b_lsq_err) + "   (slope of ln R, weights R)\n";
   t += "KS distance       " + fixed(f.ks_distance) + "\n";
+  return t + two_laws_and_notes(f);
+}
+
+// The lines after the b estimates: two power laws, excess, notes.
+static std::string two_laws_and_notes(const GrFit& f) {
+  std::string t;
   if (f.two_law_ok)
     t += "two power laws    b1 = " + fixed(f.two_law_b1) + ", b2 = " + fixed(f.two_law_b2) +
          ", crossover mu~ = " + fixed(f.two_law_mu_cross, 3) +
          " (M~ = " + fixed(f.two_law_moment_cross, 3) + ")   (thesis eq. 2.10)\n";
   else
     t += "two power laws    not fitted\n";
-  if (f.excess_found)
+  if (!f.b_ok)
+    t += "large-event excess not tested (no fitted line)\n";
+  else if (f.excess_found)
     t += "large-event excess above mu = " + fixed(f.excess_mu, 3) + ": " +
          std::to_string(f.excess_observed) + " observed, " + fixed(f.excess_expected, 1) +
          " expected; up to " + fixed(f.excess_count, 1) + " events beyond the line\n";

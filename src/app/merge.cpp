@@ -11,6 +11,7 @@
 #include "io/histogram_csv.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
+#include "io/scene.hpp"
 #include "stats/gutenberg_richter.hpp"
 #include "stats/histogram.hpp"
 
@@ -19,6 +20,42 @@ namespace bkq {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The keys two runs must share to be merged: the physics and the histogram's bins. Not the
+// seed, the run's length, checkpoints, outputs or the fit window.
+bool must_match(const std::string& key) {
+  for (const char* section : {"model.", "friction.", "drive.", "integrator."})
+    if (key.rfind(section, 0) == 0) return true;
+  return key == "run.initial_disorder" || key == "stats.bin_width";
+}
+
+// Refuses runs that are not alike (naming every differing key) and a run given twice or
+// merged with a copy of itself (the same seed: the same events).
+void check_alike(const std::vector<std::string>& runs) {
+  std::vector<Scene> scenes;
+  for (const auto& run : runs) {
+    const fs::path ini = fs::path(run) / "scene.ini";
+    if (!fs::exists(ini))
+      throw Error("merge: " + run +
+                  " has no scene.ini, so it cannot be checked to be a run of the same scene");
+    scenes.push_back(read_run_scene(ini));
+  }
+  for (std::size_t i = 1; i < scenes.size(); ++i) {
+    std::string diff;
+    for (const auto& p : parameter_table())
+      if (must_match(p.key) && scenes[i].text(p.key) != scenes[0].text(p.key))
+        diff += (diff.empty() ? "" : ", ") + p.key + " = " + scenes[i].text(p.key) + " (not " +
+                scenes[0].text(p.key) + ")";
+    if (!diff.empty())
+      throw Error("merge: " + runs[i] + " is a run of another scene than " + runs[0] + ": " + diff);
+    for (std::size_t j = 0; j < i; ++j)
+      if (scenes[i].text("run.seed") == scenes[j].text("run.seed"))
+        throw Error("merge: " + runs[i] + " and " + runs[j] +
+                    " have the same run.seed = " + scenes[i].text("run.seed") +
+                    ", so the same events: merging them would count those events twice");
+  }
+}
+
 double required(const fs::path& summary, const std::string& key) {
   const auto v = read_json_number(summary, key);
   if (!v) throw Error(summary.string() + ": missing \"" + key + "\"");
@@ -40,6 +77,7 @@ void merge_runs(const MergeRequest& request, std::ostream& out) {
                   (t_end == target.end() ? " is the input " : " lies inside the input ") + run +
                   "; merge writes nothing into its inputs: choose another --out");
   }
+  check_alike(runs);
   std::optional<MagnitudeHistogram> merged;
   for (const auto& run : runs) {
     const fs::path dir = run;

@@ -1,7 +1,8 @@
 // `bkquake merge`: merges the magnitude histograms of several runs of the same scene exactly
 // (counts add; loading adds) and writes histogram.csv and summary.json, with the
-// Gutenberg-Richter fit of the merged histogram, into an output folder. Runs with different
-// bin widths or chain lengths are refused.
+// Gutenberg-Richter fit of the merged histogram, into an output folder. Runs of different
+// scenes (the physics and the bins, compared in their scene.ini) and the same run twice (the
+// same seed) are refused; nothing is written into an input folder.
 #pragma once
 
 #include <filesystem>

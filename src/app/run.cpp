@@ -32,10 +32,6 @@ int run_scene(const RunRequest& req) {
   const std::unique_ptr<Stepper> stepper = stepper_of(settings.integrator, p.n);
   check_time_step(*stepper, p, settings.integrator.dt);
   const bool events = settings.drive.mode == DriveMode::Events;
-  if (req.resume && !events)
-    throw Error(
-        "--resume: continuous runs (drive.mode = continuous) write no checkpoints yet; rerun "
-        "without --resume");
   if (events) EventEngine::check_model(p);
   if (settings.output.catalog == CatalogFormat::Hdf5 && !hdf5_available())
     throw Error(
@@ -68,6 +64,7 @@ int run_scene(const RunRequest& req) {
                    "the continuation "
                    "is exact only if the engine did not change in between\n",
                    saved.git_revision.c_str(), kGitRevision);
+    if (!events) return resume_continuous(req, settings, out, forces, *stepper, saved, from);
     // Rows written after the checkpoint are computed again, so they go.
     std::error_code ec;
     if (format == CatalogFormat::Csv)

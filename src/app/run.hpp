@@ -20,8 +20,8 @@ struct RunRequest {
   std::vector<RunObserver*> observers;
 };
 
-// Runs the scene; returns the process exit status: 0 when finished, 130 or 143 when an
-// event run was stopped by SIGINT or SIGTERM (after writing a checkpoint). Throws
+// Runs the scene; returns the process exit status: 0 when finished, 130 or 143 when the
+// run was stopped by SIGINT or SIGTERM (after writing a checkpoint). Throws
 // bkq::Error on bad input, on a refused --resume and on a failed write.
 int run_scene(const RunRequest& request);
 

@@ -6,7 +6,9 @@
 #include <boost/program_options.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -25,25 +27,21 @@ namespace po = boost::program_options;
 
 namespace {
 
-// "0.01,0.005" -> {0.01, 0.005}; every entry a positive number.
-std::vector<double> parse_list(const std::string& option, const std::string& text) {
+// "0.01,0.005" -> {0.01, 0.005}; every entry checked against the scene key it stands for.
+std::vector<double> parse_list(const std::string& option, const std::string& key,
+                               const std::string& text) {
   std::vector<double> out;
   std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || !(v > 0) || !std::isfinite(v))
-      throw Error("accuracy: --" + option + ": '" + item +
-                  "' is not a positive number (expected a list like 0.01,0.005)");
-    out.push_back(v);
-  }
+  for (std::string item; std::getline(in, item, ',');)
+    out.push_back(std::strtod(option_value("accuracy: --" + option, key, item).c_str(), nullptr));
   if (out.empty()) throw Error("accuracy: --" + option + ": empty list");
   return out;
+}
+
+double real_option(const po::variables_map& vm, const std::string& option, const std::string& key) {
+  std::ostringstream text;
+  text << std::setprecision(17) << vm[option].as<double>();
+  return std::strtod(option_value("accuracy: --" + option, key, text.str()).c_str(), nullptr);
 }
 
 std::vector<std::string> parse_schemes(const std::string& text) {
@@ -105,20 +103,22 @@ int cmd_accuracy(const std::vector<std::string>& args) {
 
   AccuracyOptions opt;
   opt.schemes = parse_schemes(vm["schemes"].as<std::string>());
-  opt.dts = parse_list("dt", vm["dt"].as<std::string>());
-  opt.tolerances = parse_list("tolerances", vm["tolerances"].as<std::string>());
+  opt.dts = parse_list("dt", "integrator.dt", vm["dt"].as<std::string>());
+  opt.tolerances =
+      parse_list("tolerances", "integrator.tolerance", vm["tolerances"].as<std::string>());
   opt.samples = vm["samples"].as<int>();
   opt.sample_spacing = vm["spacing"].as<int>();
   opt.long_events = vm["long-events"].as<std::int64_t>();
-  opt.reference_tolerance = vm["reference-tolerance"].as<double>();
-  opt.long_reference_tolerance = vm["long-reference-tolerance"].as<double>();
+  opt.reference_tolerance = real_option(vm, "reference-tolerance", "integrator.tolerance");
+  opt.long_reference_tolerance =
+      real_option(vm, "long-reference-tolerance", "integrator.tolerance");
   if (opt.samples < 1)
     throw Error("accuracy: --samples: expected at least 1, got " + std::to_string(opt.samples));
   if (opt.sample_spacing < 1)
     throw Error("accuracy: --spacing: expected at least 1, got " +
                 std::to_string(opt.sample_spacing));
-  if (opt.long_events < 100)
-    throw Error("accuracy: --long-events: expected at least 100, got " +
+  if (opt.long_events < 100 || opt.long_events > 1000000000000)
+    throw Error("accuracy: --long-events: expected an integer in [100, 1000000000000], got " +
                 std::to_string(opt.long_events));
 
   const std::string dir = vm["out"].as<std::string>();

@@ -2,13 +2,17 @@
 // Gutenberg-Richter law to the catalogue, prints a short table and, with --json, writes the
 // same as JSON.
 #include <boost/program_options.hpp>
+#include <cstdlib>
 #include <iostream>
 #include <optional>
+#include <string>
 
 #include "app/fit.hpp"
 #include "cli/commands.hpp"
 #include "cli/scene_args.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/scene.hpp"
 
 namespace bkq {
 
@@ -21,14 +25,16 @@ int cmd_fit(const std::vector<std::string>& args) {
   // clang-format off
   opts.add_options()
     ("help,h", "show this help")
-    ("mu-min", po::value<double>(), "lower end of the fit window (default: chosen by the "
-                                    "Kolmogorov-Smirnov scan of Clauset et al. 2009)")
-    ("mu-max", po::value<double>(), "upper end of the fit window; truncates the likelihood "
-                                    "(default: the largest populated bin, untruncated)")
-    ("bin-width", po::value<double>()->default_value(MagnitudeHistogram::kDefaultBinWidth),
-                  "magnitude bin width, > 0")
-    ("blocks", po::value<int>(), "chain length N for the event classes (default: scene.ini "
-                                 "beside the catalogue)")
+    ("mu-min", po::value<std::string>(), "lower end of the fit window, in [-50, 50] (default "
+                                         "or auto: automatic, README \"How b is fitted\")")
+    ("mu-max", po::value<std::string>(), "upper end of the fit window, in [-50, 50]; truncates "
+                                         "the likelihood (default or auto: automatic, below the "
+                                         "bump of large events)")
+    ("bin-width", po::value<std::string>()->default_value(
+                      format_real(MagnitudeHistogram::kDefaultBinWidth)),
+                  "magnitude bin width, in (0, 10]")
+    ("blocks", po::value<std::string>(), "chain length N for the event classes (default: "
+                                         "scene.ini beside the catalogue)")
     ("boundary", po::value<std::string>(), "free | periodic (default: scene.ini, else free)")
     ("json", po::value<std::string>(), "also write the result as JSON to this file");
   // clang-format on
@@ -39,11 +45,17 @@ int cmd_fit(const std::vector<std::string>& args) {
   }
   if (!vm.count("catalog"))
     throw Error("fit: missing CATALOG.csv or CATALOG.h5 (see bkquake fit --help)");
-  const double w = vm["bin-width"].as<double>();
-  if (!(w > 0)) throw Error("fit: --bin-width: expected a value > 0, got " + std::to_string(w));
-  std::optional<double> mu_min, mu_max;
-  if (vm.count("mu-min")) mu_min = vm["mu-min"].as<double>();
-  if (vm.count("mu-max")) mu_max = vm["mu-max"].as<double>();
+  // Each option is checked against the scene key it stands for (one declaration each).
+  const auto real_option = [&](const char* name, const char* key) -> std::optional<double> {
+    if (!vm.count(name)) return std::nullopt;
+    const std::string v =
+        option_value(std::string("fit: --") + name, key, vm[name].as<std::string>());
+    if (v == "auto") return std::nullopt;
+    return std::strtod(v.c_str(), nullptr);
+  };
+  const double w = *real_option("bin-width", "stats.bin_width");
+  const std::optional<double> mu_min = real_option("mu-min", "stats.mu_min");
+  const std::optional<double> mu_max = real_option("mu-max", "stats.mu_max");
   if (mu_min && mu_max && !(*mu_max > *mu_min))
     throw Error("fit: --mu-max must be greater than --mu-min");
 
@@ -52,12 +64,9 @@ int cmd_fit(const std::vector<std::string>& args) {
   request.bin_width = w;
   request.mu_min = mu_min;
   request.mu_max = mu_max;
-  if (vm.count("blocks")) {
-    request.blocks = vm["blocks"].as<int>();
-    if (*request.blocks < 1)
-      throw Error("fit: --blocks: expected a positive integer, got " +
-                  std::to_string(*request.blocks));
-  }
+  if (vm.count("blocks"))
+    request.blocks =
+        std::stoi(option_value("fit: --blocks", "model.blocks", vm["blocks"].as<std::string>()));
   if (vm.count("boundary")) request.boundary = vm["boundary"].as<std::string>();
   if (vm.count("json")) request.json = vm["json"].as<std::string>();
   fit_catalog(request, std::cout);

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "core/error.hpp"
 #include "engine/contacts.hpp"
 
 namespace bkq {
@@ -24,6 +26,34 @@ ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
       settle_contacts(forces_, st_, wd_old_.data(), anchor, Ranges(&all_, 1), false, [](int) {});
   sliding_ = scan.sliding;
   if (sliding_ > 0) start_episode(-1);
+}
+
+ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
+                                   const Substrate& substrate, const ContinuousSnapshot& saved,
+                                   double dt)
+    : forces_(forces), stepper_(stepper), substrate_(substrate), st_(saved.state), dt_(dt) {
+  const int n = forces.n();
+  const auto size = static_cast<std::size_t>(n);
+  if (st_.w.size() != size || st_.wd.size() != size || st_.mobile.size() != size ||
+      st_.dir.size() != size || saved.w_start.size() != size || saved.slid.size() != size)
+    throw Error("the saved continuous-run state does not fit a chain of " + std::to_string(n) +
+                " blocks");
+  all_ = Range{0, n};
+  wd_old_.assign(size, 0.0);
+  w_start_ = saved.w_start;
+  slid_ = saved.slid;
+  sliding_ = saved.sliding;
+  in_episode_ = saved.in_episode;
+  episode_ = saved.episode;
+  episode_t0_ = saved.episode_t0;
+  episode_x0_ = saved.episode_x0;
+  episodes_ = saved.episodes;
+  stepper_.restore_carried_state(saved.stepper);
+}
+
+ContinuousSnapshot ContinuousDriver::snapshot() const {
+  return {st_,      sliding_,    in_episode_, w_start_,  slid_,
+          episode_, episode_t0_, episode_x0_, episodes_, stepper_.carried_state()};
 }
 
 double ContinuousDriver::pad_friction() const {

@@ -13,10 +13,30 @@
 
 namespace bkq {
 
+// What a driver needs to continue exactly where it stopped, between two steps: the chain
+// state, the slip episode under way and what the stepper carries from step to step.
+struct ContinuousSnapshot {
+  ChainState state;
+  int sliding = 0;
+  bool in_episode = false;
+  std::vector<double> w_start;      // w at the start of the episode under way
+  std::vector<unsigned char> slid;  // blocks that slid in it
+  EventRecord episode;              // its record so far
+  double episode_t0 = 0, episode_x0 = 0;
+  std::int64_t episodes = 0;    // episodes started
+  std::vector<double> stepper;  // Stepper::carried_state()
+};
+
 class ContinuousDriver {
  public:
   ContinuousDriver(const ChainForces& forces, Stepper& stepper, const Substrate& substrate,
                    ChainState state, double dt);
+  // Continues from a snapshot (restoring the stepper's carried state): the steps that
+  // follow are those of the driver that was snapshotted, bit for bit. Throws bkq::Error
+  // when the snapshot does not fit the chain.
+  ContinuousDriver(const ChainForces& forces, Stepper& stepper, const Substrate& substrate,
+                   const ContinuousSnapshot& saved, double dt);
+  ContinuousSnapshot snapshot() const;
 
   // One time step followed by the stick/slip transitions.
   void step();

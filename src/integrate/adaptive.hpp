@@ -28,6 +28,9 @@ class Adaptive final : public Stepper {
   StickRule stick_rule() const override { return StickRule::Located; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override;
+  // The next step size, where the last call ended and the last located re-stick.
+  std::vector<double> carried_state() const override;
+  void restore_carried_state(std::span<const double> s) override;
 
   double tolerance() const { return tol_; }
   // Run with a fixed internal step h and no error control (transitions still located;

@@ -77,6 +77,13 @@ class Stepper {
   // (integrate/cluster.hpp); false when the stepper has no such form for that cluster
   // (the event engine then uses step()).
   virtual bool relax_cluster(const ChainForces&, ClusterRelaxation&) const { return false; }
+  // What the stepper carries from one step() to the next besides the chain state (the
+  // adaptive scheme's next step size, the theta-method's reused factorisation), as plain
+  // numbers: a continuous run keeps it in its checkpoint and restores it into a fresh
+  // stepper of the same scheme and size, which then continues bit for bit. Empty for
+  // steppers that carry nothing; restore throws bkq::Error on data of another shape.
+  virtual std::vector<double> carried_state() const { return {}; }
+  virtual void restore_carried_state(std::span<const double>) {}
 };
 
 // Keyword -> stepper; an unknown keyword throws bkq::Error listing the valid ones.

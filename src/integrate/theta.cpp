@@ -406,4 +406,51 @@ Stepper::TimeStepLimit Theta::time_step_limit(const ModelParams& p) const {
           "v_c/F0"};
 }
 
+// Layout: n, factored, the scalars, the segment count and (lo, len, cyclic) of each,
+// z, cp, inv, q, gamma_f, diag_f and status_f (n each).
+std::vector<double> Theta::carried_state() const {
+  std::vector<double> s = {static_cast<double>(n_),
+                           factored_ ? 1.0 : 0.0,
+                           link_f_,
+                           pad_col_f_,
+                           pad_diag_f_,
+                           sum_z_,
+                           sm_ratio_,
+                           sm_denom_,
+                           static_cast<double>(segments_f_.size())};
+  for (const Segment& g : segments_f_)
+    s.insert(s.end(),
+             {static_cast<double>(g.lo), static_cast<double>(g.len), g.cyclic ? 1.0 : 0.0});
+  for (const auto* v : {&z_, &cp_, &inv_, &q_, &gamma_f_, &diag_f_})
+    s.insert(s.end(), v->begin(), v->end());
+  for (std::int8_t x : status_f_) s.push_back(x);
+  return s;
+}
+
+void Theta::restore_carried_state(std::span<const double> s) {
+  const auto n = static_cast<std::size_t>(n_);
+  const auto bad = [] { throw Error("theta: the saved stepper state does not fit this chain"); };
+  if (s.size() < 9 || s[0] != n_) bad();
+  const auto segments = static_cast<std::size_t>(s[8]);
+  if (s[8] < 0 || s[8] > n_ + 1 || s.size() != 9 + 3 * segments + 7 * n) bad();
+  factored_ = s[1] != 0.0;
+  link_f_ = s[2];
+  pad_col_f_ = s[3];
+  pad_diag_f_ = s[4];
+  sum_z_ = s[5];
+  sm_ratio_ = s[6];
+  sm_denom_ = s[7];
+  std::size_t k = 9;
+  segments_f_.clear();
+  for (std::size_t i = 0; i < segments; ++i, k += 3)
+    segments_f_.push_back(
+        Segment{static_cast<int>(s[k]), static_cast<int>(s[k + 1]), s[k + 2] != 0.0});
+  for (auto* v : {&z_, &cp_, &inv_, &q_, &gamma_f_, &diag_f_}) {
+    v->assign(s.begin() + static_cast<std::ptrdiff_t>(k),
+              s.begin() + static_cast<std::ptrdiff_t>(k + n));
+    k += n;
+  }
+  for (std::size_t j = 0; j < n; ++j) status_f_[j] = static_cast<std::int8_t>(s[k + j]);
+}
+
 }  // namespace bkq

@@ -26,6 +26,9 @@ class Theta final : public Stepper {
   TimeStepLimit time_step_limit(const ModelParams& p) const override;
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override;
+  // The factorisation kept across steps (and what it was made of).
+  std::vector<double> carried_state() const override;
+  void restore_carried_state(std::span<const double> s) override;
 
   // Active-set rounds before falling back to projected Gauss–Seidel (0: Gauss–Seidel only).
   void set_max_active_set_iterations(int k) { max_active_set_ = k; }

@@ -17,6 +17,7 @@ class CsvCatalog : public CatalogFile {
   void append(const EventRecord& e) override {
     csv_.end_row(catalog_row_to(csv_.begin_row(kMaxCatalogRow), e));
   }
+  void flush() override { csv_.flush(); }
   std::uint64_t sync() override { return csv_.sync(); }
   void close() override { csv_.close(); }
 
@@ -31,6 +32,7 @@ class H5Catalog : public CatalogFile {
             std::int64_t resumed_rows)
       : h5_(path, attributes, resumed_rows) {}
   void append(const EventRecord& e) override { h5_.append(e); }
+  void flush() override { h5_.sync(); }
   std::uint64_t sync() override {
     h5_.sync();
     return 0;

@@ -22,6 +22,8 @@ class CatalogFile {
  public:
   virtual ~CatalogFile() = default;
   virtual void append(const EventRecord& e) = 0;
+  // Hands what is buffered to the file (no sync), so readers see every row so far.
+  virtual void flush() = 0;
   // Everything appended is on disk when this returns. Returns what a checkpoint records of
   // the file: its size in bytes (csv), or 0 (hdf5, whose rows are the events done).
   virtual std::uint64_t sync() = 0;

@@ -28,6 +28,15 @@ SceneModelInfo read_scene_model(const std::filesystem::path& scene_ini) {
   return info;
 }
 
+Scene read_run_scene(const std::filesystem::path& scene_ini) {
+  const std::string where = "in " + scene_ini.string();
+  Scene scene;
+  scene.origin = scene_ini.string();
+  for (const auto& [key, value] : parse_ini(read_text_file(scene_ini.string(), "scene"), where))
+    if (find_param(key)) scene.set(key, value, where);
+  return scene;
+}
+
 Boundary parse_boundary(const std::string& text) {
   if (text == "free") return Boundary::Free;
   if (text == "periodic") return Boundary::Periodic;

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "io/scene.hpp"
 #include "model/parameters.hpp"
 
 namespace bkq {
@@ -23,6 +24,12 @@ struct SceneModelInfo {
 // Reads [model] blocks/boundary and [friction] alpha; bkq::Error if the file cannot be
 // read or a value is outside the parameter table's range.
 SceneModelInfo read_scene_model(const std::filesystem::path& scene_ini);
+
+// The effective scene of a finished run from its scene.ini: every key this bkquake knows,
+// checked against the parameter table; keys it does not know (removed since) are skipped,
+// keys the file lacks (added since) keep their defaults. bkq::Error if the file cannot be
+// read or a known value is outside its range.
+Scene read_run_scene(const std::filesystem::path& scene_ini);
 
 // "free" | "periodic" (the values of model.boundary); bkq::Error otherwise.
 Boundary parse_boundary(const std::string& text);

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
 
@@ -23,8 +24,16 @@ namespace bkq {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMaxInt64 = 9223372036854775807.0;  // 2^63 - 1 (rounds to 2^63 as a double)
+// Sane bounds, so that no finite but absurd value reaches the physics: a mass, stiffness,
+// force or velocity scale of the thesis parameterisation; a simulated time (run length,
+// schedule period, output interval), beyond which 64-bit step counts and t + dt in double
+// precision stop working at any usable dt; the magnitude mu = ln(moment) of any event of any
+// chain bkquake can hold (|mu| <= 50: moments from 1e-22 to 5e21).
+constexpr double kHuge = 1e12;
+constexpr double kLongTime = 1e15;
+constexpr double kMuLimit = 50;
+constexpr double kMaxSteps = 1e15;  // time steps of a continuous run
 
 // The fields every row has.
 ParamSpec spec(const char* key, ParamType type, const char* def, const char* units,
@@ -72,8 +81,8 @@ ParamSpec boolean(const char* key, const char* def, const char* doc) {
   return spec(key, ParamType::Boolean, def, "", doc);
 }
 
-ParamSpec auto_real(const char* key, const char* units, const char* doc) {
-  ParamSpec p = real(key, "auto", '(', -kInf, kInf, ')', units, doc);
+ParamSpec auto_real(const char* key, double limit, const char* units, const char* doc) {
+  ParamSpec p = real(key, "auto", '[', -limit, limit, ']', units, doc);
   p.allow_auto = true;
   return p;
 }
@@ -92,15 +101,15 @@ std::vector<ParamSpec> make_table() {
              "chain ends: free (missing neighbour, no spring) or periodic (a ring)"),
       real("model.l", "10", '[', 0, 1e4, ']', "",
            "stiffness ratio l, neighbour spring k_c = l^2 (carlson-langer only)"),
-      real("model.pad_mass", "100", '(', 0, kInf, ')', "mass", "pad mass m_x (thesis only)"),
-      real("model.caliper_stiffness", "100", '[', 0, kInf, ')', "force/length",
+      real("model.pad_mass", "100", '(', 0, kHuge, ']', "mass", "pad mass m_x (thesis only)"),
+      real("model.caliper_stiffness", "100", '[', 0, kHuge, ']', "force/length",
            "caliper-pad spring k_p0 (thesis only)"),
-      real("model.damping_ratio", "0.0833333333333333", '[', 0, kInf, ')', "",
+      real("model.damping_ratio", "0.0833333333333333", '[', 0, 1e3, ']', "",
            "damping ratio zeta: pad damper for bkp, block damper for 1dof"),
-      real("model.s_m", "1", '(', 0, kInf, ')', "", "mass scaling s_m: m_u = s_m m_x / N"),
-      real("model.s_p", "1", '(', 0, kInf, ')', "",
+      real("model.s_m", "1", '(', 0, 1e6, ']', "", "mass scaling s_m: m_u = s_m m_x / N"),
+      real("model.s_p", "1", '(', 0, 1e6, ']', "",
            "pulling-spring scaling s_p: k_p = s_p k_p0 / N"),
-      real("model.s_c", "0.01", '[', 0, kInf, ')', "",
+      real("model.s_c", "0.01", '[', 0, 1e6, ']', "",
            "coupling scaling s_c: k_c = s_c k_p0 N (thesis only)"),
 
       // --- friction: the law phi(y) of SPEC §1 ---
@@ -108,60 +117,67 @@ std::vector<ParamSpec> make_table() {
              "thesis (eq. 3.5, backslip allowed), clst91 (Carlson et al. 1991 eq. 2.9, no "
              "backslip), cl89 (Carlson-Langer 1989 eq. 2.3), none (frictionless, continuous "
              "verification runs only)"),
-      real("friction.F0", "1", '(', 0, kInf, ')', "force/mass",
+      real("friction.F0", "1", '(', 0, kHuge, ']', "force/mass",
            "static threshold per unit block mass F0 (thesis only)"),
       real("friction.sigma", "0.01", '[', 0, 1, ')', "",
            "drop sigma from static to kinetic friction"),
       real("friction.alpha", "2.5", '[', 0, 1e6, ']', "",
            "velocity weakening alpha, v_c = 1/(2 alpha) (carlson-langer only)"),
-      real("friction.vc", "1", '(', 0, kInf, ')', "length/time",
+      real("friction.vc", "1", '(', 0, kHuge, ']', "length/time",
            "characteristic velocity v_c (thesis only)"),
 
       // --- drive: how the substrate moves ---
       choice("drive.mode", "events", {"events", "continuous"},
              "events: quasistatic loading, one relaxation per slip event (nu -> 0); "
              "continuous: integrate at finite substrate speed"),
-      real("drive.speed", "0.01", '[', 0, kInf, ')', "length/time",
+      real("drive.speed", "0.01", '[', 0, 1e6, ']', "length/time",
            "substrate speed v (continuous mode; the start value of a steps schedule)"),
       choice("drive.schedule", "constant", {"constant", "steps", "ramp"},
              "substrate speed over time (continuous mode)"),
-      real("drive.step_increment", "0.005", '(', -kInf, kInf, ')', "length/time",
+      real("drive.step_increment", "0.005", '[', -1e6, 1e6, ']', "length/time",
            "speed change at each step (schedule steps)"),
-      real("drive.step_interval", "2000", '(', 0, kInf, ')', "time",
+      real("drive.step_interval", "2000", '(', 0, kLongTime, ']', "time",
            "time between speed steps (schedule steps)"),
-      real("drive.ramp_from", "0", '[', 0, kInf, ')', "length/time",
+      real("drive.ramp_from", "0", '[', 0, 1e6, ']', "length/time",
            "speed at the start of the ramp (schedule ramp)"),
-      real("drive.ramp_to", "1", '[', 0, kInf, ')', "length/time",
+      real("drive.ramp_to", "1", '[', 0, 1e6, ']', "length/time",
            "speed at the end of the ramp (schedule ramp)"),
-      real("drive.ramp_duration", "40000", '(', 0, kInf, ')', "time",
+      real("drive.ramp_duration", "40000", '(', 0, kLongTime, ']', "time",
            "time over which the speed ramps (schedule ramp)"),
 
       // --- run: length, seed, start, checkpoints ---
       integer("run.events", "100000", 0, 1e12, "", "events to record (events mode)"),
       integer("run.transient_events", "1000", 0, 1e12, "",
               "events discarded before recording starts (events mode)"),
-      real("run.duration", "1000", '(', 0, kInf, ')', "time", "simulated time (continuous mode)"),
+      real("run.duration", "1000", '(', 0, kLongTime, ']', "time",
+           "simulated time (continuous mode)"),
       integer("run.seed", "20261121", 0, kMaxInt64, "", "random seed (initial disorder)"),
       real("run.initial_disorder", "0.01", '[', 0, 10, ']', "D0",
            "initial displacements uniform in +-value*D0, D0 = F0 m_u / k_p"),
       integer("run.max_steps_per_event", "200000000", 1, 1e15, "",
               "give up on an event after this many relaxation steps (a runaway: dt or the scene is "
               "wrong)"),
-      integer("run.checkpoint_events", "0", 0, 1e12, "",
-              "write a checkpoint every this many events (0 = off)"),
-      real("run.checkpoint_seconds", "600", '[', 0, kInf, ')', "wall s",
-           "write a checkpoint at least this often in wall-clock seconds (0 = off)"),
+      integer(
+          "run.checkpoint_events", "0", 0, 1e12, "",
+          "write a checkpoint every this many events (continuous runs: slip episodes; 0 = off)"),
+      real("run.checkpoint_seconds", "600", '[', 0, 1e9, ']', "wall s",
+           "write a checkpoint at least this often in wall-clock seconds, the first after 30 s "
+           "(0 = off)"),
+      choice("run.accuracy", "warn", {"warn", "error"},
+             "what a run does when an accuracy indicator (energy residual, omega_max*dt, event "
+             "steps) is above its threshold: warn on stderr, or fail with exit 2 keeping the "
+             "outputs (unattended runs)"),
 
       // --- integrator: the stepper of the dynamic phase ---
       choice("integrator.scheme", "rk4", {"rk2", "rk4", "verlet", "theta", "adaptive"},
              "rk2 (explicit midpoint), rk4, verlet, theta (theta-method, set-valued friction), "
              "adaptive (event-located adaptive reference)"),
-      real("integrator.dt", "0.01", '(', 0, kInf, ')', "time", "time step"),
+      real("integrator.dt", "0.01", '(', 0, 1e6, ']', "time", "time step"),
       real("integrator.tolerance", "1e-08", '[', 1e-14, 1e-2, ']', "",
            "local error tolerance (scheme adaptive)"),
 
       // --- output ---
-      real("output.every", "1", '(', 0, kInf, ')', "time",
+      real("output.every", "1", '(', 0, kLongTime, ']', "time",
            "time between timeseries rows (continuous mode)"),
       boolean("output.blocks", "false", "also write block trajectories (continuous mode)"),
       choice("output.catalog", "csv", {"csv", "hdf5", "none"},
@@ -172,8 +188,10 @@ std::vector<ParamSpec> make_table() {
 
       // --- stats: magnitude histogram and fits ---
       real("stats.bin_width", "0.2", '(', 0, 10, ']', "", "magnitude bin width of the histogram"),
-      auto_real("stats.mu_min", "", "lower end of the Gutenberg-Richter fit window, or auto"),
-      auto_real("stats.mu_max", "", "upper end of the Gutenberg-Richter fit window, or auto"),
+      auto_real("stats.mu_min", kMuLimit, "",
+                "lower end of the Gutenberg-Richter fit window, or auto"),
+      auto_real("stats.mu_max", kMuLimit, "",
+                "upper end of the Gutenberg-Richter fit window, or auto"),
   };
 }
 
@@ -350,6 +368,19 @@ std::string allowed_text(const ParamSpec& p) {
   return "";
 }
 
+std::string option_value(const std::string& option, const std::string& key,
+                         const std::string& text) {
+  const ParamSpec* p = find_param(key);
+  if (!p) throw std::logic_error("option_value: no parameter '" + key + "'");
+  try {
+    return normalise(*p, text, "");
+  } catch (const Error&) {
+    throw Error(option + ": expected " +
+                (p->type == ParamType::Integer ? "an integer" : std::string("a value")) + " in " +
+                allowed_text(*p) + " (as " + key + "), got " + quote_printable(trim(text)));
+  }
+}
+
 Scene::Scene() : origin("built-in default (carlson-langer, event-driven)") {
   for (const auto& p : parameter_table()) {
     values_[p.key] = normalise(p, p.default_value, "default");
@@ -417,6 +448,37 @@ void Scene::validate() const {
   if (lo && hi && *lo >= *hi)
     throw Error("stats.mu_min = " + text("stats.mu_min") +
                 " must be below stats.mu_max = " + text("stats.mu_max") + where);
+  if (choice("drive.mode") == "continuous") check_continuous_run(where);
+}
+
+void Scene::check_continuous_run(const std::string& where) const {
+  // The step counter is 64-bit and the clock a double: past 1e15 steps neither is safe.
+  const double duration = real("run.duration");
+  const double steps = duration / real("integrator.dt");
+  if (!(steps <= kMaxSteps))
+    throw Error("run.duration = " + text("run.duration") +
+                " at integrator.dt = " + text("integrator.dt") + " is " + format_real(steps) +
+                " time steps, more than a run can count (1e15); shorten run.duration or raise "
+                "integrator.dt" +
+                where);
+  if (choice("drive.schedule") != "steps") return;
+  // The speed after the last step within the run, v0 + k inc, must stay in drive.speed's
+  // range: a negative speed would drive the substrate backwards, which no friction law here
+  // is written for.
+  const double v0 = real("drive.speed"), inc = real("drive.step_increment");
+  const double interval = real("drive.step_interval");
+  const double last = std::floor(duration / interval);
+  const double v_end = v0 + last * inc;
+  const ParamSpec& speed = *find_param("drive.speed");
+  if (v_end >= speed.min && v_end <= speed.max) return;
+  // The first step outside the range.
+  const double k = inc < 0 ? std::floor(v0 / -inc) + 1 : std::floor((speed.max - v0) / inc) + 1;
+  throw Error("drive.step_increment = " + text("drive.step_increment") +
+              " takes the substrate speed out of " + allowed_text(speed) + " at step " +
+              format_real(k) + " (time " + format_real(k * interval) + ", speed " +
+              format_real(v0 + k * inc) + ") within run.duration = " + text("run.duration") +
+              (inc < 0 ? ": the substrate would move backwards" : "") +
+              "; shorten run.duration or change the schedule" + where);
 }
 
 namespace {

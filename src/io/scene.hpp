@@ -78,12 +78,21 @@ class Scene {
   std::string origin;  // the file it came from, or "built-in default"
 
  private:
+  // validate()'s checks of a continuous run: its step count, its speed schedule.
+  void check_continuous_run(const std::string& where) const;
+
   std::map<std::string, std::string> values_;
   std::map<std::string, bool> given_;
 };
 
 // The allowed values of a key as text: "[0, 1)", "thesis|clst91|cl89", "true|false".
 std::string allowed_text(const ParamSpec& spec);
+
+// The value of a command-line option that stands for the scene key `key` (fit --mu-min is
+// stats.mu_min), checked against that key's one declaration: the normalised text, or
+// bkq::Error naming the option, the value and what is allowed.
+std::string option_value(const std::string& option, const std::string& key,
+                         const std::string& text);
 
 // The commented scene file with all defaults (for --dump-defaults).
 std::string dump_defaults();

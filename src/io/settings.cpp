@@ -88,6 +88,7 @@ Settings settings_from_scene(const Scene& scene) {
   r.max_steps_per_event = scene.integer("run.max_steps_per_event");
   r.checkpoint_events = scene.integer("run.checkpoint_events");
   r.checkpoint_seconds = scene.real("run.checkpoint_seconds");
+  r.accuracy_error = scene.choice("run.accuracy") == "error";
 
   s.integrator.scheme = scene.choice("integrator.scheme");
   s.integrator.dt = scene.real("integrator.dt");

@@ -39,6 +39,7 @@ struct RunSettings {
   std::int64_t max_steps_per_event = 0;
   std::int64_t checkpoint_events = 0;  // 0 = off
   double checkpoint_seconds = 0;       // 0 = off
+  bool accuracy_error = false;         // run.accuracy = error: an indicator above threshold fails
 };
 
 // integrator.*: the stepper of the dynamic phase, by its registry keyword.

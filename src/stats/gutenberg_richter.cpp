@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/error.hpp"
@@ -114,6 +115,11 @@ Line weighted_line(const std::vector<double>& x, const std::vector<double>& y,
 std::string fmt(double x) {
   return format_real(x);
 }
+std::string fmt_short(double x) {  // 3 decimals, for a value in a sentence
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", x);
+  return buf;
+}
 
 }  // namespace
 
@@ -193,30 +199,6 @@ double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::i
   return d;
 }
 
-double tail_excess_p(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi, double b,
-                     bool truncated) {
-  const double w = h.bin_width();
-  const std::int64_t n = h.count_range(k_lo, k_hi);
-  if (n == 0 || !std::isfinite(b)) return kNaN;
-  const double J = static_cast<double>(k_hi - k_lo + 1);
-  double p_min = 1;
-  std::int64_t above = 0;  // events in bins k..k_hi
-  // Above last_bin nothing is observed; below first_bin every edge sees all n events and
-  // the one nearest first_bin expects the fewest: k runs over first_bin - 1..last_bin only.
-  const std::int64_t k_end = std::max(k_lo, h.first_bin() - 2);
-  for (std::int64_t k = std::min(k_hi, h.last_bin()); k > k_end; --k) {
-    above += h.count(k);
-    if (above == 0) continue;
-    const double i = static_cast<double>(k - k_lo);
-    const double s_fit = fitted_survival(b, w, i, J, truncated);
-    const double expected = static_cast<double>(n) * s_fit;
-    if (static_cast<double>(above) <= expected) continue;
-    p_min = std::min(
-        p_min, expected > 0 ? boost::math::gamma_p(static_cast<double>(above), expected) : 0.0);
-  }
-  return p_min;
-}
-
 GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
                     std::optional<double> mu_max, const GrFitOptions& opt) {
   GrFit f;
@@ -271,78 +253,88 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   std::int64_t k_hi = k_hi_given.value_or(h.last_bin());
   f.window_auto = !mu_min;
   f.mu_max_auto = !mu_max;
+  std::string no_window;  // why no acceptable window exists (empty: one does)
   if (!mu_min || !mu_max) {
-    // Candidate windows: both ends on populated bins (unless given), >= min_window_bins
-    // bins, >= min_tail events, >= 2 populated bins; b_mle and the KS distance on each.
-    struct Candidate {
-      std::int64_t lo, hi, n;
-      double d;
-      bool tail_ok;
-    };
-    std::vector<Candidate> cands;
-    if (!(mu_min && mu_max) && span > kMaxScanBins)
+    if (span > kMaxScanBins)
       throw Error("automatic fit window: the magnitudes " + fmt(h.min_mu()) + " .. " +
                   fmt(h.max_mu()) + " span " + std::to_string(span) + " bins of width " + fmt(w) +
                   ", more than the " + std::to_string(kMaxScanBins) +
                   " the window search covers; use a wider bin width or give mu_min and mu_max");
-    const std::int64_t lo_first = k_lo_given.value_or(h.first_bin());
-    const std::int64_t lo_last = k_lo_given.value_or(h.last_bin());
-    const std::int64_t hi_first = k_hi_given.value_or(h.first_bin());
-    const std::int64_t hi_last = k_hi_given.value_or(h.last_bin());
+    // The rule (README "How b is fitted"): among the windows whose ends sit on populated
+    // bins (unless given), with >= min_window_bins bins, >= min_tail events and >= 2
+    // populated bins, keep those (1) in which, unless mu_max is given, the running sum S
+    // of the counts over smooth_width never rises to more than rise_factor times its
+    // lowest value further down the window (at rise_sigma Poisson standard deviations): no
+    // bump, and no climbing out of the dip before it; (2) whose binned MLE b is > 0; (3) whose KS
+    // distance is within ks_systematic + ks_tolerance / sqrt(n_window). The widest wins
+    // (most bins, then most events, then smallest KS distance).
+    const std::int64_t first = h.first_bin(), last = h.last_bin();
+    std::vector<std::int64_t> prefix(static_cast<std::size_t>(span + 1), 0);  // counts below
+    for (std::int64_t i = 0; i < span; ++i)
+      prefix[static_cast<std::size_t>(i + 1)] =
+          prefix[static_cast<std::size_t>(i)] + h.count(first + i);
+    const auto below = [&](std::int64_t k) {  // events in bins < k
+      return prefix[static_cast<std::size_t>(std::clamp(k, first, last + 1) - first)];
+    };
+    const std::int64_t half =
+        std::max<std::int64_t>(1, std::llround(0.5 * (opt.smooth_width / w - 1)));
+    const auto S = [&](std::int64_t k) {
+      return static_cast<double>(below(k + half + 1) - below(k - half));
+    };
+    const std::int64_t lo_first = k_lo_given.value_or(first);
+    const std::int64_t lo_last = k_lo_given.value_or(last);
+    const std::int64_t hi_first = k_hi_given.value_or(first);
+    const std::int64_t hi_last = k_hi_given.value_or(last);
+    struct Pick {
+      std::int64_t lo, hi, n;
+      double d;
+    };
+    std::optional<Pick> pick;
+    std::int64_t candidates = 0, positive = 0;
     for (std::int64_t lo = lo_first; lo <= lo_last; ++lo) {
       if (!k_lo_given && h.count(lo) == 0) continue;
-      for (std::int64_t hi = std::max(hi_first, lo + opt.min_window_bins - 1); hi <= hi_last;
-           ++hi) {
+      poll();
+      double s_min = S(lo);
+      for (std::int64_t hi = lo; hi <= hi_last; ++hi) {
+        const double s = S(hi);
+        // A rise inside [lo, hi] stays inside every wider window: stop here. A given mu_max
+        // includes what lies below it, rise or not.
+        if (!k_hi_given && s > opt.rise_factor * s_min &&
+            s - s_min > opt.rise_sigma * std::sqrt(s + s_min))
+          break;
+        s_min = std::min(s_min, s);
+        if (hi < hi_first || hi - lo + 1 < opt.min_window_bins) continue;
         if (!k_hi_given && h.count(hi) == 0) continue;
-        poll();
-        const std::int64_t n = h.count_range(lo, hi);
+        const std::int64_t n = below(hi + 1) - below(lo);
         if (n < opt.min_tail) continue;
         int populated = 0;
         for (std::int64_t j = lo; j <= hi && populated < 2; ++j) populated += h.count(j) > 0;
         if (populated < 2) continue;
+        poll();
+        ++candidates;
         const bool tr = truncated_at(hi);
         const BEstimate e = binned_mle(h, lo, hi, tr);
+        if (!(e.b > 0) || !std::isfinite(e.err)) continue;
+        ++positive;
         const double d = ks_distance_binned(h, lo, hi, e.b, tr);
-        if (!std::isfinite(d)) continue;
-        const double p = tail_excess_p(h, lo, hi, e.b, tr);
-        const bool tail_ok = p >= opt.window_excess_alpha / static_cast<double>(hi - lo);
-        cands.push_back({lo, hi, n, d, tail_ok});
+        if (!(d <= opt.ks_systematic + opt.ks_tolerance / std::sqrt(static_cast<double>(n))))
+          continue;
+        if (!pick || hi - lo > pick->hi - pick->lo ||
+            (hi - lo == pick->hi - pick->lo && (n > pick->n || (n == pick->n && d < pick->d))))
+          pick = Pick{lo, hi, n, d};
       }
     }
-    if (cands.empty()) {
-      f.notes.push_back("no candidate window with >= " + std::to_string(opt.min_tail) +
-                        " events and >= " + std::to_string(opt.min_window_bins) +
-                        " bins: window spans the populated range");
-    } else if (mu_max) {
-      // Upper end fixed: Clauset, Shalizi & Newman 2009, the smallest KS distance wins.
-      const auto best =
-          std::min_element(cands.begin(), cands.end(),
-                           [](const Candidate& a, const Candidate& b) { return a.d < b.d; });
-      k_lo = best->lo;
-    } else {
-      // Upper end free: the widest window whose KS distance is within
-      // ks_tolerance / sqrt(n_window) of the best one (ties: more events, then smaller d).
-      // Windows whose upper tail holds a significant excess over their own fit are out,
-      // unless every candidate has one.
-      const bool any_tail_ok =
-          std::any_of(cands.begin(), cands.end(), [](const Candidate& c) { return c.tail_ok; });
-      if (!any_tail_ok)
-        f.notes.push_back(
-            "every candidate window shows an excess of large events over its own fit");
-      double d_best = kInf;
-      for (const auto& c : cands)
-        if (c.tail_ok || !any_tail_ok) d_best = std::min(d_best, c.d);
-      const Candidate* pick = nullptr;
-      for (const auto& c : cands) {
-        if (any_tail_ok && !c.tail_ok) continue;
-        if (c.d > d_best + opt.ks_tolerance / std::sqrt(static_cast<double>(c.n))) continue;
-        if (!pick || c.hi - c.lo > pick->hi - pick->lo ||
-            (c.hi - c.lo == pick->hi - pick->lo &&
-             (c.n > pick->n || (c.n == pick->n && c.d < pick->d))))
-          pick = &c;
-      }
+    if (pick) {
       k_lo = pick->lo;
       k_hi = pick->hi;
+    } else if (candidates == 0) {
+      no_window = "no window with >= " + std::to_string(opt.min_tail) +
+                  " events and >= " + std::to_string(opt.min_window_bins) +
+                  " bins lies below a rise of the distribution";
+    } else if (positive == 0) {
+      no_window = "the events do not decrease with magnitude in any window (b <= 0)";
+    } else {
+      no_window = "no window is fitted by one power law to within the KS tolerance";
     }
   }
   poll();
@@ -362,6 +354,9 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   f.b_mle_err = e.err;
   if (!std::isfinite(e.b))
     f.notes.push_back("b_mle is unbounded: the window's events fill one bin");
+  if (no_window.empty() && !(e.b > 0))
+    no_window =
+        "b_mle = " + fmt_short(e.b) + " on the window: the events do not decrease with magnitude";
   f.ks_distance = ks_distance_binned(h, k_lo, k_hi, e.b, f.truncated);
   const double nw = static_cast<double>(f.n_in_window);
   f.ln_A = std::log(nw) + f.b_mle * f.mu_min;
@@ -470,10 +465,22 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
           std::max(f.excess_count, static_cast<double>(f.excess_observed) - f.excess_expected);
     }
   }
+  // No acceptable window: no b at all (a headline b is never <= 0 or from a rejected
+  // window); the window fields keep the range that was looked at, the two-law fit stays.
+  if (!no_window.empty()) {
+    f.b_ok = false;
+    f.no_b_reason = no_window;
+    f.b_mle = f.b_mle_err = f.b_aki = f.b_aki_err = f.b_lsq = f.b_lsq_err = kNaN;
+    f.ln_A = f.ks_distance = kNaN;
+    f.excess_found = false;
+    f.excess_observed = 0;
+    f.excess_expected = f.excess_count = 0;
+  }
   return f;
 }
 
 void add_unbinned(GrFit& fit, std::span<const double> mu) {
+  if (!fit.b_ok) return;
   const BEstimate a =
       aki_mle(mu, fit.mu_min, fit.truncated ? std::optional<double>(fit.mu_max) : std::nullopt);
   fit.b_aki = a.b;

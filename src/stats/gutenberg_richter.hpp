@@ -3,8 +3,9 @@
 // eq. 2.6), so the law is R(mu) = A e^{-b mu} with no ln 10 factors anywhere.
 //
 // The estimators (Aki, Tinti & Mulargia, Shi & Bolt, weighted least squares, two power
-// laws), the automatic window (Clauset-Shalizi-Newman with an excess test) and the
-// large-event excess are described in README.md, section "How b is fitted".
+// laws), the automatic window (the widest window below any rise of the distribution that
+// one power law fits to within a KS tolerance) and the large-event excess are described in
+// README.md, section "How b is fitted".
 #pragma once
 
 #include <cstdint>
@@ -33,31 +34,39 @@ class FitCancelled : public std::exception {
 };
 
 struct GrFitOptions {
-  std::int64_t min_tail = 50;  // CSN: fewest events above a candidate mu_min
-  // CSN: fewest bins in a candidate window (10 bins of 0.2 = a factor e^2 in moment). Keeps
-  // the scan from settling on the bump of large delocalised events at the top.
+  std::int64_t min_tail = 50;  // fewest events in a candidate window
+  // Fewest bins in a candidate window (10 bins of 0.2 = a factor e^2 in moment).
   std::int64_t min_window_bins = 10;
   double excess_tail_probability = 0.02275;  // one-sided 2 sigma
-  // Automatic mu_max: a window is a near-tie of the best one when its KS distance is
-  // within ks_tolerance / sqrt(n_window) of the smallest; the widest near-tie wins.
+  // Automatic window: a candidate is fitted by one power law when its KS distance is at
+  // most ks_systematic (a share of the window's events, whatever their number: the
+  // curvature a reader of D(mu) tolerates) + ks_tolerance / sqrt(n_window) (statistical).
+  double ks_systematic = 0.03;
   double ks_tolerance = 0.5;
-  // Automatic mu_max: a window is rejected when some edge inside it has more events above
-  // it (up to mu_max) than its own fit predicts, at one-sided Poisson probability below
-  // window_excess_alpha / (number of interior edges) (Bonferroni).
-  double window_excess_alpha = 0.05;
+  // Automatic window: the running sum of the counts over smooth_width (in mu) must not
+  // rise inside the window to more than rise_factor times its lowest value further down,
+  // by more than rise_sigma Poisson standard deviations (the dip and bump of large events).
+  double smooth_width = 1.0;
+  double rise_factor = 2.0;
+  double rise_sigma = 3.0;
   // Polled between the steps of the fit (well under a millisecond apart at <= kMaxScanBins
   // bins); when it returns true the fit throws FitCancelled. Empty: never cancelled.
   std::function<bool()> cancelled;
 };
 
 struct GrFit {
+  // False when no acceptable window exists (automatic search) or b_mle <= 0 on the window:
+  // then every b, its errors, ln_A, the KS distance and the excess are NaN/empty and
+  // no_b_reason says why; the window fields keep the range that was looked at.
+  bool b_ok = true;
+  std::string no_b_reason;
   double bin_width = 0;
   std::int64_t n_total = 0;
   // Window [mu_min, mu_max] (whole bins).
   double mu_min = 0;
   double mu_max = 0;
-  bool window_auto = false;  // mu_min chosen by the KS scan
-  bool mu_max_auto = false;  // mu_max chosen by the KS scan (not given)
+  bool window_auto = false;  // mu_min chosen by the automatic window search
+  bool mu_max_auto = false;  // mu_max chosen by the automatic window search (not given)
   // Truncated likelihoods: mu_max was given, or the automatic window ends below the
   // largest populated bin.
   bool truncated = false;
@@ -111,12 +120,6 @@ BEstimate binned_mle(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_
 // fitted geometric one with exponent b.
 double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi,
                           double b, bool truncated);
-
-// Smallest one-sided Poisson probability P(X >= observed) over the interior edges of bins
-// k_lo..k_hi, X of mean n_window times the fitted survival function at the edge and
-// "observed" the window's events at or above the edge; 1 when no edge is in excess.
-double tail_excess_p(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi, double b,
-                     bool truncated);
 
 // Full fit of a histogram. Window limits are snapped inward to whole bins. b_aki is filled
 // from the histogram's sums only when the window covers every event and the sums are exact;

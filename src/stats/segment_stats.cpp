@@ -22,6 +22,20 @@ void BlockedMoments::add(double x) {
   ++added_;
 }
 
+std::vector<double> BlockedMoments::state() const {
+  std::vector<double> s{static_cast<double>(added_)};
+  for (const Part& p : parts_) s.insert(s.end(), {static_cast<double>(p.n), p.mean, p.m2});
+  return s;
+}
+
+bool BlockedMoments::set_state(const std::vector<double>& s) {
+  if (s.size() != 1 + 3 * parts_.size()) return false;
+  added_ = static_cast<std::int64_t>(s[0]);
+  for (std::size_t i = 0; i < parts_.size(); ++i)
+    parts_[i] = {static_cast<std::int64_t>(s[1 + 3 * i]), s[2 + 3 * i], s[3 + 3 * i]};
+  return added_ >= 0 && added_ <= n_;
+}
+
 SegmentStat BlockedMoments::result() const {
   // Whole input: the blocks combined exactly.
   Part all;

@@ -30,6 +30,10 @@ class BlockedMoments {
   int blocks() const { return static_cast<int>(parts_.size()); }
   // The statistics of what was added (all zero when nothing was).
   SegmentStat result() const;
+  // Its state, for checkpoints: the count added, then n, mean, m2 of each block; restored
+  // by set_state on an object built with the same n and blocks (false if it does not fit).
+  std::vector<double> state() const;
+  bool set_state(const std::vector<double>& s);
 
  private:
   struct Part {

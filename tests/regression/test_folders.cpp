@@ -128,3 +128,67 @@ TEST(Folders, MergeWritesNothingIntoItsInputs) {
 
 }  // namespace
 }  // namespace bkq
+
+namespace bkq {
+namespace {
+
+// Issue 19, item 3: merge accepts only runs of one scene (the physics and the bins; seeds,
+// lengths, checkpoints, outputs and fit windows may differ) and never the same run twice.
+class MergeUnlike : public ::testing::Test {
+ protected:
+  // A short run into tmp_/name with the given extra --set overrides.
+  std::string run(const std::string& name, const std::vector<std::string>& sets) {
+    std::vector<std::string> args = {"run",   "--quiet",        "--set", "model.blocks=20",
+                                     "--set", "run.events=500", "--set", "run.transient_events=10"};
+    for (const auto& s : sets) args.insert(args.end(), {"--set", s});
+    const std::string out = tmp_.file(name);
+    args.insert(args.end(), {"--out", out});
+    const auto r = run_bkquake(args);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return out;
+  }
+  test::ProcessResult merge(const std::vector<std::string>& runs) {
+    std::vector<std::string> args = {"merge"};
+    args.insert(args.end(), runs.begin(), runs.end());
+    std::string name = "m";
+    name += std::to_string(++merges_);
+    args.insert(args.end(), {"--out", tmp_.file(name)});
+    return run_bkquake(args);
+  }
+  test::TempDir tmp_;
+  int merges_ = 0;
+};
+
+TEST_F(MergeUnlike, RefusesOtherPhysicsNamingTheKeysAndNeverChangesAnInput) {
+  const std::string a = run("a", {"run.seed=1"});
+  const std::string alpha = run("alpha", {"run.seed=2", "friction.alpha=2", "model.l=9"});
+  const std::string bkp = run("bkp", {"run.seed=3", "model.kind=bkp"});
+  const std::string bins = run("bins", {"run.seed=4", "stats.bin_width=0.1"});
+  const auto inputs = tree_bytes(tmp_.path().string());
+  expect_refused(merge({a, alpha}),
+                 {"another scene", "model.l = 9 (not 10)", "friction.alpha = 2 (not 2.5)"});
+  expect_refused(merge({a, bkp}), {"model.kind = bkp (not bk)"});
+  expect_refused(merge({a, bins}), {"stats.bin_width = 0.1 (not 0.2)"});
+  EXPECT_TRUE(tree_bytes(tmp_.path().string()) == inputs) << "merge wrote into an input";
+}
+
+TEST_F(MergeUnlike, RefusesTheSameRunTwice) {
+  const std::string a = run("a", {"run.seed=1"});
+  fs::copy(a, tmp_.file("copy"));
+  expect_refused(merge({a, a}), {"the same run.seed = 1", "twice"});
+  expect_refused(merge({a, tmp_.file("copy")}), {"the same run.seed = 1"});
+}
+
+TEST_F(MergeUnlike, AcceptsOtherSeedsLengthsAndFitWindows) {
+  const std::string a = run("a", {"run.seed=1"});
+  const std::string b =
+      run("b", {"run.seed=2", "run.events=700", "stats.mu_min=-5", "run.checkpoint_events=100"});
+  const auto inputs = tree_bytes(tmp_.path().string());
+  const auto r = merge({a, b});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(read_file(tmp_.file("m1/summary.json")).find("\"events\": 1200"), std::string::npos);
+  for (const auto& [path, bytes] : inputs) EXPECT_EQ(read_file(path), bytes) << path;
+}
+
+}  // namespace
+}  // namespace bkq

@@ -146,6 +146,20 @@ std::vector<GoldenCase> golden_cases() {
     cases.push_back({"bk_resumed", {first, again}});
   }
   {
+    // A continuous run (theta) stopped by SIGTERM after its first periodic checkpoint
+    // (every 100 slip episodes), then resumed.
+    std::vector<std::string> scene = {
+        "--set", "drive.mode=continuous",     "--set",  "model.blocks=30",
+        "--set", "run.duration=5000",         "--set",  "drive.speed=0.05",
+        "--set", "integrator.scheme=theta",   "--set",  "output.every=5",
+        "--set", "run.checkpoint_events=100", "--quiet"};
+    Command first = run_cmd(scene, "out");
+    first.interrupt_after = "out/checkpoint.bin";
+    Command again = run_cmd(scene, "out");
+    again.args.push_back("--resume");
+    cases.push_back({"bk_continuous_resumed", {first, again}});
+  }
+  {
     Command a = run_cmd(small_events({"--set", "run.seed=11"}), "a");
     Command b = run_cmd(small_events({"--set", "run.seed=12"}), "b");
     Command m = {{"merge", "a", "b", "--out", "out"}, "", "out/stdout.txt"};

@@ -291,10 +291,12 @@ TEST_F(Resume, FinishedAndInterruptedRunsAreNotOverwrittenWithoutForce) {
   EXPECT_EQ(lines_of(out + "/catalog.csv"), 1001);
 }
 
-TEST_F(Resume, ContinuousRunsRefuseResume) {
+// Continuous runs resume too (test_continuous_run.cpp); without a checkpoint they refuse.
+TEST_F(Resume, ContinuousRunWithoutACheckpointIsRefused) {
   const std::string out = tmp_.file("out");
+  std::filesystem::create_directory(out);  // a missing folder is refused before that
   expect_refused(run_bkquake({"run", "--set", "drive.mode=continuous", "--out", out, "--resume"}),
-                 {"--resume", "continuous"});
+                 {"--resume", "no checkpoint"});
 }
 
 // ---- the checkpoint format ----

@@ -79,6 +79,35 @@ TEST(Observers, CheckpointTimerAsksEveryNEvents) {
   EXPECT_EQ(written, 3);
 }
 
+// Checkpoints by time: the first kFirstCheckpointSeconds after the start (a SIGKILL early
+// in a long run loses no more than that), then every period; a shorter period applies
+// from the start. A fake clock advances one second per kClockStride advances.
+std::vector<double> checkpoint_times(double period, int seconds) {
+  double t = 1000;
+  std::vector<double> written_at;
+  CheckpointTimer* self = nullptr;
+  CheckpointTimer timer(
+      [&] {
+        written_at.push_back(t - 1000);
+        Checkpoint c;
+        self->on_checkpoint(c);  // as the run's save() notifies every observer
+      },
+      0, period, [&] { return t; });
+  self = &timer;
+  timer.on_start();
+  for (int s = 0; s < seconds; ++s) {
+    t += 1;
+    for (std::int64_t k = 0; k < CheckpointTimer::kClockStride; ++k) timer.on_advance({0.0, 0});
+  }
+  return written_at;
+}
+
+TEST(Observers, FirstCheckpointComesEarlyThenAtThePeriod) {
+  ASSERT_EQ(kFirstCheckpointSeconds, 30.0);
+  EXPECT_EQ(checkpoint_times(600, 1300), (std::vector<double>{30, 630, 1230}));
+  EXPECT_EQ(checkpoint_times(10, 35), (std::vector<double>{10, 20, 30}));
+}
+
 TEST(Observers, EventRunNotifiesAnAttachedObserver) {
   test::TempDir dir;
   Recorder rec;

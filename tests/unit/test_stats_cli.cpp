@@ -85,12 +85,14 @@ TEST(StatsCli, MergeRefusesDifferentBinWidths) {
         << "{\"events\": 1, \"blocks\": 10, \"total_load\": 1.5, \"bin_width\": " << w << "}\n";
     std::ofstream(dir / name / "histogram.csv")
         << "mu_low,mu_high,count,D,R\n0," << w << ",1,1,1\n";
+    std::ofstream(dir / name / "scene.ini")
+        << "[run]\nseed = " << (name[0] == 'a' ? 1 : 2) << "\n[stats]\nbin_width = " << w << "\n";
   }
   const Result r = run("merge " + (dir / "a").string() + " " + (dir / "b").string() + " --out " +
                            (dir / "m").string(),
                        dir);
   EXPECT_EQ(r.rc, 2);
-  EXPECT_NE(r.out.find("bin width"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("stats.bin_width = 0.1 (not 0.2)"), std::string::npos) << r.out;
 }
 
 TEST(StatsCli, FitAndMergeAreAppFunctionsTheCliOnlyCalls) {

@@ -93,5 +93,50 @@ TEST(Window, GivenMuMaxIsKept) {
   EXPECT_LT(f.b_mle, 1.0);  // the bump is inside the given window and pulls b down
 }
 
+// The shape of a Burridge-Knopoff D(mu) (issue 19, item 10): an atom of one-block events and
+// a few uneven few-block bins at the bottom, a power law with b = 0.9 over six units, a
+// flat dip, then a bump of large events. The automatic window starts above the uneven bins,
+// ends below the bump, keeps the power law's events and recovers b. Before the rule of
+// README "How b is fitted" the window narrowed to a few units inside the power law.
+class WindowShape : public ::testing::TestWithParam<std::uint64_t> {};
+
+TEST_P(WindowShape, WindowCoversThePowerLawBetweenTheBottomStructureAndTheBump) {
+  std::mt19937_64 rng(GetParam());
+  std::vector<double> mu;
+  for (int i = 0; i < 60000; ++i) mu.push_back(-2.9 + 0.05 * uniform(rng));  // the atom
+  for (int i = 0; i < 4000; ++i) mu.push_back(-1.6 + 0.2 * uniform(rng));    // 2-block bins
+  for (int i = 0; i < 1000; ++i) mu.push_back(-1.2 + 0.2 * uniform(rng));
+  for (int i = 0; i < 3000; ++i) mu.push_back(-0.8 + 0.2 * uniform(rng));
+  for (int i = 0; i < 20000; ++i) mu.push_back(truncated_exponential(rng, 0.9, 0.0, 6.0));
+  for (int i = 0; i < 40; ++i) mu.push_back(6.0 + 3.0 * uniform(rng));  // the dip
+  for (int i = 0; i < 500; ++i) mu.push_back(10.0 + 0.8 * (uniform(rng) + uniform(rng) - 1));
+  const GrFit f = fit_magnitudes(mu, 0.2, std::nullopt, std::nullopt);
+  ASSERT_TRUE(f.b_ok) << f.no_b_reason;
+  EXPECT_GE(f.mu_min, -0.6 - 1e-9);
+  EXPECT_LE(f.mu_min, 0.4 + 1e-9);
+  EXPECT_GE(f.mu_max, 5.0 - 1e-9);
+  EXPECT_LE(f.mu_max, 9.6 + 1e-9);
+  EXPECT_GE(f.n_in_window, 18000);
+  EXPECT_NEAR(f.b_mle, 0.9, 3 * f.b_mle_err);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, WindowShape, ::testing::Values(1u, 2u, 3u, 4u, 5u));
+
+TEST(Window, RisingDistributionGivesNoB) {
+  // The number of events grows with magnitude everywhere: no window, no b, and why.
+  std::mt19937_64 rng(9);
+  std::vector<double> mu;
+  for (int i = 0; i < 5000; ++i) mu.push_back(4.0 * std::sqrt(uniform(rng)));
+  const GrFit f = fit_magnitudes(mu, 0.2, std::nullopt, std::nullopt);
+  EXPECT_FALSE(f.b_ok);
+  EXPECT_FALSE(f.no_b_reason.empty());
+  EXPECT_TRUE(std::isnan(f.b_mle));
+  EXPECT_TRUE(std::isnan(f.b_aki));
+  // A given window on it: b_mle would be negative, so no b either.
+  const GrFit g = fit_magnitudes(mu, 0.2, 0.0, 4.0);
+  EXPECT_FALSE(g.b_ok);
+  EXPECT_NE(g.no_b_reason.find("do not decrease"), std::string::npos) << g.no_b_reason;
+}
+
 }  // namespace
 }  // namespace bkq

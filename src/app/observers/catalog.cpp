@@ -32,6 +32,11 @@ void CatalogWriter::on_event(const EventRecord& e) {
   file_->append(e);
 }
 
+// The rows are all in the file before the end-of-run fit starts.
+void CatalogWriter::on_phase_end(const Advance&) {
+  file_->flush();
+}
+
 // Synced first, so a checkpoint never counts rows that are not on disk.
 void CatalogWriter::on_checkpoint(Checkpoint& c) {
   c.progress.catalog_bytes = file_->sync();

@@ -26,6 +26,7 @@ class CatalogWriter : public RunObserver {
                 std::int64_t resumed_rows = -1);
   void on_start() override;
   void on_event(const EventRecord& e) override;
+  void on_phase_end(const Advance&) override;
   void on_checkpoint(Checkpoint& c) override;
   void on_end(const RunEnd&) override;
 

@@ -3,7 +3,10 @@
 
 #include <cmath>
 
+#include "app/observers/timeseries.hpp"
+#include "core/error.hpp"
 #include "engine/continuous.hpp"
+#include "io/checkpoint.hpp"
 #include "io/json.hpp"
 
 namespace bkq {
@@ -30,16 +33,55 @@ std::vector<SegmentSpan> segment_spans(const DriveSettings& drive, double durati
   return spans;
 }
 
-SegmentStats::SegmentStats(std::string path, const Settings& settings)
+SegmentStats::SegmentStats(std::string path, const Settings& settings, bool append)
     : path_(std::move(path)),
       dt_(settings.integrator.dt),
       blocks_(settings.output.segment_blocks),
-      spans_(segment_spans(settings.drive, settings.run.duration)) {}
+      spans_(segment_spans(settings.drive, settings.run.duration)),
+      append_(append) {}
+
+namespace {
+constexpr const char* kSegmentsFile = "segments.csv";
+constexpr const char* kSegmentsState = "segments";
+}  // namespace
+
+// The checkpoint holds the file's extent and the open segment: its index and the moments
+// of its input so far.
+void SegmentStats::on_checkpoint(Checkpoint& c) {
+  if (!csv_) return;
+  put_csv_extent(c, kSegmentsFile,
+                 {rows_before_ + static_cast<std::int64_t>(rows_.size()), csv_->sync()});
+  StateWriter w;
+  w.i64(static_cast<std::int64_t>(current_));
+  w.u64(moments_.size());
+  for (const BlockedMoments& m : moments_) w.f64s(m.state());
+  c.put(kSegmentsState, std::move(w.bytes()));
+}
+
+void SegmentStats::on_resume(const Checkpoint& c) {
+  if (spans_.empty()) return;
+  rows_before_ = find_csv_extent(c, kSegmentsFile).rows;
+  const std::string* bytes = c.find(kSegmentsState);
+  if (!bytes) throw Error("--resume: the checkpoint holds no segment statistics");
+  StateReader r(*bytes, kSegmentsState);
+  const std::int64_t k = r.i64();
+  if (k < 0 || k > static_cast<std::int64_t>(spans_.size()))
+    throw Error("--resume: the checkpoint's segment index is out of range");
+  open_segment(static_cast<std::size_t>(k));
+  const std::uint64_t n = r.u64();
+  if (n != moments_.size())
+    throw Error("--resume: the checkpoint's segment statistics do not fit this scene");
+  for (BlockedMoments& m : moments_)
+    if (!m.set_state(r.f64s()))
+      throw Error("--resume: the checkpoint's segment statistics do not fit this scene");
+  if (!r.done()) throw Error("--resume: the checkpoint's segment statistics are malformed");
+  resumed_ = true;
+}
 
 void SegmentStats::on_start() {
   if (spans_.empty()) return;
-  csv_ = std::make_unique<CsvStream>(path_, segments_header(), false, 1);
-  open_segment(0);
+  csv_ = std::make_unique<CsvStream>(path_, segments_header(), append_, 1);
+  if (!resumed_) open_segment(0);
 }
 
 void SegmentStats::open_segment(std::size_t k) {
@@ -87,12 +129,17 @@ void SegmentStats::add_to_summary(Json& summary) const {
     summary.set("segments", "none: a ramp has no speed segments");
     return;
   }
-  summary.set("segments", static_cast<std::int64_t>(rows_.size()));
+  summary.set("segments", rows_before_ + static_cast<std::int64_t>(rows_.size()));
   summary.set("segment_blocks", blocks_);
 }
 
-void attach_segment_stats(Observers& obs, const Settings& settings, const OutputFolder& out) {
-  obs.attach<SegmentStats>(out.path("segments.csv"), settings);
+bool writes_segments(const Settings& settings) {
+  return !segment_spans(settings.drive, settings.run.duration).empty();
+}
+
+void attach_segment_stats(Observers& obs, const Settings& settings, const OutputFolder& out,
+                          bool resumed) {
+  obs.attach<SegmentStats>(out.path(kSegmentsFile), settings, resumed);
 }
 
 }  // namespace bkq

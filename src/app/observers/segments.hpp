@@ -30,8 +30,11 @@ std::vector<SegmentSpan> segment_spans(const DriveSettings& drive, double durati
 
 class SegmentStats : public RunObserver {
  public:
-  // Writes to `path` (nothing for a ramp); `blocks` = M of eqs. 4.3-4.4.
-  SegmentStats(std::string path, const Settings& settings);
+  // Writes to `path` (nothing for a ramp), M of eqs. 4.3-4.4 from output.segment_blocks;
+  // `append`: continue the file of a resumed run (cut back to its checkpoint).
+  SegmentStats(std::string path, const Settings& settings, bool append = false);
+  void on_resume(const Checkpoint& c) override;
+  void on_checkpoint(Checkpoint& c) override;
   bool wants_steps() const override { return !spans_.empty(); }
   void on_start() override;
   void on_step(const Step& s) override;
@@ -52,11 +55,17 @@ class SegmentStats : public RunObserver {
   std::size_t current_ = 0;
   StepRange range_;
   std::vector<BlockedMoments> moments_;  // one per signal of kSegmentSignals
-  std::vector<SegmentRow> rows_;
+  std::vector<SegmentRow> rows_;         // this session's
+  std::int64_t rows_before_ = 0;         // written by earlier sessions
+  bool append_ = false;
+  bool resumed_ = false;
   std::unique_ptr<CsvStream> csv_;
 };
 
-// Attaches SegmentStats writing out/segments.csv.
-void attach_segment_stats(Observers& obs, const Settings& settings, const OutputFolder& out);
+// Does this run write segments.csv (not for a ramp)?
+bool writes_segments(const Settings& settings);
+// Attaches SegmentStats writing out/segments.csv (`resumed`: appending to it).
+void attach_segment_stats(Observers& obs, const Settings& settings, const OutputFolder& out,
+                          bool resumed = false);
 
 }  // namespace bkq

@@ -58,6 +58,10 @@ void SummaryOfEvents::fit() {
   opt.cancelled = stop_requested_;
   try {
     fit_ = fit_histogram(hist_, settings_.stats.mu_min, settings_.stats.mu_max, opt);
+    if (!fit_->b_ok) {  // no b rather than a meaningless one (README "How b is fitted")
+      fit_error_ = "no acceptable fit window: " + fit_->no_b_reason;
+      fit_.reset();
+    }
     fitted_ = true;
   } catch (const FitCancelled&) {
     // The run stops after this phase (a checkpoint, no summary); a resume fits again.
@@ -87,6 +91,7 @@ std::string SummaryOfEvents::add_fit(Json& summary) {
   if (hist_.events() < 2) return "b: not fitted (fewer than 2 events)";
   fit();
   if (!fit_) {
+    summary.set("b_mle", Json::null());
     summary.set("fit_error", fit_error_);
     return "b: not fitted (" + fit_error_ + ")";
   }
@@ -152,6 +157,7 @@ void ContinuousSummary::on_end(const RunEnd& end) {
   summary.set("wall_seconds", wall);
   summary.set("block_steps_per_second",
               wall > 0 ? static_cast<double>(end.steps) * end.blocks / wall : 0.0);
+  summary.set("resumes", end.resumes);
   const std::string fit_line = add_fit(summary);
   all_.add_to_summary(summary);
   write_file_atomic(out_.path("summary.json"), summary.str() + "\n");

@@ -1,6 +1,9 @@
 // The outputs of continuous runs sampled every output.every: timeseries.csv (columns in
 // io/timeseries.hpp), blocks.csv (block trajectories, when output.blocks is set) and the
-// mean and amplitude of the pad friction in summary.json (thesis eqs. 4.1-4.2).
+// mean and amplitude of the pad friction in summary.json (thesis eqs. 4.1-4.2). Each keeps
+// its state in a checkpoint under its own name: the two files how many rows and bytes of
+// them it covers (a resumed run cuts them back to that and appends), the statistics their
+// sums.
 #pragma once
 
 #include <cstdint>
@@ -13,30 +16,59 @@
 
 namespace bkq {
 
-class TimeSeriesWriter : public RunObserver {
+// How much of a streamed CSV file a checkpoint covers, kept under the file's name.
+struct CsvExtent {
+  std::int64_t rows = 0;
+  std::uint64_t bytes = 0;
+};
+void put_csv_extent(Checkpoint& c, const std::string& name, const CsvExtent& e);
+// Throws bkq::Error when the checkpoint holds none for `name`.
+CsvExtent find_csv_extent(const Checkpoint& c, const std::string& name);
+
+// A CSV file written one row per sample, checkpointed as a CsvExtent under its file name.
+class SampledCsv : public RunObserver {
  public:
-  explicit TimeSeriesWriter(std::string path) : path_(std::move(path)) {}
-  void on_start() override;
-  void on_sample(const Sample& s) override;
-  void on_end(const RunEnd&) override;
+  // `append`: continue the file of a resumed run (already cut back to its checkpoint).
+  SampledCsv(std::string path, bool append) : path_(std::move(path)), append_(append) {}
+  void on_resume(const Checkpoint& c) override;
+  void on_start() override { csv_ = std::make_unique<CsvStream>(path_, header(), append_); }
+  void on_checkpoint(Checkpoint& c) override;
+  void on_end(const RunEnd&) override { csv_->close(); }
+  // The file name the extent is kept under ("timeseries.csv").
+  std::string name() const;
+
+ protected:
+  virtual std::string header() const = 0;
+  void row(const std::string& line) {
+    csv_->row(line);
+    ++rows_;
+  }
 
  private:
   std::string path_;
+  bool append_;
+  std::int64_t rows_ = 0;  // over all sessions
   std::unique_ptr<CsvStream> csv_;
 };
 
-// Lab-frame displacement of every block at each sample.
-class BlockTrajectories : public RunObserver {
+class TimeSeriesWriter : public SampledCsv {
  public:
-  BlockTrajectories(std::string path, int blocks);
-  void on_start() override;
+  using SampledCsv::SampledCsv;
   void on_sample(const Sample& s) override;
-  void on_end(const RunEnd&) override;
 
  private:
-  std::string path_;
+  std::string header() const override;
+};
+
+// Lab-frame displacement of every block at each sample.
+class BlockTrajectories : public SampledCsv {
+ public:
+  BlockTrajectories(std::string path, bool append, int blocks);
+  void on_sample(const Sample& s) override;
+
+ private:
+  std::string header() const override;
   std::vector<double> u_;
-  std::unique_ptr<CsvStream> csv_;
 };
 
 // Mean and amplitude sqrt(2) * RMS deviation of the sampled pad friction.
@@ -48,6 +80,8 @@ class PadFrictionStats : public RunObserver {
     sum_sq_ += f * f;
     ++samples_;
   }
+  void on_resume(const Checkpoint& c) override;
+  void on_checkpoint(Checkpoint& c) override;
   void add_to_summary(Json& summary) const override;
 
  private:

@@ -1,0 +1,128 @@
+// The accuracy indicators; see accuracy_check.hpp.
+#include "app/observers/accuracy_check.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/checkpoint.hpp"
+#include "io/json.hpp"
+
+namespace bkq {
+
+namespace {
+constexpr const char* kStateName = "accuracy";
+
+// A value with four significant digits, or all of them where four would print it equal to
+// the threshold it is compared with.
+std::string shown(double value, double limit) {
+  char a[32], b[32];
+  std::snprintf(a, sizeof a, "%.4g", value);
+  std::snprintf(b, sizeof b, "%.4g", limit);
+  return std::string(a) == b ? format_real(value) : a;
+}
+}  // namespace
+
+AccuracyCheck::AccuracyCheck(const Settings& settings, const Stepper& stepper)
+    : events_mode_(settings.drive.mode == DriveMode::Events),
+      error_mode_(settings.run.accuracy_error),
+      fixed_step_(stepper.stick_rule() != StickRule::Located),
+      dt_(settings.integrator.dt),
+      omega_dt_(settings.model.max_angular_frequency() * settings.integrator.dt),
+      dt_over_limit_(settings.integrator.dt / stepper.time_step_limit(settings.model).dt),
+      max_steps_(settings.run.max_steps_per_event) {}
+
+void AccuracyCheck::on_event(const EventRecord& e) {
+  if (!events_mode_) return;  // slip episodes carry no energy balance
+  const double r = std::abs(e.energy_residual);
+  if (!(r <= residual_max_) && residual_max_ == residual_max_) residual_max_ = r;  // NaN stays
+  residual_sum_ += r;
+  ++residual_n_;
+}
+
+void AccuracyCheck::on_resume(const Checkpoint& c) {
+  const std::string* bytes = c.find(kStateName);
+  if (!bytes) return;  // a checkpoint from before the indicators: they restart
+  StateReader r(*bytes, kStateName);
+  residual_max_ = r.f64();
+  residual_sum_ = r.f64();
+  residual_n_ = r.i64();
+  steps_max_ = r.i64();
+}
+
+void AccuracyCheck::on_checkpoint(Checkpoint& c) {
+  StateWriter w;
+  w.f64(residual_max_);
+  w.f64(residual_sum_);
+  w.i64(residual_n_);
+  w.i64(steps_max_);
+  c.put(kStateName, std::move(w.bytes()));
+}
+
+std::vector<AccuracyCheck::Finding> AccuracyCheck::findings() const {
+  std::vector<Finding> f;
+  char text[400];
+  if (events_mode_ && !(residual_max_ <= kEnergyResidualLimit)) {
+    std::snprintf(text, sizeof text,
+                  "energy_residual_max = %s is above %s (the largest relative energy-balance "
+                  "error of an event): reduce integrator.dt (or use integrator.scheme = "
+                  "adaptive)",
+                  shown(residual_max_, kEnergyResidualLimit).c_str(),
+                  format_real(kEnergyResidualLimit).c_str());
+    f.push_back({"energy_residual_max", text});
+  }
+  if (fixed_step_ && omega_dt_ > kOmegaDtLimit) {
+    std::snprintf(text, sizeof text,
+                  "omega_dt = %s is above %s (the fastest mode's angular frequency times "
+                  "integrator.dt; fewer than 2 pi steps per period): reduce integrator.dt to "
+                  "at most %s",
+                  shown(omega_dt_, kOmegaDtLimit).c_str(), format_real(kOmegaDtLimit).c_str(),
+                  shown(dt_ * kOmegaDtLimit / omega_dt_, 0).c_str());
+    f.push_back({"omega_dt", text});
+  }
+  const double share = static_cast<double>(steps_max_) / static_cast<double>(max_steps_);
+  if (events_mode_ && share > kEventStepsShareLimit) {
+    std::snprintf(text, sizeof text,
+                  "event_steps_share = %s is above %s (the longest event's relaxation steps over "
+                  "run.max_steps_per_event = %lld): check integrator.dt and the scene, or raise "
+                  "run.max_steps_per_event",
+                  shown(share, kEventStepsShareLimit).c_str(),
+                  format_real(kEventStepsShareLimit).c_str(), static_cast<long long>(max_steps_));
+    f.push_back({"event_steps_share", text});
+  }
+  return f;
+}
+
+void AccuracyCheck::add_to_summary(Json& summary) const {
+  Json a = Json::object();
+  a.set("omega_dt", omega_dt_);
+  a.set("omega_dt_limit", fixed_step_ ? kOmegaDtLimit : HUGE_VAL);
+  a.set("dt_over_stability_limit", dt_over_limit_);
+  if (events_mode_) {
+    a.set("energy_residual_max", residual_max_);
+    a.set("energy_residual_mean", residual_n_ > 0 ? residual_sum_ / residual_n_ : 0.0);
+    a.set("energy_residual_limit", kEnergyResidualLimit);
+    a.set("event_steps_max", steps_max_);
+    a.set("event_steps_limit", kEventStepsShareLimit * static_cast<double>(max_steps_));
+  }
+  std::vector<std::string> names;
+  for (const Finding& f : findings()) names.push_back(f.indicator);
+  a.set("warnings", Json::strings(names));
+  summary.set("accuracy", std::move(a));
+}
+
+void AccuracyCheck::verdict() const {
+  const std::vector<Finding> found = findings();
+  if (found.empty()) return;
+  if (error_mode_) {
+    std::string msg = "accuracy: ";
+    for (std::size_t k = 0; k < found.size(); ++k) msg += (k ? "; " : "") + found[k].text;
+    throw Error(msg + " (run.accuracy = error; the outputs are kept)");
+  }
+  for (const Finding& f : found)
+    std::fprintf(stderr, "bkquake: warning: accuracy: %s (run.accuracy = error makes this fatal)\n",
+                 f.text.c_str());
+}
+
+}  // namespace bkq
