@@ -1,11 +1,13 @@
 """Small loader for bkquake run folders.
 
-A run folder holds scene.ini (the effective scene), catalog.csv (one row per event),
+A run folder holds scene.ini (the effective scene), catalog.csv or catalog.h5 (one row per
+event; output.catalog = csv | hdf5, none writes neither),
 histogram.csv (mu_low,mu_high,count,D,R,D_rate,R_rate) and summary.json. These helpers
 read them into plain Python/numpy structures; column names come from the header lines,
 so the loaders follow the schema rather than a fixed column order.
 
-Needs numpy: use Debian's /usr/bin/python3 (the python3 first on PATH may lack it).
+Needs numpy, and h5py for catalog.h5: use Debian's /usr/bin/python3 with python3-numpy and
+python3-h5py (the python3 first on PATH may lack them).
 """
 
 import configparser
@@ -38,9 +40,32 @@ def load_histogram(run_dir):
     return read_csv_columns(_path(run_dir, "histogram.csv"))
 
 
+def read_h5_columns(path):
+    """catalog.h5's table as a dict name -> numpy array (float64), in the table's column
+    order: the same arrays read_csv_columns gives for the same run's catalog.csv."""
+    import h5py  # only catalog.h5 needs it
+
+    try:
+        f = h5py.File(path, "r")
+    except OSError:
+        # A run killed while writing leaves the file marked as being written; it is
+        # consistent and opens as HDF5's single-writer mode's reader.
+        f = h5py.File(path, "r", swmr=True)
+    with f:
+        table = f["catalog"][:]
+    return {name: table[name].astype(np.float64) for name in table.dtype.names}
+
+
 def load_catalog(run_dir):
-    """catalog.csv as a dict of arrays, one entry per column of the header."""
-    return read_csv_columns(_path(run_dir, "catalog.csv"))
+    """The run's catalogue (catalog.csv, else catalog.h5) as a dict of float64 arrays, one
+    entry per column; the same arrays for both formats."""
+    csv = _path(run_dir, "catalog.csv")
+    if os.path.exists(csv):
+        return read_csv_columns(csv)
+    h5 = _path(run_dir, "catalog.h5")
+    if os.path.exists(h5):
+        return read_h5_columns(h5)
+    raise FileNotFoundError(f"{run_dir}: no catalog.csv or catalog.h5 (output.catalog = none?)")
 
 
 def load_summary(run_dir):

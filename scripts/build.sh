@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake libboost-program-options-dev libboost-dev libgsl-dev
           googletest libgtest-dev libbenchmark-dev clang-format python3-numpy python3-matplotlib
-          libboost-mpi-dev openmpi-bin libopenmpi-dev)
+          libboost-mpi-dev openmpi-bin libopenmpi-dev libhdf5-dev python3-h5py)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

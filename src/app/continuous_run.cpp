@@ -200,7 +200,9 @@ class ContinuousRun {
       observers_.attach<EnergyDiagnostics>(forces, out_.path("energy_samples.csv"),
                                            out_.path("energy.csv"), settings_.output.energy_window,
                                            settings_.output.energy_tol);
-    observers_.attach<CatalogWriter>(out_.path("catalog.csv"), resumed);
+    if (const char* catalog = catalog_file_name(settings_.output.catalog))
+      observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
+                                       resumed ? prog_.events_done : -1);
     if (settings_.output.blocks)
       observers_.attach<BlockTrajectories>(out_.path("blocks.csv"), resumed,
                                            settings_.output.block_first,
@@ -323,7 +325,8 @@ int resume_continuous(const RunRequest& req, const Settings& settings, const Out
         {out.path("segments.csv"), segments_header(), find_csv_extent(saved, "segments.csv")});
   for (const File& f : files) check_csv_prefix(f.path, f.header, f.extent.rows, f.extent.bytes);
   for (const File& f : files) cut_back(f.path, f.extent.bytes);
-  cut_back(out.path("catalog.csv"), saved.progress.catalog_bytes);
+  if (settings.output.catalog == CatalogFormat::Csv)  // catalog.h5: cut back when opened
+    cut_back(out.path("catalog.csv"), saved.progress.catalog_bytes);
   std::printf("bkquake: resuming '%s' from %s at t = %s of %s (%lld slip episodes so far)\n",
               out.dir().c_str(), from.c_str(), format_real(saved.engine.state.t).c_str(),
               format_real(settings.run.duration).c_str(),

@@ -99,7 +99,9 @@ class EventRun {
   // summary that fits it, the summary (which marks the run finished) after every file.
   void attach_observers(bool resumed) {
     const RunSettings& r = settings_.run;
-    observers_.attach<CatalogWriter>(out_.path("catalog.csv"), resumed);
+    if (const char* catalog = catalog_file_name(settings_.output.catalog))
+      observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
+                                       resumed ? prog_.events_done : -1);
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
     accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);

@@ -16,6 +16,8 @@
 #include "core/error.hpp"
 #include "engine/event_engine.hpp"
 #include "io/catalog.hpp"
+#include "io/catalog_file.hpp"
+#include "io/catalog_h5.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output.hpp"
 #include "io/settings.hpp"
@@ -36,6 +38,10 @@ int run_scene(const RunRequest& req) {
   check_time_step(*stepper, p, settings.integrator.dt);
   const bool events = settings.drive.mode == DriveMode::Events;
   if (events) EventEngine::check_model(p);
+  if (settings.output.catalog == CatalogFormat::Hdf5 && !hdf5_available())
+    throw Error(
+        "output.catalog = hdf5: this bkquake was built without HDF5 (libhdf5-dev); allowed: "
+        "csv, none");
 
   const OutputFolder out(req.out_dir, req.force, req.resume);
   const CheckpointFiles checkpoints(out.dir());
@@ -49,9 +55,14 @@ int run_scene(const RunRequest& req) {
     std::string from;
     const Checkpoint saved = checkpoints.read(&from);
     check_checkpoint_matches(saved, scene, from);
-    const std::string catalog = out.path("catalog.csv");
-    check_csv_prefix(catalog, catalog_header(), saved.progress.events_done,
-                     saved.progress.catalog_bytes, saved_catalog_checksum(saved));
+    const CatalogFormat format = settings.output.catalog;
+    const std::string catalog =
+        format == CatalogFormat::None ? "" : out.path(catalog_file_name(format));
+    if (format == CatalogFormat::Csv)
+      check_csv_prefix(catalog, catalog_header(), saved.progress.events_done,
+                       saved.progress.catalog_bytes, saved_catalog_checksum(saved));
+    else if (format == CatalogFormat::Hdf5)  // cut back when the catalog observer opens it
+      check_catalog_h5(catalog, saved.progress.events_done);
     if (saved.git_revision != kGitRevision)
       std::fprintf(stderr,
                    "bkquake: warning: the checkpoint was written by git revision %s, this is %s; "
@@ -61,7 +72,8 @@ int run_scene(const RunRequest& req) {
     if (!events) return resume_continuous(req, settings, out, forces, *stepper, saved, from);
     // Rows written after the checkpoint are computed again, so they go.
     std::error_code ec;
-    std::filesystem::resize_file(catalog, saved.progress.catalog_bytes, ec);
+    if (format == CatalogFormat::Csv)
+      std::filesystem::resize_file(catalog, saved.progress.catalog_bytes, ec);
     if (ec) throw Error("cannot truncate '" + catalog + "' to its checkpoint: " + ec.message());
     std::printf(
         "bkquake: resuming '%s' from %s: %lld of %lld events done (%lld of %lld transient)\n",
@@ -80,6 +92,9 @@ int run_scene(const RunRequest& req) {
   if (req.force) {
     std::filesystem::remove(out.path("summary.json"));
     checkpoints.remove();
+    // A catalogue of another format would pass for this run's.
+    for (const CatalogFormat f : {CatalogFormat::Csv, CatalogFormat::Hdf5})
+      if (f != settings.output.catalog) std::filesystem::remove(out.path(catalog_file_name(f)));
   }
   write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
   if (!events) return run_continuous(req, settings, out, forces, *stepper);

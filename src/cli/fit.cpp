@@ -20,7 +20,7 @@ namespace po = boost::program_options;
 
 int cmd_fit(const std::vector<std::string>& args) {
   po::options_description opts(
-      "bkquake fit CATALOG.csv [options]\n"
+      "bkquake fit CATALOG.csv|CATALOG.h5 [options]\n"
       "Fits R(mu) = A exp(-b mu), mu = ln(moment), to an event catalogue");
   // clang-format off
   opts.add_options()
@@ -43,7 +43,8 @@ int cmd_fit(const std::vector<std::string>& args) {
     std::cout << opts << "\n";
     return 0;
   }
-  if (!vm.count("catalog")) throw Error("fit: missing CATALOG.csv (see bkquake fit --help)");
+  if (!vm.count("catalog"))
+    throw Error("fit: missing CATALOG.csv or CATALOG.h5 (see bkquake fit --help)");
   // Each option is checked against the scene key it stands for (one declaration each).
   const auto real_option = [&](const char* name, const char* key) -> std::optional<double> {
     if (!vm.count(name)) return std::nullopt;

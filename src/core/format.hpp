@@ -10,12 +10,21 @@
 
 namespace bkq {
 
+// The longest text format_real_to writes ("-2.2250738585072014e-308").
+inline constexpr int kMaxRealChars = 24;
+
+// format_real's text written at `out` (room for kMaxRealChars); returns the end.
+inline char* format_real_to(char* out, double x) {
+  if (std::isnan(x)) return std::char_traits<char>::copy(out, "nan", 3) + 3;
+  if (std::isinf(x))
+    return x > 0 ? std::char_traits<char>::copy(out, "inf", 3) + 3
+                 : std::char_traits<char>::copy(out, "-inf", 4) + 4;
+  return std::to_chars(out, out + kMaxRealChars, x).ptr;
+}
+
 inline std::string format_real(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, res.ptr);
+  char buf[kMaxRealChars];
+  return std::string(buf, format_real_to(buf, x));
 }
 
 // "0.90012 ± 0.00040": a value and its standard error with enough decimals that the error

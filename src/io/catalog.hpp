@@ -3,6 +3,8 @@
 // rely on. Rows are streamed as events happen.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,7 +34,23 @@ inline constexpr const char* energy_residual = "energy_residual";
 const Schema& catalog_schema();
 // "event,load,trigger,..." (no newline).
 std::string catalog_header();
+// The columns' count, and one row's values in schema order: integer columns in `i`, the
+// others in `x`. Every catalogue format writes these.
+inline constexpr std::size_t kCatalogColumns = 12;
+struct CatalogCell {
+  bool integer;
+  std::int64_t i;
+  double x;
+};
+using CatalogCells = std::array<CatalogCell, kCatalogColumns>;
+CatalogCells catalog_cells(const EventRecord& e);
+
 // One CSV row (no newline): integers as integers, reals shortest round-trip.
 std::string catalog_row(const EventRecord& e);
+// The longest row catalog_row_to writes.
+inline constexpr std::size_t kMaxCatalogRow = 512;
+// catalog_row's text written at `out` (room for kMaxCatalogRow); returns the end. The
+// streamed catalog formats straight into its write buffer with this.
+char* catalog_row_to(char* out, const EventRecord& e);
 
 }  // namespace bkq

@@ -4,14 +4,37 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "io/catalog.hpp"
+#include "io/catalog_h5.hpp"
 #include "io/csv_util.hpp"
 
 namespace bkq {
 
 namespace col = catalog_col;
 
-CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.string()), in_(path) {
+namespace {
+
+// The columns an HDF5 catalogue is read with, in the order of h5 below.
+const std::vector<std::string> kH5Columns = {col::event,       col::load,       col::blocks,
+                                             col::first_block, col::last_block, col::moment,
+                                             col::magnitude};
+
+}  // namespace
+
+CatalogReader::~CatalogReader() = default;
+
+CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.string()) {
+  if (is_hdf5_file(file_)) {
+    h5_ = std::make_unique<CatalogH5Reader>(file_, kH5Columns);
+    int* c[] = {&c_event_, &c_load_, &c_blocks_, &c_first_, &c_last_, &c_moment_, &c_magnitude_};
+    for (std::size_t k = 0; k < kH5Columns.size(); ++k)
+      *c[k] = h5_->has(k) ? static_cast<int>(k) : -1;
+    if (c_moment_ < 0 && c_magnitude_ < 0)
+      throw Error(file_ + ": missing column '" + col::moment + "'");
+    return;
+  }
+  in_.open(path);
   if (!in_) throw Error(file_ + ": cannot open");
   std::string header_line;
   if (!std::getline(in_, header_line) ||
@@ -31,7 +54,43 @@ CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.str
     throw Error(file_ + ": missing column '" + col::moment + "' (header: " + header_line + ")");
 }
 
+bool CatalogReader::next_h5(CatalogEvent& e) {
+  if (block_row_ == block_rows_) {
+    block_rows_ = static_cast<std::size_t>(h5_->next_block(block_));
+    block_row_ = 0;
+    if (block_rows_ == 0) return false;
+  }
+  const double* v = block_.data() + block_row_++ * kH5Columns.size();
+  const std::string where = file_ + " row " + std::to_string(events_ + 1);
+  auto as_int = [&](int c, const char* name) -> int {
+    if (!(v[c] >= 0 && v[c] <= 1e9))
+      throw Error(where + ": " + name + " must be >= 0, got " + format_real(v[c]));
+    return static_cast<int>(v[c]);
+  };
+  e = CatalogEvent{};
+  e.event = c_event_ >= 0 ? static_cast<std::int64_t>(v[c_event_]) : events_ + 1;
+  if (c_load_ >= 0) e.load = v[c_load_];
+  if (c_blocks_ >= 0) e.blocks = as_int(c_blocks_, col::blocks);
+  if (c_first_ >= 0) e.first_block = as_int(c_first_, col::first_block);
+  if (c_last_ >= 0) e.last_block = as_int(c_last_, col::last_block);
+  if (c_moment_ >= 0) {
+    e.moment = v[c_moment_];
+    if (!(e.moment > 0) || !std::isfinite(e.moment))
+      throw Error(where + ": " + col::moment + " must be > 0, got " + format_real(e.moment));
+    e.magnitude = std::log(e.moment);
+  } else {
+    e.magnitude = v[c_magnitude_];
+    if (!std::isfinite(e.magnitude))
+      throw Error(where + ": " + col::magnitude + " must be finite, got " +
+                  format_real(e.magnitude));
+    e.moment = std::exp(e.magnitude);
+  }
+  ++events_;
+  return true;
+}
+
 bool CatalogReader::next(CatalogEvent& e) {
+  if (h5_) return next_h5(e);
   while (std::getline(in_, line_)) {
     ++lineno_;
     if (line_.find_first_not_of(" \t\r") == std::string::npos) continue;

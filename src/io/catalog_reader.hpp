@@ -1,4 +1,5 @@
-// Streaming reader of an event catalogue (catalog.csv, schema in io/catalog.hpp) for the
+// Streaming reader of an event catalogue (catalog.csv or catalog.h5, told apart by the
+// file's first bytes; schema in io/catalog.hpp) for the
 // statistics: rows are read one at a time, columns are found by the names catalog_schema()
 // declares (no column order is assumed), and every problem is a bkq::Error that names the
 // file and the line, e.g. "catalog.csv line 17: moment must be > 0, got -0.3".
@@ -10,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,9 +28,12 @@ struct CatalogEvent {
   double magnitude = 0;
 };
 
+class CatalogH5Reader;
+
 class CatalogReader {
  public:
   explicit CatalogReader(const std::filesystem::path& path);
+  ~CatalogReader();
   // Reads the next event; false at the end of the file. Blank lines are skipped.
   bool next(CatalogEvent& e);
   bool has_extent() const { return c_blocks_ >= 0 && c_first_ >= 0 && c_last_ >= 0; }
@@ -45,6 +50,11 @@ class CatalogReader {
   std::size_t n_fields_ = 0;
   int c_event_ = -1, c_load_ = -1, c_blocks_ = -1, c_first_ = -1, c_last_ = -1;
   int c_moment_ = -1, c_magnitude_ = -1;
+  // catalog.h5: the columns in the order of the c_ indices above, read a block at a time.
+  bool next_h5(CatalogEvent& e);
+  std::unique_ptr<CatalogH5Reader> h5_;
+  std::vector<double> block_;
+  std::size_t block_row_ = 0, block_rows_ = 0;
 };
 
 // bkq::Error "<file>: need at least 2 events to fit, found <n>" when n < 2.

@@ -5,7 +5,6 @@
 // so an unattended run loses little when killed) and the provenance lines of every output.
 #pragma once
 
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -61,10 +60,14 @@ std::vector<std::string> provenance_lines(const Scene& scene);
 std::string utc_now_iso();
 
 // A CSV file written row by row. The header is the first line (no comment lines: readers
-// rely on it). Rows are buffered and flushed every `flush_rows` rows, at least once a
-// second, and on close. Every write failure throws bkq::Error naming the file.
+// rely on it). Rows are collected in a buffer of the stream's own and written with one
+// write per buffer: every `flush_rows` rows (kWhenFull: when the buffer is full), at least
+// once a second, and on close. Every write failure throws bkq::Error naming the file.
 class CsvStream {
  public:
+  static constexpr std::size_t kWhenFull = static_cast<std::size_t>(-1);
+  static constexpr std::size_t kBufferBytes = std::size_t{1} << 20;
+
   // Truncates and writes the header; with `append` keeps existing rows (resume) and writes
   // the header only when the file is new or empty, or throws if its header differs.
   CsvStream(const std::string& path, const std::string& header, bool append = false,
@@ -75,6 +78,10 @@ class CsvStream {
 
   // Appends one line (no newline in `line`).
   void row(const std::string& line);
+  // A row formatted in place: begin_row returns room for `max_bytes` characters in the
+  // buffer, end_row takes the end of what was written there (no newline).
+  char* begin_row(std::size_t max_bytes);
+  void end_row(char* end);
   void flush();
   // Flushes and syncs to disk; returns the file's size, so a checkpoint can record how much
   // of the file belongs to it. Throws on failure.
@@ -93,7 +100,9 @@ class CsvStream {
   std::size_t flush_rows_;
   std::size_t rows_ = 0;
   std::size_t unflushed_ = 0;
-  std::chrono::steady_clock::time_point last_flush_;
+  std::vector<char> buf_;
+  std::size_t used_ = 0;
+  std::int64_t last_flush_ns_ = 0;
 };
 
 }  // namespace bkq

@@ -62,10 +62,14 @@ struct IntegratorSettings {
 };
 
 // output.*: continuous-mode outputs.
+// output.catalog: the event catalogue's format.
+enum class CatalogFormat { Csv, Hdf5, None };
+
 struct OutputSettings {
   double every = 0;                      // time between timeseries rows
   bool blocks = false;                   // also write blocks.csv
   int block_first = 0, block_count = 0;  // blocks.csv: these blocks (count resolved, > 0)
+  CatalogFormat catalog = CatalogFormat::Csv;
   int segment_blocks = 4;  // M of the segment statistics' block errors (thesis eq. 4.3)
   bool status = false;     // node-status columns in timeseries.csv
   bool energy = false;     // energy_samples.csv and energy.csv

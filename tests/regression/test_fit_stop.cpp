@@ -38,8 +38,8 @@ TEST(FitStop, SigtermDuringTheFitStopsWithACheckpointAndResumeFinishes) {
                                          "--out",
                                          out,
                                          "--quiet"};
-  // The catalog is flushed every 1000 rows, so 60000 lines are there only once every event
-  // is (the header and provenance lines are fewer than 1000).
+  // The catalog is flushed at the end of the events, before the fit, so 60000 lines are
+  // there only once every event is.
   std::uintmax_t seen = 0;
   bool complete = false;
   const auto all_events_written = [&] {

@@ -227,6 +227,34 @@ TEST(CsvStream, FlushesEarlyEnoughToReadWhileRunning) {
   EXPECT_EQ(test::read_file(p), "t\n1\n2\n");
 }
 
+TEST(CsvStream, RowsFormattedInPlaceAcrossBuffersKeepTheirOrder) {
+  test::TempDir tmp;
+  const std::string p = tmp.file("big.csv");
+  CsvStream csv(p, "i,x", false, CsvStream::kWhenFull);
+  std::string want = "i,x\n";
+  for (int i = 0; i < 60000; ++i) {
+    const std::string line =
+        std::to_string(i) + "," + std::string(40, static_cast<char>('a' + i % 26));
+    want += line + "\n";
+    if (i % 2) {
+      csv.row(line);
+    } else {
+      char* out = csv.begin_row(line.size());
+      csv.end_row(std::copy(line.begin(), line.end(), out));
+    }
+  }
+  ASSERT_GT(want.size(), 2 * CsvStream::kBufferBytes);
+  // Written in whole buffers: what is on disk so far is a prefix ending with a whole row.
+  const std::string part = test::read_file(p);
+  EXPECT_GT(part.size(), CsvStream::kBufferBytes / 2);
+  EXPECT_LT(part.size(), want.size());
+  EXPECT_EQ(part, want.substr(0, part.size()));
+  EXPECT_EQ(part.back(), '\n');
+  EXPECT_EQ(csv.sync(), want.size());
+  csv.close();
+  EXPECT_EQ(test::read_file(p), want);
+}
+
 TEST(CsvStream, WriteFailureNamesTheFile) {
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
   try {

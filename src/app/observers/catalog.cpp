@@ -1,13 +1,28 @@
 // The catalog writer; see catalog.hpp.
 #include "app/observers/catalog.hpp"
 
-#include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
+#include "io/output.hpp"
+#include "io/scene.hpp"
 
 namespace bkq {
 
-CatalogWriter::CatalogWriter(std::string path, bool append)
-    : path_(std::move(path)), append_(append) {}
+namespace {
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& line : lines) s += line + "\n";
+  return s;
+}
+
+}  // namespace
+
+CatalogWriter::CatalogWriter(CatalogFormat format, std::string path, const Scene& scene,
+                             std::int64_t resumed_rows)
+    : format_(format), path_(std::move(path)), resumed_rows_(resumed_rows) {
+  if (format_ == CatalogFormat::Hdf5)
+    attributes_ = {{"provenance", joined(provenance_lines(scene))}, {"scene", scene.to_ini()}};
+}
 
 namespace {
 constexpr const char* kChecksumState = "catalog.checksum";
@@ -15,37 +30,42 @@ constexpr const char* kChecksumState = "catalog.checksum";
 
 std::optional<std::uint64_t> saved_catalog_checksum(const Checkpoint& c) {
   const std::string* bytes = c.find(kChecksumState);
-  if (!bytes) return std::nullopt;  // a checkpoint written before checksums
+  if (!bytes) return std::nullopt;  // a checkpoint written before checksums, or catalog.h5
   StateReader in(*bytes, kChecksumState);
   return in.u64();
 }
 
 // Resumed: the file holds exactly the checkpoint's bytes (run_scene checked them).
 void CatalogWriter::on_resume(const Checkpoint& c) {
-  if (const auto sum = saved_catalog_checksum(c)) checksum_ = *sum;
+  saved_checksum_ = saved_catalog_checksum(c);
 }
 
 void CatalogWriter::on_start() {
-  if (!append_) checksum_ = fnv1a64(catalog_header() + "\n");
-  csv_ = std::make_unique<CsvStream>(path_, catalog_header(), append_);
+  file_ = open_catalog_file(format_, path_, attributes_, resumed_rows_);
+  if (saved_checksum_) file_->set_checksum(*saved_checksum_);
 }
 
 void CatalogWriter::on_event(const EventRecord& e) {
-  const std::string row = catalog_row(e);
-  csv_->row(row);
-  checksum_ = fnv1a64("\n", fnv1a64(row, checksum_));
+  file_->append(e);
+}
+
+// The rows are all in the file before the end-of-run fit starts.
+void CatalogWriter::on_phase_end(const Advance&) {
+  file_->flush();
 }
 
 // Synced first, so a checkpoint never counts rows that are not on disk.
 void CatalogWriter::on_checkpoint(Checkpoint& c) {
-  c.progress.catalog_bytes = csv_->sync();
-  StateWriter out;
-  out.u64(checksum_);
-  c.put(kChecksumState, out.bytes());
+  c.progress.catalog_bytes = file_->sync();
+  if (const auto sum = file_->checksum()) {
+    StateWriter out;
+    out.u64(*sum);
+    c.put(kChecksumState, out.bytes());
+  }
 }
 
 void CatalogWriter::on_end(const RunEnd&) {
-  csv_->close();
+  file_->close();
 }
 
 }  // namespace bkq

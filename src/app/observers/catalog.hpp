@@ -1,34 +1,45 @@
-// catalog.csv as an observer: one row per recorded event (event runs) or slip episode
-// (continuous runs), streamed; the columns are io/catalog.hpp's schema. A checkpoint
-// records how many bytes of the file belong to it, so a resumed run appends after them, and
-// a checksum of those bytes, so a resume finds a row edited in between.
+// The event catalogue as an observer: one row per recorded event (event runs) or slip
+// episode (continuous runs), streamed to the file of the scene's output.catalog
+// (io/catalog_file.hpp: catalog.csv or catalog.h5; with none no observer is attached). A
+// checkpoint syncs the file first and records how much of it belongs to it (the bytes of
+// catalog.csv; catalog.h5's rows are the events done), so a resumed run continues after it,
+// and for catalog.csv a checksum of those bytes, so a resume finds a row edited in between.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/observers/observer.hpp"
-#include "io/output.hpp"
+#include "io/catalog_file.hpp"
 
 namespace bkq {
 
+class Scene;
+
 class CatalogWriter : public RunObserver {
  public:
-  // `append`: continue the file of a resumed run (already cut back to its checkpoint).
-  CatalogWriter(std::string path, bool append);
+  // `resumed_rows` >= 0: continue the file of a resumed run after that many rows (a csv
+  // file is already cut back to its checkpoint). `scene`: for catalog.h5's attributes.
+  CatalogWriter(CatalogFormat format, std::string path, const Scene& scene,
+                std::int64_t resumed_rows = -1);
   void on_resume(const Checkpoint& c) override;
   void on_start() override;
   void on_event(const EventRecord& e) override;
+  void on_phase_end(const Advance&) override;
   void on_checkpoint(Checkpoint& c) override;
   void on_end(const RunEnd&) override;
 
  private:
+  CatalogFormat format_;
   std::string path_;
-  bool append_;
-  std::unique_ptr<CsvStream> csv_;
-  std::uint64_t checksum_ = 0;  // fnv1a64 of every byte written to the file so far
+  std::vector<std::pair<std::string, std::string>> attributes_;
+  std::int64_t resumed_rows_;
+  std::unique_ptr<CatalogFile> file_;
+  std::optional<std::uint64_t> saved_checksum_;  // of the rows a resumed run continues
 };
 
 // The checksum of catalog.csv's first catalog_bytes bytes saved in `c`, if it has one.

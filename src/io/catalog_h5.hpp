@@ -1,0 +1,78 @@
+// The event catalogue as HDF5 (output.catalog = hdf5): catalog.h5 holds one table, the
+// dataset "catalog", whose compound rows have the columns of catalog_schema() in order
+// (integer columns as 64-bit integers, the others as doubles), chunked and compressed
+// (shuffle + deflate). The provenance lines and the effective scene are attributes of the
+// dataset ("provenance", "scene"). Readable by any HDF5 reader, e.g. Debian's python3-h5py:
+// h5py.File("catalog.h5")["catalog"][:] is a structured array.
+//
+// Written in HDF5's single-writer mode (SWMR, file format 1.10): the file on disk is
+// consistent at every moment, so a run killed with SIGKILL leaves a file that a resume can
+// open; the resume cuts the table back to the rows of its checkpoint. Every HDF5 call is
+// checked and HDF5's own error printing is off: a damaged or foreign file is a bkq::Error
+// of one line naming it. Without HDF5 at build time every function here throws that
+// output.catalog = hdf5 is not available.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/event_record.hpp"
+
+namespace bkq {
+
+// Whether this build has HDF5.
+bool hdf5_available();
+
+// True when the file at `path` begins with the HDF5 signature.
+bool is_hdf5_file(const std::string& path);
+
+class CatalogH5Writer {
+ public:
+  // Creates catalog.h5 at `path` with `attributes` (name, text) on the table, or, with
+  // `append_after` >= 0, opens the existing file of a resumed run, checks its table and
+  // cuts it back to its first `append_after` rows.
+  CatalogH5Writer(const std::string& path,
+                  const std::vector<std::pair<std::string, std::string>>& attributes,
+                  std::int64_t append_after = -1);
+  ~CatalogH5Writer();
+  CatalogH5Writer(const CatalogH5Writer&) = delete;
+  CatalogH5Writer& operator=(const CatalogH5Writer&) = delete;
+
+  void append(const EventRecord& e);
+  // Writes the buffered rows and flushes the file to disk; returns the rows in the table.
+  std::int64_t sync();
+  // sync(), then closes; idempotent.
+  void close();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Checks that `path` is a catalogue table with at least `rows` rows (a resume's check,
+// before anything is changed); throws bkq::Error naming the file otherwise.
+void check_catalog_h5(const std::string& path, std::int64_t rows);
+
+// Reads the columns `names` (each must be a column of the catalogue schema) of a catalog.h5
+// in blocks. A column the file lacks is reported by has(); reading it gives nothing.
+class CatalogH5Reader {
+ public:
+  CatalogH5Reader(const std::string& path, const std::vector<std::string>& names);
+  ~CatalogH5Reader();
+  CatalogH5Reader(const CatalogH5Reader&) = delete;
+  CatalogH5Reader& operator=(const CatalogH5Reader&) = delete;
+
+  bool has(std::size_t column) const;
+  std::int64_t rows() const;
+  // Reads the next block of rows into `out` (row-major, names.size() doubles a row;
+  // integers converted to double); returns the number of rows read, 0 at the end.
+  std::int64_t next_block(std::vector<double>& out);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bkq
