@@ -17,14 +17,6 @@ int cmd_special_speed(const std::vector<std::string>& args);   // src/cli/specia
 int cmd_special_law(const std::vector<std::string>& args);     // src/cli/special_law.cpp
 int cmd_sweep(const std::vector<std::string>& args);           // src/cli/sweep.cpp
 int cmd_friction_study(const std::vector<std::string>& args);  // src/cli/friction_study.cpp
-int cmd_run(const std::vector<std::string>& args);             // src/cli/run.cpp
-int cmd_fit(const std::vector<std::string>& args);             // src/cli/fit.cpp
-int cmd_merge(const std::vector<std::string>& args);           // src/cli/merge.cpp
-int cmd_accuracy(const std::vector<std::string>& args);        // src/cli/accuracy.cpp
-int cmd_spectrum(const std::vector<std::string>& args);        // src/cli/spectrum.cpp
-int cmd_special_speed(const std::vector<std::string>& args);   // src/cli/special_speed.cpp
-int cmd_special_law(const std::vector<std::string>& args);     // src/cli/special_law.cpp
-int cmd_sweep(const std::vector<std::string>& args);           // src/cli/sweep.cpp
 int cmd_stability(const std::vector<std::string>& args);       // src/cli/stability.cpp
 // Hidden: regenerates the README's key and column tables.
 int cmd_readme_tables(const std::vector<std::string>& args);  // src/cli/readme_tables.cpp
