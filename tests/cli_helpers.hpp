@@ -74,23 +74,24 @@ inline ProcessResult run_process(const std::string& program, const std::vector<s
   const auto start = Clock::now();
   Clock::time_point termed;
   bool killed = false;
+  // Past the timeout: SIGTERM, then SIGKILL kill_after seconds later.
+  auto enforce_timeout = [&](Clock::time_point now) {
+    if (!r.timed_out && now - start >= std::chrono::duration<double>(timeout_s)) {
+      ::kill(pid, SIGTERM);
+      r.timed_out = true;
+      termed = now;
+    } else if (r.timed_out && !killed &&
+               now - termed >= std::chrono::duration<double>(kill_after)) {
+      ::kill(pid, SIGKILL);
+      killed = true;
+    }
+  };
   // Read both pipes together so a chatty child cannot block on a full pipe.
   pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
   std::string* sinks[2] = {&r.out, &r.err};
   int open_fds = 2;
   while (open_fds > 0) {
-    if (timeout_s > 0) {
-      const auto now = Clock::now();
-      if (!r.timed_out && now - start >= std::chrono::duration<double>(timeout_s)) {
-        ::kill(pid, SIGTERM);
-        r.timed_out = true;
-        termed = now;
-      } else if (r.timed_out && !killed &&
-                 now - termed >= std::chrono::duration<double>(kill_after)) {
-        ::kill(pid, SIGKILL);
-        killed = true;
-      }
-    }
+    if (timeout_s > 0) enforce_timeout(Clock::now());
     if (::poll(fds, 2, timeout_s > 0 ? 20 : -1) < 0) {
       if (errno == EINTR) continue;
       break;
@@ -114,16 +115,7 @@ inline ProcessResult run_process(const std::string& program, const std::vector<s
     const pid_t w = ::waitpid(pid, &wstatus, timeout_s > 0 ? WNOHANG : 0);
     if (w == pid || (w < 0 && errno != EINTR)) break;
     if (w == 0) {
-      const auto now = Clock::now();
-      if (!r.timed_out && now - start >= std::chrono::duration<double>(timeout_s)) {
-        ::kill(pid, SIGTERM);
-        r.timed_out = true;
-        termed = now;
-      } else if (r.timed_out && !killed &&
-                 now - termed >= std::chrono::duration<double>(kill_after)) {
-        ::kill(pid, SIGKILL);
-        killed = true;
-      }
+      enforce_timeout(Clock::now());
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
   }
@@ -216,6 +208,15 @@ class TempDir {
 };
 
 // Whole file as a string (empty when missing).
+// `bkquake run` with a scene's options and then `more`.
+inline std::vector<std::string> run_args(const std::vector<std::string>& scene,
+                                         const std::vector<std::string>& more) {
+  std::vector<std::string> a = {"run"};
+  a.insert(a.end(), scene.begin(), scene.end());
+  a.insert(a.end(), more.begin(), more.end());
+  return a;
+}
+
 inline std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());

@@ -27,6 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::read_file;
+using test::run_args;
 using test::run_bkquake;
 
 // A 30-block Carlson-Langer chain pulled at speed 0.05: a few hundred slip episodes in
@@ -36,14 +37,6 @@ const std::vector<std::string> kContinuous = {
     "--set",  "run.duration=1500",     "--set", "drive.speed=0.05",
     "--set",  "integrator.scheme=rk4", "--set", "output.every=5",
     "--quiet"};
-
-std::vector<std::string> run_args(const std::vector<std::string>& scene,
-                                  const std::vector<std::string>& more) {
-  std::vector<std::string> a = {"run"};
-  a.insert(a.end(), scene.begin(), scene.end());
-  a.insert(a.end(), more.begin(), more.end());
-  return a;
-}
 
 // The values of the column `name` of a CSV file without comment lines.
 std::vector<double> column_of(const std::string& path, const std::string& name) {

@@ -36,6 +36,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::read_file;
+using test::run_args;
 using test::run_bkquake;
 
 // 2e5 events of a 50-block Carlson-Langer chain: about a second; a checkpoint every 2e4.
@@ -43,15 +44,6 @@ const std::vector<std::string> kScene = {
     "--set",  "model.blocks=50",          "--set", "run.events=200000",
     "--set",  "run.transient_events=100", "--set", "run.checkpoint_events=20000",
     "--quiet"};
-
-// `bkquake run` with the scene's options and `more`.
-std::vector<std::string> run_args(const std::vector<std::string>& scene,
-                                  const std::vector<std::string>& more) {
-  std::vector<std::string> a = {"run"};
-  a.insert(a.end(), scene.begin(), scene.end());
-  a.insert(a.end(), more.begin(), more.end());
-  return a;
-}
 
 std::uintmax_t size_of(const std::string& path) {
   std::error_code ec;
