@@ -27,10 +27,12 @@
 #include <vector>
 
 #include "../cli_helpers.hpp"
+#include "../refusal.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
 namespace {
+using test::tree_bytes;
 
 namespace fs = std::filesystem;
 using test::read_file;
@@ -46,15 +48,6 @@ std::string joined(const std::vector<std::string>& args) {
   std::string s = "bkquake";
   for (const auto& a : args) s += " '" + a + "'";
   return s;
-}
-
-std::map<std::string, std::string> tree_bytes(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  if (!fs::exists(dir)) return files;
-  if (fs::is_regular_file(dir)) return {{dir.string(), read_file(dir.string())}};
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) files[e.path().string()] = read_file(e.path().string());
-  return files;
 }
 
 class Abuse : public ::testing::Test {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../cli_helpers.hpp"
+#include "../refusal.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "integrate/stepper.hpp"
@@ -21,14 +22,14 @@
 namespace bkq {
 namespace {
 
-void expect_refused(const test::ProcessResult& r, const std::vector<std::string>& parts) {
+// The shared refusal check, not hung, and the line is bkquake's error line.
+void expect_refused_promptly(const test::ProcessResult& r, const std::vector<std::string>& parts) {
   EXPECT_FALSE(r.timed_out) << "hung";
-  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  test::expect_refused(r, parts);
   const auto lines = r.err_lines();
-  ASSERT_EQ(lines.size(), 1u) << r.err;
-  EXPECT_EQ(lines[0].rfind("bkquake: error: ", 0), 0u) << lines[0];
-  for (const auto& p : parts)
-    EXPECT_NE(lines[0].find(p), std::string::npos) << lines[0] << " lacks " << p;
+  if (lines.size() == 1) {
+    EXPECT_EQ(lines[0].rfind("bkquake: error: ", 0), 0u) << lines[0];
+  }
 }
 
 // `bkquake run` of a short scene with `sets` as --set overrides, under a time limit.
@@ -47,11 +48,12 @@ test::ProcessResult run_with(const std::vector<std::string>& sets) {
 }
 
 TEST(Boundaries, FitWindowKeysOutsideMinusFiftyFiftyOrNotFinite) {
-  expect_refused(run_with({"stats.mu_min=-1e300"}), {"stats.mu_min", "-1e300", "[-50, 50]"});
-  expect_refused(run_with({"stats.mu_max=1e300"}), {"stats.mu_max", "1e300", "[-50, 50]"});
-  expect_refused(run_with({"stats.mu_max=50.5"}), {"stats.mu_max", "[-50, 50]"});
+  expect_refused_promptly(run_with({"stats.mu_min=-1e300"}),
+                          {"stats.mu_min", "-1e300", "[-50, 50]"});
+  expect_refused_promptly(run_with({"stats.mu_max=1e300"}), {"stats.mu_max", "1e300", "[-50, 50]"});
+  expect_refused_promptly(run_with({"stats.mu_max=50.5"}), {"stats.mu_max", "[-50, 50]"});
   for (const char* bad : {"nan", "inf", "-inf", "NaN", "1e999"})
-    expect_refused(run_with({std::string("stats.mu_min=") + bad}), {"stats.mu_min", bad});
+    expect_refused_promptly(run_with({std::string("stats.mu_min=") + bad}), {"stats.mu_min", bad});
 }
 
 TEST(Boundaries, EveryNumericKeyDeclaresAFiniteRange) {
@@ -62,19 +64,21 @@ TEST(Boundaries, EveryNumericKeyDeclaresAFiniteRange) {
 }
 
 TEST(Boundaries, HugeButFiniteValuesAreRefusedAtTheBoundary) {
-  expect_refused(run_with({"model.parameterisation=thesis", "model.pad_mass=1e300"}),
-                 {"model.pad_mass", "1e300"});
-  expect_refused(run_with({"integrator.dt=1e300"}), {"integrator.dt", "1e300"});
-  expect_refused(run_with({"run.checkpoint_seconds=1e300"}), {"run.checkpoint_seconds"});
-  expect_refused(run_with({"run.events=1e23"}), {"run.events", "1e23"});
-  expect_refused(run_with({"run.events=99999999999999999999"}), {"run.events", "too large"});
+  expect_refused_promptly(run_with({"model.parameterisation=thesis", "model.pad_mass=1e300"}),
+                          {"model.pad_mass", "1e300"});
+  expect_refused_promptly(run_with({"integrator.dt=1e300"}), {"integrator.dt", "1e300"});
+  expect_refused_promptly(run_with({"run.checkpoint_seconds=1e300"}), {"run.checkpoint_seconds"});
+  expect_refused_promptly(run_with({"run.events=1e23"}), {"run.events", "1e23"});
+  expect_refused_promptly(run_with({"run.events=99999999999999999999"}),
+                          {"run.events", "too large"});
 }
 
 TEST(Boundaries, DurationsBeyondWhatTheStepCounterHolds) {
-  expect_refused(run_with({"drive.mode=continuous", "run.duration=1e23"}),
-                 {"run.duration", "1e23"});
-  expect_refused(run_with({"drive.mode=continuous", "run.duration=1e15", "integrator.dt=0.001"}),
-                 {"run.duration = 1e+15", "integrator.dt = 0.001", "time steps", "1e15"});
+  expect_refused_promptly(run_with({"drive.mode=continuous", "run.duration=1e23"}),
+                          {"run.duration", "1e23"});
+  expect_refused_promptly(
+      run_with({"drive.mode=continuous", "run.duration=1e15", "integrator.dt=0.001"}),
+      {"run.duration = 1e+15", "integrator.dt = 0.001", "time steps", "1e15"});
 }
 
 TEST(Boundaries, StepsScheduleThatWouldDriveTheSubstrateBackwardsIsRefused) {
@@ -84,17 +88,18 @@ TEST(Boundaries, StepsScheduleThatWouldDriveTheSubstrateBackwardsIsRefused) {
                                           "drive.step_interval=2000"};
   auto bad = steps;
   bad.push_back("run.duration=7000");
-  expect_refused(run_with(bad), {"drive.step_increment = -0.005", "at step 3", "time 6000",
-                                 "backwards", "run.duration = 7000"});
+  expect_refused_promptly(run_with(bad), {"drive.step_increment = -0.005", "at step 3", "time 6000",
+                                          "backwards", "run.duration = 7000"});
   // A decreasing schedule that stays at or above zero is fine.
   auto good = steps;
   good.insert(good.end(), {"run.duration=5000", "integrator.dt=0.05", "output.every=50"});
   const auto r = run_with(good);
   EXPECT_EQ(r.status, 0) << r.err;
   // Speeds above drive.speed's range are refused the same way.
-  expect_refused(run_with({"drive.mode=continuous", "drive.schedule=steps",
-                           "drive.step_increment=1e6", "drive.step_interval=1", "run.duration=10"}),
-                 {"drive.step_increment = 1e+06", "out of [0, 1e+06]", "at step 1"});
+  expect_refused_promptly(
+      run_with({"drive.mode=continuous", "drive.schedule=steps", "drive.step_increment=1e6",
+                "drive.step_interval=1", "run.duration=10"}),
+      {"drive.step_increment = 1e+06", "out of [0, 1e+06]", "at step 1"});
 }
 
 TEST(Boundaries, FitOptionsAreCheckedLikeTheirSceneKeys) {
@@ -104,27 +109,27 @@ TEST(Boundaries, FitOptionsAreCheckedLikeTheirSceneKeys) {
     catalog += std::to_string(i) + "," + std::to_string(1.0 + i) + "\n";
   const std::string path = tmp.write("catalog.csv", catalog);
   for (const char* v : {"nan", "1e308", "-1e300", "inf"}) {
-    expect_refused(test::run_bkquake_for(30, {"fit", path, "--mu-min", v}),
-                   {"fit: --mu-min", v, "[-50, 50]"});
-    expect_refused(test::run_bkquake_for(30, {"fit", path, "--mu-max", v}),
-                   {"fit: --mu-max", v, "[-50, 50]"});
+    expect_refused_promptly(test::run_bkquake_for(30, {"fit", path, "--mu-min", v}),
+                            {"fit: --mu-min", v, "[-50, 50]"});
+    expect_refused_promptly(test::run_bkquake_for(30, {"fit", path, "--mu-max", v}),
+                            {"fit: --mu-max", v, "[-50, 50]"});
   }
-  expect_refused(test::run_bkquake_for(30, {"fit", path, "--bin-width", "nan"}),
-                 {"fit: --bin-width", "nan", "(0, 10]"});
-  expect_refused(test::run_bkquake_for(30, {"fit", path, "--blocks", "0"}),
-                 {"fit: --blocks", "[1, 10000000]"});
+  expect_refused_promptly(test::run_bkquake_for(30, {"fit", path, "--bin-width", "nan"}),
+                          {"fit: --bin-width", "nan", "(0, 10]"});
+  expect_refused_promptly(test::run_bkquake_for(30, {"fit", path, "--blocks", "0"}),
+                          {"fit: --blocks", "[1, 10000000]"});
   const auto ok = test::run_bkquake_for(30, {"fit", path, "--mu-min", "auto", "--mu-max", "6"});
   EXPECT_EQ(ok.status, 0) << ok.err;
 }
 
 TEST(Boundaries, AccuracyOptionsAreCheckedLikeTheirSceneKeys) {
   test::TempDir tmp;
-  expect_refused(
+  expect_refused_promptly(
       test::run_bkquake_for(30, {"accuracy", "--dt", "0.01,nan", "--out", tmp.file("a")}),
       {"accuracy: --dt", "nan", "integrator.dt"});
-  expect_refused(test::run_bkquake_for(
-                     30, {"accuracy", "--reference-tolerance", "nan", "--out", tmp.file("a")}),
-                 {"accuracy: --reference-tolerance", "nan", "integrator.tolerance"});
+  expect_refused_promptly(test::run_bkquake_for(30, {"accuracy", "--reference-tolerance", "nan",
+                                                     "--out", tmp.file("a")}),
+                          {"accuracy: --reference-tolerance", "nan", "integrator.tolerance"});
 }
 
 // Issue 19 item 9: numbers in messages and summaries with enough digits to mean something.

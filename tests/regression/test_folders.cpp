@@ -13,30 +13,18 @@
 #include <vector>
 
 #include "../cli_helpers.hpp"
+#include "../refusal.hpp"
 
 namespace bkq {
 namespace {
+using test::expect_refused;
+using test::tree_bytes;
 
 namespace fs = std::filesystem;
 using test::read_file;
 using test::run_bkquake;
 
 // Every file under `dir` with its bytes.
-std::map<std::string, std::string> tree_bytes(const std::string& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) files[e.path().string()] = read_file(e.path().string());
-  return files;
-}
-
-void expect_refused(const test::ProcessResult& r, std::initializer_list<std::string> parts) {
-  EXPECT_EQ(r.status, 2) << r.out << r.err;
-  const auto lines = r.err_lines();
-  ASSERT_EQ(lines.size(), 1u) << r.err;
-  for (const auto& p : parts)
-    EXPECT_NE(lines[0].find(p), std::string::npos) << lines[0] << " lacks " << p;
-}
-
 // A run long enough to be caught in the act (it is stopped by a signal).
 const std::vector<std::string> kLong = {"run",
                                         "--set",

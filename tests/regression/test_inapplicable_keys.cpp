@@ -9,21 +9,15 @@
 #include <vector>
 
 #include "../cli_helpers.hpp"
+#include "../refusal.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
 namespace {
+using test::expect_refused;
 
 using test::read_file;
 using test::run_bkquake;
-
-void expect_refused(const test::ProcessResult& r, const std::vector<std::string>& parts) {
-  EXPECT_EQ(r.status, 2) << r.out << r.err;
-  const auto lines = r.err_lines();
-  ASSERT_EQ(lines.size(), 1u) << r.err;
-  for (const auto& p : parts)
-    EXPECT_NE(lines[0].find(p), std::string::npos) << lines[0] << " lacks " << p;
-}
 
 const std::vector<std::string> kShort = {
     "--quiet",        "--set", "model.blocks=10",        "--set",

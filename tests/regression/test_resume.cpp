@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "../cli_helpers.hpp"
+#include "../refusal.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "io/catalog.hpp"
@@ -33,6 +34,7 @@
 
 namespace bkq {
 namespace {
+using test::expect_refused;
 
 namespace fs = std::filesystem;
 using test::read_file;
@@ -78,14 +80,6 @@ Stopped run_and_signal(const std::vector<std::string>& bkquake_args, const std::
       bkquake_args, [&] { return size_of(watch) >= min_bytes; }, sig, log);
   r.err = read_file(log);
   return r;
-}
-
-void expect_refused(const test::ProcessResult& r, std::initializer_list<std::string> parts) {
-  EXPECT_EQ(r.status, 2) << r.out << r.err;
-  const auto lines = r.err_lines();
-  ASSERT_EQ(lines.size(), 1u) << r.err;
-  for (const auto& p : parts)
-    EXPECT_NE(lines[0].find(p), std::string::npos) << lines[0] << " lacks " << p;
 }
 
 class Resume : public ::testing::Test {
