@@ -183,7 +183,7 @@ class ContinuousRun {
     if (const int sig = signals.received()) return stop(sig);
     accuracy_->set_run_energy_residual(driver_->energy_balance().residual(driver_->energy()));
     observers_.end(run_end(0));
-    // summary.json marks the run finished; its checkpoints have served.
+    // summary.json says the run finished; its checkpoints have served.
     files_.remove();
     accuracy_->verdict();
     return 0;
@@ -191,7 +191,7 @@ class ContinuousRun {
 
  private:
   // The scene's outputs for a continuous run, in notification order: the histogram before
-  // the summary that fits it, the summary (which marks the run finished) after every file.
+  // the summary that fits it, the summary (which says how the run ended) after every file.
   void attach_observers(bool resumed, const ChainForces& forces) {
     const RunSettings& r = settings_.run;
     observers_.attach<TimeSeriesWriter>(out_.path("timeseries.csv"), resumed,
@@ -246,7 +246,7 @@ class ContinuousRun {
     RunEnd end;
     end.signal = signal;
     end.events = episodes_;
-    end.steps = steps_;
+    end.steps = done_;  // steps_ unless stopped
     end.blocks = settings_.model.n;
     end.total_load = driver_->substrate().s;
     end.duration = driver_->state().t;
@@ -257,6 +257,7 @@ class ContinuousRun {
 
   int stop(int sig) {
     save();
+    accuracy_->set_run_energy_residual(driver_->energy_balance().residual(driver_->energy()));
     observers_.end(run_end(sig));
     std::fprintf(stderr,
                  "bkquake: stopped by %s at t = %s of %s (%lld of %lld steps); checkpoint in "

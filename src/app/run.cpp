@@ -2,7 +2,8 @@
 // builds the model and the stepper, checks a --resume against the folder (nothing is
 // changed before everything is checked), writes scene.ini first and hands over to the
 // drive mode's run (app/event_run, app/continuous_run), whose observers write the rest;
-// summary.json comes last, so a folder with summary.json is a finished run.
+// summary.json comes last and says whether the run finished or was interrupted (its
+// "status", io/run_folder.hpp): --resume continues an interrupted run, not a finished one.
 #include "app/run.hpp"
 
 #include <cstdio>
@@ -20,6 +21,7 @@
 #include "io/catalog_h5.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output.hpp"
+#include "io/run_folder.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
 
@@ -46,7 +48,7 @@ int run_scene(const RunRequest& req) {
   const OutputFolder out(req.out_dir, req.force, req.resume);
   const CheckpointFiles checkpoints(out.dir());
   if (req.resume) {
-    if (std::filesystem::exists(out.path("summary.json")))
+    if (run_status(out.dir()) == RunStatus::Finished)
       throw Error("--resume: output folder '" + out.dir() +
                   "' holds a finished run (summary.json): nothing to continue; use --force to run "
                   "it again");
@@ -88,7 +90,7 @@ int run_scene(const RunRequest& req) {
   if (checkpoints.exist() && !req.force)
     throw Error("output folder '" + out.dir() + "' holds an interrupted run (" +
                 checkpoints.current() + "); use --resume to continue it or --force to start over");
-  // A folder with summary.json is a finished run; overwriting one starts by unmarking it.
+  // Overwriting a run starts by removing its summary (finished or interrupted).
   if (req.force) {
     std::filesystem::remove(out.path("summary.json"));
     checkpoints.remove();

@@ -330,10 +330,7 @@ void CheckpointFiles::remove() const {
   std::error_code ec;
   fs::remove(current(), ec);
   fs::remove(previous(), ec);
-  // Temporary files of a write cut short by a second signal or a crash.
-  const std::string stem = fs::path(current()).filename().string() + ".tmp-";
-  for (const auto& entry : fs::directory_iterator(dir_, ec))
-    if (entry.path().filename().string().rfind(stem, 0) == 0) fs::remove(entry.path(), ec);
+  remove_temporaries_of(current());  // of a write cut short by a second signal or a crash
 }
 
 }  // namespace bkq

@@ -1,7 +1,8 @@
 // SIGTERM during the closing fit of an event run (issue 19, item 1): the fit is the slow part
 // of this run (bins of 0.01: ~1000 bins for the window search, seconds of work), the signal
 // is sent once the catalog holds every event, and the run stops as after an event: exit 143,
-// a checkpoint with every event done, no summary; --resume then fits and finishes. Before
+// a checkpoint with every event done, a summary marked interrupted without a fit; --resume
+// then fits and finishes. Before
 // the fit was cancellable the run finished the fit and exited 0.
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -13,6 +14,7 @@
 
 #include "../cli_helpers.hpp"
 #include "io/checkpoint.hpp"
+#include "io/run_folder.hpp"
 
 namespace bkq {
 namespace {
@@ -56,7 +58,11 @@ TEST(FitStop, SigtermDuringTheFitStopsWithACheckpointAndResumeFinishes) {
   const std::string log = test::read_file(dir.file("log.txt"));
   ASSERT_EQ(status, 143) << log;
   EXPECT_NE(log.find("stopped by SIGTERM after 60000 of 60000 events"), std::string::npos) << log;
-  EXPECT_FALSE(fs::exists(out + "/summary.json"));
+  EXPECT_EQ(run_status(out), RunStatus::Interrupted);
+  const std::string stopped = test::read_file(out + "/summary.json");
+  EXPECT_NE(stopped.find("\"events\": 60000,"), std::string::npos) << stopped;
+  EXPECT_NE(stopped.find("\"b_mle\": null"), std::string::npos) << stopped;
+  EXPECT_NE(stopped.find("no fit: interrupted"), std::string::npos) << stopped;
   EXPECT_EQ(CheckpointFiles(out).read().progress.events_done, 60000);
 
   std::vector<std::string> resume = args;
@@ -66,6 +72,7 @@ TEST(FitStop, SigtermDuringTheFitStopsWithACheckpointAndResumeFinishes) {
   const std::string summary = test::read_file(out + "/summary.json");
   EXPECT_NE(summary.find("\"resumes\": 1"), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"b_mle\": 0."), std::string::npos) << summary;
+  EXPECT_EQ(run_status(out), RunStatus::Finished);
 }
 
 }  // namespace
