@@ -1,5 +1,6 @@
 // `bkquake merge RUN_DIR... --out DIR`: parses the arguments and calls app/merge.hpp, which
-// merges the runs' histograms exactly and writes DIR/histogram.csv and DIR/summary.json.
+// merges the runs' histograms exactly and writes DIR/histogram.csv, DIR/summary.json and
+// DIR/scene.ini (the scene they share and the seeds merged).
 #include <boost/program_options.hpp>
 #include <iostream>
 #include <string>
