@@ -32,6 +32,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -184,17 +185,30 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
 // another scene, naming the versions or the keys whose values differ.
 void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std::string& origin);
 
-// FNV-1a, 64 bit, of `data` continuing from `h`: the checksum of catalog.csv's rows that a
-// checkpoint keeps (observer state "catalog.checksum"), so an edited row is found.
-inline std::uint64_t fnv1a64(std::string_view data, std::uint64_t h = 14695981039346656037ull) {
-  for (const unsigned char c : data) {
-    h ^= c;
-    h *= 1099511628211ull;
+// The checksum of catalog.csv's lines that a checkpoint keeps (observer state
+// "catalog.rowhash"), so an edited row is found: line by line (`line` ends with its '\n'),
+// FNV-1a's step taken on 8 bytes at a time (the last word zero-padded after the '\n'), a
+// multiply per 8 bytes instead of per byte. Each step is a bijection of the running value,
+// so one changed word always changes the result.
+inline constexpr std::uint64_t kLineHashSeed = 14695981039346656037ull;
+inline std::uint64_t line_hash(std::string_view line, std::uint64_t h) {
+  constexpr std::uint64_t prime = 1099511628211ull;
+  const char* p = line.data();
+  std::size_t n = line.size();
+  for (; n >= 8; n -= 8, p += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, p, 8);
+    h = (h ^ w) * prime;
+  }
+  if (n > 0) {
+    std::uint64_t w = 0;
+    std::memcpy(&w, p, n);
+    h = (h ^ w) * prime;
   }
   return h;
 }
 // Throws bkq::Error unless the first `bytes` bytes of the CSV file `path` are the line
-// `header` followed by exactly `rows` complete lines, whose fnv1a64 is `checksum` when one is
+// `header` followed by exactly `rows` complete lines, whose line_hash is `checksum` when one is
 // given; only reads the file.
 void check_csv_prefix(const std::string& path, const std::string& header, std::int64_t rows,
                       std::uint64_t bytes, std::optional<std::uint64_t> checksum = std::nullopt);
