@@ -45,7 +45,7 @@ measure() {
 median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 
 for n in "$@"; do
-  # shellcheck disable=SC2086  # EXTRA is a list of words
+  # shellcheck disable=SC2086,SC2206  # EXTRA is a list of words
   sets=(--set "model.blocks=$n" --set "run.events=$EVENTS" $EXTRA)
   ratios=() cpu_ratios=()
   printf 'N = %s, %s events, %s rounds (seconds)\n' "$n" "$EVENTS" "$rounds"
