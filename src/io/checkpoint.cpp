@@ -34,44 +34,9 @@ static_assert(sizeof(EngineCounters) == 5 * sizeof(std::int64_t),
 static_assert(sizeof(ChainState) == 4 * sizeof(std::vector<double>) + 5 * sizeof(double),
               "ChainState changed: update the checkpoint");
 
-std::uint64_t fnv1a64(const char* data, std::size_t n) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= static_cast<unsigned char>(data[i]);
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 // The checkpoint's fields in file order, written once for both directions: `io` is an
-// Encode (writes each field) or a Decode (reads each field into it). A new field goes
-// here, with kFormatVersion raised.
-struct Encode {
-  StateWriter& w;
-  void operator()(const std::string& x) { w.str(x); }
-  void operator()(std::uint64_t x) { w.u64(x); }
-  void operator()(std::int64_t x) { w.i64(x); }
-  void operator()(int x) { w.i64(x); }
-  void operator()(double x) { w.f64(x); }
-  void operator()(bool x) { w.u32(x ? 1 : 0); }
-  void operator()(__int128 x) { w.i128(x); }
-  void operator()(const std::vector<double>& x) { w.f64s(x); }
-  void operator()(const std::vector<std::int64_t>& x) { w.i64s(x); }
-};
-
-struct Decode {
-  StateReader& r;
-  void operator()(std::string& x) { x = r.str(); }
-  void operator()(std::uint64_t& x) { x = r.u64(); }
-  void operator()(std::int64_t& x) { x = r.i64(); }
-  void operator()(int& x) { x = static_cast<int>(r.i64()); }
-  void operator()(double& x) { x = r.f64(); }
-  void operator()(bool& x) { x = r.u32() != 0; }
-  void operator()(__int128& x) { x = r.i128(); }
-  void operator()(std::vector<double>& x) { x = r.f64s(); }
-  void operator()(std::vector<std::int64_t>& x) { x = r.i64s(); }
-};
-
+// EncodeField (writes each field) or a DecodeField (reads each field into it). A new field
+// goes here, with kFormatVersion raised.
 template <class Io, class Counters>
 void counter_fields(Io& io, Counters& c) {
   for (auto* x : {&c.events, &c.steps, &c.block_steps, &c.sliding_block_steps, &c.releases}) io(*x);
@@ -133,7 +98,7 @@ void StateReader::fail() const {
 
 std::string encode_checkpoint(const Checkpoint& c) {
   StateWriter w;
-  Encode encode{w};
+  EncodeField encode{w};
   fixed_fields(encode, c);
 
   w.u64(c.observers.size());
@@ -147,7 +112,7 @@ std::string encode_checkpoint(const Checkpoint& c) {
   file.u32(kFormatVersion);
   file.u64(w.bytes().size());
   file.bytes() += w.bytes();
-  file.u64(fnv1a64(file.bytes().data(), file.bytes().size()));
+  file.u64(fnv1a64(file.bytes()));
   return std::move(file.bytes());
 }
 
@@ -172,12 +137,12 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
                 std::to_string(payload + kHeadBytes + kSumBytes));
   const std::size_t end = kHeadBytes + static_cast<std::size_t>(payload);
   const std::uint64_t stored = StateReader(bytes, end, bytes.size(), origin).u64();
-  if (stored != fnv1a64(bytes.data(), end))
+  if (stored != fnv1a64(std::string_view(bytes.data(), end)))
     throw Error("checkpoint '" + origin + "' is damaged: checksum mismatch");
 
   StateReader r(bytes, kHeadBytes, end, origin);
   Checkpoint c;
-  Decode decode{r};
+  DecodeField decode{r};
   fixed_fields(decode, c);
 
   if (format >= 2) {
@@ -243,7 +208,7 @@ void check_csv_prefix(const std::string& path, const std::string& header, std::i
   // Count line ends in the prefix: it must be the header and exactly `rows` whole rows.
   std::int64_t lines = 0;
   char last = '\n';
-  std::uint64_t hash = fnv1a64("");
+  std::uint64_t hash = kFnv1a64Basis;
   std::vector<char> buf(1 << 20);
   for (std::uint64_t left = bytes; left > 0;) {
     const auto n = static_cast<std::streamsize>(std::min<std::uint64_t>(left, buf.size()));
