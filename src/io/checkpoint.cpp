@@ -206,15 +206,42 @@ void check_csv_prefix(const std::string& path, const std::string& header, std::i
     throw Error("cannot resume: '" + path + "' does not start with the header '" + header + "'");
   in.seekg(0);
   // Count line ends in the prefix: it must be the header and exactly `rows` whole rows.
+  // line_hash of each line; a line split between two reads is hashed in two parts, the
+  // bytes that do not fill a word of 8 carried over to the next read.
   std::int64_t lines = 0;
   char last = '\n';
-  std::uint64_t hash = kFnv1a64Basis;
+  std::uint64_t hash = kLineHashSeed;
+  char carry[8];
+  std::size_t carried = 0;
   std::vector<char> buf(1 << 20);
   for (std::uint64_t left = bytes; left > 0;) {
     const auto n = static_cast<std::streamsize>(std::min<std::uint64_t>(left, buf.size()));
     if (!in.read(buf.data(), n)) throw Error("cannot resume: read error on '" + path + "'");
-    for (std::streamsize i = 0; i < n; ++i) lines += buf[static_cast<std::size_t>(i)] == '\n';
-    hash = fnv1a64(std::string_view(buf.data(), static_cast<std::size_t>(n)), hash);
+    const char* p = buf.data();
+    const char* const end = p + n;
+    while (p < end) {
+      const char* nl = static_cast<const char*>(std::memchr(p, '\n', end - p));
+      const char* const stop = nl ? nl + 1 : end;
+      if (carried > 0) {  // the start of this line was in the previous read
+        const std::size_t take = std::min<std::size_t>(8 - carried, stop - p);
+        std::memcpy(carry + carried, p, take);
+        carried += take;
+        p += take;
+        if (carried < 8 && !nl) break;  // the read ended first: carry on
+        hash = line_hash(std::string_view(carry, carried), hash);
+        carried = 0;
+      }
+      if (nl) {
+        if (p < stop) hash = line_hash(std::string_view(p, stop - p), hash);
+        ++lines;
+      } else {  // the line goes on in the next read
+        const auto whole = static_cast<std::size_t>(stop - p) / 8 * 8;
+        if (whole > 0) hash = line_hash(std::string_view(p, whole), hash);
+        carried = static_cast<std::size_t>(stop - p) - whole;
+        std::memcpy(carry, p + whole, carried);
+      }
+      p = stop;
+    }
     last = buf[static_cast<std::size_t>(n - 1)];
     left -= static_cast<std::uint64_t>(n);
   }

@@ -235,7 +235,7 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
 void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std::string& origin);
 
 // Throws bkq::Error unless the first `bytes` bytes of the CSV file `path` are the line
-// `header` followed by exactly `rows` complete lines, whose fnv1a64 is `checksum` when one is
+// `header` followed by exactly `rows` complete lines, whose line_hash is `checksum` when one is
 // given; only reads the file.
 void check_csv_prefix(const std::string& path, const std::string& header, std::int64_t rows,
                       std::uint64_t bytes, std::optional<std::uint64_t> checksum = std::nullopt);
