@@ -31,6 +31,7 @@
 #include "engine/initial_state.hpp"
 #include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
+#include "io/energy_csv.hpp"
 #include "io/output.hpp"
 #include "io/timeseries.hpp"
 
@@ -199,7 +200,7 @@ class ContinuousRun {
     if (settings_.output.energy)
       observers_.attach<EnergyDiagnostics>(forces, out_.path("energy_samples.csv"),
                                            out_.path("energy.csv"), settings_.output.energy_window,
-                                           settings_.output.energy_tol);
+                                           settings_.output.energy_tol, resumed);
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
                                        resumed ? prog_.events_done : -1,
@@ -325,6 +326,10 @@ int resume_continuous(const RunRequest& req, const Settings& settings, const Out
   if (writes_segments(settings))
     files.push_back(
         {out.path("segments.csv"), segments_header(), find_csv_extent(saved, "segments.csv")});
+  if (settings.output.energy)
+    for (const auto& [name, schema] : {std::pair{"energy_samples.csv", energy_samples_schema()},
+                                       std::pair{"energy.csv", energy_schema()}})
+      files.push_back({out.path(name), header_of(schema), find_csv_extent(saved, name)});
   for (const File& f : files) check_csv_prefix(f.path, f.header, f.extent.rows, f.extent.bytes);
   for (const File& f : files) cut_back(f.path, f.extent.bytes);
   if (settings.output.catalog == CatalogFormat::Csv)  // catalog.h5: cut back when opened

@@ -31,10 +31,6 @@ int run_scene(const RunRequest& req) {
   const Scene& scene = req.scene;
   const Settings settings = settings_from_scene(scene);
   const ModelParams& p = settings.model;
-  if (p.rayleigh_alpha != 0 || p.rayleigh_beta != 0)
-    throw Error("model.rayleigh_alpha = " + scene.text("model.rayleigh_alpha") +
-                ", model.rayleigh_beta = " + scene.text("model.rayleigh_beta") +
-                ": Rayleigh damping is in bkquake stability only so far; runs need both 0");
   const ChainForces forces(p);
   const std::unique_ptr<Stepper> stepper = stepper_of(settings.integrator, p.n);
   check_time_step(*stepper, p, settings.integrator.dt);

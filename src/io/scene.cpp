@@ -116,7 +116,7 @@ std::vector<ParamSpec> make_table() {
            "coupling scaling s_c: k_c = s_c k_p0 N (thesis only)"),
       real("model.rayleigh_alpha", "0", '[', 0, kHuge, ']', "1/time",
            "Rayleigh damping alpha_M M + beta_K K of blocks and pad (K with k_c, k_p and the pad "
-           "row): alpha_M"),
+           "row; continuous runs and bkquake stability, event runs refuse it): alpha_M"),
       real("model.rayleigh_beta", "0", '[', 0, kHuge, ']', "time",
            "Rayleigh damping alpha_M M + beta_K K: beta_K"),
 

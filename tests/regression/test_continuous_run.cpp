@@ -2,7 +2,8 @@
 // magnitude histogram (histogram.csv) and Gutenberg-Richter fit in summary.json as an
 // event run, through the same observers, and the two modes compare directly. Like event
 // runs they lose nothing when stopped: SIGTERM leaves whole rows and a checkpoint, and
-// --resume continues bit for bit, for an explicit scheme, the theta-method, the adaptive
+// --resume continues bit for bit, for an explicit scheme (also with the energy diagnostics
+// and Rayleigh damping), the theta-method, the adaptive
 // scheme and a steps schedule with block trajectories; SIGKILL resumes from the periodic
 // checkpoint. The signals are sent once timeseries.csv has grown to a given size.
 #include <gtest/gtest.h>
@@ -105,6 +106,12 @@ std::vector<ResumeCase> resume_cases() {
   cases.push_back({"rk4", continuous({"--set", "model.blocks=30", "--set", "run.duration=10000",
                                       "--set", "drive.speed=0.05", "--set", "output.every=2",
                                       "--set", "run.checkpoint_events=1000"})});
+  // The energy diagnostics' windows and files resume too; with Rayleigh block damping.
+  cases.push_back({"rk4_energy_rayleigh",
+                   continuous({"--set", "model.blocks=30", "--set", "run.duration=10000", "--set",
+                               "drive.speed=0.05", "--set", "output.every=2", "--set",
+                               "output.energy=true", "--set", "output.energy_window=300", "--set",
+                               "output.status=true", "--set", "model.rayleigh_alpha=0.05"})});
   cases.push_back({"theta", continuous({"--set", "model.blocks=30", "--set", "run.duration=2500",
                                         "--set", "drive.speed=0.05", "--set",
                                         "integrator.scheme=theta", "--set", "output.every=0.5"})});
