@@ -312,7 +312,7 @@ double EventEngine::stored_energy_change(double x0) const {
 }
 
 bool EventEngine::held_ranges() const {
-  if (pad_ || !held_ranges_path) return false;
+  if (!held_ranges_path) return false;
   for (const Range& r : ranges_)
     if (st_.mobile[r.lo] != 0.0 || st_.mobile[r.hi - 1] != 0.0) return false;
   return true;
@@ -513,6 +513,7 @@ EventRecord EventEngine::next_event() {
         const double xd_old = st_.xd;
         if (held_ranges()) {
           stepper_.step_held(forces_, frozen, st_, dt_, ranges_);
+          if (pad_) ++pad_held_steps_;
         } else {
           stepper_.step(forces_, frozen, st_, dt_, ranges_);
         }

@@ -74,9 +74,12 @@ class EventEngine {
   // (integrate/cluster.hpp): the same events bit for bit, in less time. Off only to test
   // exactly that.
   bool cluster_path = true;
-  // With the pad held and every covered range ending in stuck blocks, use the stepper's
+  // With every covered range ending in stuck blocks (the pad held or moving), use the stepper's
   // step_held() (again the same events bit for bit).
   bool held_ranges_path = true;
+  // Steps this engine took with the pad moving on the fused held-range path (not part of
+  // snapshots).
+  std::int64_t pad_held_steps() const { return pad_held_steps_; }
   // Steps this engine took on the cluster path (not part of snapshots): all of them,
   // those with more than one block between the ends, and those at a free chain end.
   struct ClusterSteps {
@@ -147,6 +150,7 @@ class EventEngine {
 
   EngineCounters counters_;
   ClusterSteps cluster_steps_;
+  std::int64_t pad_held_steps_ = 0;
   // The lone slip of an interior block [0] and of a block at a free chain end [1], built
   // when first needed.
   LoneSlip lone_[2];

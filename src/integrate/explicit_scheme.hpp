@@ -8,6 +8,7 @@
 
 #include "integrate/cluster.hpp"
 #include "integrate/layouts.hpp"
+#include "integrate/pad_held.hpp"
 #include "integrate/stepper.hpp"
 
 namespace bkq {
@@ -30,6 +31,8 @@ class ExplicitScheme final : public Stepper {
                  Ranges ranges) override {
     if constexpr (!Method::fusable) {
       step(forces, sub, st, dt, ranges);
+    } else if (forces.params().pad_moves()) {
+      step_held_with_pad<Method>(forces, sub, st, dt, ranges, scratch_);
     } else {
       const SubstrateState frozen = sub.at(st.t);
       // The anchor as the general step forms it (substrate + held pad at 0).

@@ -64,10 +64,10 @@ class Stepper {
   virtual double located_stick_time() const { return std::nan(""); }
   virtual void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                     Ranges ranges) = 0;
-  // step() in the event engine's common situation: the pad held, the substrate frozen,
-  // and the two end blocks of every range stuck (so every block advanced is interior and
-  // the ranges do not interact). A stepper may fuse its stages there; it must give the
-  // same result as step() bit for bit. By default it is step().
+  // step() in the event engine's common situation: the substrate frozen and the two end
+  // blocks of every range stuck (so every block advanced is interior and the ranges
+  // interact only through the pad, when it moves). A stepper may fuse its stages there; it must
+  // give the same result as step() bit for bit. By default it is step().
   virtual void step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                          Ranges ranges) {
     step(forces, sub, st, dt, ranges);
