@@ -70,7 +70,7 @@ class EventEngine {
   // Give up on an event after this many steps (a runaway means dt or the scene is wrong).
   std::int64_t max_steps_per_event = 200'000'000;
   // While the sliding blocks lie within one range of at most kMaxCluster interior blocks
-  // (pad held, a Crossing stepper), step it with the stepper's fixed-size form
+  // (a Crossing stepper; the pad held or moving), step it with the stepper's fixed-size form
   // (integrate/cluster.hpp): the same events bit for bit, in less time. Off only to test
   // exactly that.
   bool cluster_path = true;
@@ -121,6 +121,9 @@ class EventEngine {
   bool held_ranges() const;
   // Steps the cluster; false when the stepper has no fixed-size form.
   bool relax_cluster(ClusterRelaxation& r, std::int64_t& steps, ContactScan& scan);
+  // The stepper's cluster form with the pad moving (engine/pad_paths.cpp): r as for
+  // Stepper::relax_cluster, completed with what the pad's form needs.
+  bool relax_pad_cluster(ClusterRelaxation& r);
   // Takes the start of the event triggered by block j from the lone slip's record, up to
   // the step at which the block sticks or a neighbour breaks loose; false, having done
   // nothing, when the record does not apply or rounding could decide.

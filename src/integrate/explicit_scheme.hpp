@@ -8,6 +8,7 @@
 
 #include "integrate/cluster.hpp"
 #include "integrate/layouts.hpp"
+#include "integrate/pad_cluster.hpp"
 #include "integrate/pad_held.hpp"
 #include "integrate/stepper.hpp"
 
@@ -57,6 +58,10 @@ class ExplicitScheme final : public Stepper {
               layout(acceleration, w, v, a, velocity_dependent);
           Method::advance(layout, h);
         });
+  }
+
+  bool relax_pad_cluster(const ChainForces& forces, PadClusterRelaxation& r) const override {
+    return run_pad_cluster<Method>(forces, r);
   }
 
  private:
