@@ -202,7 +202,8 @@ class ContinuousRun {
                                            settings_.output.energy_tol);
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
-                                       resumed ? prog_.events_done : -1);
+                                       resumed ? prog_.events_done : -1,
+                                       settings_.output.catalog_deflate);
     if (settings_.output.blocks)
       observers_.attach<BlockTrajectories>(out_.path("blocks.csv"), resumed,
                                            settings_.output.block_first,

@@ -101,7 +101,8 @@ class EventRun {
     const RunSettings& r = settings_.run;
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
-                                       resumed ? prog_.events_done : -1);
+                                       resumed ? prog_.events_done : -1,
+                                       settings_.output.catalog_deflate);
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
     accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);

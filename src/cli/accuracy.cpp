@@ -62,6 +62,13 @@ std::vector<std::string> parse_schemes(const std::string& text) {
 
 }  // namespace
 
+// What --help prints above the options.
+constexpr const char* kUsage =
+    "Usage: bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]\n"
+    "Work-precision study of the scene's model, driven event by event: per-event errors\n"
+    "against an event-located adaptive reference, the distance of the magnitude\n"
+    "distribution from the reference's, and the time per event, for each scheme and dt.\n\n";
+
 int cmd_accuracy(const std::vector<std::string>& args) {
   const AccuracyOptions defaults;
   po::options_description opts("bkquake accuracy [SCENE] [options]");
@@ -87,15 +94,7 @@ int cmd_accuracy(const std::vector<std::string>& args) {
     ("help,h", "this help");
   // clang-format on
   const po::variables_map vm = parse_scene_command_line("accuracy", args, opts);
-  if (vm.count("help")) {
-    std::cout
-        << "Usage: bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]\n"
-           "Work-precision study of the scene's model, driven event by event: per-event errors\n"
-           "against an event-located adaptive reference, the distance of the magnitude\n"
-           "distribution from the reference's, and the time per event, for each scheme and dt.\n\n"
-        << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts, kUsage)) return 0;
   Scene scene = scene_from_command_line("accuracy", vm);
   // The study relaxes events one at a time, whatever mode the scene runs in.
   scene.set("drive.mode", "events", "bkquake accuracy");

@@ -22,10 +22,7 @@ int cmd_merge(const std::vector<std::string>& args) {
                                                  "output folder (created if missing)")(
       "force", "write into an output folder that already holds files");
   const po::variables_map vm = parse_command_line("merge", args, opts, "runs", -1);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts)) return 0;
   if (!vm.count("runs")) throw Error("merge: no RUN_DIR given (see bkquake merge --help)");
   if (!vm.count("out")) throw Error("merge: --out DIR is required");
   merge_runs({vm["runs"].as<std::vector<std::string>>(), vm["out"].as<std::string>(),

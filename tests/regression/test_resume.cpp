@@ -454,6 +454,28 @@ TEST(Checkpoint, CsvPrefixMustHoldExactlyTheRows) {
   EXPECT_THROW(check_csv_prefix(tmp.file("missing.csv"), "a,b", 0, 4), Error);
 }
 
+// The catalogue's checksum is line_hash line by line; check_csv_prefix reads the file in
+// blocks of 1 MiB and finds the same value when lines of every length straddle a block's
+// end, and another value when one byte differs.
+TEST(Checkpoint, CsvPrefixChecksumIsTheLineHashAcrossReadBlocks) {
+  test::TempDir tmp;
+  std::string text = "a,b\n";
+  std::uint64_t sum = line_hash(text, kLineHashSeed);
+  std::int64_t rows = 0;
+  for (std::size_t len = 1; text.size() < (std::size_t{5} << 19); len = len % 41 + 1, ++rows) {
+    std::string line(len, static_cast<char>('0' + rows % 10));
+    line += '\n';
+    sum = line_hash(line, sum);
+    text += line;
+  }
+  const std::string csv = tmp.write("c.csv", text);
+  EXPECT_NO_THROW(check_csv_prefix(csv, "a,b", rows, text.size(), sum));
+  EXPECT_THROW(check_csv_prefix(csv, "a,b", rows, text.size(), sum + 1), Error);
+  text[(std::size_t{1} << 20) + 3] ^= 1;  // a digit just past the first block, changed
+  const std::string edited = tmp.write("d.csv", text);
+  EXPECT_THROW(check_csv_prefix(edited, "a,b", rows, text.size(), sum), Error);
+}
+
 }  // namespace
 }  // namespace bkq
 
