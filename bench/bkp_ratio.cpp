@@ -1,10 +1,12 @@
 // BKP against BK events per second, side by side in one process (issue 20, goal 3: BKP
 // >= 0.7x BK at N = 100 and 1000). The carlson-langer scene (bench/carlson_langer_events.hpp)
-// with model.kind = bk and bkp, each engine past its transient; then ROUNDS rounds in
-// which each engine runs for about SLICE seconds of this thread's CPU time, alternating,
-// so that the machine's load falls on both alike. Prints, per N, both rates (events per
-// CPU-second over all rounds), the median of the per-round ratios BKP/BK with its range,
-// and the sliding block-steps per event of each (how much work an event of each model is).
+// with model.kind = bk and bkp, each engine past its transient, and a third engine, bkp
+// with the cluster and held-range paths off (every step on the general path, as before
+// the pad had fast paths; the same events bit for bit); then ROUNDS rounds in which each
+// engine runs for about SLICE seconds of this thread's CPU time, in turn, so that the
+// machine's load falls on all alike. Prints, per N, the rates (events per CPU-second over
+// all rounds), the medians of the per-round ratios BKP/BK with their ranges, and the
+// sliding block-steps per event of each model (how much work an event of each is).
 //   build/bkp_ratio [ROUNDS=7] [SLICE=0.3] [N...=100 1000]
 #include <time.h>
 
@@ -60,23 +62,29 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf(
-      "| N | BK events/s | BKP events/s | BKP/BK (median of %d, min-max) | sliding "
-      "block-steps per event BK, BKP |\n|---|---|---|---|---|\n",
+      "| N | BK events/s | BKP events/s | BKP/BK (median of %d, min-max) | BKP general path "
+      "only / BK | sliding block-steps per event BK, BKP |\n|---|---|---|---|---|---|\n",
       rounds);
   for (int n : sizes) {
-    bkq::bench::CarlsonLangerEvents bk(n, "bk"), bkp(n, "bkp");
-    std::vector<double> ratios;
-    Tally tb, tp;
+    bkq::bench::CarlsonLangerEvents bk(n, "bk"), bkp(n, "bkp"), general(n, "bkp");
+    general.engine.cluster_path = false;
+    general.engine.held_ranges_path = false;
+    std::vector<double> ratios, before;
+    Tally tb, tp, tg;
     for (int r = 0; r < rounds; ++r) {
       const double a = run_slice(bk.engine, slice, tb);
       const double b = run_slice(bkp.engine, slice, tp);
+      const double g = run_slice(general.engine, slice, tg);
       ratios.push_back(b / a);
+      before.push_back(g / a);
     }
     std::sort(ratios.begin(), ratios.end());
-    std::printf("| %d | %.3g | %.3g | %.3f (%.3f-%.3f) | %.0f, %.0f |\n", n,
+    std::sort(before.begin(), before.end());
+    std::printf("| %d | %.3g | %.3g | %.3f (%.3f-%.3f) | %.3f (%.3f-%.3f) | %.0f, %.0f |\n", n,
                 static_cast<double>(tb.events) / tb.seconds,
                 static_cast<double>(tp.events) / tp.seconds, ratios[ratios.size() / 2],
-                ratios.front(), ratios.back(),
+                ratios.front(), ratios.back(), before[before.size() / 2], before.front(),
+                before.back(),
                 static_cast<double>(tb.sliding_block_steps) / static_cast<double>(tb.events),
                 static_cast<double>(tp.sliding_block_steps) / static_cast<double>(tp.events));
     std::fflush(stdout);
