@@ -321,17 +321,17 @@ double EventEngine::stored_energy_change(double x0) const {
 }
 
 bool EventEngine::held_ranges() const {
-  if (pad_ || !held_ranges_path) return false;
+  if (!held_ranges_path) return false;
   for (const Range& r : ranges_)
     if (st_.mobile[r.lo] != 0.0 || st_.mobile[r.hi - 1] != 0.0) return false;
   return true;
 }
 
 bool EventEngine::cluster_ready(ClusterRelaxation& r) const {
-  // One covered range (so every sliding block is inside it), the pad held, and at most
-  // kMaxCluster blocks between its ends, which are stuck blocks or free chain ends (the
-  // stepper refuses the shapes it has no code for: run_cluster).
-  if (!cluster_path || pad_ || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1)
+  // One covered range (so every sliding block is inside it) and at most kMaxCluster
+  // blocks between its ends, which are stuck blocks or free chain ends (the stepper
+  // refuses the shapes it has no code for: run_cluster, run_pad_cluster).
+  if (!cluster_path || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1)
     return false;
   const Range& range = ranges_.front();
   const bool free_ends = forces_.params().boundary == Boundary::Free && n_ >= 2;
@@ -357,7 +357,7 @@ bool EventEngine::relax_cluster(ClusterRelaxation& r, std::int64_t& steps, Conta
   if (k > 1) r.max_steps = std::min<std::int64_t>(r.max_steps, kShrinkEvery - steps % kShrinkEvery);
   r.state = &st_;
   r.dissipated = &dissipated_;
-  if (!stepper_.relax_cluster(forces_, r)) return false;
+  if (!(pad_ ? relax_pad_cluster(r) : stepper_.relax_cluster(forces_, r))) return false;
   // A shrink due inside a lone block's run changed nothing; the one due after the last
   // step, if any, the caller does.
   steps += r.steps;
@@ -522,6 +522,7 @@ EventRecord EventEngine::next_event() {
         const double xd_old = st_.xd;
         if (held_ranges()) {
           stepper_.step_held(forces_, frozen, st_, dt_, ranges_);
+          if (pad_) ++pad_held_steps_;
         } else {
           stepper_.step(forces_, frozen, st_, dt_, ranges_);
         }

@@ -70,13 +70,16 @@ class EventEngine {
   // Give up on an event after this many steps (a runaway means dt or the scene is wrong).
   std::int64_t max_steps_per_event = 200'000'000;
   // While the sliding blocks lie within one range of at most kMaxCluster interior blocks
-  // (pad held, a Crossing stepper), step it with the stepper's fixed-size form
+  // (a Crossing stepper; the pad held or moving), step it with the stepper's fixed-size form
   // (integrate/cluster.hpp): the same events bit for bit, in less time. Off only to test
   // exactly that.
   bool cluster_path = true;
-  // With the pad held and every covered range ending in stuck blocks, use the stepper's
+  // With every covered range ending in stuck blocks (the pad held or moving), use the stepper's
   // step_held() (again the same events bit for bit).
   bool held_ranges_path = true;
+  // Steps this engine took with the pad moving on the fused held-range path (not part of
+  // snapshots).
+  std::int64_t pad_held_steps() const { return pad_held_steps_; }
   // Steps this engine took on the cluster path (not part of snapshots): all of them,
   // those with more than one block between the ends, and those at a free chain end.
   struct ClusterSteps {
@@ -118,6 +121,9 @@ class EventEngine {
   bool held_ranges() const;
   // Steps the cluster; false when the stepper has no fixed-size form.
   bool relax_cluster(ClusterRelaxation& r, std::int64_t& steps, ContactScan& scan);
+  // The stepper's cluster form with the pad moving (engine/pad_paths.cpp): r as for
+  // Stepper::relax_cluster, completed with what the pad's form needs.
+  bool relax_pad_cluster(ClusterRelaxation& r);
   // Takes the start of the event triggered by block j from the lone slip's record, up to
   // the step at which the block sticks or a neighbour breaks loose; false, having done
   // nothing, when the record does not apply or rounding could decide.
@@ -147,6 +153,7 @@ class EventEngine {
 
   EngineCounters counters_;
   ClusterSteps cluster_steps_;
+  std::int64_t pad_held_steps_ = 0;
   // The lone slip of an interior block [0] and of a block at a free chain end [1], built
   // when first needed.
   LoneSlip lone_[2];

@@ -8,6 +8,8 @@
 
 #include "integrate/cluster.hpp"
 #include "integrate/layouts.hpp"
+#include "integrate/pad_cluster.hpp"
+#include "integrate/pad_held.hpp"
 #include "integrate/stepper.hpp"
 
 namespace bkq {
@@ -36,6 +38,8 @@ class ExplicitScheme final : public Stepper {
                  Ranges ranges) override {
     if constexpr (!Method::fusable) {
       step(forces, sub, st, dt, ranges);
+    } else if (forces.params().pad_moves()) {
+      step_held_with_pad<Method>(forces, sub, st, dt, ranges, scratch_);
     } else {
       const SubstrateState frozen = sub.at(st.t);
       // The anchor as the general step forms it (substrate + held pad at 0).
@@ -60,6 +64,10 @@ class ExplicitScheme final : public Stepper {
               layout(acceleration, w, v, a, velocity_dependent);
           Method::advance(layout, h);
         });
+  }
+
+  bool relax_pad_cluster(const ChainForces& forces, PadClusterRelaxation& r) const override {
+    return run_pad_cluster<Method>(forces, r);
   }
 
  private:

@@ -30,6 +30,7 @@
 namespace bkq {
 
 struct ClusterRelaxation;
+struct PadClusterRelaxation;
 
 enum class StickRule { Crossing, Projection, Located };
 
@@ -68,10 +69,10 @@ class Stepper {
   virtual double located_stick_time() const { return std::nan(""); }
   virtual void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                     Ranges ranges) = 0;
-  // step() in the event engine's common situation: the pad held, the substrate frozen,
-  // and the two end blocks of every range stuck (so every block advanced is interior and
-  // the ranges do not interact). A stepper may fuse its stages there; it must give the
-  // same result as step() bit for bit. By default it is step().
+  // step() in the event engine's common situation: the substrate frozen and the two end
+  // blocks of every range stuck (so every block advanced is interior and the ranges
+  // interact only through the pad, when it moves). A stepper may fuse its stages there; it must
+  // give the same result as step() bit for bit. By default it is step().
   virtual void step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                          Ranges ranges) {
     step(forces, sub, st, dt, ranges);
@@ -81,6 +82,8 @@ class Stepper {
   // (integrate/cluster.hpp); false when the stepper has no such form for that cluster
   // (the event engine then uses step()).
   virtual bool relax_cluster(const ChainForces&, ClusterRelaxation&) const { return false; }
+  // The same with the pad moving (integrate/pad_cluster.hpp).
+  virtual bool relax_pad_cluster(const ChainForces&, PadClusterRelaxation&) const { return false; }
   // What the stepper carries from one step() to the next besides the chain state (the
   // adaptive scheme's next step size, the theta-method's reused factorisation), as plain
   // numbers: a continuous run keeps it in its checkpoint and restores it into a fresh

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "../record_bits.hpp"
 #include "../scene_sim.hpp"
 
 namespace bkq {
@@ -24,22 +25,7 @@ namespace {
 using test::Settings;
 using test::Sim;
 
-// Every field of the record, compared as bits (a NaN magnitude equals itself).
-std::vector<std::uint64_t> bits(const EventRecord& e) {
-  auto b = [](double v) { return std::bit_cast<std::uint64_t>(v); };
-  return {static_cast<std::uint64_t>(e.event),
-          b(e.load),
-          static_cast<std::uint64_t>(e.trigger),
-          static_cast<std::uint64_t>(e.blocks),
-          b(e.moment),
-          b(e.magnitude),
-          b(e.duration),
-          b(e.max_speed),
-          b(e.pad_displacement),
-          static_cast<std::uint64_t>(e.first_block),
-          static_cast<std::uint64_t>(e.last_block),
-          b(e.energy_residual)};
-}
+using test::record_bits;
 
 struct Case {
   std::string name;
@@ -76,7 +62,7 @@ TEST_P(ClusterPath, SameEventsBitForBitAsTheGeneralPath) {
     general.engine.held_ranges_path = false;
     for (int i = 0; i < 3000; ++i) {
       const EventRecord a = fast.engine.next_event(), b = general.engine.next_event();
-      ASSERT_EQ(bits(a), bits(b)) << "event " << i + 1;
+      ASSERT_EQ(record_bits(a), record_bits(b)) << "event " << i + 1;
     }
     const EngineCounters& ca = fast.engine.counters();
     const EngineCounters& cb = general.engine.counters();
