@@ -60,9 +60,12 @@ void BM_Continuous(benchmark::State& state, const char* scheme) {
   state.counters["sliding_fraction"] = sliding / (static_cast<double>(steps) * n);
 }
 
-BENCHMARK_CAPTURE(BM_Continuous, rk2, "rk2")->Arg(1000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Continuous, rk4, "rk4")->Arg(1000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Continuous, verlet, "verlet")->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Continuous, rk2, "rk2")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Continuous, rk4, "rk4")->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Continuous, verlet, "verlet")
+    ->Arg(100)
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

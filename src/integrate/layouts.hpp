@@ -173,6 +173,10 @@ template <class Round>
 class ChainLayout {
  public:
   static constexpr int kShortRange = 8;
+  // A single range this long takes the fused pass in pieces (the continuous driver's
+  // whole chain); shorter ones, the event engine's, the two-pass form, which costs them
+  // less.
+  static constexpr int kLongRange = layout_detail::kPiece;
   ChainLayout(const ChainForces& forces, const Substrate& sub, ChainState& st, Ranges ranges,
               ExplicitScratch& s)
       : forces_(forces),
@@ -214,7 +218,7 @@ class ChainLayout {
       forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(), anchor, sub,
                                   Ranges(&piece, 1), s_.a.data());
     };
-    if (ranges_.size() == 1 && ranges_[0].hi - ranges_[0].lo > kShortRange) {
+    if (ranges_.size() == 1 && ranges_[0].hi - ranges_[0].lo >= kLongRange) {
       layout_detail::fused_chain_pass<typename Round::BlockRound>(
           ranges_[0], pad_, accel, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(),
           s_.cw.data(), s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
