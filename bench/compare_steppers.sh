@@ -29,7 +29,7 @@ done
 rates() {
   "$1" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null |
     awk -F, '/^"BM_Continuous/ {
-      split($1, name, "/"); for (i = 1; i <= NF; ++i) if (head[i] == "\"block_steps\"") print name[2], $i
+      split($1, name, "/"); for (i = 1; i <= NF; ++i) if (head[i] == "\"block_steps\"") print name[2] "/" substr(name[3], 1, length(name[3]) - 1), $i
     } /^name,/ { for (i = 1; i <= NF; ++i) head[i] = $i }'
 }
 
@@ -39,12 +39,12 @@ for ((r = 1; r <= rounds; ++r)); do
   old=$(rates "$OLD")
   new=$(rates "$NEW")
   join <(sort <<<"$old") <(sort <<<"$new") |
-    awk -v r="$r" '{ printf "round %d %-7s old %.3g new %.3g new/old %.3f\n", r, $1, $2, $3, $3 / $2 }' |
+    awk -v r="$r" '{ printf "round %d %-11s old %.3g new %.3g new/old %.3f\n", r, $1, $2, $3, $3 / $2 }' |
     tee -a "$all"
 done
 echo "median new/old and rates over $rounds rounds:"
-for scheme in rk2 rk4 verlet; do
+for scheme in $(awk '{ print $3 }' "$all" | sort -u); do
   awk -v s="$scheme" '$3 == s { print $9, $5, $7 }' "$all" | sort -n |
     awk -v s="$scheme" '{ r[NR] = $1; o[NR] = $2; n[NR] = $3 }
-      END { m = int((NR + 1) / 2); printf "%-7s new/old %.3f (range %.3f-%.3f)  old %.3g  new %.3g block-steps/s\n", s, r[m], r[1], r[NR], o[m], n[m] }'
+      END { m = int((NR + 1) / 2); printf "%-11s new/old %.3f (range %.3f-%.3f)  old %.3g  new %.3g block-steps/s\n", s, r[m], r[1], r[NR], o[m], n[m] }'
 done

@@ -169,14 +169,15 @@ template <class B, class Accel, class Update, class Sum, class Earlier>
 
 }  // namespace layout_detail
 
-template <class Round>
+template <class Round, bool Fusable = false>
 class ChainLayout {
  public:
   static constexpr int kShortRange = 8;
   // A single range this long takes the fused pass in pieces (the continuous driver's
   // whole chain); shorter ones, the event engine's, the two-pass form, which costs them
-  // less.
-  static constexpr int kLongRange = layout_detail::kPiece;
+  // less. Schemes whose stages never write the positions they read (Method::fusable)
+  // gain from it from one piece on, the others from two (README "Performance").
+  static constexpr int kLongRange = (Fusable ? 1 : 2) * layout_detail::kPiece;
   ChainLayout(const ChainForces& forces, const Substrate& sub, ChainState& st, Ranges ranges,
               ExplicitScratch& s)
       : forces_(forces),
