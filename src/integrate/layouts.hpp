@@ -36,7 +36,8 @@ struct ExplicitScratch {
 
 // Does the scene have a velocity-dependent force (verlet's closing kick needs it)?
 inline bool velocity_dependent(const ModelParams& p, bool pad_moves) {
-  return !law_traits(p.law).frictionless || p.c_u != 0 || (pad_moves && p.c_p != 0);
+  return !law_traits(p.law).frictionless || p.c_u != 0 || (pad_moves && p.c_p != 0) ||
+         p.rayleigh_alpha != 0 || p.rayleigh_beta != 0;
 }
 
 namespace layout_detail {
@@ -207,25 +208,32 @@ class ChainLayout {
     const double x_at = state_positions ? st_.x : x_;
     const double xd_at = pick(Point::velocities, st_.xd, xd_, xu_);
     const double anchor = sub.s + (pad_ ? x_at : 0.0);
+    const double anchor_v = sub.v + (pad_ ? xd_at : 0.0);
+    // Rayleigh damping on the pad needs the blocks' velocities at the stage point (taken
+    // before the pass changes them); blocks outside the ranges are at rest (w' = 0).
+    double sum_wd = 0;
+    if (pad_ && forces_.rayleigh())
+      for (const Range& r : ranges_)
+        for (int j = r.lo; j < r.hi; ++j) sum_wd += v_at[j];
     auto pad_acceleration = [&] {
-      return pad_ ? forces_.pad_acceleration(x_at, xd_at, state_positions ? st_.sum_w : sum_, sub.s)
-                  : 0.0;
+      const double sum_w = state_positions ? st_.sum_w : sum_;
+      return pad_ ? forces_.pad_acceleration(x_at, xd_at, sum_w, sub.s, sum_wd, sub.v) : 0.0;
     };
     // Before the pass where it can (its division overlaps the loops).
     double ax = joint ? 0.0 : pad_acceleration();
     double totals[2];
     auto accel = [&](int lo, int hi) {
       const Range piece{lo, hi};
-      forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(), anchor, sub,
-                                  Ranges(&piece, 1), s_.a.data());
+      forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(), anchor, anchor_v,
+                                  sub, Ranges(&piece, 1), s_.a.data());
     };
     if (ranges_.size() == 1 && ranges_[0].hi - ranges_[0].lo >= kLongRange) {
       layout_detail::fused_chain_pass<typename Round::BlockRound>(
           ranges_[0], pad_, accel, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(),
           s_.cw.data(), s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
     } else {
-      forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(), anchor, sub,
-                                  ranges_, s_.a.data());
+      forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(), anchor, anchor_v,
+                                  sub, ranges_, s_.a.data());
       if (ranges_.size() == 1)
         layout_detail::chain_pass_body<typename Round::BlockRound>(
             ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
