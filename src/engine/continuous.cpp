@@ -75,24 +75,38 @@ ContinuousDriver::Power ContinuousDriver::power() const {
   const SubstrateState sub = substrate();
   const double x = p.pad_moves() ? st_.x : 0.0;
   const int n = forces_.n();
-  const double* wd = st_.wd.data();
-  // Plain sums first (they vectorise), then friction over the sliding blocks.
+  // One pass, every sum in block order beside the others (each is a chain of dependent
+  // additions; side by side they cost the time of one). Friction: a sliding block's
+  // opposes its frozen direction; a stuck one does no work against the substrate
+  // (w' = 0) and adds +0.0, which leaves the sum as it was.
   double sum_w = 0, sum_wd = 0, sum_u2 = 0, friction = 0;
-  for (int j = 0; j < n; ++j) {
-    sum_w += st_.w[j];
-    sum_wd += wd[j];
-  }
-  if (p.c_u != 0)
-    for (int j = 0; j < n; ++j) sum_u2 += (wd[j] - sub.v) * (wd[j] - sub.v);
-  // A sliding block's friction opposes its frozen direction; a stuck one does no work
-  // against the substrate (w' = 0).
-  if (sliding_ > 0 && p.law != law_id<law::None>)
-    visit_law(p.law, [&]<class L>() {
-      const L law(p);
-      for (int j = 0; j < n; ++j)
-        if (st_.mobile[j] != 0.0)
-          friction += law.magnitude(wd[j]) * (L::backslip ? st_.dir[j] : 1.0) * wd[j];
-    });
+  visit_law(p.law, [&]<class L>() {
+    const L law(p);
+    const double v = sub.v;
+    const double* __restrict w = st_.w.data();
+    const double* __restrict wd = st_.wd.data();
+    const double* __restrict mobile = st_.mobile.data();
+    const double* __restrict dir = st_.dir.data();
+    auto pass = [&]<bool Friction, bool Damper>() {
+      double s_w = 0, s_wd = 0, s_u2 = 0, f = 0;
+      for (int j = 0; j < n; ++j) {
+        s_w += w[j];
+        s_wd += wd[j];
+        if constexpr (Damper) s_u2 += (wd[j] - v) * (wd[j] - v);
+        if constexpr (Friction)
+          f += mobile[j] != 0.0 ? law.magnitude(wd[j]) * (L::backslip ? dir[j] : 1.0) * wd[j] : 0.0;
+      }
+      sum_w = s_w;
+      sum_wd = s_wd;
+      sum_u2 = s_u2;
+      friction = f;
+    };
+    const bool rubs = sliding_ > 0 && p.law != law_id<law::None>;
+    if (p.c_u != 0)
+      rubs ? pass.template operator()<true, true>() : pass.template operator()<false, true>();
+    else
+      rubs ? pass.template operator()<true, false>() : pass.template operator()<false, false>();
+  });
   const double sum_u1 = sum_wd - n * sub.v;
   Power w;
   w.momentum = p.m_u * sum_u1;
@@ -104,7 +118,7 @@ ContinuousDriver::Power ContinuousDriver::power() const {
     // (the neighbour springs' parts cancel), and the power u'^T C u' it dissipates.
     const double xd = p.pad_moves() ? st_.xd : 0.0;
     w.force += p.rayleigh_alpha * p.m_u * sum_u1 + p.rayleigh_beta * p.k_p * (sum_u1 - p.n * xd);
-    w.dissipation += forces_.rayleigh_power(wd, xd, sub.v);
+    w.dissipation += forces_.rayleigh_power(st_.wd.data(), xd, sub.v);
   }
   return w;
 }

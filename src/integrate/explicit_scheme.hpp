@@ -30,7 +30,7 @@ class ExplicitScheme final : public Stepper {
 
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override {
-    ChainLayout<typename Method::Round> layout(forces, sub, st, ranges, scratch_);
+    ChainLayout<typename Method::Round, Method::fusable> layout(forces, sub, st, ranges, scratch_);
     Method::advance(layout, dt);
   }
 

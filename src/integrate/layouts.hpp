@@ -12,6 +12,7 @@
 //                    held in registers.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <tuple>
 #include <type_traits>
@@ -42,11 +43,10 @@ inline bool velocity_dependent(const ModelParams& p, bool pad_moves) {
 namespace layout_detail {
 
 // One stage's pass over the blocks of the ranges at accelerations a, range by range:
-// the pad's sums that come before the update (`earlier` and `sum` side by side: two chains
-// of dependent additions in one loop cost the time of one), the scheme's update, then the
-// pad's sum that follows it (a separate loop: a sum in block order is a chain of dependent
-// additions, which would keep the update loop from vectorising). Each term reads only its
-// own block's entries, so taking a range's sums beside its update is the same as taking
+// the pad's sum `earlier` (terms read before the update), the scheme's update, then the
+// pad's sum `sum` (terms read after it), each sum its own loop: a sum in block order is a
+// chain of dependent additions, which would keep the update loop from vectorising. Each term reads
+// only its own block's entries, so taking a range's sums beside its update is the same as taking
 // them over all ranges at once. The totals go to totals[0] (sum) and totals[1] (earlier).
 // Out of line with restrict parameters: inlined into the stage, GCC no longer knows the
 // buffers are apart and the loops stay scalar.
@@ -67,10 +67,7 @@ template <class B, class Update, class Sum, class Earlier>
   for (const Range& r : ranges) {
     if constexpr (joint) {
       if (pad)
-        for (int j = r.lo; j < r.hi; ++j) {
-          earlier_total += earlier.term(element(j));
-          total += sum.term(element(j));
-        }
+        for (int j = r.lo; j < r.hi; ++j) earlier_total += earlier.term(element(j));
     }
     // The copies some updates make (cw = v) stay in this loop instead of becoming calls
     // to memcpy (the optimize attribute above): the ranges are short.
@@ -78,7 +75,7 @@ template <class B, class Update, class Sum, class Earlier>
       StageElement<B> e{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
       update(e, a[j]);
     }
-    if constexpr (summed && !joint) {
+    if constexpr (summed) {
       if (pad)
         for (int j = r.lo; j < r.hi; ++j) total += sum.term(element(j));
     }
@@ -96,12 +93,92 @@ template <class B, class Update, class Sum, class Earlier>
   chain_pass_body<B>(ranges, pad, w, wd, x, y, cw, cv, u, a, update, sum, earlier, totals);
 }
 
+// Blocks per piece of a fused pass: small enough that a piece's entries stay in the
+// first-level cache between its accelerations and its update, and that the pad's chains
+// of additions overlap the next piece's vector work.
+inline constexpr int kPiece = 64;
+
+// The update of blocks [lo, hi) (at most kPiece + 1 of them) at accelerations a, with the
+// pad's terms: `earlier`'s read before each block's update, `sum`'s after it. The terms
+// go to small arrays in the vectorised update loop and are added up afterwards, in block
+// order, both chains side by side.
+template <class B, class Update, class Sum, class Earlier>
+[[gnu::always_inline]] inline void fused_piece(int lo, int hi, bool pad, double* __restrict w,
+                                               double* __restrict wd, double* __restrict x,
+                                               double* __restrict y, double* __restrict cw,
+                                               double* __restrict cv, double* __restrict u,
+                                               const double* __restrict a, Update& update,
+                                               const Sum& sum, const Earlier& earlier,
+                                               double& total, double& earlier_total) {
+  constexpr bool joint = !std::is_same_v<Earlier, NoSum>;
+  constexpr bool summed = !std::is_same_v<Sum, NoSum>;
+  if constexpr (joint || summed) {
+    if (pad) {
+      double te[kPiece + 1], ts[kPiece + 1];
+      for (int j = lo; j < hi; ++j) {
+        StageElement<B> e{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+        if constexpr (joint) te[j - lo] = earlier.term(e);
+        update(e, a[j]);
+        if constexpr (summed) ts[j - lo] = sum.term(e);
+      }
+      for (int k = 0; k < hi - lo; ++k) {
+        if constexpr (joint) earlier_total += te[k];
+        if constexpr (summed) total += ts[k];
+      }
+      return;
+    }
+  }
+  for (int j = lo; j < hi; ++j) {
+    StageElement<B> e{w[j], wd[j], x[j], y[j], x[j], y[j], cw[j], cv[j], u[j]};
+    update(e, a[j]);
+  }
+}
+
+// One stage over a single range [lo, hi) in pieces, each piece's accelerations
+// (`accel(lo, hi)` fills a[lo..hi)) followed by its updates, so the entries are read from
+// the first-level cache and the pad's sums run beside the vector work. A block's update
+// may change the positions its neighbours' accelerations read, so the updates lag the
+// accelerations by one block, and the last block's acceleration (which, on a periodic
+// chain, reads the first block) is taken before any update. Each block gets the same
+// acceleration and update as in the two-pass form, and the sums the same terms in the
+// same order, so the results agree bit for bit.
+template <class B, class Accel, class Update, class Sum, class Earlier>
+[[gnu::noinline, gnu::optimize("no-tree-loop-distribute-patterns")]] void fused_chain_pass(
+    Range r, bool pad, const Accel& accel, double* __restrict w, double* __restrict wd,
+    double* __restrict x, double* __restrict y, double* __restrict cw, double* __restrict cv,
+    double* __restrict u, double* __restrict a, Update& update, const Sum& sum,
+    const Earlier& earlier, double* __restrict totals) {
+  double total = 0, earlier_total = 0;
+  const int last = r.hi - 1;
+  accel(last, r.hi);
+  int done = r.lo;
+  for (int p = r.lo; p < last;) {
+    const int q = std::min(p + kPiece, last);
+    accel(p, q);
+    const int upto = q == last ? r.hi : q - 1;
+    fused_piece<B>(done, upto, pad, w, wd, x, y, cw, cv, u, a, update, sum, earlier, total,
+                   earlier_total);
+    done = upto;
+    p = q;
+  }
+  if (done < r.hi)
+    fused_piece<B>(done, r.hi, pad, w, wd, x, y, cw, cv, u, a, update, sum, earlier, total,
+                   earlier_total);
+  totals[0] = total;
+  totals[1] = earlier_total;
+}
+
 }  // namespace layout_detail
 
-template <class Round>
+template <class Round, bool Fusable = false>
 class ChainLayout {
  public:
   static constexpr int kShortRange = 8;
+  // A single range this long takes the fused pass in pieces (the continuous driver's
+  // whole chain); shorter ones, the event engine's, the two-pass form, which costs them
+  // less. Schemes whose stages never write the positions they read (Method::fusable)
+  // gain from it from one piece on, the others from two (README "Performance").
+  static constexpr int kLongRange = (Fusable ? 1 : 2) * layout_detail::kPiece;
   ChainLayout(const ChainForces& forces, const Substrate& sub, ChainState& st, Ranges ranges,
               ExplicitScratch& s)
       : forces_(forces),
@@ -118,8 +195,9 @@ class ChainLayout {
     stage(p, time_offset, update, sum, no_sum);
   }
   // With `earlier`, the sum of the stage before (which that stage left out), taken in one
-  // pass with this stage's, both of them before this stage's update: the scheme vouches
-  // that neither term changes in between.
+  // pass with this stage's: its terms are read before this stage's update, this stage's
+  // own after it; the scheme vouches that the earlier terms do not change in between. The
+  // pad's acceleration at this stage point then follows the pass.
   template <class Point, class Update, class Sum, class Earlier>
   void stage(Point, double time_offset, Update&& update, const Sum& sum, const Earlier& earlier) {
     constexpr bool state_positions = Point::positions == Buf::W;
@@ -129,9 +207,8 @@ class ChainLayout {
     const double* v_at = pick(Point::velocities, st_.wd.data(), s_.y.data(), s_.u.data());
     const double x_at = state_positions ? st_.x : x_;
     const double xd_at = pick(Point::velocities, st_.xd, xd_, xu_);
-    forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(),
-                                sub.s + (pad_ ? x_at : 0.0), sub.v + (pad_ ? xd_at : 0.0), sub,
-                                ranges_, s_.a.data());
+    const double anchor = sub.s + (pad_ ? x_at : 0.0);
+    const double anchor_v = sub.v + (pad_ ? xd_at : 0.0);
     // Rayleigh damping on the pad needs the blocks' velocities at the stage point (taken
     // before the pass changes them); blocks outside the ranges are at rest (w' = 0).
     double sum_wd = 0;
@@ -145,14 +222,27 @@ class ChainLayout {
     // Before the pass where it can (its division overlaps the loops).
     double ax = joint ? 0.0 : pad_acceleration();
     double totals[2];
-    if (ranges_.size() == 1 && ranges_[0].hi - ranges_[0].lo <= kShortRange)
-      layout_detail::chain_pass_body<typename Round::BlockRound>(
-          ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
-          s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
-    else
-      layout_detail::chain_pass<typename Round::BlockRound>(
-          ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
-          s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
+    auto accel = [&](int lo, int hi) {
+      const Range piece{lo, hi};
+      forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(), anchor, anchor_v,
+                                  sub, Ranges(&piece, 1), s_.a.data());
+    };
+    if (ranges_.size() == 1 && ranges_[0].hi - ranges_[0].lo >= kLongRange) {
+      layout_detail::fused_chain_pass<typename Round::BlockRound>(
+          ranges_[0], pad_, accel, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(),
+          s_.cw.data(), s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
+    } else {
+      forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(), anchor, anchor_v,
+                                  sub, ranges_, s_.a.data());
+      if (ranges_.size() == 1)
+        layout_detail::chain_pass_body<typename Round::BlockRound>(
+            ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
+            s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
+      else
+        layout_detail::chain_pass<typename Round::BlockRound>(
+            ranges_, pad_, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(), s_.cw.data(),
+            s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);
+    }
     if (!pad_) return;
     if constexpr (joint) {
       sum_ = st_.sum_w + earlier.scale * totals[1];
