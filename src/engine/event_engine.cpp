@@ -63,9 +63,6 @@ void EventEngine::allocate_bookkeeping() {
   need_.assign(n_, 0);
   slipped_.assign(n_, 0);
   w_before_.assign(n_, 0.0);
-  wd_old_.assign(n_, 0.0);
-  mobile_old_.assign(n_, 0.0);
-  w_old_.assign(n_, 0.0);
 }
 
 void EventEngine::check_model(const ModelParams& p) {
@@ -74,7 +71,7 @@ void EventEngine::check_model(const ModelParams& p) {
 
 void EventEngine::rebuild_tree() {
   tree_.reset(n_);
-  for (int j = 0; j < n_; ++j) tree_.set(j, forces_.local_force(st_.w.data(), j));
+  tree_.set_range(0, n_, [&](int j) { return forces_.local_force(st_.w.data(), j); });
 }
 
 double EventEngine::worst_stuck_excess() const {
@@ -263,10 +260,10 @@ void EventEngine::note_released_in_step() {
   }
   for (const Range& r : ranges_)
     for (int j = r.lo; j < r.hi; ++j)
-      if (st_.mobile[j] != 0.0 && mobile_old_[j] == 0.0) {
+      if (st_.mobile[j] != 0.0 && old_.data(kMobileOld)[j] == 0.0) {
         // Stuck, so unmoved, until it broke loose inside the step. It may have slipped
         // earlier in the event: cover it again all the same.
-        note_slipped(j, w_old_[j]);
+        note_slipped(j, old_.data(kWOld)[j]);
         released_now_.push_back(j);
       }
   counters_.releases += static_cast<std::int64_t>(released_now_.size());
@@ -502,12 +499,14 @@ EventRecord EventEngine::next_event() {
                  cluster_ready(cluster) && relax_cluster(cluster, steps, scan)) {
         // Ran one or more steps of a cluster; scan describes the last one.
       } else {
+        old_.fit(ranges_, n_, p.boundary == Boundary::Periodic);
+        double* const wd_old = old_.data(kWdOld);
         for (const Range& r : ranges_) {
-          std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old_.begin() + r.lo);
+          std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old + r.lo);
           if (!crossing) {
             std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi,
-                      mobile_old_.begin() + r.lo);
-            std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, w_old_.begin() + r.lo);
+                      old_.data(kMobileOld) + r.lo);
+            std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, old_.data(kWOld) + r.lo);
           }
         }
         const double xd_old = st_.xd;
@@ -520,8 +519,8 @@ EventRecord EventEngine::next_event() {
         for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
         if (!crossing) note_released_in_step();
         released_now_.clear();
-        dissipated_ += half_dt_m * dissipated_power(forces_, st_, wd_old_.data(), ranges_);
-        scan = settle_contacts(forces_, st_, wd_old_.data(), anchor(), ranges_, crossing,
+        dissipated_ += half_dt_m * dissipated_power(forces_, st_, wd_old, ranges_);
+        scan = settle_contacts(forces_, st_, wd_old, anchor(), ranges_, crossing,
                                [&](int j) { released_now_.push_back(j); });
         if (pad_) dissipated_ += half_dt_cp * (xd_old * xd_old + st_.xd * st_.xd);
         counters_.sliding_block_steps += scan.sliding;

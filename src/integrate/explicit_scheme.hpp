@@ -15,13 +15,14 @@ namespace bkq {
 template <class Method>
 class ExplicitScheme final : public Stepper {
  public:
-  explicit ExplicitScheme(int n) { scratch_.resize(n); }
+  explicit ExplicitScheme(int) {}
   std::string_view name() const override { return Method::name; }
   int order() const override { return Method::order; }
   double stability_constant() const override { return Method::stability_constant; }
 
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override {
+    scratch_.fit(forces, ranges);
     ChainLayout<typename Method::Round> layout(forces, sub, st, ranges, scratch_);
     Method::advance(layout, dt);
   }
@@ -31,6 +32,7 @@ class ExplicitScheme final : public Stepper {
     if constexpr (!Method::fusable) {
       step(forces, sub, st, dt, ranges);
     } else {
+      scratch_.fit(forces, ranges);
       const SubstrateState frozen = sub.at(st.t);
       // The anchor as the general step forms it (substrate + held pad at 0).
       const HeldInput in{st.mobile.data(), st.dir.data(), frozen.s + 0.0, frozen};
