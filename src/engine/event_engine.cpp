@@ -258,14 +258,17 @@ void EventEngine::note_released_in_step() {
     note_slipped(r.block, r.w);
     released_now_.push_back(r.block);
   }
-  for (const Range& r : ranges_)
-    for (int j = r.lo; j < r.hi; ++j)
-      if (st_.mobile[j] != 0.0 && old_.data(kMobileOld)[j] == 0.0) {
+  for (std::size_t i = 0; i < ranges_.size(); ++i) {
+    const double* mobile_old = old_.data(kMobileOld, i);
+    const double* w_old = old_.data(kWOld, i);
+    for (int j = ranges_[i].lo; j < ranges_[i].hi; ++j)
+      if (st_.mobile[j] != 0.0 && mobile_old[j] == 0.0) {
         // Stuck, so unmoved, until it broke loose inside the step. It may have slipped
         // earlier in the event: cover it again all the same.
-        note_slipped(j, old_.data(kWOld)[j]);
+        note_slipped(j, w_old[j]);
         released_now_.push_back(j);
       }
+  }
   counters_.releases += static_cast<std::int64_t>(released_now_.size());
   for (int j : released_now_) cover(j);
 }
@@ -499,14 +502,20 @@ EventRecord EventEngine::next_event() {
                  cluster_ready(cluster) && relax_cluster(cluster, steps, scan)) {
         // Ran one or more steps of a cluster; scan describes the last one.
       } else {
-        old_.fit(ranges_, n_, p.boundary == Boundary::Periodic);
-        double* const wd_old = old_.data(kWdOld);
-        for (const Range& r : ranges_) {
-          std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old + r.lo);
+        // A stepper that resolves transitions itself covers the blocks it released before
+        // the contact pass, which then reads the copies over the grown ranges: for it they
+        // cover the whole chain and keep what earlier steps left (as they always did).
+        if (crossing)
+          old_.fit(ranges_);
+        else
+          old_.whole(n_);
+        for (std::size_t i = 0; i < ranges_.size(); ++i) {
+          const Range& r = ranges_[i];
+          std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, old_.data(kWdOld, i) + r.lo);
           if (!crossing) {
             std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi,
-                      old_.data(kMobileOld) + r.lo);
-            std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, old_.data(kWOld) + r.lo);
+                      old_.data(kMobileOld, i) + r.lo);
+            std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, old_.data(kWOld, i) + r.lo);
           }
         }
         const double xd_old = st_.xd;
@@ -519,9 +528,24 @@ EventRecord EventEngine::next_event() {
         for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
         if (!crossing) note_released_in_step();
         released_now_.clear();
-        dissipated_ += half_dt_m * dissipated_power(forces_, st_, wd_old, ranges_);
-        scan = settle_contacts(forces_, st_, wd_old, anchor(), ranges_, crossing,
-                               [&](int j) { released_now_.push_back(j); });
+        // All ranges with one copy, or (far apart) range by range, each with its own: the
+        // sums and the releases in the order of one pass over all ranges either way.
+        auto groups = [&](auto&& f) {
+          if (old_.joint()) return f(old_.data(kWdOld, 0), Ranges(ranges_));
+          for (std::size_t i = 0; i < ranges_.size(); ++i)
+            f(old_.data(kWdOld, i), Ranges(&ranges_[i], 1));
+        };
+        double power = 0;
+        groups([&](const double* wd_old, Ranges g) {
+          power += dissipated_power(forces_, st_, wd_old, g);
+        });
+        dissipated_ += half_dt_m * power;
+        groups([&](const double* wd_old, Ranges g) {
+          const ContactScan part = settle_contacts(forces_, st_, wd_old, anchor(), g, crossing,
+                                                   [&](int j) { released_now_.push_back(j); });
+          scan.sliding += part.sliding;
+          raise_max_speed(scan.max_speed, part.max_speed);
+        });
         if (pad_) dissipated_ += half_dt_cp * (xd_old * xd_old + st_.xd * st_.xd);
         counters_.sliding_block_steps += scan.sliding;
       }

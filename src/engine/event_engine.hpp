@@ -141,9 +141,9 @@ class EventEngine {
   std::vector<Range> ranges_;
   std::vector<unsigned char> covered_, need_;
   // Velocities, stick flags and positions at the start of a step (the last two for
-  // steppers that resolve transitions themselves), over the blocks of the step.
+  // steppers that resolve transitions themselves), over the blocks of the step's ranges.
   enum { kWdOld, kMobileOld, kWOld };
-  BlockWindow old_{3};
+  RangeArrays old_{3};
   std::vector<int> released_now_;
 
   // Per-event bookkeeping.

@@ -25,9 +25,9 @@
 namespace bkq {
 
 // Scratch of the explicit steppers, indexed by block over a window of the chain that
-// fit() makes hold the ranges of the step (integrate/block_window.hpp; entries entering it
-// are 0, so those outside the ranges stay finite): stage positions and velocities (two
-// sets, for double buffering), accelerations, accumulators and the spare velocity.
+// fit() makes hold the ranges of the step (integrate/block_window.hpp: what the entries
+// hold is left over, finite): stage positions and velocities (two sets, for double
+// buffering), accelerations, accumulators and the spare velocity.
 struct ExplicitScratch {
   // One of the arrays: data()[j] (or [j]) is block j's entry.
   class Array {

@@ -1,8 +1,8 @@
 // The force tree (engine/force_tree.hpp) against a plain scan: after random sets, removals
 // and range sets, its largest and smallest values and their blocks (the lowest block in a
 // tie) are the scan's, for chain lengths around its bucket and power-of-two boundaries.
-// And the block window (integrate/block_window.hpp): entries keep their values while the
-// window moves over them, new ones are 0.
+// And the block window and range arrays (integrate/block_window.hpp): they hold what the
+// ranges need, each entry its own, and give back what a wide window grew.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -68,35 +68,60 @@ TEST(ForceTree, AgreesWithAScan) {
   }
 }
 
-TEST(BlockWindow, KeepsEntriesAndStartsNewOnesAtZero) {
-  const int n = 1000;
+TEST(BlockWindow, HoldsTheRangesAndTheirNeighboursAndGivesBackWhatItGrew) {
+  const int n = 100000;
   BlockWindow window(2);
-  std::vector<double> truth(2 * n, 0.0);
   std::mt19937_64 rng(3);
   std::uniform_int_distribution<int> block(0, n - 1), width(1, 40);
-  for (int step = 0; step < 500; ++step) {
-    // One or two ranges, far apart now and then.
+  for (int step = 0; step < 300; ++step) {
+    // One or two ranges, now and then far apart (a wide window).
     const int lo = block(rng), hi = std::min(n, lo + width(rng));
     std::vector<Range> ranges = {Range{lo, hi}};
-    if (step % 7 == 0 && hi + 100 < n) ranges.push_back(Range{hi + 50, hi + 60});
-    window.fit(ranges, n, step % 11 == 0);
-    for (const Range& r : ranges) {
-      ASSERT_LE(window.lo(), std::max(r.lo - 1, 0));
-      ASSERT_GE(window.hi(), std::min(r.hi + 1, n));
-    }
-    // Entries inside the window hold what was written while they stayed in it; whatever
-    // left the window and came back is 0 again.
+    if (step % 50 == 7 && hi + 60000 < n) ranges.push_back(Range{hi + 50000, hi + 50010});
+    window.fit(ranges, n, false);
+    const int first = std::max(ranges.front().lo - 1, 0);
+    const int last = std::min(ranges.back().hi + 1, n);
+    ASSERT_EQ(window.lo(), first);
+    ASSERT_EQ(window.hi(), last);
+    // Every entry there is finite (left over or 0) and its own.
     for (int k = 0; k < 2; ++k)
-      for (int j = window.lo(); j < window.hi(); ++j) {
-        ASSERT_EQ(window.data(k)[j], truth[k * n + j]) << "step " << step << " block " << j;
+      for (int j = first; j < last; ++j) {
+        ASSERT_TRUE(std::isfinite(window.data(k)[j])) << "step " << step << " block " << j;
+        window.data(k)[j] = k * n + j;
       }
     for (int k = 0; k < 2; ++k)
-      for (const Range& r : ranges)
-        for (int j = r.lo; j < r.hi; ++j) window.data(k)[j] = truth[k * n + j] = step + 0.5 * k;
-    // What is outside the window is forgotten.
-    for (int j = 0; j < n; ++j)
-      if (j < window.lo() || j >= window.hi()) truth[j] = truth[n + j] = 0.0;
+      for (int j = first; j < last; ++j) ASSERT_EQ(window.data(k)[j], k * n + j);
+    // A narrow window after a wide one does not keep the wide one's storage.
+    if (ranges.size() == 1) {
+      ASSERT_LE(window.capacity(), 4u * static_cast<unsigned>(last - first) + 256u);
+    }
   }
+  window.fit(std::vector<Range>{Range{0, 3}}, n, true);  // periodic: both ends
+  EXPECT_EQ(window.lo(), 0);
+  EXPECT_EQ(window.hi(), n);
+}
+
+TEST(RangeArrays, GiveEachRangeAndArrayItsOwnEntries) {
+  RangeArrays arrays(3);
+  const std::vector<Range> ranges = {Range{5, 9}, Range{40, 41}, Range{1000, 1020}};
+  arrays.fit(ranges);
+  for (int k = 0; k < 3; ++k)
+    for (std::size_t i = 0; i < ranges.size(); ++i)
+      for (int j = ranges[i].lo; j < ranges[i].hi; ++j) arrays.data(k, i)[j] = 10000 * k + j;
+  for (int k = 0; k < 3; ++k)
+    for (std::size_t i = 0; i < ranges.size(); ++i)
+      for (int j = ranges[i].lo; j < ranges[i].hi; ++j)
+        EXPECT_EQ(arrays.data(k, i)[j], 10000 * k + j);
+  EXPECT_FALSE(arrays.joint());  // far apart: the blocks, not the span
+  // Close together: one window, one address per array for all ranges.
+  const std::vector<Range> close = {Range{5, 9}, Range{40, 41}};
+  arrays.fit(close);
+  EXPECT_TRUE(arrays.joint());
+  EXPECT_EQ(arrays.data(2, 0), arrays.data(2, 1));
+  for (const Range& r : close)
+    for (int j = r.lo; j < r.hi; ++j) arrays.data(1, 0)[j] = j;
+  for (const Range& r : close)
+    for (int j = r.lo; j < r.hi; ++j) EXPECT_EQ(arrays.data(1, 1)[j], j);
 }
 
 }  // namespace
