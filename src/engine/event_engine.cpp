@@ -528,24 +528,26 @@ EventRecord EventEngine::next_event() {
         for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
         if (!crossing) note_released_in_step();
         released_now_.clear();
-        // All ranges with one copy, or (far apart) range by range, each with its own: the
-        // sums and the releases in the order of one pass over all ranges either way.
-        auto groups = [&](auto&& f) {
-          if (old_.joint()) return f(old_.data(kWdOld, 0), Ranges(ranges_));
+        if (old_.joint()) {
+          const double* wd_old = old_.data(kWdOld, 0);
+          dissipated_ += half_dt_m * dissipated_power(forces_, st_, wd_old, ranges_);
+          scan = settle_contacts(forces_, st_, wd_old, anchor(), ranges_, crossing,
+                                 [&](int j) { released_now_.push_back(j); });
+        } else {
+          // Range by range, each with its copy: the sums and the releases in the order of
+          // one pass over all ranges.
+          double power = 0;
           for (std::size_t i = 0; i < ranges_.size(); ++i)
-            f(old_.data(kWdOld, i), Ranges(&ranges_[i], 1));
-        };
-        double power = 0;
-        groups([&](const double* wd_old, Ranges g) {
-          power += dissipated_power(forces_, st_, wd_old, g);
-        });
-        dissipated_ += half_dt_m * power;
-        groups([&](const double* wd_old, Ranges g) {
-          const ContactScan part = settle_contacts(forces_, st_, wd_old, anchor(), g, crossing,
-                                                   [&](int j) { released_now_.push_back(j); });
-          scan.sliding += part.sliding;
-          raise_max_speed(scan.max_speed, part.max_speed);
-        });
+            power += dissipated_power(forces_, st_, old_.data(kWdOld, i), Ranges(&ranges_[i], 1));
+          dissipated_ += half_dt_m * power;
+          for (std::size_t i = 0; i < ranges_.size(); ++i) {
+            const ContactScan part = settle_contacts(forces_, st_, old_.data(kWdOld, i), anchor(),
+                                                     Ranges(&ranges_[i], 1), crossing,
+                                                     [&](int j) { released_now_.push_back(j); });
+            scan.sliding += part.sliding;
+            raise_max_speed(scan.max_speed, part.max_speed);
+          }
+        }
         if (pad_) dissipated_ += half_dt_cp * (xd_old * xd_old + st_.xd * st_.xd);
         counters_.sliding_block_steps += scan.sliding;
       }
