@@ -123,8 +123,11 @@ def require_files(run_dir, names, what):
         raise WrongFolder(f"{run_dir}: not a folder")
     missing = [n for n in names if not os.path.exists(_path(run_dir, n))]
     if missing:
-        mode = load_summary(run_dir).get("mode") if os.path.exists(_path(run_dir, "summary.json")) else None
+        summary = load_summary(run_dir)
+        mode = summary.get("mode")
         kind = f" (a {mode} run)" if mode else ""
+        if summary.get("status") == "interrupted":  # summary.json of a run stopped by a signal
+            kind = f" (an interrupted {mode or ''} run: bkquake run ... --resume finishes it)"
         raise WrongFolder(f"{run_dir}{kind} has no {', '.join(missing)}: {what}")
 
 

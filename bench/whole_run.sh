@@ -3,7 +3,9 @@
 # transient, the events, every output file) against the naive full-chain integration of
 # the same scene and the same events (build/naive_chain, bench/naive_chain.cpp), timed
 # side by side: the two alternate, A B A B ..., and the ratio is taken pair by pair, so a
-# drift of the shared machine's speed falls on both. Prints each pair and the median.
+# drift of the shared machine's speed falls on both. Prints each pair and the medians of
+# the wall-clock ratio and of the CPU-time (user + sys) ratio, which a loaded machine
+# disturbs less.
 #
 #   bench/whole_run.sh [ROUNDS=3] [N...]          (default N: 100 1000)
 #
@@ -32,30 +34,30 @@ done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# Runs the command given as arguments, output discarded; prints its wall time in seconds.
-wall() {
-  local t0 t1
-  t0=$(date +%s.%N)
-  "$@" >/dev/null
-  t1=$(date +%s.%N)
-  awk -v a="$t0" -v b="$t1" 'BEGIN {printf "%.6f\n", b - a}'
+# Runs the command given as arguments, output discarded; prints its wall time and its CPU
+# time (user + sys) in seconds.
+measure() {
+  local TIMEFORMAT='%R %U %S' t
+  t=$({ time "$@" >/dev/null; } 2>&1)
+  awk -v t="$t" 'BEGIN {split(t, a, " "); printf "%.4f %.4f\n", a[1], a[2] + a[3]}'
 }
 
 median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 
 for n in "$@"; do
-  # shellcheck disable=SC2086  # EXTRA is a list of words
+  # shellcheck disable=SC2086,SC2206  # EXTRA is a list of words
   sets=(--set "model.blocks=$n" --set "run.events=$EVENTS" $EXTRA)
-  ratios=()
-  printf 'N = %s, %s events, %s rounds\n' "$n" "$EVENTS" "$rounds"
-  printf '%8s %12s %12s %10s\n' round bkquake_s naive_s ratio
+  ratios=() cpu_ratios=()
+  printf 'N = %s, %s events, %s rounds (seconds)\n' "$n" "$EVENTS" "$rounds"
+  printf '%6s %10s %10s %10s %10s %9s %9s\n' round bkq_wall naive_wall bkq_cpu naive_cpu wall_x cpu_x
   for ((r = 1; r <= rounds; ++r)); do
-    a=$(wall "$BKQUAKE" run "${sets[@]}" --out "$work/run" --force --quiet)
-    b=$(wall "$NAIVE" "${sets[@]}")
-    ratio=$(awk -v a="$a" -v b="$b" 'BEGIN {printf "%.6f\n", b / a}')
-    ratios+=("$ratio")
-    printf '%8d %12.3f %12.3f %10.1f\n' "$r" "$a" "$b" "$ratio"
+    read -r aw ac < <(measure "$BKQUAKE" run "${sets[@]}" --out "$work/run" --force --quiet)
+    read -r bw bc < <(measure "$NAIVE" "${sets[@]}")
+    ratios+=("$(awk -v a="$aw" -v b="$bw" 'BEGIN {printf "%.6f\n", b / a}')")
+    cpu_ratios+=("$(awk -v a="$ac" -v b="$bc" 'BEGIN {printf "%.6f\n", b / a}')")
+    printf '%6d %10.3f %10.3f %10.3f %10.3f %9.1f %9.1f\n' "$r" "$aw" "$bw" "$ac" "$bc" \
+      "${ratios[-1]}" "${cpu_ratios[-1]}"
   done
-  printf 'N = %s: whole bkquake run is %.1fx faster than the naive integration (median of %d pairs)\n\n' \
-    "$n" "$(printf '%s\n' "${ratios[@]}" | median)" "$rounds"
+  printf 'N = %s: whole bkquake run is %.1fx (wall) / %.1fx (CPU) faster than the naive integration (medians of %d pairs)\n\n' \
+    "$n" "$(printf '%s\n' "${ratios[@]}" | median)" "$(printf '%s\n' "${cpu_ratios[@]}" | median)" "$rounds"
 done

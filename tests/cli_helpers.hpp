@@ -139,12 +139,13 @@ inline ProcessResult run_bkquake_for(double timeout_s, const std::vector<std::st
 }
 
 // Starts bkquake with `args` (in `cwd` when given; stdout and stderr to the file `log`, or
-// discarded), sends `sig` once `ready()` turns true, and returns the exit status (128 +
-// signal when killed by one). A run still going after two minutes is killed, so a run
-// that never gets ready cannot hang the suite.
+// discarded), sends `sig` once `ready()` turns true (`times` times in a row: a second
+// SIGTERM lands while the run is stopping), and returns the exit status (128 + signal when
+// killed by one). A run still going after two minutes is killed, so a run that never gets
+// ready cannot hang the suite.
 template <class Ready>
 int run_and_signal_when(const std::vector<std::string>& args, Ready ready, int sig,
-                        const std::string& log = "", const std::string& cwd = "") {
+                        const std::string& log = "", const std::string& cwd = "", int times = 1) {
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
@@ -165,7 +166,7 @@ int run_and_signal_when(const std::vector<std::string>& args, Ready ready, int s
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (::waitpid(pid, &wstatus, WNOHANG) != pid) {
     if (!signalled && ready()) {
-      ::kill(pid, sig);
+      for (int k = 0; k < times; ++k) ::kill(pid, sig);
       signalled = true;
     }
     if (std::chrono::steady_clock::now() > give_up) {
@@ -207,7 +208,6 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-// Whole file as a string (empty when missing).
 // `bkquake run` with a scene's options and then `more`.
 inline std::vector<std::string> run_args(const std::vector<std::string>& scene,
                                          const std::vector<std::string>& more) {
@@ -217,9 +217,36 @@ inline std::vector<std::string> run_args(const std::vector<std::string>& scene,
   return a;
 }
 
+// Whole file as a string (empty when missing).
 inline std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The lines of a summary.json except those a resumed run may write differently from a run
+// that never stopped: the writer's provenance (version, revision, time, and the scene's
+// origin: the folder's own scene.ini when resumed with it), the wall times and `resumes`.
+// Everything else, the status included, must be equal.
+inline std::string summary_without_timing(const std::string& json) {
+  static const char* const kFields[] = {"\"written\"",
+                                        "\"wall_seconds\"",
+                                        "\"wall_seconds_total\"",
+                                        "\"events_per_second\"",
+                                        "\"block_steps_per_second\"",
+                                        "\"resumes\"",
+                                        "\"git_revision\"",
+                                        "\"version\"",
+                                        "\"scene\""};
+  std::istringstream in(json);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    const auto start = line.find_first_not_of(' ');
+    bool skip = false;
+    for (const std::string f : kFields)
+      skip = skip || (start != std::string::npos && line.compare(start, f.size(), f) == 0);
+    if (!skip) out += line + "\n";
+  }
+  return out;
 }
 
 }  // namespace bkq::test

@@ -219,8 +219,21 @@ double ks_binned(const MagnitudeHistogram& a, const MagnitudeHistogram& b) {
   return d;
 }
 
+void check_accuracy_options(const AccuracyOptions& options) {
+  const auto check = [](const char* option, std::int64_t value, std::int64_t lo, std::int64_t hi) {
+    if (value < lo || value > hi)
+      throw Error(std::string("accuracy: --") + option + ": expected an integer in [" +
+                  std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                  std::to_string(value));
+  };
+  check("samples", options.samples, 1, kMaxAccuracySamples);
+  check("spacing", options.sample_spacing, 1, kMaxAccuracySpacing);
+  check("long-events", options.long_events, kMinLongEvents, kMaxLongEvents);
+}
+
 AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
                            const std::function<void(const AccuracyPoint&)>& report) {
+  check_accuracy_options(options);
   AccuracyStudy study;
   const Settings settings = settings_from_scene(scene);
   Study s(settings, options);

@@ -43,6 +43,18 @@ struct AccuracyOptions {
   std::uint64_t other_seed_offset = 1;     // the noise-floor run uses seed + this
 };
 
+// The sizes a study accepts: finite, so a typo cannot start a run of years. Each sample is
+// relaxed once per scheme and dt and by the reference; samples x spacing events are run to
+// sample the states (at most 10^9).
+inline constexpr int kMaxAccuracySamples = 10000;
+inline constexpr int kMaxAccuracySpacing = 100000;
+inline constexpr std::int64_t kMinLongEvents = 100;
+inline constexpr std::int64_t kMaxLongEvents = 1000000000000;
+
+// Checks samples, sample_spacing and long_events against those ranges; bkq::Error naming the
+// option (--samples, --spacing, --long-events), the value and the range otherwise.
+void check_accuracy_options(const AccuracyOptions& options);
+
 struct AccuracyPoint {
   std::string scheme;
   double dt = 0;
@@ -61,7 +73,8 @@ struct AccuracyStudy {
   double mu_min = 0, mu_max = 0;      // the b-fit window
 };
 
-// Runs the study; `report` (if set) is told about each point as it is finished.
+// Runs the study (options checked first); `report` (if set) is told about each point as it
+// is finished.
 AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
                            const std::function<void(const AccuracyPoint&)>& report = {});
 

@@ -31,6 +31,7 @@
 #include "engine/initial_state.hpp"
 #include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
+#include "io/energy_csv.hpp"
 #include "io/output.hpp"
 #include "io/timeseries.hpp"
 
@@ -183,7 +184,7 @@ class ContinuousRun {
     if (const int sig = signals.received()) return stop(sig);
     accuracy_->set_run_energy_residual(driver_->energy_balance().residual(driver_->energy()));
     observers_.end(run_end(0));
-    // summary.json marks the run finished; its checkpoints have served.
+    // summary.json says the run finished; its checkpoints have served.
     files_.remove();
     accuracy_->verdict();
     return 0;
@@ -191,7 +192,7 @@ class ContinuousRun {
 
  private:
   // The scene's outputs for a continuous run, in notification order: the histogram before
-  // the summary that fits it, the summary (which marks the run finished) after every file.
+  // the summary that fits it, the summary (which says how the run ended) after every file.
   void attach_observers(bool resumed, const ChainForces& forces) {
     const RunSettings& r = settings_.run;
     observers_.attach<TimeSeriesWriter>(out_.path("timeseries.csv"), resumed,
@@ -199,10 +200,11 @@ class ContinuousRun {
     if (settings_.output.energy)
       observers_.attach<EnergyDiagnostics>(forces, out_.path("energy_samples.csv"),
                                            out_.path("energy.csv"), settings_.output.energy_window,
-                                           settings_.output.energy_tol);
+                                           settings_.output.energy_tol, resumed);
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
-                                       resumed ? prog_.events_done : -1);
+                                       resumed ? prog_.events_done : -1,
+                                       settings_.output.catalog_deflate);
     if (settings_.output.blocks)
       observers_.attach<BlockTrajectories>(out_.path("blocks.csv"), resumed,
                                            settings_.output.block_first,
@@ -246,7 +248,7 @@ class ContinuousRun {
     RunEnd end;
     end.signal = signal;
     end.events = episodes_;
-    end.steps = steps_;
+    end.steps = done_;  // steps_ unless stopped
     end.blocks = settings_.model.n;
     end.total_load = driver_->substrate().s;
     end.duration = driver_->state().t;
@@ -257,6 +259,7 @@ class ContinuousRun {
 
   int stop(int sig) {
     save();
+    accuracy_->set_run_energy_residual(driver_->energy_balance().residual(driver_->energy()));
     observers_.end(run_end(sig));
     std::fprintf(stderr,
                  "bkquake: stopped by %s at t = %s of %s (%lld of %lld steps); checkpoint in "
@@ -323,6 +326,10 @@ int resume_continuous(const RunRequest& req, const Settings& settings, const Out
   if (writes_segments(settings))
     files.push_back(
         {out.path("segments.csv"), segments_header(), find_csv_extent(saved, "segments.csv")});
+  if (settings.output.energy)
+    for (const auto& [name, schema] : {std::pair{"energy_samples.csv", energy_samples_schema()},
+                                       std::pair{"energy.csv", energy_schema()}})
+      files.push_back({out.path(name), header_of(schema), find_csv_extent(saved, name)});
   for (const File& f : files) check_csv_prefix(f.path, f.header, f.extent.rows, f.extent.bytes);
   for (const File& f : files) cut_back(f.path, f.extent.bytes);
   if (settings.output.catalog == CatalogFormat::Csv)  // catalog.h5: cut back when opened

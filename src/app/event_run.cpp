@@ -96,12 +96,13 @@ class EventRun {
 
  private:
   // The scene's outputs for an event run, in notification order: the histogram before the
-  // summary that fits it, the summary (which marks the run finished) after every file.
+  // summary that fits it, the summary (which says how the run ended) after every file.
   void attach_observers(bool resumed) {
     const RunSettings& r = settings_.run;
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
-                                       resumed ? prog_.events_done : -1);
+                                       resumed ? prog_.events_done : -1,
+                                       settings_.output.catalog_deflate);
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
     accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);
@@ -206,16 +207,17 @@ class EventRun {
     RunEnd end;
     end.signal = signal;
     end.events = prog_.events_done;
-    end.transient_events = transient_;
+    end.transient_events = prog_.transient_done;  // all of them unless stopped during them
     end.blocks = engine_->state().n();
+    end.wall_seconds_total = wall_total0_ + seconds_since(session_t0_);
+    end.resumes = prog_.resumes;
+    if (prog_.transient_done < transient_) return end;  // recording has not begun
     end.total_load = engine_->load() - prog_.load0;
     end.wall_seconds =
         wall_events0_ +
         std::chrono::duration<double>(
             (events_end_ == Clock::time_point{} ? Clock::now() : events_end_) - recording_t0_)
             .count();
-    end.wall_seconds_total = wall_total0_ + seconds_since(session_t0_);
-    end.resumes = prog_.resumes;
     end.steps_recorded = c.steps - c0.steps;
     end.block_steps = c.block_steps - c0.block_steps;
     end.sliding_block_steps = c.sliding_block_steps - c0.sliding_block_steps;
@@ -238,7 +240,7 @@ class EventRun {
 
   int finish() {
     observers_.end(run_end(0));
-    // summary.json marks the run finished; its checkpoints have served.
+    // summary.json says the run finished; its checkpoints have served.
     files_.remove();
     accuracy_->verdict();
     return 0;

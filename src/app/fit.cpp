@@ -32,6 +32,15 @@ void fit_catalog(const FitRequest& request, std::ostream& out) {
   if (request.boundary) boundary = *request.boundary;
   const Boundary bnd = parse_boundary(boundary);
 
+  // The catalogue of an interrupted run holds the events recorded so far (whole rows, up to
+  // its checkpoint or beyond): they are fitted, and the report says so. A summary that does
+  // not read leaves the catalogue to speak for itself.
+  bool interrupted = false;
+  try {
+    interrupted = run_status(catalog.parent_path()) == RunStatus::Interrupted;
+  } catch (const Error&) {
+  }
+
   CatalogReader reader(catalog);
   const bool classes_on = blocks.has_value() && reader.has_extent();
   std::string class_note;
@@ -55,7 +64,11 @@ void fit_catalog(const FitRequest& request, std::ostream& out) {
   GrFit fit = fit_histogram(hist, request.mu_min, request.mu_max);
   add_unbinned(fit, magnitudes);
 
-  out << "catalogue         " << catalog.string() << "\n" << gr_fit_table(fit);
+  out << "catalogue         " << catalog.string() << "\n";
+  if (interrupted)
+    out << "note: an interrupted run (summary.json: \"status\": \"interrupted\"): these are its "
+        << reader.events_read() << " events so far; --resume finishes it\n";
+  out << gr_fit_table(fit);
   if (classes_on)
     out << "classes (N = " << *blocks << ", " << boundary << " ends)\n"
         << class_counts_table(classes);
@@ -65,6 +78,7 @@ void fit_catalog(const FitRequest& request, std::ostream& out) {
   if (request.json) {
     Json o = Json::object();
     o.set("catalog", catalog.string()).set("fit", gr_fit_json(fit));
+    if (interrupted) o.set("run_status", status_text(RunStatus::Interrupted));
     if (classes_on)
       o.set("blocks", static_cast<std::int64_t>(*blocks))
           .set("boundary", boundary)

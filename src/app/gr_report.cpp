@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <initializer_list>
+#include <utility>
 
 #include "core/format.hpp"
 
@@ -20,21 +22,26 @@ std::string fixed(double x, int digits = 4) {
 std::string pm(double b, double err) {
   return fixed(b) + " +/- " + fixed(err);
 }
+// Sets each key to its value as a fit number, in the order given.
+Json& set_fit_numbers(Json& o, std::initializer_list<std::pair<const char*, double>> numbers) {
+  for (const auto& [key, x] : numbers) o.set(key, fit_number(x));
+  return o;
+}
 }  // namespace
 
 static std::string two_laws_and_notes(const GrFit& f);
 
 Json gr_fit_json(const GrFit& f) {
   Json two = Json::object(), excess = Json::object(), o = Json::object();
-  two.set("ok", f.two_law_ok)
-      .set("b1", fit_number(f.two_law_b1))
-      .set("b2", fit_number(f.two_law_b2))
-      .set("mu_cross", fit_number(f.two_law_mu_cross))
-      .set("moment_cross", fit_number(f.two_law_moment_cross))
-      .set("ln_A1", fit_number(f.two_law_ln_A1))
-      .set("ln_A2", fit_number(f.two_law_ln_A2))
-      .set("mu_low", fit_number(f.two_law_mu_low))
-      .set("mu_high", fit_number(f.two_law_mu_high));
+  two.set("ok", f.two_law_ok);
+  set_fit_numbers(two, {{"b1", f.two_law_b1},
+                        {"b2", f.two_law_b2},
+                        {"mu_cross", f.two_law_mu_cross},
+                        {"moment_cross", f.two_law_moment_cross},
+                        {"ln_A1", f.two_law_ln_A1},
+                        {"ln_A2", f.two_law_ln_A2},
+                        {"mu_low", f.two_law_mu_low},
+                        {"mu_high", f.two_law_mu_high}});
   excess.set("found", f.excess_found)
       .set("mu", fit_number(f.excess_found ? f.excess_mu : NAN))
       .set("observed", f.excess_observed)
@@ -49,15 +56,15 @@ Json gr_fit_json(const GrFit& f) {
       .set("window_auto", f.window_auto)
       .set("mu_max_auto", f.mu_max_auto)
       .set("truncated", f.truncated)
-      .set("n_in_window", f.n_in_window)
-      .set("b_mle", fit_number(f.b_mle))
-      .set("b_mle_err", fit_number(f.b_mle_err))
-      .set("b_aki", fit_number(f.b_aki))
-      .set("b_aki_err", fit_number(f.b_aki_err))
-      .set("b_lsq", fit_number(f.b_lsq))
-      .set("b_lsq_err", fit_number(f.b_lsq_err))
-      .set("ln_A", fit_number(f.ln_A))
-      .set("ks_distance", fit_number(f.ks_distance))
+      .set("n_in_window", f.n_in_window);
+  set_fit_numbers(o, {{"b_mle", f.b_mle},
+                      {"b_mle_err", f.b_mle_err},
+                      {"b_aki", f.b_aki},
+                      {"b_aki_err", f.b_aki_err},
+                      {"b_lsq", f.b_lsq},
+                      {"b_lsq_err", f.b_lsq_err},
+                      {"ln_A", f.ln_A},
+                      {"ks_distance", f.ks_distance}})
       .set("two_power_law", two)
       .set("excess", excess)
       .set("notes", Json::strings(f.notes));

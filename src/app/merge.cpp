@@ -5,10 +5,14 @@
 #include <cstdint>
 #include <optional>
 #include <ostream>
+#include <sstream>
+#include <string_view>
 
 #include "app/gr_report.hpp"
+#include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "io/histogram_csv.hpp"
+#include "io/ini.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
 #include "io/scene.hpp"
@@ -29,17 +33,52 @@ bool must_match(const std::string& key) {
   return key == "run.initial_disorder" || key == "stats.bin_width";
 }
 
-// Refuses runs that are not alike (naming every differing key) and a run given twice or
-// merged with a copy of itself (the same seed: the same events).
-void check_alike(const std::vector<std::string>& runs) {
+// A merged folder's scene.ini records the seeds of every run merged into it on this
+// provenance line ("# merged seeds 11 12"), so that merging it again with another run can
+// still refuse a seed that repeats.
+constexpr std::string_view kMergedSeeds = "# merged seeds ";
+
+// The inputs as merge sees them: each one's effective scene (scene.ini) and the seeds of the
+// runs it holds (a run: its run.seed; a merged folder: the seeds recorded in its scene.ini).
+struct Inputs {
   std::vector<Scene> scenes;
+  std::vector<std::vector<std::string>> seeds;
+};
+
+// Reads every input's scene and seeds; refuses an input that is not a finished run.
+Inputs read_inputs(const std::vector<std::string>& runs) {
+  Inputs in;
   for (const auto& run : runs) {
+    const RunStatus status = run_status(run);
+    if (status == RunStatus::None)
+      throw Error("merge: " + run + " has no summary.json: it is not a finished run");
+    if (status == RunStatus::Interrupted)
+      throw Error("merge: " + run +
+                  " is an interrupted run (summary.json: \"status\": \"interrupted\"); finish "
+                  "it first with bkquake run " +
+                  (fs::path(run) / "scene.ini").string() + " --out " + run + " --resume");
     const fs::path ini = fs::path(run) / "scene.ini";
     if (!fs::exists(ini))
       throw Error("merge: " + run +
                   " has no scene.ini, so it cannot be checked to be a run of the same scene");
-    scenes.push_back(read_run_scene(ini));
+    in.scenes.push_back(read_run_scene(ini));
+    std::vector<std::string> seeds;
+    std::istringstream text(read_text_file(ini.string(), "scene"));
+    for (std::string line; std::getline(text, line);)
+      if (line.rfind(kMergedSeeds, 0) == 0) {
+        std::istringstream list(line.substr(kMergedSeeds.size()));
+        for (std::string seed; list >> seed;) seeds.push_back(seed);
+      }
+    if (seeds.empty()) seeds.push_back(in.scenes.back().text("run.seed"));
+    in.seeds.push_back(std::move(seeds));
   }
+  return in;
+}
+
+// Refuses runs that are not alike (naming every differing key) and a run given twice or
+// merged with a copy of itself (the same seed: the same events), also inside merged inputs.
+void check_alike(const std::vector<std::string>& runs, const Inputs& in) {
+  const std::vector<Scene>& scenes = in.scenes;
   for (std::size_t i = 1; i < scenes.size(); ++i) {
     std::string diff;
     for (const auto& p : parameter_table())
@@ -48,12 +87,32 @@ void check_alike(const std::vector<std::string>& runs) {
                 scenes[0].text(p.key) + ")";
     if (!diff.empty())
       throw Error("merge: " + runs[i] + " is a run of another scene than " + runs[0] + ": " + diff);
-    for (std::size_t j = 0; j < i; ++j)
-      if (scenes[i].text("run.seed") == scenes[j].text("run.seed"))
-        throw Error("merge: " + runs[i] + " and " + runs[j] +
-                    " have the same run.seed = " + scenes[i].text("run.seed") +
-                    ", so the same events: merging them would count those events twice");
   }
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    for (std::size_t j = 0; j <= i; ++j)
+      for (std::size_t a = 0; a < in.seeds[i].size(); ++a)
+        for (std::size_t b = 0; b < (j == i ? a : in.seeds[j].size()); ++b)
+          if (in.seeds[i][a] == in.seeds[j][b])
+            throw Error("merge: " + runs[i] + (j == i ? " holds two runs" : " and " + runs[j]) +
+                        " with the same run.seed = " + in.seeds[i][a] +
+                        ", so the same events: merging them would count those events twice");
+}
+
+// The merged folder's scene.ini: the first input's effective scene (its physics is every
+// input's), headed by the merge's provenance and the seeds of every run merged (no paths:
+// those are in summary.json's merged_from, and a sweep's folders compare without them).
+std::string merged_scene_ini(const std::vector<std::string>& runs, const Inputs& in) {
+  std::string seeds;
+  for (const auto& list : in.seeds)
+    for (const auto& seed : list) seeds += (seeds.empty() ? "" : " ") + seed;
+  const std::vector<std::string> header = {
+      std::string("bkquake ") + kVersion + " (git " + kGitRevision + ")",
+      "merge of " + std::to_string(runs.size()) + " runs (summary.json: merged_from)",
+      std::string(kMergedSeeds.substr(2)) + seeds,
+      "the scene of the first run: its physics, stats.bin_width and run.initial_disorder are",
+      "every merged run's; run.seed and the run's length are the first run's",
+      "written " + utc_now_iso()};
+  return in.scenes[0].to_ini(header);
 }
 
 double required(const fs::path& summary, const std::string& key) {
@@ -61,6 +120,7 @@ double required(const fs::path& summary, const std::string& key) {
   if (!v) throw Error(summary.string() + ": missing \"" + key + "\"");
   return *v;
 }
+
 }  // namespace
 
 void merge_runs(const MergeRequest& request, std::ostream& out) {
@@ -77,7 +137,8 @@ void merge_runs(const MergeRequest& request, std::ostream& out) {
                   (t_end == target.end() ? " is the input " : " lies inside the input ") + run +
                   "; merge writes nothing into its inputs: choose another --out");
   }
-  check_alike(runs);
+  const Inputs inputs = read_inputs(runs);
+  check_alike(runs, inputs);
   std::optional<MagnitudeHistogram> merged;
   for (const auto& run : runs) {
     const fs::path dir = run;
@@ -108,9 +169,11 @@ void merge_runs(const MergeRequest& request, std::ostream& out) {
   if (!merged) throw Error("merge: no RUN_DIR given");
 
   const OutputFolder folder(request.out.string(), request.force, false, "merge");
+  write_file_atomic(folder.path("scene.ini"), merged_scene_ini(runs, inputs));
   write_file_atomic(folder.path("histogram.csv"), histogram_csv(*merged));
   Json s = Json::object();
-  s.set("events", merged->events())
+  s.set(kStatusKey, status_text(RunStatus::Finished))
+      .set("events", merged->events())
       .set("blocks", static_cast<std::int64_t>(merged->blocks()))
       .set("total_load", fit_number(merged->total_load()))
       .set("bin_width", fit_number(merged->bin_width()))

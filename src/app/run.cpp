@@ -2,7 +2,8 @@
 // builds the model and the stepper, checks a --resume against the folder (nothing is
 // changed before everything is checked), writes scene.ini first and hands over to the
 // drive mode's run (app/event_run, app/continuous_run), whose observers write the rest;
-// summary.json comes last, so a folder with summary.json is a finished run.
+// summary.json comes last and says whether the run finished or was interrupted (its
+// "status", io/run_folder.hpp): --resume continues an interrupted run, not a finished one.
 #include "app/run.hpp"
 
 #include <cstdio>
@@ -20,6 +21,7 @@
 #include "io/catalog_h5.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output.hpp"
+#include "io/run_folder.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
 
@@ -29,10 +31,6 @@ int run_scene(const RunRequest& req) {
   const Scene& scene = req.scene;
   const Settings settings = settings_from_scene(scene);
   const ModelParams& p = settings.model;
-  if (p.rayleigh_alpha != 0 || p.rayleigh_beta != 0)
-    throw Error("model.rayleigh_alpha = " + scene.text("model.rayleigh_alpha") +
-                ", model.rayleigh_beta = " + scene.text("model.rayleigh_beta") +
-                ": Rayleigh damping is in bkquake stability only so far; runs need both 0");
   const ChainForces forces(p);
   const std::unique_ptr<Stepper> stepper = stepper_of(settings.integrator, p.n);
   check_time_step(*stepper, p, settings.integrator.dt);
@@ -46,7 +44,7 @@ int run_scene(const RunRequest& req) {
   const OutputFolder out(req.out_dir, req.force, req.resume);
   const CheckpointFiles checkpoints(out.dir());
   if (req.resume) {
-    if (std::filesystem::exists(out.path("summary.json")))
+    if (run_status(out.dir()) == RunStatus::Finished)
       throw Error("--resume: output folder '" + out.dir() +
                   "' holds a finished run (summary.json): nothing to continue; use --force to run "
                   "it again");
@@ -88,7 +86,7 @@ int run_scene(const RunRequest& req) {
   if (checkpoints.exist() && !req.force)
     throw Error("output folder '" + out.dir() + "' holds an interrupted run (" +
                 checkpoints.current() + "); use --resume to continue it or --force to start over");
-  // A folder with summary.json is a finished run; overwriting one starts by unmarking it.
+  // Overwriting a run starts by removing its summary (finished or interrupted).
   if (req.force) {
     std::filesystem::remove(out.path("summary.json"));
     checkpoints.remove();

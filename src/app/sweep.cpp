@@ -78,26 +78,24 @@ std::optional<double> json_number(const fs::path& file, const std::string& key) 
   }
 }
 
-// The string value of a top-level "key" of a JSON file written by bkq::Json (one member
-// per line), for point.json's status and error.
-std::optional<std::string> json_string(const fs::path& file, const std::string& key) {
-  std::ifstream in(file);
-  std::string line;
-  const std::string start = "\"" + key + "\": \"";
-  while (std::getline(in, line)) {
-    const auto at = line.find(start);
-    if (at == std::string::npos || line.find_first_not_of(' ') != at) continue;
-    std::string out;
-    for (std::size_t i = at + start.size(); i < line.size(); ++i) {
-      if (line[i] == '\\' && i + 1 < line.size()) {
-        out += line[++i];
-        continue;
-      }
-      if (line[i] == '"') return out;
-      out += line[i];
-    }
+// Whether a replica's run finished (summary.json with status finished); an interrupted or
+// unreadable summary is not finished: the replica is continued or run again.
+bool finished_run(const fs::path& dir) {
+  try {
+    return run_status(dir) == RunStatus::Finished;
+  } catch (const Error&) {
+    return false;
   }
-  return std::nullopt;
+}
+
+// The string value of a top-level "key" of a JSON file, for point.json's status and error;
+// empty when absent or unreadable.
+std::optional<std::string> json_string(const fs::path& file, const std::string& key) {
+  try {
+    return json_top_level_string(read_text_file(file.string(), "JSON file"), key, file.string());
+  } catch (const Error&) {
+    return std::nullopt;
+  }
 }
 
 // What a point came to.
@@ -161,7 +159,7 @@ class Sweep {
     for (std::size_t p = 0; p < points_.size(); ++p) {
       if (req_.resume && load_point(p)) continue;
       for (int r = 0; r < spec_.replicas; ++r) {
-        if (req_.resume && fs::exists(replica_dir(p, r) / "summary.json")) {
+        if (req_.resume && finished_run(replica_dir(p, r))) {
           note_replica(p, TaskResult{task_of(p, r), 0, replica_seconds(p, r, 0), ""});
           continue;
         }

@@ -62,6 +62,13 @@ std::vector<std::string> parse_schemes(const std::string& text) {
 
 }  // namespace
 
+// What --help prints above the options.
+constexpr const char* kUsage =
+    "Usage: bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]\n"
+    "Work-precision study of the scene's model, driven event by event: per-event errors\n"
+    "against an event-located adaptive reference, the distance of the magnitude\n"
+    "distribution from the reference's, and the time per event, for each scheme and dt.\n\n";
+
 int cmd_accuracy(const std::vector<std::string>& args) {
   const AccuracyOptions defaults;
   po::options_description opts("bkquake accuracy [SCENE] [options]");
@@ -76,8 +83,8 @@ int cmd_accuracy(const std::vector<std::string>& args) {
            "time steps of the fixed-step schemes")
     ("tolerances", po::value<std::string>()->default_value("1e-3,1e-5,1e-7,1e-9"),
                    "tolerances of the adaptive scheme (macro step: the scene's integrator.dt)")
-    ("samples", po::value<int>()->default_value(defaults.samples), "pre-event states for the per-event errors")
-    ("spacing", po::value<int>()->default_value(defaults.sample_spacing), "events between sampled states")
+    ("samples", po::value<int>()->default_value(defaults.samples), ("pre-event states for the per-event errors, in [1, " + std::to_string(kMaxAccuracySamples) + "]").c_str())
+    ("spacing", po::value<int>()->default_value(defaults.sample_spacing), ("events between sampled states, in [1, " + std::to_string(kMaxAccuracySpacing) + "]").c_str())
     ("long-events", po::value<std::int64_t>()->default_value(defaults.long_events),
                     "events per long run (magnitude statistics and cost)")
     ("reference-tolerance", po::value<double>()->default_value(defaults.reference_tolerance),
@@ -87,15 +94,7 @@ int cmd_accuracy(const std::vector<std::string>& args) {
     ("help,h", "this help");
   // clang-format on
   const po::variables_map vm = parse_scene_command_line("accuracy", args, opts);
-  if (vm.count("help")) {
-    std::cout
-        << "Usage: bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]\n"
-           "Work-precision study of the scene's model, driven event by event: per-event errors\n"
-           "against an event-located adaptive reference, the distance of the magnitude\n"
-           "distribution from the reference's, and the time per event, for each scheme and dt.\n\n"
-        << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts, kUsage)) return 0;
   Scene scene = scene_from_command_line("accuracy", vm);
   // The study relaxes events one at a time, whatever mode the scene runs in.
   scene.set("drive.mode", "events", "bkquake accuracy");
@@ -113,14 +112,7 @@ int cmd_accuracy(const std::vector<std::string>& args) {
   opt.reference_tolerance = real_option(vm, "reference-tolerance", "integrator.tolerance");
   opt.long_reference_tolerance =
       real_option(vm, "long-reference-tolerance", "integrator.tolerance");
-  if (opt.samples < 1)
-    throw Error("accuracy: --samples: expected at least 1, got " + std::to_string(opt.samples));
-  if (opt.sample_spacing < 1)
-    throw Error("accuracy: --spacing: expected at least 1, got " +
-                std::to_string(opt.sample_spacing));
-  if (opt.long_events < 100 || opt.long_events > 1000000000000)
-    throw Error("accuracy: --long-events: expected an integer in [100, 1000000000000], got " +
-                std::to_string(opt.long_events));
+  check_accuracy_options(opt);  // before the output folder is touched
 
   const std::string dir = vm["out"].as<std::string>();
   const bool force = vm.count("force") > 0;

@@ -39,10 +39,7 @@ int cmd_fit(const std::vector<std::string>& args) {
     ("json", po::value<std::string>(), "also write the result as JSON to this file");
   // clang-format on
   const po::variables_map vm = parse_command_line("fit", args, opts, "catalog", 1);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts)) return 0;
   if (!vm.count("catalog"))
     throw Error("fit: missing CATALOG.csv or CATALOG.h5 (see bkquake fit --help)");
   // Each option is checked against the scene key it stands for (one declaration each).

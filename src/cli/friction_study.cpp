@@ -31,10 +31,7 @@ int cmd_friction_study(const std::vector<std::string>& args) {
     ("quiet", "no progress lines");
   // clang-format on
   const auto vm = parse_command_line("friction-study", args, opts, "unused", 0);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts)) return 0;
   StudyRequest req;
   req.out = vm["out"].as<std::string>();
   req.scenes_dir = vm["scenes"].as<std::string>();

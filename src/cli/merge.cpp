@@ -1,5 +1,6 @@
 // `bkquake merge RUN_DIR... --out DIR`: parses the arguments and calls app/merge.hpp, which
-// merges the runs' histograms exactly and writes DIR/histogram.csv and DIR/summary.json.
+// merges the runs' histograms exactly and writes DIR/histogram.csv, DIR/summary.json and
+// DIR/scene.ini (the scene they share and the seeds merged).
 #include <boost/program_options.hpp>
 #include <iostream>
 #include <string>
@@ -22,10 +23,7 @@ int cmd_merge(const std::vector<std::string>& args) {
                                                  "output folder (created if missing)")(
       "force", "write into an output folder that already holds files");
   const po::variables_map vm = parse_command_line("merge", args, opts, "runs", -1);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts)) return 0;
   if (!vm.count("runs")) throw Error("merge: no RUN_DIR given (see bkquake merge --help)");
   if (!vm.count("out")) throw Error("merge: --out DIR is required");
   merge_runs({vm["runs"].as<std::vector<std::string>>(), vm["out"].as<std::string>(),

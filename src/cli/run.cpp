@@ -15,6 +15,12 @@ namespace bkq {
 
 namespace po = boost::program_options;
 
+// What --help prints above the options.
+constexpr const char* kUsage =
+    "Usage: bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume]\n"
+    "Without SCENE, runs the built-in default (the Carlson-Langer reference, "
+    "event-driven).\n\n";
+
 int cmd_run(const std::vector<std::string>& args) {
   po::options_description opts("bkquake run [SCENE] [options]");
   add_scene_options(opts);
@@ -29,13 +35,7 @@ int cmd_run(const std::vector<std::string>& args) {
                         "run.start_mode_index)")("help,h", "this help");
   const po::variables_map vm = parse_scene_command_line("run", args, opts);
 
-  if (vm.count("help")) {
-    std::cout << "Usage: bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume]\n"
-                 "Without SCENE, runs the built-in default (the Carlson-Langer reference, "
-                 "event-driven).\n\n"
-              << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts, kUsage)) return 0;
   RunRequest request;
   request.scene = scene_from_command_line("run", vm);
   if (vm.count("mode")) {

@@ -39,6 +39,13 @@ po::variables_map parse_command_line(const std::string& command,
   return vm;
 }
 
+bool printed_help(const po::variables_map& vm, const po::options_description& opts,
+                  const char* usage) {
+  if (!vm.count("help")) return false;
+  std::cout << usage << opts << "\n";
+  return true;
+}
+
 po::variables_map parse_scene_command_line(const std::string& command,
                                            const std::vector<std::string>& args,
                                            const po::options_description& opts) {

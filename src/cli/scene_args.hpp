@@ -24,6 +24,10 @@ boost::program_options::variables_map parse_command_line(
     const boost::program_options::options_description& opts, const char* positional,
     int max_positional);
 
+// True, after printing `usage` and the options, when the command line asked for --help.
+bool printed_help(const boost::program_options::variables_map& vm,
+                  const boost::program_options::options_description& opts, const char* usage = "");
+
 // Parses `args` with `opts` plus the positional SCENE, without abbreviations (`--for`
 // silently meaning --force would be a surprise). Errors read "<command>: ...".
 boost::program_options::variables_map parse_scene_command_line(

@@ -17,10 +17,7 @@ int cmd_special_law(const std::vector<std::string>& args) {
       "-pad_friction_mean / (N m_u) from segments.csv (thesis Fig. 4.8); CSV on stdout");
   opts.add_options()("help,h", "show this help");
   const auto vm = parse_command_line("special-law", args, opts, "runs", -1);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts)) return 0;
   if (!vm.count("runs")) throw Error("special-law: give at least one BK run folder");
   const auto runs = vm["runs"].as<std::vector<std::string>>();
   const auto law = special_law(runs);

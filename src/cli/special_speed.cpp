@@ -19,10 +19,7 @@ int cmd_special_speed(const std::vector<std::string>& args) {
   opts.add_options()("help,h", "show this help");
   add_scene_options(opts);
   const auto vm = parse_scene_command_line("special-speed", args, opts);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts)) return 0;
   const Scene scene = scene_from_command_line("special-speed", vm);
   scene.validate();
   const ModelParams p = model_from_scene(scene);

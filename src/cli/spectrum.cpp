@@ -32,10 +32,7 @@ int cmd_spectrum(const std::vector<std::string>& args) {
     ("out", po::value<std::string>(), "output file (default RUN_DIR/spectrum.csv)");
   // clang-format on
   const po::variables_map vm = parse_command_line("spectrum", args, opts, "run_dir", 1);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts)) return 0;
   if (!vm.count("run_dir")) throw Error("spectrum: missing RUN_DIR (see bkquake spectrum --help)");
   SpectrumRequest req;
   req.run_dir = vm["run_dir"].as<std::string>();

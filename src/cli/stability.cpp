@@ -18,6 +18,14 @@ namespace bkq {
 
 namespace po = boost::program_options;
 
+// What --help prints above the options.
+constexpr const char* kUsage =
+    "Usage: bkquake stability [SCENE] [--set section.key=value]... "
+    "[--sweep KEY=FROM:TO:COUNT] [--out DIR]\n"
+    "Steady sliding at the disc speed drive.speed and the complex eigenvalues of its\n"
+    "linearisation: each mode's growth rate Re lambda, frequency Im lambda / 2 pi and\n"
+    "whether it is unstable (README, Stability of steady sliding).\n\n";
+
 int cmd_stability(const std::vector<std::string>& args) {
   po::options_description opts("bkquake stability [SCENE] [options]");
   // clang-format off
@@ -32,16 +40,7 @@ int cmd_stability(const std::vector<std::string>& args) {
     ("help,h", "this help");
   // clang-format on
   const po::variables_map vm = parse_scene_command_line("stability", args, opts);
-  if (vm.count("help")) {
-    std::cout
-        << "Usage: bkquake stability [SCENE] [--set section.key=value]... "
-           "[--sweep KEY=FROM:TO:COUNT] [--out DIR]\n"
-           "Steady sliding at the disc speed drive.speed and the complex eigenvalues of its\n"
-           "linearisation: each mode's growth rate Re lambda, frequency Im lambda / 2 pi and\n"
-           "whether it is unstable (README, Stability of steady sliding).\n\n"
-        << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts, kUsage)) return 0;
   Scene scene = scene_from_command_line("stability", vm);
   scene.validate();
   StabilityOptions opt;

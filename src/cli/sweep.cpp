@@ -24,10 +24,7 @@ int cmd_sweep(const std::vector<std::string>& args) {
       "resume", "finish the sweep in the output folder: only points not done run")("help,h",
                                                                                    "this help");
   const po::variables_map vm = parse_command_line("sweep", args, opts, "sweep", 1);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (printed_help(vm, opts)) return 0;
   if (!vm.count("sweep")) throw Error("sweep: no SWEEP.ini given (see bkquake sweep --help)");
   if (!vm.count("out")) throw Error("sweep: --out DIR is required");
   SweepRequest req;

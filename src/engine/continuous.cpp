@@ -99,6 +99,13 @@ ContinuousDriver::Power ContinuousDriver::power() const {
   w.force = p.k_p * (sum_w - p.n * sub.s - p.n * x) + p.c_u * sum_u1;
   w.dissipation =
       p.m_u * friction + p.c_u * sum_u2 + (p.pad_moves() ? p.c_p * st_.xd * st_.xd : 0.0);
+  if (forces_.rayleigh()) {
+    // Rayleigh damping: its force on the blocks, -alpha_M m_u sum u' - beta_K k_p sum (u' - x')
+    // (the neighbour springs' parts cancel), and the power u'^T C u' it dissipates.
+    const double xd = p.pad_moves() ? st_.xd : 0.0;
+    w.force += p.rayleigh_alpha * p.m_u * sum_u1 + p.rayleigh_beta * p.k_p * (sum_u1 - p.n * xd);
+    w.dissipation += forces_.rayleigh_power(wd, xd, sub.v);
+  }
   return w;
 }
 

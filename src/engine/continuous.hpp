@@ -17,9 +17,10 @@ namespace bkq {
 // kinetic in the lab frame) at the start, the work done on them by the substrate and what
 // friction and the dampers dissipated, both summed per step by the trapezoidal rule. The
 // substrate acts through friction only, whose total force on the chain follows from the
-// chain's momentum balance (sum F_f = d/dt sum m u' + k_p sum (u_j - x) + c_u sum u'),
-// so only the sliding blocks' friction is evaluated. An exact integration ends with
-// E - e0 = work - dissipated; residual() is the relative error.
+// chain's momentum balance (sum F_f = d/dt sum m u' + k_p sum (u_j - x) + c_u sum u',
+// plus the Rayleigh damping's alpha_M m_u sum u' + beta_K k_p sum (u'_j - x')), so only
+// the sliding blocks' friction is evaluated; the dissipation includes u'^T C u'. An exact
+// integration ends with E - e0 = work - dissipated; residual() is the relative error.
 struct EnergyBalance {
   double e0 = 0, work = 0, dissipated = 0;
   // (E_end - e0 - work + dissipated) / dissipated; 0 while nothing was dissipated.

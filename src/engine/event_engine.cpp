@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "engine/contacts.hpp"
 #include "integrate/cluster.hpp"
 #include "model/damped_oscillator.hpp"
@@ -67,6 +68,14 @@ void EventEngine::allocate_bookkeeping() {
 
 void EventEngine::check_model(const ModelParams& p) {
   check_law_drives_events(p);
+  // The relaxation's fast paths (the lone slip's closed form, the held-range and cluster
+  // kernels) have no block damping, and with the substrate frozen an event has no sliding
+  // state for the damping to be measured from: it is a continuous runs' effect.
+  if (p.rayleigh_alpha != 0 || p.rayleigh_beta != 0)
+    throw Error("model.rayleigh_alpha = " + format_real(p.rayleigh_alpha) +
+                ", model.rayleigh_beta = " + format_real(p.rayleigh_beta) +
+                ": Rayleigh block damping applies in continuous runs only (drive.mode = "
+                "continuous); event runs need both 0");
 }
 
 void EventEngine::rebuild_tree() {

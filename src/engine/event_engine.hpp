@@ -68,8 +68,8 @@ class EventEngine {
   const ChainState& state() const { return st_; }
   const EngineCounters& counters() const { return counters_; }
   double load() const { return st_.s; }
-  // Throws bkq::Error when the model cannot be driven event by event (no friction, or no
-  // drop from static to kinetic friction).
+  // Throws bkq::Error when the model cannot be driven event by event (no friction, no
+  // drop from static to kinetic friction, or Rayleigh block damping).
   static void check_model(const ModelParams& p);
   // Largest spring force among stuck blocks beyond the threshold (<= 0 when all hold).
   double worst_stuck_excess() const;

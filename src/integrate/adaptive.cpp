@@ -92,9 +92,14 @@ double Adaptive::accelerations(const ChainForces& forces, const SubstrateState& 
                                const double* w, const double* wd, const ChainState& st, double x,
                                double xd, double sum_w, Ranges ranges, double* a) const {
   const bool pad = forces.params().pad_moves();
-  forces.block_accelerations(w, wd, st.mobile.data(), st.dir.data(), sub.s + (pad ? x : 0.0), sub,
-                             ranges, a);
-  return pad ? forces.pad_acceleration(x, xd, sum_w, sub.s) : 0.0;
+  forces.block_accelerations(w, wd, st.mobile.data(), st.dir.data(), sub.s + (pad ? x : 0.0),
+                             sub.v + (pad ? xd : 0.0), sub, ranges, a);
+  // Rayleigh damping on the pad reads the blocks' velocities (outside the ranges at rest).
+  double sum_wd = 0;
+  if (pad && forces.rayleigh())
+    for (const Range& r : ranges)
+      for (int j = r.lo; j < r.hi; ++j) sum_wd += wd[j];
+  return pad ? forces.pad_acceleration(x, xd, sum_w, sub.s, sum_wd, sub.v) : 0.0;
 }
 
 void Adaptive::first_stage(const ChainForces& forces, const Substrate& sub, const ChainState& st,

@@ -20,6 +20,12 @@ class ExplicitScheme final : public Stepper {
   std::string_view name() const override { return Method::name; }
   int order() const override { return Method::order; }
   double stability_constant() const override { return Method::stability_constant; }
+  double damped_stability_constant() const override {
+    if constexpr (requires { Method::damped_stability_constant; })
+      return Method::damped_stability_constant;
+    else
+      return Method::stability_constant;
+  }
 
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override {

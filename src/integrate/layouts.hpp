@@ -54,7 +54,8 @@ struct ExplicitScratch {
 
 // Does the scene have a velocity-dependent force (verlet's closing kick needs it)?
 inline bool velocity_dependent(const ModelParams& p, bool pad_moves) {
-  return !law_traits(p.law).frictionless || p.c_u != 0 || (pad_moves && p.c_p != 0);
+  return !law_traits(p.law).frictionless || p.c_u != 0 || (pad_moves && p.c_p != 0) ||
+         p.rayleigh_alpha != 0 || p.rayleigh_beta != 0;
 }
 
 namespace layout_detail {
@@ -148,10 +149,17 @@ class ChainLayout {
     const double x_at = state_positions ? st_.x : x_;
     const double xd_at = pick(Point::velocities, st_.xd, xd_, xu_);
     forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(),
-                                sub.s + (pad_ ? x_at : 0.0), sub, ranges_, s_.a.data());
+                                sub.s + (pad_ ? x_at : 0.0), sub.v + (pad_ ? xd_at : 0.0), sub,
+                                ranges_, s_.a.data());
+    // Rayleigh damping on the pad needs the blocks' velocities at the stage point (taken
+    // before the pass changes them); blocks outside the ranges are at rest (w' = 0).
+    double sum_wd = 0;
+    if (pad_ && forces_.rayleigh())
+      for (const Range& r : ranges_)
+        for (int j = r.lo; j < r.hi; ++j) sum_wd += v_at[j];
     auto pad_acceleration = [&] {
-      return pad_ ? forces_.pad_acceleration(x_at, xd_at, state_positions ? st_.sum_w : sum_, sub.s)
-                  : 0.0;
+      const double sum_w = state_positions ? st_.sum_w : sum_;
+      return pad_ ? forces_.pad_acceleration(x_at, xd_at, sum_w, sub.s, sum_wd, sub.v) : 0.0;
     };
     // Before the pass where it can (its division overlaps the loops).
     double ax = joint ? 0.0 : pad_acceleration();

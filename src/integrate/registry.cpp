@@ -55,7 +55,15 @@ std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n, double t
 }
 
 Stepper::TimeStepLimit Stepper::time_step_limit(const ModelParams& p) const {
-  char why[200];
+  char why[300];
+  if (p.rayleigh_alpha != 0 || p.rayleigh_beta != 0) {
+    const double c = damped_stability_constant();
+    std::snprintf(why, sizeof why,
+                  "with Rayleigh damping the fastest rate max(omega, alpha_M + beta_K omega^2 + "
+                  "dampers) of blocks and pad is %.6g, %s accepts rate*dt <= %g",
+                  p.max_angular_frequency(), std::string(name()).c_str(), c);
+    return {c / p.max_angular_frequency(), why};
+  }
   std::snprintf(why, sizeof why, "omega_max = %.6g, %s accepts omega_max*dt <= %g",
                 p.max_angular_frequency(), std::string(name()).c_str(), stability_constant());
   return {stability_constant() / p.max_angular_frequency(), why};

@@ -42,6 +42,10 @@ class Stepper {
   // Largest omega*dt accepted for an undamped linear mode of angular frequency omega
   // (HUGE_VAL for unconditionally stable schemes).
   virtual double stability_constant() const = 0;
+  // The same bound on rate*dt for scenes with Rayleigh damping, where a mode's eigenvalues
+  // are the roots of l^2 + c l + omega^2 (c = alpha_M + beta_K omega^2) and rate is
+  // max(omega, c): the scheme's bound over every damping ratio c/(2 omega).
+  virtual double damped_stability_constant() const { return stability_constant(); }
   // Largest dt this stepper accepts on this model, and why (for the error message). By
   // default the linear stability limit stability_constant / omega_max; a stepper with a
   // further bound (theta: a unique sliding speed under weakening friction) overrides it.

@@ -106,7 +106,13 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   periodic_ = p.boundary == Boundary::Periodic;
   kc_ = neighbours_ ? p.k_c : 0.0;
   kp_ = p.k_p;
-  link_ = b_ * b_ * (periodic_ && n_ == 2 ? 2.0 * kc_ : kc_);
+  // Rayleigh damping beta_K K v+ joins the springs' b K v+ (positions w + a v + b v+): the
+  // new velocities enter the stiffness terms with weight b + beta_K; alpha_M M joins the
+  // dampers. Without it (0) every expression below is the undamped one, bit for bit.
+  const bool rayleigh = forces.rayleigh();
+  const double alpha = p.rayleigh_alpha;
+  bb_ = b_ + p.rayleigh_beta;
+  link_ = b_ * bb_ * (periodic_ && n_ == 2 ? 2.0 * kc_ : kc_);
   frictionless_ = law_traits(p.law).frictionless;
   backslip_ = fr.backslip;
   thr_ = fr.threshold;
@@ -128,6 +134,7 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   const double a = ratio_ * b_;                         // explicit weight (1 - theta) h
   const double x_pred = pad_ ? st.x + a * st.xd : 0.0;  // x+ without the new velocity's part
   const double anchor0 = s0.s + x0, anchor_pred = s1.s + x_pred;
+  const double anchor_rate0 = s0.v + (pad_ ? st.xd : 0.0);
   for_each_block([&](int j) {
     const bool stuck = !frictionless_ && st.mobile[j] == 0.0;
     start_[j] = stuck ? 0 : (backslip_ && st.dir[j] < 0.0 ? -1 : 1);
@@ -137,10 +144,16 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   for_each_block([&](int j) {
     const double v = v0_[j];
     // L at the start, and L+ with the new velocities left out (w+ = w + a v here).
-    const double L = forces.spring_force(w, j, anchor0) - p.c_u * (v - s0.v) + m_ * s0.a;
-    const double L_pred = forces.spring_force(w, j, anchor_pred) +
-                          a * (forces.neighbour_force(v0_.data(), j) - p.k_p * v) + p.c_u * s1.v +
-                          m_ * s1.a;
+    double L = forces.spring_force(w, j, anchor0) - p.c_u * (v - s0.v) + m_ * s0.a;
+    double L_pred = forces.spring_force(w, j, anchor_pred) +
+                    a * (forces.neighbour_force(v0_.data(), j) - p.k_p * v) + p.c_u * s1.v +
+                    m_ * s1.a;
+    if (rayleigh) {
+      // The damping force at the start, and at the end its part free of the new velocities.
+      L += m_ *
+           forces.rayleigh_acceleration(forces.spring_force(v0_.data(), j, anchor_rate0), v, s0.v);
+      L_pred += (alpha * m_ + p.rayleigh_beta * p.k_p) * s1.v;
+    }
     double r = 0;  // friction at the start of the step
     const int d = start_[j];
     if (d == 0) {
@@ -151,7 +164,7 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
     const int nb = !neighbours_ ? 0 : periodic_ ? 2 : (j > 0) + (j < n_ - 1);
     impulse0_[j] = m_ * v + a * (L + r);
     force_pred_[j] = L_pred;
-    diag0_[j] = m_ + b_ * p.c_u + b_ * b_ * (p.k_p + nb * p.k_c);
+    diag0_[j] = m_ + b_ * (p.c_u + alpha * m_) + b_ * bb_ * (p.k_p + nb * p.k_c);
     status_[j] = static_cast<std::int8_t>(d);
     // Linearise friction about the speed predicted from the start's acceleration.
     a_hat_[j] = d == 0 ? 0.0 : std::max(d * (v + (a + b_) * (L + r) / m_), 0.0);
@@ -163,11 +176,11 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
   xdn_ = st.xd;
   if (pad_) {
     // m_x (xd+ - xd) = b (X + X+), X the pad force; X+ with the new velocities left out.
-    const double X = p.m_x * forces.pad_acceleration(st.x, st.xd, st.sum_w, s0.s);
-    const double X_pred =
-        p.k_p * (st.sum_w + a * sum_v0 - p.n * s1.s - p.n * x_pred) - p.k_p0 * x_pred;
-    pad_col_ = b_ * b_ * kp_;
-    pad_diag_ = p.m_x + b_ * p.c_p + b_ * b_ * (p.n * p.k_p + p.k_p0);
+    const double X = p.m_x * forces.pad_acceleration(st.x, st.xd, st.sum_w, s0.s, sum_v0, s0.v);
+    double X_pred = p.k_p * (st.sum_w + a * sum_v0 - p.n * s1.s - p.n * x_pred) - p.k_p0 * x_pred;
+    if (rayleigh) X_pred -= p.rayleigh_beta * p.k_p * p.n * s1.v;
+    pad_col_ = b_ * bb_ * kp_;
+    pad_diag_ = p.m_x + b_ * (p.c_p + alpha * p.m_x) + b_ * bb_ * (p.n * p.k_p + p.k_p0);
     pad_rhs_ = p.m_x * st.xd + b_ * (ratio_ * X + X_pred);
   }
   // The last factorisation serves this step if the matrix is the same but for friction slopes.
@@ -179,8 +192,8 @@ void Theta::prepare(const ChainForces& forces, const Substrate& sub, const Chain
 }
 
 Theta::Load Theta::load(int j) const {
-  double f = force_pred_[j] + b_ * kc_ * neighbour_velocities(j);
-  if (pad_) f += b_ * kp_ * xdn_;
+  double f = force_pred_[j] + bb_ * kc_ * neighbour_velocities(j);
+  if (pad_) f += bb_ * kp_ * xdn_;
   return Load{impulse0_[j] + b_ * f, f};
 }
 

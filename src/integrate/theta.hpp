@@ -105,6 +105,7 @@ class Theta final : public Stepper {
 
   // Per step.
   double m_ = 1, b_ = 0;
+  double bb_ = 0;  // b + beta_K: the weight of the new neighbour and pad velocities in a load
   double kc_ = 0, kp_ = 0;
   double link_ = 0;  // b^2 k_c, a row's coupling to a neighbour (doubled for a periodic pair)
   double thr_ = 0, k0_ = 0, s_ = 0;

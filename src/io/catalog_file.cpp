@@ -17,13 +17,14 @@ class CsvCatalog : public CatalogFile {
  public:
   CsvCatalog(const std::string& path, bool append)
       : csv_(path, catalog_header(), append, CsvStream::kWhenFull),
-        checksum_(fnv1a64(catalog_header() + "\n")) {}
+        checksum_(line_hash(catalog_header() + "\n", kLineHashSeed)) {}
   std::optional<std::uint64_t> checksum() const override { return checksum_; }
   void set_checksum(std::uint64_t sum) override { checksum_ = sum; }
   void append(const EventRecord& e) override {
     char* begin = csv_.begin_row(kMaxCatalogRow);
     char* end = catalog_row_to(begin, e);
-    checksum_ = fnv1a64("\n", fnv1a64(std::string_view(begin, end - begin), checksum_));
+    *end = '\n';  // end_row writes it there too; hashed with the row
+    checksum_ = line_hash(std::string_view(begin, end + 1 - begin), checksum_);
     csv_.end_row(end);
   }
   void flush() override { csv_.flush(); }
@@ -32,15 +33,15 @@ class CsvCatalog : public CatalogFile {
 
  private:
   CsvStream csv_;
-  std::uint64_t checksum_;  // fnv1a64 of every byte written to the file so far
+  std::uint64_t checksum_;  // line_hash of every line written to the file so far
 };
 
 class H5Catalog : public CatalogFile {
  public:
   H5Catalog(const std::string& path,
             const std::vector<std::pair<std::string, std::string>>& attributes,
-            std::int64_t resumed_rows)
-      : h5_(path, attributes, resumed_rows) {}
+            std::int64_t resumed_rows, bool deflate)
+      : h5_(path, attributes, resumed_rows, deflate ? 1 : 0) {}
   void append(const EventRecord& e) override { h5_.append(e); }
   void flush() override { h5_.sync(); }
   std::uint64_t sync() override {
@@ -69,12 +70,13 @@ const char* catalog_file_name(CatalogFormat format) {
 
 std::unique_ptr<CatalogFile> open_catalog_file(
     CatalogFormat format, const std::string& path,
-    const std::vector<std::pair<std::string, std::string>>& attributes, std::int64_t resumed_rows) {
+    const std::vector<std::pair<std::string, std::string>>& attributes, std::int64_t resumed_rows,
+    bool deflate) {
   switch (format) {
     case CatalogFormat::Csv:
       return std::make_unique<CsvCatalog>(path, resumed_rows >= 0);
     case CatalogFormat::Hdf5:
-      return std::make_unique<H5Catalog>(path, attributes, resumed_rows);
+      return std::make_unique<H5Catalog>(path, attributes, resumed_rows, deflate);
     case CatalogFormat::None:
       break;
   }

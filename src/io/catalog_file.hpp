@@ -30,8 +30,8 @@ class CatalogFile {
   virtual std::uint64_t sync() = 0;
   // Syncs and closes; throws on failure. Idempotent.
   virtual void close() = 0;
-  // fnv1a64 of every byte of the file so far (csv), or nothing (hdf5); a resumed run sets
-  // the checksum of the rows it continues.
+  // line_hash (io/checkpoint.hpp) of every line of the file so far (csv), or nothing
+  // (hdf5); a resumed run sets the checksum of the rows it continues.
   virtual std::optional<std::uint64_t> checksum() const { return std::nullopt; }
   virtual void set_checksum(std::uint64_t) {}
 };
@@ -39,10 +39,11 @@ class CatalogFile {
 // Opens the catalogue at `path` in `format` (not None). A new file gets the header (csv)
 // or the `attributes` (hdf5: provenance and effective scene); with `resumed_rows` >= 0 the
 // file of a resumed run is continued after its first `resumed_rows` rows (a csv file has
-// already been cut back to its checkpoint by then).
+// already been cut back to its checkpoint by then). `deflate`: a new catalog.h5 is
+// compressed (output.catalog = hdf5-deflate).
 std::unique_ptr<CatalogFile> open_catalog_file(
     CatalogFormat format, const std::string& path,
     const std::vector<std::pair<std::string, std::string>>& attributes,
-    std::int64_t resumed_rows = -1);
+    std::int64_t resumed_rows = -1, bool deflate = false);
 
 }  // namespace bkq

@@ -37,7 +37,7 @@ bool hdf5_available() {
 struct CatalogH5Writer::Impl {};
 CatalogH5Writer::CatalogH5Writer(const std::string&,
                                  const std::vector<std::pair<std::string, std::string>>&,
-                                 std::int64_t) {
+                                 std::int64_t, int) {
   unavailable();
 }
 CatalogH5Writer::~CatalogH5Writer() = default;
@@ -227,7 +227,7 @@ struct CatalogH5Writer::Impl {
 
 CatalogH5Writer::CatalogH5Writer(const std::string& path,
                                  const std::vector<std::pair<std::string, std::string>>& attributes,
-                                 std::int64_t append_after)
+                                 std::int64_t append_after, int deflate_level)
     : impl_(std::make_unique<Impl>()) {
   quiet_hdf5();
   Impl& w = *impl_;
@@ -253,8 +253,11 @@ CatalogH5Writer::CatalogH5Writer(const std::string& path,
     const Handle dcpl =
         checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, path, "cannot create the table");
     check(H5Pset_chunk(dcpl, 1, &kChunkRows), path, "cannot create the table");
-    check(H5Pset_shuffle(dcpl), path, "cannot create the table");
-    check(H5Pset_deflate(dcpl, 1), path, "cannot create the table");
+    if (deflate_level > 0) {
+      check(H5Pset_shuffle(dcpl), path, "cannot create the table");
+      check(H5Pset_deflate(dcpl, static_cast<unsigned>(deflate_level)), path,
+            "cannot create the table");
+    }
     w.table = checked(H5Dcreate2(w.file, kTable, w.type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
                       H5Dclose, path, "cannot create the table");
     for (const auto& [name, text] : attributes) write_text_attribute(w.table, path, name, text);

@@ -1,8 +1,10 @@
-// The event catalogue as HDF5 (output.catalog = hdf5): catalog.h5 holds one table, the
-// dataset "catalog", whose compound rows have the columns of catalog_schema() in order
-// (integer columns as 64-bit integers, the others as doubles), chunked and compressed
-// (shuffle + deflate). The provenance lines and the effective scene are attributes of the
-// dataset ("provenance", "scene"). Readable by any HDF5 reader, e.g. Debian's python3-h5py:
+// The event catalogue as HDF5 (output.catalog = hdf5 or hdf5-deflate): catalog.h5 holds
+// one table, the dataset "catalog", whose compound rows have the columns of
+// catalog_schema() in order (integer columns as 64-bit integers, the others as doubles), in
+// chunks of 8192 rows: stored as they are (hdf5, the cheap one) or shuffled and deflated
+// (hdf5-deflate: a quarter of the size at several times the cost; README "Performance").
+// The provenance lines and the effective scene are attributes of the dataset
+// ("provenance", "scene"). Readable by any HDF5 reader, e.g. Debian's python3-h5py:
 // h5py.File("catalog.h5")["catalog"][:] is a structured array.
 //
 // Written in HDF5's single-writer mode (SWMR, file format 1.10): the file on disk is
@@ -30,12 +32,13 @@ bool is_hdf5_file(const std::string& path);
 
 class CatalogH5Writer {
  public:
-  // Creates catalog.h5 at `path` with `attributes` (name, text) on the table, or, with
-  // `append_after` >= 0, opens the existing file of a resumed run, checks its table and
-  // cuts it back to its first `append_after` rows.
+  // Creates catalog.h5 at `path` with `attributes` (name, text) on the table, compressed
+  // (shuffle + deflate at `deflate_level`) when deflate_level > 0; or, with `append_after`
+  // >= 0, opens the existing file of a resumed run (whose compression stays), checks its
+  // table and cuts it back to its first `append_after` rows.
   CatalogH5Writer(const std::string& path,
                   const std::vector<std::pair<std::string, std::string>>& attributes,
-                  std::int64_t append_after = -1);
+                  std::int64_t append_after = -1, int deflate_level = 0);
   ~CatalogH5Writer();
   CatalogH5Writer(const CatalogH5Writer&) = delete;
   CatalogH5Writer& operator=(const CatalogH5Writer&) = delete;

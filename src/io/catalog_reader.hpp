@@ -16,17 +16,12 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/event_record.hpp"
+
 namespace bkq {
 
-struct CatalogEvent {
-  std::int64_t event = 0;
-  double load = 0;
-  int blocks = 0;
-  int first_block = 0;
-  int last_block = 0;
-  double moment = 0;
-  double magnitude = 0;
-};
+// A catalogue row read back; the columns a file lacks stay 0.
+using CatalogEvent = EventRecord;
 
 class CatalogH5Reader;
 

@@ -34,44 +34,9 @@ static_assert(sizeof(EngineCounters) == 5 * sizeof(std::int64_t),
 static_assert(sizeof(ChainState) == 4 * sizeof(std::vector<double>) + 5 * sizeof(double),
               "ChainState changed: update the checkpoint");
 
-std::uint64_t fnv1a64(const char* data, std::size_t n) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= static_cast<unsigned char>(data[i]);
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 // The checkpoint's fields in file order, written once for both directions: `io` is an
-// Encode (writes each field) or a Decode (reads each field into it). A new field goes
-// here, with kFormatVersion raised.
-struct Encode {
-  StateWriter& w;
-  void operator()(const std::string& x) { w.str(x); }
-  void operator()(std::uint64_t x) { w.u64(x); }
-  void operator()(std::int64_t x) { w.i64(x); }
-  void operator()(int x) { w.i64(x); }
-  void operator()(double x) { w.f64(x); }
-  void operator()(bool x) { w.u32(x ? 1 : 0); }
-  void operator()(__int128 x) { w.i128(x); }
-  void operator()(const std::vector<double>& x) { w.f64s(x); }
-  void operator()(const std::vector<std::int64_t>& x) { w.i64s(x); }
-};
-
-struct Decode {
-  StateReader& r;
-  void operator()(std::string& x) { x = r.str(); }
-  void operator()(std::uint64_t& x) { x = r.u64(); }
-  void operator()(std::int64_t& x) { x = r.i64(); }
-  void operator()(int& x) { x = static_cast<int>(r.i64()); }
-  void operator()(double& x) { x = r.f64(); }
-  void operator()(bool& x) { x = r.u32() != 0; }
-  void operator()(__int128& x) { x = r.i128(); }
-  void operator()(std::vector<double>& x) { x = r.f64s(); }
-  void operator()(std::vector<std::int64_t>& x) { x = r.i64s(); }
-};
-
+// EncodeField (writes each field) or a DecodeField (reads each field into it). A new field
+// goes here, with kFormatVersion raised.
 template <class Io, class Counters>
 void counter_fields(Io& io, Counters& c) {
   for (auto* x : {&c.events, &c.steps, &c.block_steps, &c.sliding_block_steps, &c.releases}) io(*x);
@@ -143,7 +108,7 @@ std::string encode_checkpoint(const Checkpoint& c) {
   file.u64(0);
   const std::size_t start = file.bytes().size();
 
-  Encode encode{file};
+  EncodeField encode{file};
   fixed_fields(encode, c);
   file.u64(c.observers.size());
   for (const ObserverState& o : c.observers) {
@@ -154,7 +119,7 @@ std::string encode_checkpoint(const Checkpoint& c) {
   StateWriter length;
   length.u64(file.bytes().size() - start);
   file.bytes().replace(start - length.bytes().size(), length.bytes().size(), length.bytes());
-  file.u64(fnv1a64(file.bytes().data(), file.bytes().size()));
+  file.u64(fnv1a64(file.bytes()));
   return std::move(file.bytes());
 }
 
@@ -179,12 +144,12 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
                 std::to_string(payload + kHeadBytes + kSumBytes));
   const std::size_t end = kHeadBytes + static_cast<std::size_t>(payload);
   const std::uint64_t stored = StateReader(bytes, end, bytes.size(), origin).u64();
-  if (stored != fnv1a64(bytes.data(), end))
+  if (stored != fnv1a64(std::string_view(bytes.data(), end)))
     throw Error("checkpoint '" + origin + "' is damaged: checksum mismatch");
 
   StateReader r(bytes, kHeadBytes, end, origin);
   Checkpoint c;
-  Decode decode{r};
+  DecodeField decode{r};
   fixed_fields(decode, c);
 
   if (format >= 2) {
@@ -248,15 +213,42 @@ void check_csv_prefix(const std::string& path, const std::string& header, std::i
     throw Error("cannot resume: '" + path + "' does not start with the header '" + header + "'");
   in.seekg(0);
   // Count line ends in the prefix: it must be the header and exactly `rows` whole rows.
+  // line_hash of each line; a line split between two reads is hashed in two parts, the
+  // bytes that do not fill a word of 8 carried over to the next read.
   std::int64_t lines = 0;
   char last = '\n';
-  std::uint64_t hash = fnv1a64("");
+  std::uint64_t hash = kLineHashSeed;
+  char carry[8];
+  std::size_t carried = 0;
   std::vector<char> buf(1 << 20);
   for (std::uint64_t left = bytes; left > 0;) {
     const auto n = static_cast<std::streamsize>(std::min<std::uint64_t>(left, buf.size()));
     if (!in.read(buf.data(), n)) throw Error("cannot resume: read error on '" + path + "'");
-    for (std::streamsize i = 0; i < n; ++i) lines += buf[static_cast<std::size_t>(i)] == '\n';
-    hash = fnv1a64(std::string_view(buf.data(), static_cast<std::size_t>(n)), hash);
+    const char* p = buf.data();
+    const char* const end = p + n;
+    while (p < end) {
+      const char* nl = static_cast<const char*>(std::memchr(p, '\n', end - p));
+      const char* const stop = nl ? nl + 1 : end;
+      if (carried > 0) {  // the start of this line was in the previous read
+        const std::size_t take = std::min<std::size_t>(8 - carried, stop - p);
+        std::memcpy(carry + carried, p, take);
+        carried += take;
+        p += take;
+        if (carried < 8 && !nl) break;  // the read ended first: carry on
+        hash = line_hash(std::string_view(carry, carried), hash);
+        carried = 0;
+      }
+      if (nl) {
+        if (p < stop) hash = line_hash(std::string_view(p, stop - p), hash);
+        ++lines;
+      } else {  // the line goes on in the next read
+        const auto whole = static_cast<std::size_t>(stop - p) / 8 * 8;
+        if (whole > 0) hash = line_hash(std::string_view(p, whole), hash);
+        carried = static_cast<std::size_t>(stop - p) - whole;
+        std::memcpy(carry, p + whole, carried);
+      }
+      p = stop;
+    }
     last = buf[static_cast<std::size_t>(n - 1)];
     left -= static_cast<std::uint64_t>(n);
   }
@@ -337,10 +329,7 @@ void CheckpointFiles::remove() const {
   std::error_code ec;
   fs::remove(current(), ec);
   fs::remove(previous(), ec);
-  // Temporary files of a write cut short by a second signal or a crash.
-  const std::string stem = fs::path(current()).filename().string() + ".tmp-";
-  for (const auto& entry : fs::directory_iterator(dir_, ec))
-    if (entry.path().filename().string().rfind(stem, 0) == 0) fs::remove(entry.path(), ec);
+  remove_temporaries_of(current());  // of a write cut short by a second signal or a crash
 }
 
 }  // namespace bkq

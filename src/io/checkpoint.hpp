@@ -38,6 +38,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/fnv1a.hpp"
 #include "engine/event_engine.hpp"
 #include "stats/histogram.hpp"
 
@@ -175,6 +176,55 @@ class StateReader {
   std::string origin_;
 };
 
+// One field in the encoding of its type: EncodeField writes it, DecodeField reads it back.
+// The checkpoint's own fields and the observers' states both go through these.
+struct EncodeField {
+  StateWriter& w;
+  void operator()(const std::string& x) { w.str(x); }
+  void operator()(std::uint64_t x) { w.u64(x); }
+  void operator()(std::int64_t x) { w.i64(x); }
+  void operator()(int x) { w.i64(x); }
+  void operator()(double x) { w.f64(x); }
+  void operator()(bool x) { w.u32(x ? 1 : 0); }
+  void operator()(__int128 x) { w.i128(x); }
+  void operator()(const std::vector<double>& x) { w.f64s(x); }
+  void operator()(const std::vector<std::int64_t>& x) { w.i64s(x); }
+};
+
+struct DecodeField {
+  StateReader& r;
+  void operator()(std::string& x) { x = r.str(); }
+  void operator()(std::uint64_t& x) { x = r.u64(); }
+  void operator()(std::int64_t& x) { x = r.i64(); }
+  void operator()(int& x) { x = static_cast<int>(r.i64()); }
+  void operator()(double& x) { x = r.f64(); }
+  void operator()(bool& x) { x = r.u32() != 0; }
+  void operator()(__int128& x) { x = r.i128(); }
+  void operator()(std::vector<double>& x) { x = r.f64s(); }
+  void operator()(std::vector<std::int64_t>& x) { x = r.i64s(); }
+};
+
+// An observer state made of a few fields, in order: put_state writes them under `name`;
+// find_state reads them back and is false (nothing read) when the checkpoint has no state
+// of that name.
+template <class... T>
+void put_state(Checkpoint& c, const std::string& name, const T&... fields) {
+  StateWriter w;
+  EncodeField encode{w};
+  (encode(fields), ...);
+  c.put(name, std::move(w.bytes()));
+}
+
+template <class... T>
+bool find_state(const Checkpoint& c, const std::string& name, T&... fields) {
+  const std::string* bytes = c.find(name);
+  if (!bytes) return false;
+  StateReader r(*bytes, name);
+  DecodeField decode{r};
+  (decode(fields), ...);
+  return true;
+}
+
 std::string encode_checkpoint(const Checkpoint& c);
 // Throws bkq::Error naming `origin` when `bytes` are not one complete, intact checkpoint
 // of this format version (wrong magic, truncated, trailing bytes, checksum mismatch).
@@ -184,17 +234,8 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
 // another scene, naming the versions or the keys whose values differ.
 void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std::string& origin);
 
-// FNV-1a, 64 bit, of `data` continuing from `h`: the checksum of catalog.csv's rows that a
-// checkpoint keeps (observer state "catalog.checksum"), so an edited row is found.
-inline std::uint64_t fnv1a64(std::string_view data, std::uint64_t h = 14695981039346656037ull) {
-  for (const unsigned char c : data) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 // Throws bkq::Error unless the first `bytes` bytes of the CSV file `path` are the line
-// `header` followed by exactly `rows` complete lines, whose fnv1a64 is `checksum` when one is
+// `header` followed by exactly `rows` complete lines, whose line_hash is `checksum` when one is
 // given; only reads the file.
 void check_csv_prefix(const std::string& path, const std::string& header, std::int64_t rows,
                       std::uint64_t bytes, std::optional<std::uint64_t> checksum = std::nullopt);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/fnv1a.hpp"
 #include "core/format.hpp"
 #include "io/csv_util.hpp"
 
@@ -95,13 +96,9 @@ std::string friction_table_csv(const FrictionTable& table,
 std::string file_checksum(const std::filesystem::path& path) {
   std::ifstream f(path, std::ios::binary);
   if (!f) throw Error(path.string() + ": cannot open");
-  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64-bit offset basis
-  for (std::istreambuf_iterator<char> it(f), end; it != end; ++it) {
-    h ^= static_cast<unsigned char>(*it);
-    h *= 1099511628211ull;  // FNV prime
-  }
+  const std::string bytes{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
   char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(bytes)));
   return hex;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string_view>
+#include <utility>
 
 #include "core/error.hpp"
 
@@ -259,27 +260,20 @@ class Scanner {
 
 }  // namespace
 
-std::optional<double> json_top_level_number(const std::string& text, const std::string& key,
-                                            const std::string& origin) {
+namespace {
+
+// Walks the top-level members of the object in `text` to `key` and returns read(scanner)
+// positioned at its value; nullopt when the key is absent.
+template <class Read>
+auto read_top_level(const std::string& text, const std::string& key, const std::string& origin,
+                    Read read) -> decltype(read(std::declval<Scanner&>())) {
   Scanner s(text, origin);
   s.expect('{');
   if (s.at('}')) return std::nullopt;
   while (true) {
     const std::string k = s.string();
     s.expect(':');
-    if (k == key) {
-      if (s.at('"') || s.at('{') || s.at('[')) {
-        throw Error(origin + ": \"" + key + "\": expected a number, got a " +
-                    (s.at('"') ? "string" : "structure"));
-      }
-      const std::string v = s.token();
-      if (v == "null") return std::nullopt;
-      double x = 0;
-      const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
-      if (ec != std::errc() || ptr != v.data() + v.size())
-        throw Error(origin + ": \"" + key + "\": expected a number, got " + v);
-      return x;
-    }
+    if (k == key) return read(s);
     s.skip_value();
     if (s.at(',')) {
       s.expect(',');
@@ -288,6 +282,36 @@ std::optional<double> json_top_level_number(const std::string& text, const std::
     s.expect('}');
     return std::nullopt;
   }
+}
+
+}  // namespace
+
+std::optional<double> json_top_level_number(const std::string& text, const std::string& key,
+                                            const std::string& origin) {
+  return read_top_level(text, key, origin, [&](Scanner& s) -> std::optional<double> {
+    if (s.at('"') || s.at('{') || s.at('[')) {
+      throw Error(origin + ": \"" + key + "\": expected a number, got a " +
+                  (s.at('"') ? "string" : "structure"));
+    }
+    const std::string v = s.token();
+    if (v == "null") return std::nullopt;
+    double x = 0;
+    const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+    if (ec != std::errc() || ptr != v.data() + v.size())
+      throw Error(origin + ": \"" + key + "\": expected a number, got " + v);
+    return x;
+  });
+}
+
+std::optional<std::string> json_top_level_string(const std::string& text, const std::string& key,
+                                                 const std::string& origin) {
+  return read_top_level(text, key, origin, [&](Scanner& s) -> std::optional<std::string> {
+    if (s.at('"')) return s.string();
+    if (s.at('{') || s.at('[')) s.fail("\"" + key + "\": expected a string, got a structure");
+    const std::string v = s.token();
+    if (v == "null") return std::nullopt;
+    throw Error(origin + ": \"" + key + "\": expected a string, got " + quote_printable(v));
+  });
 }
 
 }  // namespace bkq

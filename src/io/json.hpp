@@ -74,5 +74,8 @@ std::string json_quote(const std::string& s);
 // value is not a number. Nested objects and arrays are skipped, not searched.
 std::optional<double> json_top_level_number(const std::string& text, const std::string& key,
                                             const std::string& origin);
+// The same for a string value (escapes kept as written); nullopt when absent or null.
+std::optional<std::string> json_top_level_string(const std::string& text, const std::string& key,
+                                                 const std::string& origin);
 
 }  // namespace bkq

@@ -19,6 +19,7 @@
 #include "io/checkpoint.hpp"
 #include "io/folder_lock.hpp"
 #include "io/friction_table.hpp"
+#include "io/run_folder.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -75,7 +76,7 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
   ::unlink(probe.c_str());
   if (force || resume) return;
   const bool can_resume = command == "run";
-  if (fs::exists(path("summary.json"), ec))
+  if (run_status(dir) == RunStatus::Finished)
     throw Error(
         "output folder '" + dir + "' already holds a finished run (summary.json); use " +
         (can_resume ? "--force to overwrite or --resume to continue" : "--force to overwrite it"));
@@ -130,6 +131,15 @@ std::string write_temp_beside(const std::string& path, const std::string& conten
     throw Error("cannot write '" + path + "': " + reason(err));
   }
   return tmp;
+}
+
+void remove_temporaries_of(const std::string& path) {
+  std::error_code ec;
+  const std::string stem = fs::path(path).filename().string() + ".tmp-";
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(folder_of(path), ec))
+    if (entry.path().filename().string().rfind(stem, 0) == 0) stale.push_back(entry.path());
+  for (const auto& f : stale) fs::remove(f, ec);
 }
 
 void rename_file(const std::string& from, const std::string& to) {

@@ -47,6 +47,9 @@ void write_file_atomic(const std::string& path, const std::string& content);
 // `path` (same folder, so renaming it over `path` is atomic), fsynced and readable;
 // returns its name. Throws bkq::Error naming `path`; nothing is left behind on failure.
 std::string write_temp_beside(const std::string& path, const std::string& content);
+// Removes the temporaries write_temp_beside left beside `path` when a write was cut short
+// (a second signal, a crash); best effort, errors ignored.
+void remove_temporaries_of(const std::string& path);
 // Renames `from` over `to`; throws bkq::Error naming both.
 void rename_file(const std::string& from, const std::string& to);
 // fsyncs a folder, so that renames in it survive a power cut.

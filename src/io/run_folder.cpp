@@ -2,6 +2,7 @@
 #include "io/run_folder.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
 #include "io/scene.hpp"
@@ -35,6 +36,31 @@ Scene read_run_scene(const std::filesystem::path& scene_ini) {
   for (const auto& [key, value] : parse_ini(read_text_file(scene_ini.string(), "scene"), where))
     if (find_param(key)) scene.set(key, value, where);
   return scene;
+}
+
+const char* status_text(RunStatus status) {
+  switch (status) {
+    case RunStatus::Finished:
+      return "finished";
+    case RunStatus::Interrupted:
+      return "interrupted";
+    case RunStatus::None:
+      break;
+  }
+  return "none";
+}
+
+RunStatus run_status(const std::filesystem::path& dir) {
+  const std::filesystem::path summary = dir / "summary.json";
+  std::error_code ec;
+  if (!std::filesystem::exists(summary, ec)) return RunStatus::None;
+  const auto s = json_top_level_string(read_text_file(summary.string(), "summary"), kStatusKey,
+                                       summary.string());
+  if (!s) return RunStatus::Finished;
+  for (const RunStatus r : {RunStatus::Finished, RunStatus::Interrupted})
+    if (*s == status_text(r)) return r;
+  throw Error(summary.string() + ": \"" + kStatusKey + "\" = " + quote_printable(*s) +
+              ": expected finished or interrupted");
 }
 
 Boundary parse_boundary(const std::string& text) {

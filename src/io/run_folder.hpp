@@ -21,6 +21,20 @@ struct SceneModelInfo {
   std::optional<std::string> alpha;     // [friction] alpha, for labels
 };
 
+// summary.json's "status": how the run it describes ended. "finished": the run is complete
+// (its checkpoints are gone); "interrupted": it was stopped by SIGINT/SIGTERM, its figures are
+// those reached so far and a checkpoint beside it continues it with --resume. The one
+// declaration of the field, for its writers (app/observers/summary, app/merge) and readers
+// (run --resume, a new run's folder check, sweep --resume, merge, fit).
+enum class RunStatus { None, Finished, Interrupted };
+inline constexpr const char* kStatusKey = "status";
+// "finished", "interrupted" (None: "none").
+const char* status_text(RunStatus status);
+// The status of the run folder `dir`: None without summary.json; a summary without "status"
+// (written before the field existed, when only a finished run wrote one) is Finished.
+// bkq::Error if summary.json cannot be read or its status is not one of the above.
+RunStatus run_status(const std::filesystem::path& dir);
+
 // Reads [model] blocks/boundary and [friction] alpha; bkq::Error if the file cannot be
 // read or a value is outside the parameter table's range.
 SceneModelInfo read_scene_model(const std::filesystem::path& scene_ini);

@@ -126,9 +126,10 @@ Settings settings_from_scene(const Scene& scene) {
   s.output.energy_window = scene.real("output.energy_window");
   s.output.energy_tol = scene.real("output.energy_tol");
   const std::string& catalog = scene.choice("output.catalog");
-  s.output.catalog = catalog == "hdf5"   ? CatalogFormat::Hdf5
-                     : catalog == "none" ? CatalogFormat::None
-                                         : CatalogFormat::Csv;
+  s.output.catalog = catalog == "hdf5" || catalog == "hdf5-deflate" ? CatalogFormat::Hdf5
+                     : catalog == "none"                            ? CatalogFormat::None
+                                                                    : CatalogFormat::Csv;
+  s.output.catalog_deflate = catalog == "hdf5-deflate";
   s.output.segment_blocks = static_cast<int>(scene.integer("output.segment_blocks"));
 
   s.stats.bin_width = scene.real("stats.bin_width");

@@ -14,7 +14,12 @@ double ChainState::recompute_sum_w() {
 }
 
 ChainForces::ChainForces(const ModelParams& p)
-    : p_(p), law_(make_law(p)), friction_(friction_of(p)), inv_m_(1.0 / p.m_u) {
+    : p_(p),
+      law_(make_law(p)),
+      friction_(friction_of(p)),
+      inv_m_(1.0 / p.m_u),
+      rayleigh_(p.rayleigh_alpha != 0 || p.rayleigh_beta != 0),
+      beta_m_(p.rayleigh_beta / p.m_u) {
   kernel_ = select_kernel(false);
   kernel_inertial_ = select_kernel(true);
 }
@@ -22,60 +27,84 @@ ChainForces::ChainForces(const ModelParams& p)
 template <class Law, class Terms, bool Inertial>
 void ChainForces::kernel(const ChainForces& self, const double* __restrict w,
                          const double* __restrict wd, const double* __restrict mobile,
-                         const double* __restrict dir, double anchor, const SubstrateState& sub,
-                         int lo, int hi, double* __restrict a) {
+                         const double* __restrict dir, double anchor, double anchor_rate,
+                         const SubstrateState& sub, int lo, int hi, double* __restrict a) {
   const int n = self.p_.n;
   const Law& law = self.law<Law>();
-  // The chain ends (and the periodic wrap) go through the scalar path.
-  auto at = [&](int j, double f) {
-    a[j] = mobile[j] * self.acceleration<Law, Terms, Inertial>(law, f, wd[j], dir[j], sub);
+  // The chain ends (and the periodic wrap) go through the scalar path. `fv()` is the
+  // spring force at the velocities, which only the Rayleigh damping reads.
+  auto at = [&](int j, double f, auto fv) {
+    if constexpr (Terms::rayleigh)
+      a[j] = mobile[j] * (self.acceleration<Law, Terms, Inertial>(law, f, wd[j], dir[j], sub) +
+                          self.rayleigh_acceleration(fv(), wd[j], sub.v));
+    else
+      a[j] = mobile[j] * self.acceleration<Law, Terms, Inertial>(law, f, wd[j], dir[j], sub);
   };
   if (lo == 0 && hi > 0) {
-    at(0, self.spring_force(w, 0, anchor));
+    at(0, self.spring_force(w, 0, anchor), [&] { return self.spring_force(wd, 0, anchor_rate); });
     lo = 1;
   }
   if (hi == n && hi > lo) {
-    at(n - 1, self.spring_force(w, n - 1, anchor));
+    at(n - 1, self.spring_force(w, n - 1, anchor),
+       [&] { return self.spring_force(wd, n - 1, anchor_rate); });
     hi = n - 1;
   }
   // Interior blocks: branch-free so the compiler vectorises it.
-  for (int j = lo; j < hi; ++j) at(j, self.interior_force<Terms>(w[j - 1], w[j], w[j + 1], anchor));
+  for (int j = lo; j < hi; ++j)
+    at(j, self.interior_force<Terms>(w[j - 1], w[j], w[j + 1], anchor),
+       [&] { return self.interior_force<Terms>(wd[j - 1], wd[j], wd[j + 1], anchor_rate); });
 }
 
 ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
   return with_switches([&]<class L, class Terms>(const L&) -> Kernel {
+    // The Rayleigh switch is picked here, not in with_switches: only the continuous runs'
+    // kernels take it (the event engine's paths refuse the damping).
+    using Damped = ForceTerms<Terms::neighbours, Terms::damper, true>;
+    if (rayleigh_) return inertial ? &kernel<L, Damped, true> : &kernel<L, Damped, false>;
     return inertial ? &kernel<L, Terms, true> : &kernel<L, Terms, false>;
   });
 }
 
 void ChainForces::block_accelerations(const double* w, const double* wd, const double* mobile,
-                                      const double* dir, double anchor, const SubstrateState& sub,
-                                      Ranges ranges, double* a) const {
+                                      const double* dir, double anchor, double anchor_rate,
+                                      const SubstrateState& sub, Ranges ranges, double* a) const {
   const Kernel k = sub.a != 0.0 ? kernel_inertial_ : kernel_;
-  for (const Range& r : ranges) k(*this, w, wd, mobile, dir, anchor, sub, r.lo, r.hi, a);
+  for (const Range& r : ranges)
+    k(*this, w, wd, mobile, dir, anchor, anchor_rate, sub, r.lo, r.hi, a);
 }
 
-double ChainForces::spring_energy(const ChainState& st) const {
+double ChainForces::stiffness_energy(const double* w, double anchor, double x) const {
   const int n = p_.n;
-  const double anchor = st.s + (p_.pad_moves() ? st.x : 0.0);
   double e_c = 0, e_p = 0;
   for (int j = 0; j < n; ++j) {
-    const double d = st.w[j] - anchor;
+    const double d = w[j] - anchor;
     e_p += d * d;
   }
   if (p_.has_neighbours()) {
     for (int j = 0; j + 1 < n; ++j) {
-      const double d = st.w[j + 1] - st.w[j];
+      const double d = w[j + 1] - w[j];
       e_c += d * d;
     }
     if (p_.boundary == Boundary::Periodic && n > 2) {
-      const double d = st.w[0] - st.w[n - 1];
+      const double d = w[0] - w[n - 1];
       e_c += d * d;
     }
   }
   double e = 0.5 * p_.k_c * e_c + 0.5 * p_.k_p * e_p;
-  if (p_.pad_moves()) e += 0.5 * p_.k_p0 * st.x * st.x;
+  if (p_.pad_moves()) e += 0.5 * p_.k_p0 * x * x;
   return e;
+}
+
+double ChainForces::spring_energy(const ChainState& st) const {
+  return stiffness_energy(st.w.data(), st.s + (p_.pad_moves() ? st.x : 0.0), st.x);
+}
+
+double ChainForces::rayleigh_power(const double* wd, double xd, double v) const {
+  if (!p_.pad_moves()) xd = 0.0;
+  double mass = 0;
+  for (int j = 0; j < p_.n; ++j) mass += (wd[j] - v) * (wd[j] - v);
+  mass = p_.m_u * mass + (p_.pad_moves() ? p_.m_x * xd * xd : 0.0);
+  return p_.rayleigh_alpha * mass + 2.0 * p_.rayleigh_beta * stiffness_energy(wd, v + xd, xd);
 }
 
 double ChainForces::kinetic_energy(const ChainState& st, double v) const {

@@ -5,7 +5,17 @@
 //
 //   m_u w''_j = k_c (w_{j-1} - 2 w_j + w_{j+1}) - k_p (w_j - s - x) - m_u phi(w'_j)
 //               [- c_u (w'_j - v)  1DOF damper]  [+ m_u a_s  substrate acceleration]
-//   m_x x''   = -c_p x' + k_p (sum_j w_j - N s - N x) - k_p0 x
+//               [- (alpha_M M u' + beta_K K u')_j  Rayleigh block damping]
+//   m_x x''   = -c_p x' + k_p (sum_j w_j - N s - N x) - k_p0 x  [- (alpha_M M u' + beta_K K
+//   u')_pad]
+//
+// Rayleigh damping (model.rayleigh_alpha, _beta) is the matrix C = alpha_M M + beta_K K of
+// stats/stability: M and K of blocks and pad (K with k_c, the k_p coupling and the pad row
+// with k_p0), acting on the lab-frame velocities u'_j = w'_j - v and x'. K u' is minus the
+// spring force evaluated at the velocities with the anchor moving at v + x', so the block
+// term is beta_K/m_u spring_force(w', anchor rate) - alpha_M (w'_j - v) per unit mass. It is
+// a switch (ForceTerms::rayleigh) of the continuous runs' kernels only: the event engine's
+// held-range and cluster paths never instantiate it (event runs refuse the damping).
 //
 // Only the terms a scene switches on are compiled into the kernel that runs (templates
 // on the friction law's policy type, model/friction_laws.hpp; on the optional terms,
@@ -71,10 +81,12 @@ struct SubstrateState {
 // instantiated for each combination and computes only what is on. A new optional term is
 // one more switch here, its pick in ChainForces::with_switches and its use in
 // interior_force / acceleration_given.
-template <bool Neighbours, bool Damper>
+template <bool Neighbours, bool Damper, bool Rayleigh = false>
 struct ForceTerms {
   static constexpr bool neighbours = Neighbours;  // neighbour springs k_c (k_c != 0, N > 1)
   static constexpr bool damper = Damper;          // the 1DOF block damper c_u (c_u != 0)
+  // Rayleigh block damping (alpha_M or beta_K != 0); picked in select_kernel only.
+  static constexpr bool rayleigh = Rayleigh;
 };
 
 class ChainForces {
@@ -148,14 +160,39 @@ class ChainForces {
   }
 
   // Block accelerations a[j] for every j in `ranges`; stuck blocks get exactly 0.
+  // anchor_rate is the anchor's velocity v + x' (read only with Rayleigh damping).
   void block_accelerations(const double* w, const double* wd, const double* mobile,
-                           const double* dir, double anchor, const SubstrateState& sub,
-                           Ranges ranges, double* a) const;
+                           const double* dir, double anchor, double anchor_rate,
+                           const SubstrateState& sub, Ranges ranges, double* a) const;
 
   // Pad acceleration given the sum of w over all blocks.
   double pad_acceleration(double x, double xd, double sum_w, double s) const {
     return (-p_.c_p * xd + p_.k_p * (sum_w - p_.n * s - p_.n * x) - p_.k_p0 * x) / p_.m_x;
   }
+  // The same with the pad's Rayleigh damping, given also the sum of w' over all blocks
+  // and the substrate speed v (identical to the above without damping).
+  double pad_acceleration(double x, double xd, double sum_w, double s, double sum_wd,
+                          double v) const {
+    const double a = pad_acceleration(x, xd, sum_w, s);
+    return rayleigh_ ? a + pad_rayleigh_acceleration(xd, sum_wd, v) : a;
+  }
+
+  // Rayleigh block damping: is it on, and its parts. The block's acceleration given the
+  // spring force fv evaluated at the velocities (anchor at v + x'), its own w' and v.
+  bool rayleigh() const { return rayleigh_; }
+  double rayleigh_acceleration(double fv, double y, double v) const {
+    return beta_m_ * fv - p_.rayleigh_alpha * (y - v);
+  }
+  // -(alpha_M m_x x' + beta_K (k_p sum_j (x' - u'_j) + k_p0 x')) / m_x, u'_j = w'_j - v.
+  double pad_rayleigh_acceleration(double xd, double sum_wd, double v) const {
+    const double n = p_.n;
+    return -(p_.rayleigh_alpha * p_.m_x * xd +
+             p_.rayleigh_beta * (p_.k_p * (n * xd - (sum_wd - n * v)) + p_.k_p0 * xd)) /
+           p_.m_x;
+  }
+  // Power the Rayleigh damping dissipates, u'^T C u' (blocks and pad), at velocities wd
+  // (substrate frame), pad velocity xd (0 for a held pad) and substrate speed v.
+  double rayleigh_power(const double* wd, double xd, double v) const;
   // Pad position at rest with every block stuck (quasi-static balance of its springs).
   double pad_equilibrium(double sum_w, double s) const {
     return p_.k_p * (sum_w - p_.n * s) / (p_.k_p0 + p_.n * p_.k_p);
@@ -168,17 +205,21 @@ class ChainForces {
 
  private:
   using Kernel = void (*)(const ChainForces&, const double*, const double*, const double*,
-                          const double*, double, const SubstrateState&, int, int, double*);
+                          const double*, double, double, const SubstrateState&, int, int, double*);
   template <class Law, class Terms, bool Inertial>
   static void kernel(const ChainForces& self, const double* w, const double* wd,
-                     const double* mobile, const double* dir, double anchor,
+                     const double* mobile, const double* dir, double anchor, double anchor_rate,
                      const SubstrateState& sub, int lo, int hi, double* a);
   Kernel select_kernel(bool inertial) const;
+  // 1/2 u^T K u for positions w with the anchor at `anchor` and the pad at x.
+  double stiffness_energy(const double* w, double anchor, double x) const;
 
   ModelParams p_;
   LawVariant law_;
   Friction friction_;
   double inv_m_ = 1;
+  bool rayleigh_ = false;
+  double beta_m_ = 0;  // beta_K / m_u
   Kernel kernel_ = nullptr;
   Kernel kernel_inertial_ = nullptr;
 };

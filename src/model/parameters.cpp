@@ -20,6 +20,14 @@ double ModelParams::max_angular_frequency() const {
     const double K = k_p0 + n * k_p;
     w = std::max({w, std::sqrt(K / m_x), c_p / m_x});
   }
+  if (rayleigh_alpha != 0 || rayleigh_beta != 0) {
+    // Rayleigh damping alpha_M M + beta_K K adds alpha_M + beta_K omega^2 to a mode of
+    // angular frequency omega: the fastest block and pad modes' damping rates, as the dampers'.
+    const double wb2 = ((has_neighbours() ? 4.0 * k_c : 0.0) + k_p) / m_u;
+    w = std::max(w, c_u / m_u + rayleigh_alpha + rayleigh_beta * wb2);
+    if (pad_moves())
+      w = std::max(w, c_p / m_x + rayleigh_alpha + rayleigh_beta * (k_p0 + n * k_p) / m_x);
+  }
   return w;
 }
 

@@ -36,7 +36,7 @@ struct ModelParams {
   // Rayleigh damping alpha_M M + beta_K K of the whole linear structure (seed 004 §4.2): M
   // and K are the mass and stiffness matrices of blocks and pad (K holds k_c, the k_p
   // coupling and, for bkp, the pad row with k_p0). Off (0) by default; the analysis
-  // (stats/stability) applies it.
+  // (stats/stability) and the continuous runs' force kernels (model/chain) apply it.
   double rayleigh_alpha = 0;  // alpha_M [1/time]
   double rayleigh_beta = 0;   // beta_K [time]
 
@@ -50,7 +50,8 @@ struct ModelParams {
   bool has_neighbours() const { return k_c != 0 && n > 1; }
   // Static threshold on the spring force of one block.
   double threshold() const { return F0 * m_u; }
-  // Largest angular frequency of the linear part (thesis eq. 3.2, and the pad's).
+  // Largest angular frequency of the linear part (thesis eq. 3.2, and the pad's), or the
+  // largest damping rate where that is larger (dampers, Rayleigh damping).
   double max_angular_frequency() const;
   // Stuck blocks' force grows by this much per unit substrate displacement (SPEC §2).
   double loading_rate() const;

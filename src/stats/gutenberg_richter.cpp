@@ -295,8 +295,11 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       std::int64_t lo, hi, n;
       double d;
     };
-    std::optional<Pick> pick;
-    std::int64_t candidates = 0, positive = 0;
+    // First the cheap conditions (ends, size, no rise) over every window, in the order
+    // lo, then hi; then the fits (binned MLE, KS distance), widest windows first: once a
+    // width holds an accepted window no narrower one can win, so the rest are not fitted.
+    // Equal widths keep the lo order, so ties go to the same window as in one pass.
+    std::vector<Pick> cands;
     for (std::int64_t lo = lo_first; lo <= lo_last; ++lo) {
       if (!k_lo_given && h.count(lo) == 0) continue;
       poll();
@@ -316,19 +319,26 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
         int populated = 0;
         for (std::int64_t j = lo; j <= hi && populated < 2; ++j) populated += h.count(j) > 0;
         if (populated < 2) continue;
-        poll();
-        ++candidates;
-        const bool tr = truncated_at(hi);
-        const BEstimate e = binned_mle(h, lo, hi, tr);
-        if (!(e.b > 0) || !std::isfinite(e.err)) continue;
-        ++positive;
-        const double d = ks_distance_binned(h, lo, hi, e.b, tr);
-        if (!(d <= opt.ks_systematic + opt.ks_tolerance / std::sqrt(static_cast<double>(n))))
-          continue;
-        if (!pick || hi - lo > pick->hi - pick->lo ||
-            (hi - lo == pick->hi - pick->lo && (n > pick->n || (n == pick->n && d < pick->d))))
-          pick = Pick{lo, hi, n, d};
+        cands.push_back(Pick{lo, hi, n, 0});
       }
+    }
+    std::stable_sort(cands.begin(), cands.end(),
+                     [](const Pick& a, const Pick& b) { return a.hi - a.lo > b.hi - b.lo; });
+    std::optional<Pick> pick;
+    const auto candidates = static_cast<std::int64_t>(cands.size());
+    std::int64_t positive = 0;
+    for (const Pick& c : cands) {
+      if (pick && c.hi - c.lo < pick->hi - pick->lo) break;
+      poll();
+      const bool tr = truncated_at(c.hi);
+      const BEstimate e = binned_mle(h, c.lo, c.hi, tr);
+      if (!(e.b > 0) || !std::isfinite(e.err)) continue;
+      ++positive;
+      const double d = ks_distance_binned(h, c.lo, c.hi, e.b, tr);
+      if (!(d <= opt.ks_systematic + opt.ks_tolerance / std::sqrt(static_cast<double>(c.n))))
+        continue;
+      if (!pick || c.n > pick->n || (c.n == pick->n && d < pick->d))
+        pick = Pick{c.lo, c.hi, c.n, d};
     }
     if (pick) {
       k_lo = pick->lo;

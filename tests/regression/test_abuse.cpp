@@ -28,6 +28,7 @@
 
 #include "../cli_helpers.hpp"
 #include "../refusal.hpp"
+#include "io/run_folder.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -135,6 +136,11 @@ class Abuse : public ::testing::Test {
     if (r.timed_out) {
       EXPECT_EQ(r.status, 143) << r.err;
       EXPECT_LT(r.exit_after_term_s, 1.0) << "slow to stop after SIGTERM";
+      // A run stopped while running says so in its summary (one stopped while setting up
+      // has none yet).
+      if (!out.empty() && args[0] == "run" && fs::exists(out / "summary.json")) {
+        EXPECT_EQ(run_status(out), RunStatus::Interrupted);
+      }
       return;
     }
     ASSERT_TRUE(r.status == 0 || r.status == 2) << "exit " << r.status << "\n" << r.err;
@@ -151,7 +157,7 @@ class Abuse : public ::testing::Test {
       EXPECT_EQ(errors, 1) << r.err;
       EXPECT_EQ(lines.back().rfind("bkquake: error: ", 0), 0u) << r.err;
     } else if (!out.empty() && args[0] == "run") {
-      EXPECT_TRUE(fs::exists(out / "summary.json")) << r.err;
+      EXPECT_EQ(run_status(out), RunStatus::Finished) << r.err;
     }
     if (!out.empty()) {
       EXPECT_FALSE(fs::exists(out / "bkquake.lock")) << "lock left behind";

@@ -5,13 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "../cli_helpers.hpp"
 #include "../scene_sim.hpp"
 #include "app/accuracy.hpp"
+#include "core/error.hpp"
 
 namespace bkq {
 namespace {
@@ -113,6 +117,37 @@ TEST(AccuracyProgram, RefusesBadOptionsAndWritesTheTable) {
   const auto again = test::run_process(BKQUAKE_BINARY, args);
   EXPECT_EQ(again.status, 2);
   EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+}
+
+// --samples and --spacing have finite ranges (each sample is relaxed by every scheme and
+// the reference; samples x spacing events are run first): outside them, one error line,
+// exit 2, and the output folder is not touched. run_accuracy checks the same.
+TEST(Accuracy, SamplesAndSpacingHaveFiniteRanges) {
+  test::TempDir dir;
+  const std::string out = dir.file("out");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+      {{"--samples", "10001"}, "accuracy: --samples: expected an integer in [1, 10000], got 10001"},
+      {{"--samples", "0"}, "accuracy: --samples: expected an integer in [1, 10000], got 0"},
+      {{"--spacing", "100001"},
+       "accuracy: --spacing: expected an integer in [1, 100000], got 100001"},
+      {{"--spacing", "-3"}, "accuracy: --spacing: expected an integer in [1, 100000], got -3"},
+      {{"--samples", "2147483648"}, "--samples"},  // beyond int: boost's one-line refusal
+  };
+  for (const auto& [options, message] : bad) {
+    std::vector<std::string> args = {"accuracy", "--quiet", "--out", out};
+    args.insert(args.end(), options.begin(), options.end());
+    const auto r = test::run_bkquake(args);
+    EXPECT_EQ(r.status, 2) << options[0] << " " << options[1];
+    EXPECT_EQ(r.err_lines().size(), 1u) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "refused before the folder is made";
+  }
+  AccuracyOptions opt;
+  opt.samples = kMaxAccuracySamples + 1;
+  EXPECT_THROW(run_accuracy(Scene(), opt), Error);
+  opt.samples = kMaxAccuracySamples;
+  opt.sample_spacing = kMaxAccuracySpacing;
+  EXPECT_NO_THROW(check_accuracy_options(opt));
 }
 
 }  // namespace

@@ -115,6 +115,16 @@ TEST_F(CatalogFormats, Hdf5HoldsTheCsvRowsAndFitReadsBothAlike) {
   EXPECT_NE(fb.out.find("classes"), std::string::npos) << "blocks/first/last read from the h5";
 }
 
+// hdf5-deflate: the same rows, shuffled and deflated, in a smaller file.
+TEST_F(CatalogFormats, Hdf5DeflateHoldsTheSameRowsInASmallerFile) {
+  const std::string a = tmp_.file("h5"), b = tmp_.file("h5z");
+  ASSERT_EQ(run_bkquake(run_args(a, "hdf5")).status, 0);
+  ASSERT_EQ(run_bkquake(run_args(b, "hdf5-deflate")).status, 0);
+  EXPECT_TRUE(same(h5_values(a + "/catalog.h5"), h5_values(b + "/catalog.h5")));
+  EXPECT_LT(fs::file_size(b + "/catalog.h5"), fs::file_size(a + "/catalog.h5") / 2);
+  EXPECT_EQ(read_file(a + "/histogram.csv"), read_file(b + "/histogram.csv"));
+}
+
 TEST_F(CatalogFormats, NoneWritesNoCatalogButTheHistogramAndTheFit) {
   const std::string a = tmp_.file("csv"), n = tmp_.file("none");
   ASSERT_EQ(run_bkquake(run_args(a, "csv")).status, 0);

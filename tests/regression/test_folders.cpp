@@ -14,6 +14,7 @@
 
 #include "../cli_helpers.hpp"
 #include "../refusal.hpp"
+#include "io/scene.hpp"
 
 namespace bkq {
 namespace {
@@ -167,6 +168,53 @@ TEST_F(MergeUnlike, RefusesTheSameRunTwice) {
   fs::copy(a, tmp_.file("copy"));
   expect_refused(merge({a, a}), {"the same run.seed = 1", "twice"});
   expect_refused(merge({a, tmp_.file("copy")}), {"the same run.seed = 1"});
+}
+
+// A merged folder carries the scene its runs share and the seeds merged into it (scene.ini),
+// so it merges again with a further run, and the checks still hold through it.
+TEST_F(MergeUnlike, AMergedFolderMergesAgainButNotWithARepeatedSeedOrOtherPhysics) {
+  const std::string a = run("a", {"run.seed=1"});
+  const std::string b = run("b", {"run.seed=2"});
+  const std::string c = run("c", {"run.seed=3"});
+  const std::string alpha = run("alpha", {"run.seed=4", "friction.alpha=2", "model.l=9"});
+  ASSERT_EQ(merge({a, b}).status, 0);  // m1
+  const std::string m1 = tmp_.file("m1");
+  EXPECT_NE(read_file(m1 + "/scene.ini").find("\n# merged seeds 1 2\n"), std::string::npos);
+  const auto r = merge({m1, c});  // m2
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(merge({a, b, c}).status, 0);  // m3
+  EXPECT_EQ(read_file(tmp_.file("m2/histogram.csv")), read_file(tmp_.file("m3/histogram.csv")));
+  EXPECT_NE(read_file(tmp_.file("m2/summary.json")).find("\"events\": 1500"), std::string::npos);
+  EXPECT_NE(read_file(tmp_.file("m2/scene.ini")).find("\n# merged seeds 1 2 3\n"),
+            std::string::npos);
+  // The physics part of the merged scene is the runs' own.
+  EXPECT_EQ(Scene::from_file(tmp_.file("m2/scene.ini")).text("friction.alpha"), "2.5");
+
+  const auto inputs = tree_bytes(tmp_.path().string());
+  expect_refused(merge({m1, a}), {"the same run.seed = 1", "twice"});
+  expect_refused(merge({c, tmp_.file("m2")}), {"the same run.seed = 3"});
+  expect_refused(merge({tmp_.file("m2"), m1}), {"the same run.seed = 1"});
+  expect_refused(merge({m1, alpha}), {"another scene", "friction.alpha = 2 (not 2.5)"});
+  EXPECT_TRUE(tree_bytes(tmp_.path().string()) == inputs) << "a refused merge wrote something";
+}
+
+// An interrupted run (summary.json "status": "interrupted") is no input for merge; `fit`
+// on its catalogue fits the events so far and says so.
+TEST_F(MergeUnlike, RefusesAnInterruptedRunWhichFitStillReads) {
+  const std::string a = run("a", {"run.seed=1"});
+  const std::string stopped = tmp_.file("stopped");
+  ASSERT_EQ(test::run_and_signal_when(
+                {"run", "--quiet", "--set", "model.blocks=20", "--set", "run.events=4000000",
+                 "--set", "run.checkpoint_events=2000", "--set", "run.seed=2", "--out", stopped},
+                [&] { return fs::exists(stopped + "/checkpoint.bin"); }, SIGTERM),
+            143);
+  const auto inputs = tree_bytes(tmp_.path().string());
+  expect_refused(merge({a, stopped}), {"is an interrupted run", "--resume"});
+  EXPECT_TRUE(tree_bytes(tmp_.path().string()) == inputs);
+  const auto fit = run_bkquake({"fit", stopped + "/catalog.csv"});
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  EXPECT_NE(fit.out.find("note: an interrupted run"), std::string::npos) << fit.out;
+  EXPECT_NE(fit.out.find("events so far"), std::string::npos) << fit.out;
 }
 
 TEST_F(MergeUnlike, AcceptsOtherSeedsLengthsAndFitWindows) {

@@ -79,6 +79,13 @@ TEST_F(Plots, AFolderOfTheWrongKindIsOneLine) {
   expect_one_line_refusal(
       test::run_process(kPython, {script("plot_work_precision.py"), cont + "/timeseries.csv"}),
       "missing columns");
+  // An interrupted run has no histogram yet (it is written at the end): the line says why.
+  const std::string stopped = dir_.file("stopped");
+  fs::create_directories(stopped);
+  dir_.write("stopped/summary.json", "{\"mode\": \"events\", \"status\": \"interrupted\"}\n");
+  expect_one_line_refusal(test::run_process(kPython, {script("plot_gr.py"), stopped}),
+                          "(an interrupted events run: bkquake run ... --resume finishes it) has "
+                          "no histogram.csv");
   expect_one_line_refusal(test::run_process(kPython, {script("compare_modes.py"), "--events-run",
                                                       cont, "--out-dir", dir_.file("modes")}),
                           "has no catalog.csv");

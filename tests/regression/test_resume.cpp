@@ -29,6 +29,7 @@
 #include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
 #include "io/histogram_csv.hpp"
+#include "io/run_folder.hpp"
 #include "io/scene.hpp"
 #include "stats/histogram.hpp"
 
@@ -107,8 +108,32 @@ class Resume : public ::testing::Test {
   void expect_same_results(const std::string& out) {
     EXPECT_TRUE(read_file(out + "/catalog.csv") == read_file(straight("catalog.csv")));
     EXPECT_EQ(read_file(out + "/histogram.csv"), read_file(straight("histogram.csv")));
-    EXPECT_TRUE(fs::exists(out + "/summary.json"));
+    EXPECT_EQ(run_status(out), RunStatus::Finished);
+    // The summary of the resumed run is the straight run's but for timing and `resumes`.
+    EXPECT_EQ(test::summary_without_timing(read_file(out + "/summary.json")),
+              test::summary_without_timing(read_file(straight("summary.json"))));
     EXPECT_FALSE(CheckpointFiles(out).exist()) << "a finished run keeps no checkpoint";
+    for (const auto& e : fs::directory_iterator(out))
+      EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+  }
+
+  // The summary an interrupted run leaves: marked interrupted, with the figures of its
+  // checkpoint, no fit, and what continues it.
+  static void expect_interrupted_summary(const std::string& out, const char* signal) {
+    ASSERT_EQ(run_status(out), RunStatus::Interrupted);
+    const std::string summary = read_file(out + "/summary.json");
+    const Checkpoint c = CheckpointFiles(out).read();
+    for (const std::string& want :
+         {std::string("\"status\": \"interrupted\""), std::string("\"signal\": \"") + signal + "\"",
+          std::string("\"checkpoint\": \"checkpoint.bin\""),
+          "\"resume\": \"bkquake run " + out + "/scene.ini --out " + out + " --resume\"",
+          std::string("\"events_planned\": 200000"),
+          "\"events\": " + std::to_string(c.progress.events_done) + ",",
+          "\"transient_events\": " + std::to_string(c.progress.transient_done) + ",",
+          std::string("\"b_mle\": null"), std::string("\"fit_error\": \"no fit: interrupted"),
+          std::string("\"accuracy\": {"), std::string("\"energy_residual_max\": ")})
+      EXPECT_NE(summary.find(want), std::string::npos) << want << " missing in\n" << summary;
+    EXPECT_EQ(read_json_number(out + "/summary.json", "moment_sum"), c.progress.moment_sum);
   }
 
   static test::TempDir* straight_;
@@ -124,7 +149,7 @@ TEST_F(Resume, SigtermMidRunThenResumeIsByteIdentical) {
   EXPECT_NE(s.err.find("stopped by SIGTERM"), std::string::npos) << s.err;
   EXPECT_NE(s.err.find(out + "/checkpoint.bin"), std::string::npos) << s.err;
   EXPECT_NE(s.err.find("--resume"), std::string::npos) << s.err;
-  EXPECT_FALSE(fs::exists(out + "/summary.json"));
+  expect_interrupted_summary(out, "SIGTERM");
   // The current event was finished and the catalog flushed: it ends at the checkpoint.
   const Checkpoint c = CheckpointFiles(out).read();
   EXPECT_GT(c.progress.events_done, 0);
@@ -144,6 +169,7 @@ TEST_F(Resume, SigintStopsWith130AndTheRunsOwnSceneIniResumesIt) {
   const Stopped s = interrupt(out, SIGINT, 0.2);
   ASSERT_EQ(s.status, 130) << s.err;
   EXPECT_NE(s.err.find("stopped by SIGINT"), std::string::npos) << s.err;
+  expect_interrupted_summary(out, "SIGINT");
   const Checkpoint c = CheckpointFiles(out).read();
   EXPECT_EQ(lines_of(out + "/catalog.csv"), c.progress.events_done + 1);
   // The stop message tells to resume with the folder's scene.ini: that is the same scene.
@@ -165,6 +191,31 @@ TEST_F(Resume, SigkillResumesFromThePeriodicCheckpointAndDropsLaterRows) {
   EXPECT_EQ((c.progress.events_done + 100) % 20000, 0) << "checkpoints every 20000 engine events";
   EXPECT_GT(size_of(out + "/catalog.csv"), c.progress.catalog_bytes) << "rows after the checkpoint";
 
+  const auto r = run_bkquake(run_args(kScene, {"--out", out, "--resume"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_same_results(out);
+}
+
+// A second SIGTERM while the run stops exits at once, wherever the run is: in the event,
+// writing the checkpoint, or writing the interrupted summary. Each file is written to a
+// temporary and renamed, so whatever is there is whole: the newest checkpoint (or the
+// periodic one before it) and, if there is a summary, a whole interrupted one.
+TEST_F(Resume, SecondSigtermWhileStoppingLeavesWholeFilesAndResumes) {
+  const std::string out = tmp_.file("out");
+  const auto min_bytes =
+      static_cast<std::uintmax_t>(0.3 * static_cast<double>(size_of(straight("catalog.csv"))));
+  const int status = test::run_and_signal_when(
+      run_args(kScene, {"--out", out}),
+      [&] {
+        return fs::exists(out + "/checkpoint.bin") && size_of(out + "/catalog.csv") >= min_bytes;
+      },
+      SIGTERM, tmp_.file("log.txt"), "", 2);
+  ASSERT_EQ(status, 143) << read_file(tmp_.file("log.txt"));
+  EXPECT_NO_THROW(CheckpointFiles(out).read());
+  if (fs::exists(out + "/summary.json")) {
+    EXPECT_EQ(run_status(out), RunStatus::Interrupted);
+    EXPECT_EQ(read_file(out + "/summary.json").back(), '\n') << "a whole summary";
+  }
   const auto r = run_bkquake(run_args(kScene, {"--out", out, "--resume"}));
   ASSERT_EQ(r.status, 0) << r.err;
   expect_same_results(out);
@@ -197,10 +248,18 @@ TEST_F(Resume, StoppedDuringTheTransient) {
   const Checkpoint c = CheckpointFiles(b).read();
   EXPECT_LT(c.progress.transient_done, 80000) << "the signal should land in the transient";
   EXPECT_EQ(c.progress.events_done, 0);
+  // Stopped before recording began: no events, no load, no work yet.
+  EXPECT_EQ(run_status(b), RunStatus::Interrupted);
+  EXPECT_EQ(read_json_number(b + "/summary.json", "transient_events"),
+            static_cast<double>(c.progress.transient_done));
+  EXPECT_EQ(read_json_number(b + "/summary.json", "events"), 0.0);
+  EXPECT_EQ(read_json_number(b + "/summary.json", "total_load"), 0.0);
   const auto r = run_bkquake(run_args(scene, {"--out", b, "--resume"}));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(read_file(b + "/catalog.csv") == read_file(a + "/catalog.csv"));
   EXPECT_EQ(read_file(b + "/histogram.csv"), read_file(a + "/histogram.csv"));
+  EXPECT_EQ(test::summary_without_timing(read_file(b + "/summary.json")),
+            test::summary_without_timing(read_file(a + "/summary.json")));
 }
 
 TEST_F(Resume, AnotherSceneIsRefusedAndNothingChanges) {
@@ -452,6 +511,28 @@ TEST(Checkpoint, CsvPrefixMustHoldExactlyTheRows) {
   EXPECT_THROW(check_csv_prefix(csv, "a,b", 3, 20), Error);  // file too short
   EXPECT_THROW(check_csv_prefix(csv, "x,y", 2, 12), Error);  // other header
   EXPECT_THROW(check_csv_prefix(tmp.file("missing.csv"), "a,b", 0, 4), Error);
+}
+
+// The catalogue's checksum is line_hash line by line; check_csv_prefix reads the file in
+// blocks of 1 MiB and finds the same value when lines of every length straddle a block's
+// end, and another value when one byte differs.
+TEST(Checkpoint, CsvPrefixChecksumIsTheLineHashAcrossReadBlocks) {
+  test::TempDir tmp;
+  std::string text = "a,b\n";
+  std::uint64_t sum = line_hash(text, kLineHashSeed);
+  std::int64_t rows = 0;
+  for (std::size_t len = 1; text.size() < (std::size_t{5} << 19); len = len % 41 + 1, ++rows) {
+    std::string line(len, static_cast<char>('0' + rows % 10));
+    line += '\n';
+    sum = line_hash(line, sum);
+    text += line;
+  }
+  const std::string csv = tmp.write("c.csv", text);
+  EXPECT_NO_THROW(check_csv_prefix(csv, "a,b", rows, text.size(), sum));
+  EXPECT_THROW(check_csv_prefix(csv, "a,b", rows, text.size(), sum + 1), Error);
+  text[(std::size_t{1} << 20) + 3] ^= 1;  // a digit just past the first block, changed
+  const std::string edited = tmp.write("d.csv", text);
+  EXPECT_THROW(check_csv_prefix(edited, "a,b", rows, text.size(), sum), Error);
 }
 
 }  // namespace

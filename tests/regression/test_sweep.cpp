@@ -20,6 +20,7 @@
 
 #include "../cli_helpers.hpp"
 #include "io/folder_lock.hpp"
+#include "io/run_folder.hpp"
 
 namespace bkq {
 namespace {
@@ -263,6 +264,42 @@ run.checkpoint_events = 5000
       << resumed.err;
   for (const auto& [f, text] : finished) EXPECT_EQ(read_file(f), text) << f << " was redone";
   expect_same_outputs(dir.path() / "full", out);
+}
+
+// A replica stopped by SIGTERM leaves a summary marked interrupted: --resume must continue
+// it (a summary no longer means finished), and the result is the uninterrupted sweep's.
+TEST(Sweep, AnInterruptedReplicaIsContinuedOnResume) {
+  TempDir dir;
+  const std::string sweep = dir.write("s.ini", R"([sweep]
+replicas = 1
+[vary]
+friction.alpha = 2.5
+[set]
+model.blocks = 40
+run.events = 200000
+run.transient_events = 100
+run.checkpoint_events = 5000
+)");
+  const auto full = run_bkquake({"sweep", sweep, "--out", dir.file("full")});
+  ASSERT_EQ(full.status, 0) << full.err;
+  const fs::path out = dir.path() / "cut";
+  const fs::path replica = out / "points/p0000/r00";
+  const int stopped = test::run_and_signal_when(
+      {"sweep", sweep, "--out", out.string()},
+      [&] { return fs::exists(replica / "checkpoint.bin"); }, SIGTERM);
+  ASSERT_EQ(stopped, 143);
+  ASSERT_EQ(run_status(replica), RunStatus::Interrupted);
+  const auto resumed = run_bkquake({"sweep", sweep, "--out", out.string(), "--resume"});
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("1 tasks to run"), std::string::npos) << resumed.err;
+  EXPECT_EQ(run_status(replica), RunStatus::Finished);
+  const fs::path straight = dir.path() / "full/points/p0000";
+  EXPECT_EQ(test::summary_without_timing(read_file((replica / "summary.json").string())),
+            test::summary_without_timing(read_file((straight / "r00/summary.json").string())));
+  for (const char* f : {"summary.json", "histogram.csv", "point.json"})
+    EXPECT_EQ(without_timings(read_file((out / "points/p0000" / f).string())),
+              without_timings(read_file((straight / f).string())))
+        << f;
 }
 
 TEST(Sweep, TwoSweepsOnOneFolderAreRefused) {

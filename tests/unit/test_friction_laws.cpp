@@ -77,7 +77,7 @@ TEST(FrictionLaws, TheForceOnASlidingBlockOpposesItsDirection) {
       const double wd[1] = {y};
       double a = 0;
       const double* dir = y > 0 ? dir_plus : dir_minus;
-      forces.block_accelerations(w, wd, mobile, dir, 0.0, sub, all, &a);
+      forces.block_accelerations(w, wd, mobile, dir, 0.0, 0.0, sub, all, &a);
       const double expected = law_traits(id).frictionless ? 0.0
                               : !law_traits(id).backslip
                                   ? -law::Clst91(p).magnitude(y)

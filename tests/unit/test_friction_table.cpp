@@ -67,8 +67,8 @@ TEST(TableLaw, IsOdd) {
   for (double y : {0.001, 0.05, 0.2, 0.3, 0.9, 1.0, 1.7, 40.0}) {
     const double wd_plus[1] = {y}, wd_minus[1] = {-y}, dir_plus[1] = {1}, dir_minus[1] = {-1};
     double a_plus = 0, a_minus = 0;
-    forces.block_accelerations(w, wd_plus, mobile, dir_plus, 0.0, sub, all, &a_plus);
-    forces.block_accelerations(w, wd_minus, mobile, dir_minus, 0.0, sub, all, &a_minus);
+    forces.block_accelerations(w, wd_plus, mobile, dir_plus, 0.0, 0.0, sub, all, &a_plus);
+    forces.block_accelerations(w, wd_minus, mobile, dir_minus, 0.0, 0.0, sub, all, &a_minus);
     EXPECT_LT(a_plus, 0.0) << y;
     EXPECT_EQ(a_plus, -a_minus) << y;
   }

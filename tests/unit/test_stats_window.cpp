@@ -138,5 +138,40 @@ TEST(Window, RisingDistributionGivesNoB) {
   EXPECT_NE(g.no_b_reason.find("do not decrease"), std::string::npos) << g.no_b_reason;
 }
 
+// The search fits the widest windows first and stops at the first width holding an
+// accepted one: with mu_max given (so no rise rule) and a curved D(mu) that KS rejects
+// over its whole range, the window picked is accepted and every wider one that meets the
+// cheap conditions (populated first bin, >= 50 events, >= 10 bins) is rejected by b or KS.
+TEST(Window, PicksTheWidestAcceptedWindowWhenTheWidestAreRejected) {
+  std::mt19937_64 rng(11);
+  std::vector<double> mu;
+  for (int i = 0; i < 20000; ++i) mu.push_back(truncated_exponential(rng, 0.4, 0.0, 3.0));
+  for (int i = 0; i < 20000; ++i) mu.push_back(truncated_exponential(rng, 1.5, 0.0, 8.0));
+  const GrFit f = fit_magnitudes(mu, 0.2, std::nullopt, 8.0);
+  ASSERT_TRUE(f.b_ok) << f.no_b_reason;
+  MagnitudeHistogram h(0.2);
+  for (const double m : mu) h.add(m);
+  const GrFitOptions opt;
+  const auto k_of = [&](double edge) { return std::llround(edge / 0.2); };
+  const std::int64_t lo_pick = k_of(f.mu_min), hi = k_of(f.mu_max) - 1;
+  const auto accepted = [&](std::int64_t lo) {
+    const BEstimate e = binned_mle(h, lo, hi, true);
+    if (!(e.b > 0) || !std::isfinite(e.err)) return false;
+    const double n = static_cast<double>(h.count_range(lo, hi));
+    return ks_distance_binned(h, lo, hi, e.b, true) <=
+           opt.ks_systematic + opt.ks_tolerance / std::sqrt(n);
+  };
+  EXPECT_TRUE(accepted(lo_pick));
+  int wider = 0;
+  for (std::int64_t lo = h.first_bin(); lo < lo_pick; ++lo) {
+    if (h.count(lo) == 0 || hi - lo + 1 < opt.min_window_bins ||
+        h.count_range(lo, hi) < opt.min_tail)
+      continue;
+    ++wider;
+    EXPECT_FALSE(accepted(lo)) << "a wider window [" << h.mu_low(lo) << ", 8) is accepted";
+  }
+  EXPECT_GT(wider, 3) << "the widest windows were not rejected: the test shows nothing";
+}
+
 }  // namespace
 }  // namespace bkq

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -42,64 +43,40 @@ void AccuracyCheck::on_event(const EventRecord& e) {
 }
 
 void AccuracyCheck::on_resume(const Checkpoint& c) {
-  const std::string* bytes = c.find(kStateName);
-  if (!bytes) return;  // a checkpoint from before the indicators: they restart
-  StateReader r(*bytes, kStateName);
-  residual_max_ = r.f64();
-  residual_sum_ = r.f64();
-  residual_n_ = r.i64();
-  steps_max_ = r.i64();
+  // A checkpoint from before the indicators has none: they restart.
+  find_state(c, kStateName, residual_max_, residual_sum_, residual_n_, steps_max_);
 }
 
 void AccuracyCheck::on_checkpoint(Checkpoint& c) {
-  StateWriter w;
-  w.f64(residual_max_);
-  w.f64(residual_sum_);
-  w.i64(residual_n_);
-  w.i64(steps_max_);
-  c.put(kStateName, std::move(w.bytes()));
+  put_state(c, kStateName, residual_max_, residual_sum_, residual_n_, steps_max_);
 }
 
 std::vector<AccuracyCheck::Finding> AccuracyCheck::findings() const {
   std::vector<Finding> f;
-  char text[400];
-  if (events_mode_ && !(residual_max_ <= kEnergyResidualLimit)) {
-    std::snprintf(text, sizeof text,
-                  "energy_residual_max = %s is above %s (the largest relative energy-balance "
-                  "error of an event): reduce integrator.dt (or use integrator.scheme = "
-                  "adaptive)",
-                  shown(residual_max_, kEnergyResidualLimit).c_str(),
-                  format_real(kEnergyResidualLimit).c_str());
-    f.push_back({"energy_residual_max", text});
-  }
-  if (!events_mode_ && !(std::abs(run_residual_) <= kEnergyResidualLimit)) {
-    std::snprintf(text, sizeof text,
-                  "energy_residual = %s is above %s in magnitude (the relative energy-balance "
-                  "error of the whole run): reduce integrator.dt (or use integrator.scheme = "
-                  "adaptive)",
-                  shown(run_residual_, kEnergyResidualLimit).c_str(),
-                  format_real(kEnergyResidualLimit).c_str());
-    f.push_back({"energy_residual", text});
-  }
-  if (fixed_step_ && omega_dt_ > kOmegaDtLimit) {
-    std::snprintf(text, sizeof text,
-                  "omega_dt = %s is above %s (the fastest mode's angular frequency times "
-                  "integrator.dt; fewer than 2 pi steps per period): reduce integrator.dt to "
-                  "at most %s",
-                  shown(omega_dt_, kOmegaDtLimit).c_str(), format_real(kOmegaDtLimit).c_str(),
-                  shown(dt_ * kOmegaDtLimit / omega_dt_, 0).c_str());
-    f.push_back({"omega_dt", text});
-  }
+  // Each finding reads "<indicator> = <value> is above <limit><why and what to do>".
+  const auto above = [&f](const char* indicator, double value, double limit,
+                          const std::string& rest) {
+    f.push_back({indicator, std::string(indicator) + " = " + shown(value, limit) + " is above " +
+                                format_real(limit) + rest});
+  };
+  const std::string reduce_dt = ": reduce integrator.dt (or use integrator.scheme = adaptive)";
+  if (events_mode_ && !(residual_max_ <= kEnergyResidualLimit))
+    above("energy_residual_max", residual_max_, kEnergyResidualLimit,
+          " (the largest relative energy-balance error of an event)" + reduce_dt);
+  if (!events_mode_ && !(std::abs(run_residual_) <= kEnergyResidualLimit))
+    above("energy_residual", run_residual_, kEnergyResidualLimit,
+          " in magnitude (the relative energy-balance error of the whole run)" + reduce_dt);
+  if (fixed_step_ && omega_dt_ > kOmegaDtLimit)
+    above("omega_dt", omega_dt_, kOmegaDtLimit,
+          " (the fastest mode's angular frequency times integrator.dt; fewer than 2 pi steps per "
+          "period): reduce integrator.dt to at most " +
+              shown(dt_ * kOmegaDtLimit / omega_dt_, 0));
   const double share = static_cast<double>(steps_max_) / static_cast<double>(max_steps_);
-  if (events_mode_ && share > kEventStepsShareLimit) {
-    std::snprintf(text, sizeof text,
-                  "event_steps_share = %s is above %s (the longest event's relaxation steps over "
-                  "run.max_steps_per_event = %lld): check integrator.dt and the scene, or raise "
-                  "run.max_steps_per_event",
-                  shown(share, kEventStepsShareLimit).c_str(),
-                  format_real(kEventStepsShareLimit).c_str(), static_cast<long long>(max_steps_));
-    f.push_back({"event_steps_share", text});
-  }
+  if (events_mode_ && share > kEventStepsShareLimit)
+    above("event_steps_share", share, kEventStepsShareLimit,
+          " (the longest event's relaxation steps over run.max_steps_per_event = " +
+              std::to_string(max_steps_) +
+              "): check integrator.dt and the scene, or raise run.max_steps_per_event");
   return f;
 }
 

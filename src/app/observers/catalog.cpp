@@ -18,15 +18,17 @@ std::string joined(const std::vector<std::string>& lines) {
 }  // namespace
 
 CatalogWriter::CatalogWriter(CatalogFormat format, std::string path, const Scene& scene,
-                             std::int64_t resumed_rows)
-    : format_(format), path_(std::move(path)), resumed_rows_(resumed_rows) {
+                             std::int64_t resumed_rows, bool deflate)
+    : format_(format), path_(std::move(path)), resumed_rows_(resumed_rows), deflate_(deflate) {
   if (format_ == CatalogFormat::Hdf5)
     attributes_ = {{"provenance", joined(provenance_lines(scene))}, {"scene", scene.to_ini()}};
 }
 
 namespace {
-constexpr const char* kChecksumState = "catalog.checksum";
-}
+// "catalog.rowhash": line_hash of the rows. (The "catalog.checksum" of earlier revisions,
+// FNV-1a by byte, is not read: such a checkpoint resumes without the check.)
+constexpr const char* kChecksumState = "catalog.rowhash";
+}  // namespace
 
 std::optional<std::uint64_t> saved_catalog_checksum(const Checkpoint& c) {
   const std::string* bytes = c.find(kChecksumState);
@@ -41,7 +43,7 @@ void CatalogWriter::on_resume(const Checkpoint& c) {
 }
 
 void CatalogWriter::on_start() {
-  file_ = open_catalog_file(format_, path_, attributes_, resumed_rows_);
+  file_ = open_catalog_file(format_, path_, attributes_, resumed_rows_, deflate_);
   if (saved_checksum_) file_->set_checksum(*saved_checksum_);
 }
 

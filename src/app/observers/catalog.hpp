@@ -24,8 +24,9 @@ class CatalogWriter : public RunObserver {
  public:
   // `resumed_rows` >= 0: continue the file of a resumed run after that many rows (a csv
   // file is already cut back to its checkpoint). `scene`: for catalog.h5's attributes.
+  // `deflate`: compress a new catalog.h5 (output.catalog = hdf5-deflate).
   CatalogWriter(CatalogFormat format, std::string path, const Scene& scene,
-                std::int64_t resumed_rows = -1);
+                std::int64_t resumed_rows = -1, bool deflate = false);
   void on_resume(const Checkpoint& c) override;
   void on_start() override;
   void on_event(const EventRecord& e) override;
@@ -38,6 +39,7 @@ class CatalogWriter : public RunObserver {
   std::string path_;
   std::vector<std::pair<std::string, std::string>> attributes_;
   std::int64_t resumed_rows_;
+  bool deflate_;
   std::unique_ptr<CatalogFile> file_;
   std::optional<std::uint64_t> saved_checksum_;  // of the rows a resumed run continues
 };

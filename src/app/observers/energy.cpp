@@ -3,9 +3,11 @@
 
 #include <cmath>
 
+#include "app/observers/timeseries.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/continuous.hpp"
+#include "io/checkpoint.hpp"
 #include "io/energy_csv.hpp"
 #include "io/json.hpp"
 #include "model/equilibrium.hpp"
@@ -57,6 +59,32 @@ std::vector<WindowedMeans::Row> WindowedMeans::finish(double t_end) {
   return done;
 }
 
+// Layout: has a previous sample, its t and E, the number of open windows, then k, n,
+// n_rate, e, rate, brake of each.
+std::vector<double> WindowedMeans::state() const {
+  std::vector<double> s = {prev_t_ ? 1.0 : 0.0, prev_t_.value_or(0.0), prev_e_.value_or(0.0),
+                           static_cast<double>(open_.size())};
+  for (const auto& [k, a] : open_)
+    s.insert(s.end(), {static_cast<double>(k), static_cast<double>(a.n),
+                       static_cast<double>(a.n_rate), a.e, a.rate, a.brake});
+  return s;
+}
+
+void WindowedMeans::restore(const std::vector<double>& s) {
+  if (s.size() < 4 || s.size() != 4 + 6 * static_cast<std::size_t>(s[3]))
+    throw Error("--resume: the checkpoint's energy windows are malformed");
+  prev_t_.reset();
+  prev_e_.reset();
+  if (s[0] != 0.0) {
+    prev_t_ = s[1];
+    prev_e_ = s[2];
+  }
+  open_.clear();
+  for (std::size_t i = 4; i < s.size(); i += 6)
+    open_[static_cast<long>(s[i])] =
+        Acc{static_cast<int>(s[i + 1]), static_cast<int>(s[i + 2]), s[i + 3], s[i + 4], s[i + 5]};
+}
+
 std::optional<double> settle_time(const std::vector<WindowedMeans::Row>& rows, double tol) {
   std::optional<double> t;
   for (auto it = rows.rbegin(); it != rows.rend(); ++it) {
@@ -67,24 +95,48 @@ std::optional<double> settle_time(const std::vector<WindowedMeans::Row>& rows, d
 }
 
 EnergyDiagnostics::EnergyDiagnostics(const ChainForces& forces, std::string samples_path,
-                                     std::string windows_path, double window, double tol)
+                                     std::string windows_path, double window, double tol,
+                                     bool append)
     : forces_(forces),
       samples_path_(std::move(samples_path)),
       windows_path_(std::move(windows_path)),
       tol_(tol),
+      append_(append),
       means_(window) {
   delta_.resize(forces.n());
 }
 
-void EnergyDiagnostics::on_resume(const Checkpoint&) {
-  throw Error(
-      "--resume: output.energy = true is not resumable yet (its windows are not checkpointed); "
-      "rerun the scene without --resume");
+namespace {
+constexpr const char* kStateName = "energy";
+}  // namespace
+
+void EnergyDiagnostics::on_resume(const Checkpoint& c) {
+  std::vector<double> windows, rows;
+  if (!find_state(c, kStateName, windows, rows, t_last_))
+    throw Error("--resume: the checkpoint holds no energy diagnostics (output.energy)");
+  means_.restore(windows);
+  if (rows.size() % 5 != 0) throw Error("--resume: the checkpoint's energy rows are malformed");
+  rows_.clear();
+  for (std::size_t i = 0; i < rows.size(); i += 5)
+    rows_.push_back(
+        {rows[i], static_cast<int>(rows[i + 1]), rows[i + 2], rows[i + 3], rows[i + 4]});
+  sample_rows_ = find_csv_extent(c, "energy_samples.csv").rows;
+}
+
+// Files synced first, so a checkpoint never counts rows that are not on disk.
+void EnergyDiagnostics::on_checkpoint(Checkpoint& c) {
+  put_csv_extent(c, "energy_samples.csv", {sample_rows_, samples_->sync()});
+  put_csv_extent(c, "energy.csv", {static_cast<std::int64_t>(rows_.size()), windows_->sync()});
+  std::vector<double> rows;
+  for (const auto& r : rows_)
+    rows.insert(rows.end(), {r.t, static_cast<double>(r.samples), r.energy, r.rate, r.braking});
+  put_state(c, kStateName, means_.state(), rows, t_last_);
 }
 
 void EnergyDiagnostics::on_start() {
-  samples_ = std::make_unique<CsvStream>(samples_path_, header_of(energy_samples_schema()));
-  windows_ = std::make_unique<CsvStream>(windows_path_, header_of(energy_schema()));
+  samples_ =
+      std::make_unique<CsvStream>(samples_path_, header_of(energy_samples_schema()), append_);
+  windows_ = std::make_unique<CsvStream>(windows_path_, header_of(energy_schema()), append_);
 }
 
 double EnergyDiagnostics::energy(const ChainState& st, const SubstrateState& sub) {
@@ -108,6 +160,7 @@ void EnergyDiagnostics::on_sample(const Sample& s) {
   const double e = energy(st, s.driver.substrate());
   const double nb = p.pad_moves() ? p.k_p0 * st.x + p.c_p * st.xd : 0.0;
   samples_->row(format_real(st.t) + "," + format_real(e) + "," + format_real(nb));
+  ++sample_rows_;
   write(means_.add(st.t, e, nb));
   t_last_ = st.t;
 }

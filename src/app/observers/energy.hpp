@@ -6,7 +6,9 @@
 // windows only) the means of E, of E_t = dE/dt between samples and of N_b, and
 // tau_E = mean(E_t)/mean(E) (energy.csv). The settle time — the first window centre
 // after which |tau_E| <= output.energy_tol in every window — goes into summary.json
-// (null if never). Costs O(N) per sample, nothing when off.
+// (null if never). Costs O(N) per sample, nothing when off. Resumable: the open windows,
+// the finished rows (for the settle time) and both files' extents go into the checkpoint
+// under "energy" and the files' names.
 #pragma once
 
 #include <map>
@@ -35,6 +37,10 @@ class WindowedMeans {
   std::vector<Row> add(double t, double energy, double braking);
   // The windows that end by t_end (complete), at the end of the run.
   std::vector<Row> finish(double t_end);
+  // Everything add() carries (the open windows, the previous sample) as plain numbers, and
+  // back; restore throws bkq::Error on numbers of another shape.
+  std::vector<double> state() const;
+  void restore(const std::vector<double>& s);
 
  private:
   struct Acc {
@@ -52,10 +58,11 @@ std::optional<double> settle_time(const std::vector<WindowedMeans::Row>& rows, d
 
 class EnergyDiagnostics : public RunObserver {
  public:
+  // `append`: continue the files of a resumed run (already cut back to its checkpoint).
   EnergyDiagnostics(const ChainForces& forces, std::string samples_path, std::string windows_path,
-                    double window, double tol);
-  // Resuming is refused: the windows and the files are not checkpointed yet.
-  void on_resume(const Checkpoint&) override;
+                    double window, double tol, bool append = false);
+  void on_resume(const Checkpoint& c) override;
+  void on_checkpoint(Checkpoint& c) override;
   void on_start() override;
   void on_sample(const Sample& s) override;
   void on_end(const RunEnd& end) override;
@@ -68,6 +75,8 @@ class EnergyDiagnostics : public RunObserver {
   const ChainForces& forces_;
   std::string samples_path_, windows_path_;
   double tol_;
+  bool append_;
+  std::int64_t sample_rows_ = 0;  // rows of energy_samples.csv, all sessions
   WindowedMeans means_;
   std::vector<WindowedMeans::Row> rows_;
   std::unique_ptr<CsvStream> samples_, windows_;

@@ -74,7 +74,7 @@ class RunObserver {
  public:
   virtual ~RunObserver() = default;
   // A resumed run restores the observer's state from the checkpoint it saved: a new
-  // observer reads its own named state (Checkpoint::find, StateReader).
+  // observer reads its own named state (find_state, or Checkpoint::find and StateReader).
   virtual void on_resume(const Checkpoint&) {}
   // The run is set up (fresh or resumed) and about to simulate: open files here.
   virtual void on_start() {}
@@ -88,8 +88,8 @@ class RunObserver {
   virtual void on_advance(const Advance&) {}
   virtual void on_phase_end(const Advance&) {}
   // A checkpoint is being written: put this observer's state into it (a new observer
-  // under its own name, Checkpoint::put with a StateWriter) and make the files it writes
-  // consistent with it.
+  // under its own name: put_state, or Checkpoint::put with a StateWriter) and make the files it
+  // writes consistent with it.
   virtual void on_checkpoint(Checkpoint&) {}
   virtual void on_end(const RunEnd&) {}
   // Fields this observer adds to summary.json (after the run's own fields).

@@ -1,8 +1,11 @@
 // The summary observers; see summary.hpp.
 #include "app/observers/summary.hpp"
 
+#include <signal.h>
+
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -13,6 +16,7 @@
 #include "io/checkpoint.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
+#include "io/run_folder.hpp"
 #include "io/scene.hpp"
 #include "stats/gutenberg_richter.hpp"
 #include "stats/histogram.hpp"
@@ -21,7 +25,11 @@ namespace bkq {
 
 namespace {
 
-Json provenance_json(const Scene& scene, const Settings& settings, const std::string& mode) {
+// The provenance, then "status" (io/run_folder.hpp): finished, or interrupted with what
+// the run needs to go on ("interrupted": the signal, the checkpoint, the command, and how
+// far it was meant to go; the figures after it are those reached so far).
+Json provenance_json(const Scene& scene, const Settings& settings, const std::string& mode,
+                     const RunEnd& end, const OutputFolder& out) {
   Json j = Json::object();
   j.set("version", kVersion);
   j.set("git_revision", kGitRevision);
@@ -30,6 +38,20 @@ Json provenance_json(const Scene& scene, const Settings& settings, const std::st
   j.set("scene_hash", std::to_string(scene.hash()));
   j.set("mode", mode);
   j.set("written", utc_now_iso());
+  j.set(kStatusKey, status_text(end.signal ? RunStatus::Interrupted : RunStatus::Finished));
+  if (end.signal == 0) return j;
+  Json stop = Json::object();
+  stop.set("signal", end.signal == SIGINT ? "SIGINT" : "SIGTERM");
+  stop.set("checkpoint",
+           std::filesystem::path(CheckpointFiles(out.dir()).current()).filename().string());
+  stop.set("resume", "bkquake run " + out.path("scene.ini") + " --out " + out.dir() + " --resume");
+  if (settings.drive.mode == DriveMode::Events) {
+    stop.set("events_planned", settings.run.events);
+    stop.set("transient_events_planned", settings.run.transient_events);
+  } else {
+    stop.set("duration_planned", settings.run.duration);
+  }
+  j.set("interrupted", std::move(stop));
   return j;
 }
 
@@ -44,6 +66,17 @@ SummaryOfEvents::SummaryOfEvents(const Scene& scene, const Settings& settings,
       hist_(hist),
       all_(all),
       stop_requested_(std::move(stop_requested)) {}
+
+void SummaryOfEvents::on_start() {
+  // A resumed run's summary (interrupted) no longer describes it: the folder holds a run
+  // under way until this one ends and writes its own. A temporary of a summary write cut
+  // short by a second signal goes too.
+  const std::string summary = out_.path("summary.json");
+  std::error_code ec;
+  std::filesystem::remove(summary, ec);
+  if (ec) throw Error("cannot remove '" + summary + "': " + ec.message());
+  remove_temporaries_of(summary);
+}
 
 void SummaryOfEvents::on_phase(const Phase& p) {
   if (std::string_view(p.what) == "events") events_total_ = p.total;
@@ -89,7 +122,12 @@ void SummaryOfEvents::add_moments(Json& summary) const {
   summary.set("bin_width", hist_.bin_width());
 }
 
-std::string SummaryOfEvents::add_fit(Json& summary) {
+std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
+  if (end.signal != 0) {
+    summary.set("b_mle", Json::null());
+    summary.set("fit_error", kInterruptedFit);
+    return kInterruptedFit;
+  }
   if (hist_.events() < 2) return "b: not fitted (fewer than 2 events)";
   fit();
   if (!fit_) {
@@ -120,9 +158,8 @@ std::string SummaryOfEvents::add_fit(Json& summary) {
 }
 
 void EventSummary::on_end(const RunEnd& end) {
-  if (end.signal != 0) return;
   const double wall = end.wall_seconds;
-  Json summary = provenance_json(scene_, settings_, "events");
+  Json summary = provenance_json(scene_, settings_, "events", end, out_);
   summary.set("events", end.events);
   summary.set("transient_events", end.transient_events);
   summary.set("blocks", end.blocks);
@@ -137,9 +174,10 @@ void EventSummary::on_end(const RunEnd& end) {
   work.set("block_steps", end.block_steps);
   work.set("sliding_block_steps", end.sliding_block_steps);
   summary.set("work", std::move(work));
-  const std::string fit_line = add_fit(summary);
+  const std::string fit_line = add_fit(summary, end);
   all_.add_to_summary(summary);
   write_file_atomic(out_.path("summary.json"), summary.str() + "\n");
+  if (end.signal != 0) return;  // the run's own stderr line says where it stopped
 
   std::printf("bkquake %s: %lld events (after %lld transient) in %.3g s, %.4g events/s\n", kVersion,
               static_cast<long long>(end.events), static_cast<long long>(end.transient_events),
@@ -150,9 +188,8 @@ void EventSummary::on_end(const RunEnd& end) {
 }
 
 void ContinuousSummary::on_end(const RunEnd& end) {
-  if (end.signal != 0) return;
   const double wall = end.wall_seconds;
-  Json summary = provenance_json(scene_, settings_, "continuous");
+  Json summary = provenance_json(scene_, settings_, "continuous", end, out_);
   summary.set("duration", end.duration);
   summary.set("steps", end.steps);
   summary.set("blocks", end.blocks);
@@ -163,9 +200,10 @@ void ContinuousSummary::on_end(const RunEnd& end) {
   summary.set("block_steps_per_second",
               wall > 0 ? static_cast<double>(end.steps) * end.blocks / wall : 0.0);
   summary.set("resumes", end.resumes);
-  const std::string fit_line = add_fit(summary);
+  const std::string fit_line = add_fit(summary, end);
   all_.add_to_summary(summary);
   write_file_atomic(out_.path("summary.json"), summary.str() + "\n");
+  if (end.signal != 0) return;  // the run's own stderr line says where it stopped
   std::printf("bkquake %s: continuous run to t = %.6g (%lld steps) in %.3g s; %lld slip episodes\n",
               kVersion, end.duration, static_cast<long long>(end.steps), wall,
               static_cast<long long>(end.events));

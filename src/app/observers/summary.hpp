@@ -1,6 +1,10 @@
 // summary.json and the lines printed at the end of a finished run. summary.json is
-// written last, so a folder holding one is a finished run. It carries the provenance, the
-// run's own figures, and then whatever the other observers add (add_to_summary).
+// written last, when the run ends: "status": "finished", or "interrupted" when a signal
+// stopped it (after its checkpoint; the figures are those reached so far, and there is no
+// fit). It carries the provenance, the status, the run's own figures, and then whatever the
+// other observers add (add_to_summary). A resumed run removes the interrupted summary when
+// it starts and writes its own at its end, equal to an uninterrupted run's but for the wall
+// times and "resumes".
 #pragma once
 
 #include <cstdint>
@@ -30,6 +34,7 @@ class SummaryOfEvents : public RunObserver {
   SummaryOfEvents(const Scene& scene, const Settings& settings, const OutputFolder& out,
                   const MagnitudeHistogram& hist, const Observers& all,
                   std::function<bool()> stop_requested = {});
+  void on_start() override;
   void on_phase(const Phase& p) override;
   void on_phase_end(const Advance& a) override;
   void on_resume(const Checkpoint& c) override;
@@ -42,8 +47,11 @@ class SummaryOfEvents : public RunObserver {
  protected:
   // Sets moment_sum, nonpositive_moments and bin_width.
   void add_moments(Json& summary) const;
-  // Sets the fit's fields (or fit_error); returns the line printed about it.
-  std::string add_fit(Json& summary);
+  // Sets the fit's fields (or fit_error; an interrupted run: no fit); returns the line
+  // printed about it.
+  std::string add_fit(Json& summary, const RunEnd& end);
+  static constexpr const char* kInterruptedFit =
+      "no fit: interrupted (the resumed run fits when it finishes)";
   void fit();
 
   const Scene& scene_;

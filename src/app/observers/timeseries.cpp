@@ -14,19 +14,13 @@
 namespace bkq {
 
 void put_csv_extent(Checkpoint& c, const std::string& name, const CsvExtent& e) {
-  StateWriter w;
-  w.i64(e.rows);
-  w.u64(e.bytes);
-  c.put(name, std::move(w.bytes()));
+  put_state(c, name, e.rows, e.bytes);
 }
 
 CsvExtent find_csv_extent(const Checkpoint& c, const std::string& name) {
-  const std::string* bytes = c.find(name);
-  if (!bytes) throw Error("the checkpoint does not cover '" + name + "'");
-  StateReader r(*bytes, name);
   CsvExtent e;
-  e.rows = r.i64();
-  e.bytes = r.u64();
+  if (!find_state(c, name, e.rows, e.bytes))
+    throw Error("the checkpoint does not cover '" + name + "'");
   return e;
 }
 
@@ -88,20 +82,12 @@ std::string BlockTrajectories::header() const {
 }
 
 void PadFrictionStats::on_resume(const Checkpoint& c) {
-  const std::string* bytes = c.find("pad_friction");
-  if (!bytes) throw Error("the checkpoint holds no pad friction statistics");
-  StateReader r(*bytes, "pad_friction");
-  sum_ = r.f64();
-  sum_sq_ = r.f64();
-  samples_ = r.i64();
+  if (!find_state(c, "pad_friction", sum_, sum_sq_, samples_))
+    throw Error("the checkpoint holds no pad friction statistics");
 }
 
 void PadFrictionStats::on_checkpoint(Checkpoint& c) {
-  StateWriter w;
-  w.f64(sum_);
-  w.f64(sum_sq_);
-  w.i64(samples_);
-  c.put("pad_friction", std::move(w.bytes()));
+  put_state(c, "pad_friction", sum_, sum_sq_, samples_);
 }
 
 void PadFrictionStats::add_to_summary(Json& summary) const {
