@@ -1,8 +1,10 @@
 #!/usr/bin/env -S /usr/bin/python3
-"""Scaling with the chain length: events per second and ns per sliding block-step against
-N, log axes, from the CSV that analysis/scaling.sh prints.
+"""Scaling with the chain length: events per second and ns per block-step against N, log
+axes, from the CSV that analysis/scaling.sh (whole runs, wall time) or build/scaling
+(bench/scaling.cpp, the engine in CPU time) prints; --before draws a second CSV of the
+same kind dashed, for a before/after comparison.
 
-Usage: /usr/bin/python3 analysis/plot_scaling.py scaling.csv [--out FILE.png]
+Usage: /usr/bin/python3 analysis/plot_scaling.py scaling.csv [--before old.csv] [--out FILE.png]
 Needs numpy and matplotlib: use Debian's /usr/bin/python3 (python3-numpy,
 python3-matplotlib); the python3 first on PATH may lack them.
 """
@@ -16,29 +18,45 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def read(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    cpu = "events_per_cpu_second" in rows[0]
+    rate = "events_per_cpu_second" if cpu else "events_per_second"
+    return {
+        "n": [float(r["blocks"]) for r in rows],
+        "rate": [float(r[rate]) for r in rows],
+        "sliding": [float(r["ns_per_sliding_block_step"]) for r in rows],
+        "step": [float(r["ns_per_block_step"]) for r in rows],
+        "clock": "CPU time" if cpu else "whole run's wall time",
+    }
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("csv")
+    ap.add_argument("--before", help="a CSV of the same kind, drawn dashed")
     ap.add_argument("--out", default="scaling.png")
     args = ap.parse_args()
-    with open(args.csv) as f:
-        rows = list(csv.DictReader(f))
-    n = [float(r["blocks"]) for r in rows]
+    runs = [(read(args.csv), "-", "")]
+    if args.before:
+        runs.insert(0, (read(args.before), "--", " (before)"))
     fig, (a, b) = plt.subplots(1, 2, figsize=(9, 3.6))
-    a.loglog(n, [float(r["events_per_second"]) for r in rows], "o-")
+    for d, style, tag in runs:
+        a.loglog(d["n"], d["rate"], "o" + style, color="C0", label="events/s" + tag)
+        b.loglog(d["n"], d["sliding"], "s" + style, color="C1",
+                 label="per sliding block-step" + tag)
+        b.loglog(d["n"], d["step"], "^" + style, color="C2",
+                 label="per block-step (stepped blocks)" + tag)
     a.set_xlabel("blocks N")
     a.set_ylabel("events per second")
     a.set_title("event rate")
-    b.loglog(n, [float(r["ns_per_sliding_block_step"]) for r in rows], "s-",
-             label="per sliding block-step")
-    b.loglog(n, [float(r["ns_per_block_step"]) for r in rows], "^-",
-             label="per block-step (stepped blocks)")
     b.set_xlabel("blocks N")
-    b.set_ylabel("ns (whole run's wall time)")
+    b.set_ylabel("ns (" + runs[-1][0]["clock"] + ")")
     b.set_title("cost per block-step")
-    b.legend(fontsize=8)
     for ax in (a, b):
         ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
     fig.suptitle("carlson-langer l = 10, alpha = 2.5, rk4 dt = 0.01, one core", fontsize=9)
     fig.tight_layout()
     fig.savefig(args.out, dpi=110)

@@ -58,7 +58,7 @@ class EventRun {
       if (transient_ == 0) begin_recording();
     }
     engine_->max_steps_per_event = settings.run.max_steps_per_event;
-    last_saved_ = engine_->snapshot();
+    saved_ = resumed != nullptr;
     wall_total0_ = prog_.wall_total;
     wall_events0_ = prog_.wall_events;
     attach_observers(resumed != nullptr);
@@ -109,7 +109,7 @@ class EventRun {
     observers_.attach<EventSummary>(req_.scene, settings_, out_, hist.histogram(), observers_,
                                     stop_requested);
     if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
-      observers_.attach<CheckpointTimer>([this] { save(engine_->snapshot()); }, r.checkpoint_events,
+      observers_.attach<CheckpointTimer>([this] { save_engine(); }, r.checkpoint_events,
                                          r.checkpoint_seconds);
     if (!req_.quiet) observers_.attach<ProgressLine>();
     for (RunObserver* o : req_.observers) observers_.attach_ref(*o);
@@ -141,25 +141,45 @@ class EventRun {
 
   // The failed engine is unusable and copying the state before every event would cost a
   // few per cent, so the state before the failed event is recomputed once from the last
-  // checkpoint (or the start): an engine continued from a snapshot repeats the same events
-  // bit for bit. That costs at most one checkpoint interval. Returns the note for the error.
+  // checkpoint, read back from its file, or the start: an engine continued from a snapshot
+  // repeats the same events bit for bit. That costs at most one checkpoint interval; no
+  // copy of the chain is kept for it. Returns the note for the error.
   std::string save_before_failure(std::int64_t events_done) {
     try {
       const std::unique_ptr<Stepper> stepper = stepper_of(settings_.integrator, forces_.n());
-      EventEngine replay(forces_, *stepper, settings_.integrator.dt, last_saved_);
+      const double dt = settings_.integrator.dt;
+      const bool seeded = !saved_;
+      EventEngine replay = seeded ? EventEngine(forces_, *stepper, dt,
+                                                initial_state(forces_, settings_.run.seed,
+                                                              settings_.run.initial_disorder, true))
+                                  : EventEngine(forces_, *stepper, dt, files_.read().engine);
       replay.max_steps_per_event = engine_->max_steps_per_event;
       while (replay.counters().events < events_done) replay.next_event();
-      save(replay.snapshot());
+      EngineSnapshot before = replay.snapshot();
+      save(before);
       return "; the state before this event is saved in '" + files_.current() + "'";
     } catch (const Error& e) {
       return std::string("; saving the state before this event failed: ") + e.what();
     }
   }
 
+  // A checkpoint of the running engine, its state lent rather than copied (a copy of a
+  // long chain at each checkpoint would be the largest thing the run holds).
+  void save_engine() {
+    EngineSnapshot lent = engine_->lend_snapshot();
+    struct GiveBack {
+      EventEngine& engine;
+      EngineSnapshot& lent;
+      ~GiveBack() { engine.take_back(std::move(lent)); }
+    } give_back{*engine_, lent};
+    save(lent);
+  }
+
   // Writes a checkpoint of `engine` with the run as it stands. The run fills in its own
   // bookkeeping; the observers add theirs (the catalog syncs and records its size, the
-  // histogram and the summary's sums their state).
-  void save(const EngineSnapshot& engine) {
+  // histogram and the summary's sums their state). The snapshot moves into the checkpoint
+  // and back, unchanged.
+  void save(EngineSnapshot& engine) {
     prog_.wall_total = wall_total0_ + seconds_since(session_t0_);
     if (prog_.transient_done == transient_)
       prog_.wall_events = wall_events0_ + seconds_since(recording_t0_);
@@ -170,10 +190,15 @@ class EventRun {
     c.scene_ini = scene_ini_;
     c.seed = settings_.run.seed;
     c.progress = prog_;
-    c.engine = engine;
+    c.engine = std::move(engine);
+    struct MoveBack {
+      EngineSnapshot& to;
+      EngineSnapshot& from;
+      ~MoveBack() { to = std::move(from); }
+    } move_back{engine, c.engine};
     observers_.checkpoint(c);
     files_.write(c);
-    last_saved_ = engine;
+    saved_ = true;
   }
 
   RunEnd run_end(int signal) const {
@@ -200,7 +225,7 @@ class EventRun {
   }
 
   int stop(int sig) {
-    save(engine_->snapshot());
+    save_engine();
     observers_.end(run_end(sig));
     std::fprintf(stderr,
                  "bkquake: stopped by %s after %lld of %lld events (%lld of %lld transient); "
@@ -232,7 +257,7 @@ class EventRun {
 
   std::unique_ptr<EventEngine> engine_;
   AccuracyCheck* accuracy_ = nullptr;  // one of the observers
-  EngineSnapshot last_saved_;          // the engine at the last checkpoint, or at the start
+  bool saved_ = false;                 // a checkpoint file holds the state (else the seed does)
   // The run's own part of the checkpoint; catalog_bytes, moment_sum and nonpositive are the
   // observers' (filled in by them at each checkpoint, read back by them on resume).
   RunProgress prog_;

@@ -64,9 +64,6 @@ void EventEngine::allocate_bookkeeping() {
   need_.assign(n_, 0);
   slipped_.assign(n_, 0);
   w_before_.assign(n_, 0.0);
-  wd_old_.assign(n_, 0.0);
-  mobile_old_.assign(n_, 0.0);
-  w_old_.assign(n_, 0.0);
 }
 
 void EventEngine::check_model(const ModelParams& p) {
@@ -83,7 +80,7 @@ void EventEngine::check_model(const ModelParams& p) {
 
 void EventEngine::rebuild_tree() {
   tree_.reset(n_);
-  for (int j = 0; j < n_; ++j) tree_.set(j, forces_.local_force(st_.w.data(), j));
+  tree_.set_range(0, n_, [&](int j) { return forces_.local_force(st_.w.data(), j); });
 }
 
 double EventEngine::worst_stuck_excess() const {
@@ -270,14 +267,17 @@ void EventEngine::note_released_in_step() {
     note_slipped(r.block, r.w);
     released_now_.push_back(r.block);
   }
-  for (const Range& r : ranges_)
-    for (int j = r.lo; j < r.hi; ++j)
-      if (st_.mobile[j] != 0.0 && mobile_old_[j] == 0.0) {
+  for (std::size_t i = 0; i < ranges_.size(); ++i) {
+    const double* mobile_old = old_.data(kMobileOld, i);
+    const double* w_old = old_.data(kWOld, i);
+    for (int j = ranges_[i].lo; j < ranges_[i].hi; ++j)
+      if (st_.mobile[j] != 0.0 && mobile_old[j] == 0.0) {
         // Stuck, so unmoved, until it broke loose inside the step. It may have slipped
         // earlier in the event: cover it again all the same.
-        note_slipped(j, w_old_[j]);
+        note_slipped(j, w_old[j]);
         released_now_.push_back(j);
       }
+  }
   counters_.releases += static_cast<std::int64_t>(released_now_.size());
   for (int j : released_now_) cover(j);
 }
@@ -511,12 +511,20 @@ EventRecord EventEngine::next_event() {
                  cluster_ready(cluster) && relax_cluster(cluster, steps, scan)) {
         // Ran one or more steps of a cluster; scan describes the last one.
       } else {
-        for (const Range& r : ranges_) {
-          std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, wd_old_.begin() + r.lo);
+        // A stepper that resolves transitions itself covers the blocks it released before
+        // the contact pass, which then reads the copies over the grown ranges: for it they
+        // cover the whole chain and keep what earlier steps left (as they always did).
+        if (crossing)
+          old_.fit(ranges_);
+        else
+          old_.whole(n_);
+        for (std::size_t i = 0; i < ranges_.size(); ++i) {
+          const Range& r = ranges_[i];
+          std::copy(st_.wd.begin() + r.lo, st_.wd.begin() + r.hi, old_.data(kWdOld, i) + r.lo);
           if (!crossing) {
             std::copy(st_.mobile.begin() + r.lo, st_.mobile.begin() + r.hi,
-                      mobile_old_.begin() + r.lo);
-            std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, w_old_.begin() + r.lo);
+                      old_.data(kMobileOld, i) + r.lo);
+            std::copy(st_.w.begin() + r.lo, st_.w.begin() + r.hi, old_.data(kWOld, i) + r.lo);
           }
         }
         const double xd_old = st_.xd;
@@ -530,9 +538,26 @@ EventRecord EventEngine::next_event() {
         for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
         if (!crossing) note_released_in_step();
         released_now_.clear();
-        dissipated_ += half_dt_m * dissipated_power(forces_, st_, wd_old_.data(), ranges_);
-        scan = settle_contacts(forces_, st_, wd_old_.data(), anchor(), ranges_, crossing,
-                               [&](int j) { released_now_.push_back(j); });
+        if (old_.joint()) {
+          const double* wd_old = old_.data(kWdOld, 0);
+          dissipated_ += half_dt_m * dissipated_power(forces_, st_, wd_old, ranges_);
+          scan = settle_contacts(forces_, st_, wd_old, anchor(), ranges_, crossing,
+                                 [&](int j) { released_now_.push_back(j); });
+        } else {
+          // Range by range, each with its copy: the sums and the releases in the order of
+          // one pass over all ranges.
+          double power = 0;
+          for (std::size_t i = 0; i < ranges_.size(); ++i)
+            power += dissipated_power(forces_, st_, old_.data(kWdOld, i), Ranges(&ranges_[i], 1));
+          dissipated_ += half_dt_m * power;
+          for (std::size_t i = 0; i < ranges_.size(); ++i) {
+            const ContactScan part = settle_contacts(forces_, st_, old_.data(kWdOld, i), anchor(),
+                                                     Ranges(&ranges_[i], 1), crossing,
+                                                     [&](int j) { released_now_.push_back(j); });
+            scan.sliding += part.sliding;
+            raise_max_speed(scan.max_speed, part.max_speed);
+          }
+        }
         if (pad_) dissipated_ += half_dt_cp * (xd_old * xd_old + st_.xd * st_.xd);
         counters_.sliding_block_steps += scan.sliding;
       }

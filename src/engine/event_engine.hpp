@@ -18,12 +18,14 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "engine/contacts.hpp"
 #include "engine/event_record.hpp"
 #include "engine/force_tree.hpp"
 #include "engine/lone_slip.hpp"
+#include "integrate/block_window.hpp"
 #include "integrate/cluster.hpp"
 #include "integrate/stepper.hpp"
 #include "model/chain.hpp"
@@ -55,6 +57,10 @@ class EventEngine {
   EventEngine(const ChainForces& forces, Stepper& stepper, double dt, const EngineSnapshot& saved);
 
   EngineSnapshot snapshot() const { return EngineSnapshot{st_, counters_}; }
+  // The snapshot without a copy of the chain: the state moves into it, and the engine
+  // must not be used until take_back() returns it (unchanged).
+  EngineSnapshot lend_snapshot() { return EngineSnapshot{std::move(st_), counters_}; }
+  void take_back(EngineSnapshot&& lent) { st_ = std::move(lent.state); }
 
   // Load to the next failure and relax it; returns the event (numbered from 1).
   EventRecord next_event();
@@ -140,7 +146,10 @@ class EventEngine {
   ForceTree tree_;
   std::vector<Range> ranges_;
   std::vector<unsigned char> covered_, need_;
-  std::vector<double> wd_old_, mobile_old_, w_old_;  // at the start of a step
+  // Velocities, stick flags and positions at the start of a step (the last two for
+  // steppers that resolve transitions themselves), over the blocks of the step's ranges.
+  enum { kWdOld, kMobileOld, kWOld };
+  RangeArrays old_{3};
   std::vector<int> released_now_;
 
   // Per-event bookkeeping.

@@ -4,6 +4,7 @@
 // is a Method in its own header, instantiated in its .cpp, and one line in registry.cpp.
 #pragma once
 
+#include <algorithm>
 #include <string_view>
 
 #include "integrate/cluster.hpp"
@@ -17,7 +18,7 @@ namespace bkq {
 template <class Method>
 class ExplicitScheme final : public Stepper {
  public:
-  explicit ExplicitScheme(int n) { scratch_.resize(n); }
+  explicit ExplicitScheme(int) {}
   std::string_view name() const override { return Method::name; }
   int order() const override { return Method::order; }
   double stability_constant() const override { return Method::stability_constant; }
@@ -30,8 +31,15 @@ class ExplicitScheme final : public Stepper {
 
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override {
-    ChainLayout<typename Method::Round, Method::fusable> layout(forces, sub, st, ranges, scratch_);
-    Method::advance(layout, dt);
+    if (!separable(forces, ranges)) return step_together(forces, sub, st, dt, ranges);
+    // Ranges far apart: one range at a time, each from the same time (the ranges do not
+    // interact, so this is the same step bit for bit), so that the scratch holds one range,
+    // not the span of all.
+    const double t = st.t;
+    for (const Range& r : ranges) {
+      st.t = t;
+      step_together(forces, sub, st, dt, Ranges(&r, 1));
+    }
   }
 
   void step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
@@ -39,6 +47,7 @@ class ExplicitScheme final : public Stepper {
     if constexpr (!Method::fusable) {
       step(forces, sub, st, dt, ranges);
     } else if (forces.params().pad_moves()) {
+      scratch_.fit(forces, ranges);
       step_held_with_pad<Method>(forces, sub, st, dt, ranges, scratch_);
     } else {
       const SubstrateState frozen = sub.at(st.t);
@@ -46,6 +55,7 @@ class ExplicitScheme final : public Stepper {
       const HeldInput in{st.mobile.data(), st.dir.data(), frozen.s + 0.0, frozen};
       forces.with_switches([&]<class Law, class Terms>(const Law&) {
         for (const Range& r : ranges) {
+          scratch_.fit(forces, Ranges(&r, 1));
           HeldRangeLayout<typename Method::Round, Law, Terms> layout(forces, in, r, st, scratch_);
           Method::advance(layout, dt);
         }
@@ -71,6 +81,25 @@ class ExplicitScheme final : public Stepper {
   }
 
  private:
+  // Whether the ranges are better stepped one by one, and can be: their span is much wider
+  // than the blocks in them, no moving pad couples them, and no range reaches across a
+  // periodic chain's ends to another.
+  static bool separable(const ChainForces& forces, Ranges ranges) {
+    if (ranges.size() < 2) return false;
+    int lo = ranges.front().lo, hi = ranges.front().hi, blocks = 0;
+    for (const Range& r : ranges) lo = std::min(lo, r.lo), hi = std::max(hi, r.hi);
+    for (const Range& r : ranges) blocks += r.hi - r.lo;
+    const ModelParams& p = forces.params();
+    return hi - lo > 4 * blocks + 256 && !p.pad_moves() &&
+           !(p.boundary == Boundary::Periodic && (lo == 0 || hi == forces.n()));
+  }
+  void step_together(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+                     Ranges ranges) {
+    scratch_.fit(forces, ranges);
+    ChainLayout<typename Method::Round, Method::fusable> layout(forces, sub, st, ranges, scratch_);
+    Method::advance(layout, dt);
+  }
+
   ExplicitScratch scratch_;
 };
 

@@ -18,20 +18,39 @@
 #include <type_traits>
 #include <vector>
 
+#include "integrate/block_window.hpp"
 #include "integrate/scheme.hpp"
 #include "model/chain.hpp"
 #include "model/substrate.hpp"
 
 namespace bkq {
 
-// Scratch of the explicit steppers, length N and zero-initialised so that entries outside
-// the ranges stay finite: stage positions and velocities (two sets, for double
+// Scratch of the explicit steppers, indexed by block over a window of the chain that
+// fit() makes hold the ranges of the step (integrate/block_window.hpp: what the entries
+// hold is left over, finite): stage positions and velocities (two sets, for double
 // buffering), accelerations, accumulators and the spare velocity.
 struct ExplicitScratch {
-  std::vector<double> x, y, x2, y2, a, cw, cv, u;
-  void resize(int n) {
-    for (auto* v : {&x, &y, &x2, &y2, &a, &cw, &cv, &u}) v->assign(n, 0.0);
+  // One of the arrays: data()[j] (or [j]) is block j's entry.
+  class Array {
+   public:
+    Array(BlockWindow& window, int k) : window_(window), k_(k) {}
+    double* data() const { return window_.data(k_); }
+    double& operator[](int j) const { return data()[j]; }
+
+   private:
+    BlockWindow& window_;
+    int k_;
+  };
+  ExplicitScratch() = default;
+  ExplicitScratch(const ExplicitScratch&) = delete;
+  ExplicitScratch& operator=(const ExplicitScratch&) = delete;
+  void fit(const ChainForces& forces, Ranges ranges) {
+    window.fit(ranges, forces.n(), forces.params().boundary == Boundary::Periodic);
   }
+
+  BlockWindow window{8};
+  Array x{window, 0}, y{window, 1}, x2{window, 2}, y2{window, 3}, a{window, 4}, cw{window, 5},
+      cv{window, 6}, u{window, 7};
 };
 
 // Does the scene have a velocity-dependent force (verlet's closing kick needs it)?

@@ -87,17 +87,15 @@ class PadClusterLayout {
                                                       y_[i], cw_[i], cv_[i], u_[i]};
     };
     double total = 0, earlier_total = 0;
+    // ChainLayout's order: `earlier`'s terms before the update, `sum`'s after it.
     if constexpr (joint) {
-      for (int i = 1; i <= K; ++i) {
-        earlier_total += earlier.term(element(i));
-        total += sum.term(element(i));
-      }
+      for (int i = 1; i <= K; ++i) earlier_total += earlier.term(element(i));
     }
     for (int i = 1; i <= K; ++i) {
       auto e = element(i);
       update(e, a_[i]);
     }
-    if constexpr (summed && !joint) {
+    if constexpr (summed) {
       for (int i = 1; i <= K; ++i) total += sum.term(element(i));
     }
     if constexpr (joint) {

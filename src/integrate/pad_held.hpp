@@ -69,11 +69,28 @@ class HeldPadLayout {
   bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), true); }
 
   template <class Point, class Update, class Sum>
-  void stage(Point, double, Update&& update, const Sum& sum) {
+  void stage(Point p, double time_offset, Update&& update, const Sum& sum) {
+    stage(p, time_offset, update, sum, no_sum);
+  }
+  // With `earlier` (ChainLayout's meaning): the sum of the stage point this stage evaluates
+  // at, which the stage before left out, its terms read before this stage's update.
+  template <class Point, class Update, class Sum, class Earlier>
+  void stage(Point, double, Update&& update, const Sum& sum, const Earlier& earlier) {
     static_assert(
         Point::positions == Buf::W ? Point::velocities == Buf::V : Point::velocities == Buf::Y,
         "a held range evaluates at the state or at the last stage point");
     constexpr bool at_state = Point::positions == Buf::W;
+    if constexpr (!std::is_same_v<Earlier, NoSum>) {
+      double earlier_total = 0;
+      for (const Range& r : ranges_)
+        for (int j = r.lo + 1; j < r.hi - 1; ++j) {
+          StageElement<typename Round::BlockRound> e{
+              st_.w[j], st_.wd[j], x_in_[j], y_in_[j], x_in_[j], y_in_[j], s_.cw[j], s_.cv[j],
+              s_.u[j]};
+          earlier_total += earlier.term(e);
+        }
+      sum_ = st_.sum_w + earlier.scale * earlier_total;
+    }
     const double x_at = at_state ? st_.x : x_;
     const double xd_at = at_state ? st_.xd : xd_;
     const double ax = forces_.pad_acceleration(x_at, xd_at, at_state ? st_.sum_w : sum_, frozen_.s);

@@ -97,21 +97,28 @@ void StateReader::fail() const {
 }
 
 std::string encode_checkpoint(const Checkpoint& c) {
-  StateWriter w;
-  EncodeField encode{w};
-  fixed_fields(encode, c);
-
-  w.u64(c.observers.size());
-  for (const ObserverState& o : c.observers) {
-    w.str(o.name);
-    w.str(o.bytes);
-  }
-
+  // One buffer, reserved for the chain's arrays and everything else, the payload length
+  // filled in after the payload: a long chain's checkpoint is held once while it is made.
   StateWriter file;
+  std::size_t others = 4096 + c.scene_ini.size() + 8 * c.histogram.counts.size();
+  for (const ObserverState& o : c.observers) others += 16 + o.name.size() + o.bytes.size();
+  file.bytes().reserve(4 * 8 * c.engine.state.w.size() + others);
   file.bytes().append(kMagic, sizeof kMagic);
   file.u32(kFormatVersion);
-  file.u64(w.bytes().size());
-  file.bytes() += w.bytes();
+  file.u64(0);
+  const std::size_t start = file.bytes().size();
+
+  EncodeField encode{file};
+  fixed_fields(encode, c);
+  file.u64(c.observers.size());
+  for (const ObserverState& o : c.observers) {
+    file.str(o.name);
+    file.str(o.bytes);
+  }
+
+  StateWriter length;
+  length.u64(file.bytes().size() - start);
+  file.bytes().replace(start - length.bytes().size(), length.bytes().size(), length.bytes());
   file.u64(fnv1a64(file.bytes()));
   return std::move(file.bytes());
 }
