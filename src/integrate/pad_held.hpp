@@ -84,9 +84,9 @@ class HeldPadLayout {
       double earlier_total = 0;
       for (const Range& r : ranges_)
         for (int j = r.lo + 1; j < r.hi - 1; ++j) {
-          StageElement<typename Round::BlockRound> e{
-              st_.w[j], st_.wd[j], x_in_[j], y_in_[j], x_in_[j], y_in_[j], s_.cw[j], s_.cv[j],
-              s_.u[j]};
+          StageElement<typename Round::BlockRound> e{st_.w[j], st_.wd[j], x_in_[j],
+                                                     y_in_[j], x_in_[j],  y_in_[j],
+                                                     s_.cw[j], s_.cv[j],  s_.u[j]};
           earlier_total += earlier.term(e);
         }
       sum_ = st_.sum_w + earlier.scale * earlier_total;
