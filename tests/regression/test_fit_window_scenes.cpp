@@ -79,5 +79,17 @@ TEST(NoAcceptableWindow, SummaryGivesNoBAndSaysWhy) {
   EXPECT_NE(r.out.find("b: not fitted (no acceptable fit window"), std::string::npos) << r.out;
 }
 
+TEST(NoAcceptableWindow, ARunOfOneEventSaysWhyItHasNoB) {
+  test::TempDir dir;
+  const std::string out = dir.file("one");
+  const auto r = test::run_bkquake(
+      {"run", "--set", "run.events=1", "--set", "run.transient_events=0", "--out", out, "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string summary = test::read_file(out + "/summary.json");
+  EXPECT_NE(summary.find("\"b_mle\": null"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"fit_error\": \"fewer than 2 events\""), std::string::npos) << summary;
+  EXPECT_NE(r.out.find("b: not fitted (fewer than 2 events)"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace bkq

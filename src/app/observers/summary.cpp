@@ -128,7 +128,11 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
     summary.set("fit_error", kInterruptedFit);
     return kInterruptedFit;
   }
-  if (hist_.events() < 2) return "b: not fitted (fewer than 2 events)";
+  if (hist_.events() < 2) {
+    summary.set("b_mle", Json::null());
+    summary.set("fit_error", kTooFewToFit);
+    return std::string("b: not fitted (") + kTooFewToFit + ")";
+  }
   fit();
   if (!fit_) {
     summary.set("b_mle", Json::null());
