@@ -27,17 +27,15 @@ struct Rk2Method {
     l.stage(
         at_state, 0.0,
         [h2](auto& e, double a) {
-          using R = typename std::remove_reference_t<decltype(e)>::R;
-          e.xo = R::axpy(h2, e.v, e.w);
-          e.yo = R::axpy(h2, a, e.v);
+          e.xo = e.axpy(h2, e.v, e.w);
+          e.yo = e.axpy(h2, a, e.v);
         },
         no_sum);
     l.stage(
         at_stage, h2,
         [h](auto& e, double a) {
-          using R = typename std::remove_reference_t<decltype(e)>::R;
-          e.w = R::axpy(h, e.y, e.w);
-          e.v = R::axpy(h, a, e.v);
+          e.w = e.axpy(h, e.y, e.w);
+          e.v = e.axpy(h, a, e.v);
         },
         sum_to_state(h, [](const auto& e) { return e.y; }),
         sum_to_stage(h2, [](const auto& e) { return e.v; }));

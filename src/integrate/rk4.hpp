@@ -26,25 +26,22 @@ struct Rk4Method {
     const double h2 = 0.5 * h, h6 = h / 6.0;
     // cw, cv gather the stage velocities and accelerations with weights 1, 2, 2, 1.
     auto first = [h2](auto& e, double a) {
-      using R = typename std::remove_reference_t<decltype(e)>::R;
       e.cw = e.v;
       e.cv = a;
-      e.xo = R::axpy(h2, e.v, e.w);
-      e.yo = R::axpy(h2, a, e.v);
+      e.xo = e.axpy(h2, e.v, e.w);
+      e.yo = e.axpy(h2, a, e.v);
     };
     auto middle = [](double c) {
       return [c](auto& e, double a) {
-        using R = typename std::remove_reference_t<decltype(e)>::R;
         e.cw += 2.0 * e.y;
         e.cv += 2.0 * a;
-        e.xo = R::axpy(c, e.y, e.w);
-        e.yo = R::axpy(c, a, e.v);
+        e.xo = e.axpy(c, e.y, e.w);
+        e.yo = e.axpy(c, a, e.v);
       };
     };
     auto last = [h6](auto& e, double a) {
-      using R = typename std::remove_reference_t<decltype(e)>::R;
       e.w += h6 * (e.cw + e.y);
-      e.v = R::axpy(h6, e.cv + a, e.v);
+      e.v = e.axpy(h6, e.cv + a, e.v);
     };
     // The pad's sums go in pairs into the second and fourth passes (a sum in block order is
     // a chain of dependent additions; two side by side cost the time of one): each stage

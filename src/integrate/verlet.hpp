@@ -25,24 +25,15 @@ struct VerletMethod {
     l.stage(
         at_state, 0.0,
         [h, h2](auto& e, double a) {
-          using R = typename std::remove_reference_t<decltype(e)>::R;
-          e.yo = R::axpy(h2, a, e.v);
-          e.w = R::axpy(h, e.yo, e.w);
+          e.yo = e.axpy(h2, a, e.v);
+          e.w = e.axpy(h, e.yo, e.w);
         },
         sum_to_state(1.0, [h](const auto& e) { return h * e.y; }));
     // Closing kick v = y + h/2 a, with a at a predicted end velocity u when it matters.
-    auto kick = [h2](auto& e, double a) {
-      using R = typename std::remove_reference_t<decltype(e)>::R;
-      e.v = R::axpy(h2, a, e.y);
-    };
+    auto kick = [h2](auto& e, double a) { e.v = e.axpy(h2, a, e.y); };
     if (l.velocity_dependent()) {
       l.stage(
-          at_state_positions, h,
-          [h2](auto& e, double a) {
-            using R = typename std::remove_reference_t<decltype(e)>::R;
-            e.u = R::axpy(h2, a, e.y);
-          },
-          no_sum);
+          at_state_positions, h, [h2](auto& e, double a) { e.u = e.axpy(h2, a, e.y); }, no_sum);
       l.stage(at_state_positions_spare, h, kick, no_sum);
     } else {
       l.stage(at_state_positions, h, kick, no_sum);
