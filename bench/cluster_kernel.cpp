@@ -410,7 +410,7 @@ void BM_DivisionThroughput(benchmark::State& state) {
 }
 
 void all_sizes(benchmark::internal::Benchmark* b) {
-  for (int k : {1, 2, 4, 8, 10, 100, 1000}) b->Arg(k);
+  for (int k : {1, 2, 4, 8, 10, 16, 32, 100, 1000}) b->Arg(k);
   b->MinTime(0.2);
 }
 void cluster_sizes(benchmark::internal::Benchmark* b) {
@@ -462,7 +462,7 @@ class TableReporter : public benchmark::ConsoleReporter {
     std::printf("\n|---|");
     for (std::size_t i = 0; i < std::size(order); ++i) std::printf("---|");
     std::printf("\n");
-    for (int k : {1, 2, 4, 8, 10, 100, 1000}) {
+    for (int k : {1, 2, 4, 8, 10, 16, 32, 100, 1000}) {
       std::printf("| %d |", k);
       for (const char* kernel : order) {
         const double v = value(kernel, k);
