@@ -16,6 +16,17 @@
 namespace bkq {
 
 namespace {
+// The column names, each spelled once: the schema and the reader below use these.
+namespace histogram_col {
+constexpr const char* mu_low = "mu_low";
+constexpr const char* mu_high = "mu_high";
+constexpr const char* count = "count";
+constexpr const char* D = "D";
+constexpr const char* R = "R";
+constexpr const char* D_rate = "D_rate";
+constexpr const char* R_rate = "R_rate";
+}  // namespace histogram_col
+
 constexpr const char* kEdgeFormat = "%.12g";  // the edges are multiples of the bin width
 
 std::string edge(double x) {

@@ -12,17 +12,6 @@
 
 namespace bkq {
 
-// The histogram's column names, each spelled once: the schema and the reader use these.
-namespace histogram_col {
-inline constexpr const char* mu_low = "mu_low";
-inline constexpr const char* mu_high = "mu_high";
-inline constexpr const char* count = "count";
-inline constexpr const char* D = "D";
-inline constexpr const char* R = "R";
-inline constexpr const char* D_rate = "D_rate";
-inline constexpr const char* R_rate = "R_rate";
-}  // namespace histogram_col
-
 // Column order is the CSV column order.
 const Schema& histogram_schema();
 
