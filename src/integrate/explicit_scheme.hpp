@@ -9,7 +9,6 @@
 
 #include "integrate/cluster.hpp"
 #include "integrate/layouts.hpp"
-#include "integrate/pad_cluster.hpp"
 #include "integrate/pad_held.hpp"
 #include "integrate/stepper.hpp"
 
@@ -65,19 +64,11 @@ class ExplicitScheme final : public Stepper {
   }
 
   bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override {
-    const bool velocity_dependent = bkq::velocity_dependent(forces.params(), false);
-    return run_cluster(
-        forces, r,
-        [velocity_dependent](const auto& acceleration, auto& w, auto& v, auto& a, double h) {
-          ClusterLayout<typename Method::Round, std::remove_cvref_t<decltype(acceleration)>,
-                        std::remove_reference_t<decltype(w)>>
-              layout(acceleration, w, v, a, velocity_dependent);
-          Method::advance(layout, h);
-        });
+    return run_cluster<Method, false>(forces, r);
   }
 
-  bool relax_pad_cluster(const ChainForces& forces, PadClusterRelaxation& r) const override {
-    return run_pad_cluster<Method>(forces, r);
+  bool relax_pad_cluster(const ChainForces& forces, ClusterRelaxation& r) const override {
+    return run_cluster<Method, true>(forces, r);
   }
 
  private:

@@ -9,7 +9,7 @@
 //                    double-buffered; only for schemes whose stages never write the
 //                    positions they are evaluated at (Method::fusable).
 //   ClusterLayout    the interior entries of a fixed-size cluster (integrate/cluster.hpp),
-//                    held in registers.
+//                    held in registers, and the pad where it moves.
 #pragma once
 
 #include <algorithm>
@@ -382,17 +382,26 @@ class HeldRangeLayout {
   double *w_, *wd_, *x_in_, *y_in_, *x_out_, *y_out_, *cw_, *cv_, *u_;
 };
 
-// `acceleration(x, v, a)` sets a[1..K] at stage positions x and velocities v; on entry
-// `a` holds the accelerations at the state (the first stage's, which the cluster loop has
-// already formed).
-template <class Round, class Acceleration, class Array>
+// The pad's state while a cluster runs with the pad moving (written back at the end).
+struct PadStageState {
+  double x, xd, sum_w;
+};
+
+// `acceleration(x, v, anchor, a)` sets a[1..K] at stage positions x and velocities v; on
+// entry `a` holds the accelerations at the state (the first stage's, which the cluster
+// loop has already formed). With Pad the pad is one more element, advanced and summed as
+// ChainLayout does it, and the anchor is `base` (the substrate) plus the pad's stage
+// position; without, `base` is the anchor and the pad's parts compile away.
+template <class Round, class Acceleration, class Array, bool Pad>
 class ClusterLayout {
  public:
   static constexpr int K = static_cast<int>(std::tuple_size_v<Array>) - 2;
 
-  ClusterLayout(const Acceleration& acceleration, Array& w, Array& v, Array& a,
-                bool velocity_dependent)
-      : acceleration_(acceleration),
+  ClusterLayout(const ChainForces& forces, double base, const Acceleration& acceleration, Array& w,
+                Array& v, Array& a, PadStageState& pad, bool velocity_dependent)
+      : forces_(forces),
+        base_(base),
+        acceleration_(acceleration),
         w_(w),
         v_(v),
         a_(a),
@@ -401,38 +410,79 @@ class ClusterLayout {
         cw_(w),
         cv_(w),
         u_(v),
+        pad_(pad),
         velocity_dependent_(velocity_dependent) {}
 
   bool velocity_dependent() const { return velocity_dependent_; }
 
-  template <class Point, class Update, class... Sums>
-  void stage(Point, double, Update&& update, const Sums&...) {
-    constexpr bool at_state = Point::positions == Buf::W && Point::velocities == Buf::V;
+  template <class Point, class Update, class Sum, class Earlier = NoSum>
+  void stage(Point, double, Update&& update, const Sum& sum, const Earlier& earlier = no_sum) {
+    constexpr bool state_positions = Point::positions == Buf::W;
+    constexpr bool at_state = state_positions && Point::velocities == Buf::V;
+    constexpr bool joint = Pad && !std::is_same_v<Earlier, NoSum>;
+    constexpr bool summed = Pad && !std::is_same_v<Sum, NoSum>;
+    const double x_at = state_positions ? pad_.x : x_pad_;
+    const double xd_at = pick<Point::velocities>(pad_.xd, xd_, xu_);
     if (!at_state || evaluated_)
-      acceleration_(Point::positions == Buf::W ? w_ : x_, pick<Point::velocities>(), a_);
+      acceleration_(state_positions ? w_ : x_, pick<Point::velocities>(v_, y_, u_),
+                    Pad ? base_ + x_at : base_, a_);
     evaluated_ = true;
+    auto pad_acceleration = [&] {
+      return forces_.pad_acceleration(x_at, xd_at, state_positions ? pad_.sum_w : sum_, base_);
+    };
+    double ax = !Pad || joint ? 0.0 : pad_acceleration();
+    auto element = [&](int i) {
+      return StageElement<typename Round::BlockRound>{w_[i], v_[i],  x_[i],  y_[i], x_[i],
+                                                      y_[i], cw_[i], cv_[i], u_[i]};
+    };
+    double total = 0, earlier_total = 0;
+    // ChainLayout's order: `earlier`'s terms before the update, `sum`'s after it.
+    if constexpr (joint) {
+      for (int i = 1; i <= K; ++i) earlier_total += earlier.term(element(i));
+    }
     for (int i = 1; i <= K; ++i) {
-      StageElement<typename Round::BlockRound> e{w_[i], v_[i],  x_[i],  y_[i], x_[i],
-                                                 y_[i], cw_[i], cv_[i], u_[i]};
+      auto e = element(i);
       update(e, a_[i]);
+    }
+    if constexpr (summed) {
+      for (int i = 1; i <= K; ++i) total += sum.term(element(i));
+    }
+    if constexpr (Pad) {
+      if constexpr (joint) {
+        sum_ = pad_.sum_w + earlier.scale * earlier_total;
+        ax = pad_acceleration();
+      }
+      StageElement<typename Round::PadRound> e{pad_.x, pad_.xd, x_pad_, xd_, x_pad_,
+                                               xd_,    cx_,     cxd_,   xu_};
+      update(e, ax);
+      if constexpr (summed) {
+        if (sum.into_state)
+          pad_.sum_w += sum.scale * total;
+        else
+          sum_ = pad_.sum_w + sum.scale * total;
+      }
     }
   }
   void finish(double) {}
 
  private:
-  template <Buf B>
-  const Array& pick() const {
+  template <Buf B, class T>
+  static T& pick(T& v, T& y, T& u) {
     if constexpr (B == Buf::V)
-      return v_;
+      return v;
     else if constexpr (B == Buf::Y)
-      return y_;
+      return y;
     else
-      return u_;
+      return u;
   }
 
+  const ChainForces& forces_;
+  double base_;
   const Acceleration& acceleration_;
   Array &w_, &v_, &a_;
   Array x_, y_, cw_, cv_, u_;
+  PadStageState& pad_;
+  double x_pad_ = 0, xd_ = 0, cx_ = 0, cxd_ = 0, xu_ = 0, sum_ = 0;
   bool velocity_dependent_;
   bool evaluated_ = false;
 };
