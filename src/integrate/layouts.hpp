@@ -3,9 +3,9 @@
 // stage formulas, so every layout runs the same operations and they agree bit for bit.
 //   ChainLayout      the blocks in a set of ranges and the pad (when it moves), with the
 //                    substrate at each stage's time: the general step.
-//   HeldRangeLayout  the interior blocks of one range whose end blocks are stuck, the pad
-//                    held and the substrate frozen: each stage is one fused pass
-//                    (accelerations and updates together), the stage points
+//   HeldRangeLayout  the interior blocks of ranges whose end blocks are stuck, the
+//                    substrate frozen, and the pad where it moves: each stage is one fused
+//                    pass per range (accelerations and updates together), the stage points
 //                    double-buffered; only for schemes whose stages never write the
 //                    positions they are evaluated at (Method::fusable).
 //   ClusterLayout    the interior entries of a fixed-size cluster (integrate/cluster.hpp),
@@ -305,19 +305,21 @@ struct HeldInput {
 namespace layout_detail {
 
 // One fused pass over the inner blocks [lo, hi): the acceleration at the stage point
-// (x, v) as the chain's kernel forms it, then the scheme's update. Everything is a
-// restrict parameter, so the compiler knows the stores cannot change what the pass reads
-// and vectorises it.
+// (x, v) as the chain's kernel forms it, the scheme's update, and (unless Sum is NoSum)
+// the block's term of the pad's sum, added to `total` in block order; returns the total.
+// Everything is a restrict parameter, so the compiler knows the stores cannot change what
+// the pass reads and vectorises it.
 // At the state (AtState) the stage point is (w, wd) itself and x, v are not read.
 // Kept out of line: inlined into the scheme's advance(), the restrict qualifiers no
-// longer tell the compiler the arrays are apart and the pass stays scalar.
-template <class Law, class Terms, class B, bool AtState, class Update>
-[[gnu::noinline]] void fused_stage(const ChainForces& forces, const HeldInput& in, int lo, int hi,
-                                   double* __restrict w, double* __restrict wd,
-                                   const double* __restrict x_in, const double* __restrict v_in,
-                                   double* __restrict xo, double* __restrict yo,
-                                   double* __restrict cw, double* __restrict cv,
-                                   double* __restrict u, Update& update) {
+// longer tell the compiler the arrays are apart and the pass stays scalar. Not cloned:
+// GCC's clone without the unused sum (IPA-SRA) checked the arrays against the forces at
+// run time instead of loading the force constants once.
+template <class Law, class Terms, class B, bool AtState, class Update, class Sum>
+[[gnu::noinline, gnu::noclone]] double fused_stage(
+    const ChainForces& forces, const HeldInput& in, int lo, int hi, double* __restrict w,
+    double* __restrict wd, const double* __restrict x_in, const double* __restrict v_in,
+    double* __restrict xo, double* __restrict yo, double* __restrict cw, double* __restrict cv,
+    double* __restrict u, Update& update, const Sum& sum, double total) {
   const Law& law = forces.law<Law>();
   const double* x = AtState ? w : x_in;
   const double* v = AtState ? wd : v_in;
@@ -332,20 +334,36 @@ template <class Law, class Terms, class B, bool AtState, class Update>
                         dir[j], frozen);
     StageElement<B> e{w[j], wd[j], x[j], v[j], xo[j], yo[j], cw[j], cv[j], u[j]};
     update(e, a);
+    if constexpr (!std::is_same_v<Sum, NoSum>) total += sum.term(e);
   }
+  return total;
+}
+
+template <bool Summed, class Sum>
+const auto& sum_if(const Sum& sum) {
+  if constexpr (Summed)
+    return sum;
+  else
+    return no_sum;
 }
 
 }  // namespace layout_detail
 
-template <class Round, class Law, class Terms>
+// The interior blocks of ranges whose end blocks are stuck, the substrate frozen, and with
+// Pad the pad moving: each stage is one fused pass per range (accelerations at the anchor
+// substrate + the pad's stage position, the update, the pad's sum's terms) and then the
+// pad's update, as ChainLayout does them, so the result is step()'s bit for bit. The stuck
+// end blocks are left out: their accelerations, updates and terms of the pad's sum are
+// exactly zero (their velocities are 0, their stage positions their positions). Without
+// the pad the pad's parts compile away.
+template <class Round, class Law, class Terms, bool Pad>
 class HeldRangeLayout {
  public:
-  HeldRangeLayout(const ChainForces& forces, const HeldInput& in, Range r, ChainState& st,
+  HeldRangeLayout(const ChainForces& forces, SubstrateState frozen, ChainState& st, Ranges ranges,
                   ExplicitScratch& s)
       : forces_(forces),
-        in_(in),
-        lo_(r.lo + 1),
-        hi_(r.hi - 1),
+        st_(st),
+        ranges_(ranges),
         w_(st.w.data()),
         wd_(st.wd.data()),
         x_in_(s.x2.data()),
@@ -354,32 +372,75 @@ class HeldRangeLayout {
         y_out_(s.y.data()),
         cw_(s.cw.data()),
         cv_(s.cv.data()),
-        u_(s.u.data()) {
+        u_(s.u.data()),
+        // The anchor as ChainLayout forms it (substrate + held pad at 0; stage() adds the
+        // moving pad's stage position).
+        in_{st.mobile.data(), st.dir.data(), frozen.s + 0.0, frozen} {
     // The end blocks are stuck: their stage positions are their positions.
-    s.x[r.lo] = s.x2[r.lo] = w_[r.lo];
-    s.x[hi_] = s.x2[hi_] = w_[hi_];
+    for (const Range& r : ranges) {
+      x_out_[r.lo] = x_in_[r.lo] = w_[r.lo];
+      x_out_[r.hi - 1] = x_in_[r.hi - 1] = w_[r.hi - 1];
+    }
   }
 
-  bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), false); }
+  bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), Pad); }
 
-  template <class Point, class Update, class... Sums>
-  void stage(Point, double, Update&& update, const Sums&...) {
+  // With `earlier` (ChainLayout's meaning): the sum of the stage point this stage evaluates
+  // at, which the stage before left out, its terms read before this stage's update.
+  template <class Point, class Update, class Sum, class Earlier = NoSum>
+  void stage(Point, double, Update&& update, const Sum& sum, const Earlier& earlier = no_sum) {
     static_assert(
         Point::positions == Buf::W ? Point::velocities == Buf::V : Point::velocities == Buf::Y,
         "a held range evaluates at the state or at the last stage point");
     constexpr bool at_state = Point::positions == Buf::W;
-    layout_detail::fused_stage<Law, Terms, typename Round::BlockRound, at_state>(
-        forces_, in_, lo_, hi_, w_, wd_, x_in_, y_in_, x_out_, y_out_, cw_, cv_, u_, update);
+    constexpr bool summed = Pad && !std::is_same_v<Sum, NoSum>;
+    if constexpr (Pad && !std::is_same_v<Earlier, NoSum>) {
+      double earlier_total = 0;
+      for (const Range& r : ranges_)
+        for (int j = r.lo + 1; j < r.hi - 1; ++j) {
+          StageElement<typename Round::BlockRound> e{w_[j],    wd_[j], x_in_[j], y_in_[j], x_in_[j],
+                                                     y_in_[j], cw_[j], cv_[j],   u_[j]};
+          earlier_total += earlier.term(e);
+        }
+      sum_ = st_.sum_w + earlier.scale * earlier_total;
+    }
+    const double x_at = at_state ? st_.x : x_;
+    const double xd_at = at_state ? st_.xd : xd_;
+    double ax = 0;
+    if constexpr (Pad) {
+      ax = forces_.pad_acceleration(x_at, xd_at, at_state ? st_.sum_w : sum_, in_.frozen.s);
+      in_.anchor = in_.frozen.s + x_at;  // ChainLayout's anchor
+    }
+    // Without the pad the blocks' pass adds no terms.
+    const auto& block_sum = layout_detail::sum_if<summed>(sum);
+    double total = 0;
+    for (const Range& r : ranges_)
+      total = layout_detail::fused_stage<Law, Terms, typename Round::BlockRound, at_state>(
+          forces_, in_, r.lo + 1, r.hi - 1, w_, wd_, x_in_, y_in_, x_out_, y_out_, cw_, cv_, u_,
+          update, block_sum, total);
     std::swap(x_in_, x_out_);
     std::swap(y_in_, y_out_);
+    if constexpr (Pad) {
+      StageElement<typename Round::PadRound> e{st_.x, st_.xd, x_, xd_, x_, xd_, cx_, cxd_, xu_};
+      update(e, ax);
+      if constexpr (summed) {
+        if (sum.into_state)
+          st_.sum_w += sum.scale * total;
+        else
+          sum_ = st_.sum_w + sum.scale * total;
+      }
+    }
   }
   void finish(double) {}
 
  private:
   const ChainForces& forces_;
-  const HeldInput& in_;
-  int lo_, hi_;
+  ChainState& st_;
+  Ranges ranges_;
   double *w_, *wd_, *x_in_, *y_in_, *x_out_, *y_out_, *cw_, *cv_, *u_;
+  HeldInput in_;
+  // The pad's stage point, accumulators and spare velocity, and the stage's sum of w.
+  double x_ = 0, xd_ = 0, cx_ = 0, cxd_ = 0, xu_ = 0, sum_ = 0;
 };
 
 // The pad's state while a cluster runs with the pad moving (written back at the end).
