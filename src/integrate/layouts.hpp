@@ -189,6 +189,27 @@ template <class B, class Accel, class Update, class Sum, class Earlier>
 
 }  // namespace layout_detail
 
+// What a layout with a moving pad keeps for it besides the state: the pad's stage point,
+// accumulators and spare velocity, and the stage's sum of block positions.
+struct PadStage {
+  double x = 0, xd = 0, cx = 0, cxd = 0, xu = 0, sum = 0;
+};
+
+// A stage's end for the moving pad (x, xd, sum_w its state): its update at acceleration ax,
+// then its sum of positions from `total`, the blocks' sum of `sum`'s terms.
+template <class Round, class Update, class Sum>
+inline void pad_stage_end(Update& update, double ax, double& x, double& xd, double& sum_w,
+                          PadStage& ps, const Sum& sum, double total) {
+  StageElement<typename Round::PadRound> e{x, xd, ps.x, ps.xd, ps.x, ps.xd, ps.cx, ps.cxd, ps.xu};
+  update(e, ax);
+  if constexpr (!std::is_same_v<Sum, NoSum>) {
+    if (sum.into_state)
+      sum_w += sum.scale * total;
+    else
+      ps.sum = sum_w + sum.scale * total;
+  }
+}
+
 template <class Round, bool Fusable = false>
 class ChainLayout {
  public:
@@ -224,8 +245,8 @@ class ChainLayout {
     const SubstrateState sub = sub_.at(st_.t + time_offset);
     const double* w_at = state_positions ? st_.w.data() : s_.x.data();
     const double* v_at = pick(Point::velocities, st_.wd.data(), s_.y.data(), s_.u.data());
-    const double x_at = state_positions ? st_.x : x_;
-    const double xd_at = pick(Point::velocities, st_.xd, xd_, xu_);
+    const double x_at = state_positions ? st_.x : ps_.x;
+    const double xd_at = pick(Point::velocities, st_.xd, ps_.xd, ps_.xu);
     const double anchor = sub.s + (pad_ ? x_at : 0.0);
     const double anchor_v = sub.v + (pad_ ? xd_at : 0.0);
     // Rayleigh damping on the pad needs the blocks' velocities at the stage point (taken
@@ -235,7 +256,7 @@ class ChainLayout {
       for (const Range& r : ranges_)
         for (int j = r.lo; j < r.hi; ++j) sum_wd += v_at[j];
     auto pad_acceleration = [&] {
-      const double sum_w = state_positions ? st_.sum_w : sum_;
+      const double sum_w = state_positions ? st_.sum_w : ps_.sum;
       return pad_ ? forces_.pad_acceleration(x_at, xd_at, sum_w, sub.s, sum_wd, sub.v) : 0.0;
     };
     // Before the pass where it can (its division overlaps the loops).
@@ -264,17 +285,10 @@ class ChainLayout {
     }
     if (!pad_) return;
     if constexpr (joint) {
-      sum_ = st_.sum_w + earlier.scale * totals[1];
+      ps_.sum = st_.sum_w + earlier.scale * totals[1];
       ax = pad_acceleration();
     }
-    StageElement<typename Round::PadRound> e{st_.x, st_.xd, x_, xd_, x_, xd_, cx_, cxd_, xu_};
-    update(e, ax);
-    if constexpr (!std::is_same_v<Sum, NoSum>) {
-      if (sum.into_state)
-        st_.sum_w += sum.scale * totals[0];
-      else
-        sum_ = st_.sum_w + sum.scale * totals[0];
-    }
+    pad_stage_end<Round>(update, ax, st_.x, st_.xd, st_.sum_w, ps_, sum, totals[0]);
   }
   void finish(double h) { st_.t += h; }
 
@@ -290,8 +304,7 @@ class ChainLayout {
   Ranges ranges_;
   ExplicitScratch& s_;
   bool pad_;
-  // The pad's stage point, accumulators and spare velocity, and the stage's sum of w.
-  double x_ = 0, xd_ = 0, cx_ = 0, cxd_ = 0, xu_ = 0, sum_ = 0;
+  PadStage ps_;
 };
 
 // What a held range's fused stages read besides the stage point.
@@ -402,13 +415,13 @@ class HeldRangeLayout {
                                                      y_in_[j], cw_[j], cv_[j],   u_[j]};
           earlier_total += earlier.term(e);
         }
-      sum_ = st_.sum_w + earlier.scale * earlier_total;
+      ps_.sum = st_.sum_w + earlier.scale * earlier_total;
     }
-    const double x_at = at_state ? st_.x : x_;
-    const double xd_at = at_state ? st_.xd : xd_;
+    const double x_at = at_state ? st_.x : ps_.x;
+    const double xd_at = at_state ? st_.xd : ps_.xd;
     double ax = 0;
     if constexpr (Pad) {
-      ax = forces_.pad_acceleration(x_at, xd_at, at_state ? st_.sum_w : sum_, in_.frozen.s);
+      ax = forces_.pad_acceleration(x_at, xd_at, at_state ? st_.sum_w : ps_.sum, in_.frozen.s);
       in_.anchor = in_.frozen.s + x_at;  // ChainLayout's anchor
     }
     // Without the pad the blocks' pass adds no terms.
@@ -420,16 +433,7 @@ class HeldRangeLayout {
           update, block_sum, total);
     std::swap(x_in_, x_out_);
     std::swap(y_in_, y_out_);
-    if constexpr (Pad) {
-      StageElement<typename Round::PadRound> e{st_.x, st_.xd, x_, xd_, x_, xd_, cx_, cxd_, xu_};
-      update(e, ax);
-      if constexpr (summed) {
-        if (sum.into_state)
-          st_.sum_w += sum.scale * total;
-        else
-          sum_ = st_.sum_w + sum.scale * total;
-      }
-    }
+    if constexpr (Pad) pad_stage_end<Round>(update, ax, st_.x, st_.xd, st_.sum_w, ps_, sum, total);
   }
   void finish(double) {}
 
@@ -439,8 +443,7 @@ class HeldRangeLayout {
   Ranges ranges_;
   double *w_, *wd_, *x_in_, *y_in_, *x_out_, *y_out_, *cw_, *cv_, *u_;
   HeldInput in_;
-  // The pad's stage point, accumulators and spare velocity, and the stage's sum of w.
-  double x_ = 0, xd_ = 0, cx_ = 0, cxd_ = 0, xu_ = 0, sum_ = 0;
+  PadStage ps_;
 };
 
 // The pad's state while a cluster runs with the pad moving (written back at the end).
@@ -482,14 +485,14 @@ class ClusterLayout {
     constexpr bool at_state = state_positions && Point::velocities == Buf::V;
     constexpr bool joint = Pad && !std::is_same_v<Earlier, NoSum>;
     constexpr bool summed = Pad && !std::is_same_v<Sum, NoSum>;
-    const double x_at = state_positions ? pad_.x : x_pad_;
-    const double xd_at = pick<Point::velocities>(pad_.xd, xd_, xu_);
+    const double x_at = state_positions ? pad_.x : ps_.x;
+    const double xd_at = pick<Point::velocities>(pad_.xd, ps_.xd, ps_.xu);
     if (!at_state || evaluated_)
       acceleration_(state_positions ? w_ : x_, pick<Point::velocities>(v_, y_, u_),
                     Pad ? base_ + x_at : base_, a_);
     evaluated_ = true;
     auto pad_acceleration = [&] {
-      return forces_.pad_acceleration(x_at, xd_at, state_positions ? pad_.sum_w : sum_, base_);
+      return forces_.pad_acceleration(x_at, xd_at, state_positions ? pad_.sum_w : ps_.sum, base_);
     };
     double ax = !Pad || joint ? 0.0 : pad_acceleration();
     auto element = [&](int i) {
@@ -510,18 +513,10 @@ class ClusterLayout {
     }
     if constexpr (Pad) {
       if constexpr (joint) {
-        sum_ = pad_.sum_w + earlier.scale * earlier_total;
+        ps_.sum = pad_.sum_w + earlier.scale * earlier_total;
         ax = pad_acceleration();
       }
-      StageElement<typename Round::PadRound> e{pad_.x, pad_.xd, x_pad_, xd_, x_pad_,
-                                               xd_,    cx_,     cxd_,   xu_};
-      update(e, ax);
-      if constexpr (summed) {
-        if (sum.into_state)
-          pad_.sum_w += sum.scale * total;
-        else
-          sum_ = pad_.sum_w + sum.scale * total;
-      }
+      pad_stage_end<Round>(update, ax, pad_.x, pad_.xd, pad_.sum_w, ps_, sum, total);
     }
   }
   void finish(double) {}
@@ -543,7 +538,7 @@ class ClusterLayout {
   Array &w_, &v_, &a_;
   Array x_, y_, cw_, cv_, u_;
   PadStageState& pad_;
-  double x_pad_ = 0, xd_ = 0, cx_ = 0, cxd_ = 0, xu_ = 0, sum_ = 0;
+  PadStage ps_;
   bool velocity_dependent_;
   bool evaluated_ = false;
 };
