@@ -330,7 +330,7 @@ bool EventEngine::held_ranges() const {
 bool EventEngine::cluster_ready(ClusterRelaxation& r) const {
   // One covered range (so every sliding block is inside it) and at most kMaxCluster
   // blocks between its ends, which are stuck blocks or free chain ends (the stepper
-  // refuses the shapes it has no code for: run_cluster, run_pad_cluster).
+  // refuses the shapes it has no code for: run_cluster).
   if (!cluster_path || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1)
     return false;
   const Range& range = ranges_.front();

@@ -1,23 +1,30 @@
 // The event engine's commonest cases, a few blocks sliding between two neighbours that
-// hold (most events of the shipped scenes), advanced by a scheme's scalar form instead of
-// its range loops.
+// hold (most events of the shipped scenes), advanced by a scheme's Method over the
+// cluster's registers (ClusterLayout, integrate/layouts.hpp) instead of its range loops.
 //
 // A cluster is one covered range [lo, lo + K + 2) whose two end blocks are stuck: K
-// interior blocks, some sliding, some stuck, and nothing else in the chain moving (the
-// pad is held; the caller checks). With K a compile-time constant the whole cluster
-// lives in registers. A Crossing stepper (rk2, rk4, verlet) supplies its step for the
-// cluster as a function of fixed-size arrays; run_cluster() runs it step after step and
-// after each one does what the engine's general path does: it adds the dissipated power
-// to the energy balance (dissipated_power's sum, in the same order), and applies the
-// Crossing rule and the release test to every block of the range in block order
-// (settle_contacts' rule, engine/contacts.hpp). It returns after the first step at whose
-// end every block is stuck, a block broke loose, a speed is not finite, or the step
-// budget ran out: the caller then does its usual end-of-step bookkeeping, and the general
-// path takes over if the event goes on in another shape.
+// interior blocks, some sliding, some stuck, and nothing else in the chain moving but
+// the pad, where it moves (Pad). With K a compile-time constant the whole cluster lives
+// in registers. run_cluster() runs the scheme's step after step and after each one does
+// what the engine's general path does, in the same order: it adds the dissipated power to
+// the energy balance (dissipated_power's sum), applies the Crossing rule and the release
+// test to every block of the range in block order (settle_contacts' rule,
+// engine/contacts.hpp), and with the pad adds the pad damper's work and tests whether the
+// pad's swing broke a far stuck block (the force tree's extremes, constant while the
+// cluster runs). It returns after the first step at whose end every block is stuck, a
+// block broke loose, a speed is not finite, or the step budget ran out: the caller then
+// does its usual end-of-step bookkeeping, and the general path takes over if the event
+// goes on in another shape.
+//
+// With the pad moving it is one more element of the scheme's stages, exactly as
+// ChainLayout advances it (the anchor at each stage is the substrate plus the pad's stage
+// position; the pad's acceleration reads the stage's sum of block positions, formed from
+// the cluster's terms in block order). The stuck end blocks add exactly zero to every
+// sum, so they are left out.
 //
 // Every operation is the one the general path performs, in the same order (the stuck
 // ends' stage positions equal their positions), so the events are the same bit for bit;
-// tests/regression/test_cluster.cpp runs both paths and compares the catalogs.
+// tests/regression/test_cluster.cpp and test_pad_paths.cpp run both paths and compare.
 //
 // At a free chain end the range has no stuck block on that side: its first (or last)
 // block is then the chain's end block, in any state, and the cluster's entry 0 (or
@@ -34,6 +41,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "integrate/layouts.hpp"
 #include "model/chain.hpp"
 #include "model/stick.hpp"
 
@@ -49,11 +57,15 @@ struct ClusterRelaxation {
   int k = 1;                // k interior blocks, 1..kMaxCluster, between them,
   bool free_left = false;   // except that entry 0 is a phantom (lo = -1: block 0 is a free end)
   bool free_right = false;  // or entry k + 1 is (block n - 1 is a free end)
-  double anchor = 0;        // substrate + pad (the pad is held)
+  double anchor = 0;        // substrate + pad (the pad held; not read when it moves)
   SubstrateState sub;       // the frozen substrate
   double dt = 0;
   double half_dt_m = 0;        // trapezoidal weight of the dissipated power: dt m_u / 2
   std::int64_t max_steps = 0;  // return after this many steps at most
+  // With the pad moving: the force tree's largest and smallest anchor-free force g over
+  // the uncovered stuck blocks, and the pad damper's trapezoidal weight.
+  double far_max = -HUGE_VAL, far_min = HUGE_VAL;
+  double half_dt_cp = 0;
   // Advanced: the range's entries of the state, and the time.
   ChainState* state = nullptr;
   double* dissipated = nullptr;  // += half_dt_m * power, step by step
@@ -64,22 +76,19 @@ struct ClusterRelaxation {
   int sliding = 0;                              // sliding blocks after the last step
   std::array<int, kMaxCluster + 2> released{};  // blocks that broke loose then, in order
   int n_released = 0;
+  bool far_break = false;  // with the pad moving: the last step's swing broke a far block
 };
 
 // The arrays a scheme's cluster step works on: entries 0 and K + 1 are the stuck ends.
 template <int K>
 using ClusterArray = std::array<double, K + 2>;
 
-// Runs the loop described above with the scheme's step
-//   advance(acceleration, w, y, a, h)
-// on ClusterArray<K> positions w and velocities y, interior entries only, where a holds
-// the accelerations at (w, y) on entry (scratch after), and acceleration(x, v, a) sets
-// a[1..K] to the blocks' accelerations at stage positions x and velocities v (x[0] and
-// x[K+1] being the ends' positions), with every block's stick flag and direction of
-// sliding frozen for the step. Returns false, having done
-// nothing, for the friction laws the event engine refuses (cl89, none).
-template <int K, bool FreeLeft, bool FreeRight, class Advance>
-bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&& advance) {
+// Runs the loop described above with the Method's step on ClusterArray<K> positions and
+// velocities, interior entries only, the stick flags and directions of sliding frozen for
+// the step. Returns false, having done nothing, for the friction laws the event engine
+// refuses (cl89, none).
+template <class Method, bool Pad, int K, bool FreeLeft, bool FreeRight>
+bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
   static_assert(K >= 1 && K <= kMaxCluster);
   return forces.with_switches([&]<class Law, class Terms>(const Law& law_in) {
     if constexpr (!Law::drives_events) {
@@ -88,14 +97,19 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       const Law law = law_in;  // a local, which the stores cannot change
       using Array = ClusterArray<K>;
       const Friction& fr = forces.friction();
-      const double damper = forces.params().c_u / forces.params().m_u;
+      const ModelParams& p = forces.params();
+      const double damper = p.c_u / p.m_u, kp = p.k_p;
+      const bool velocity_dependent = bkq::velocity_dependent(p, Pad);
       ChainState& st = *r.state;
       double* w_all = st.w.data();
       const int lo = r.lo;
       // The entries that are blocks of the chain (the phantoms are not).
       constexpr int first = FreeLeft ? 1 : 0, last = FreeRight ? K : K + 1;
-      const double anchor = r.anchor, dt = r.dt, half_dt_m = r.half_dt_m;
+      const double dt = r.dt, half_dt_m = r.half_dt_m, half_dt_cp = r.half_dt_cp;
+      const double far_max = r.far_max, far_min = r.far_min;
       const SubstrateState sub = r.sub;
+      // The anchor less the pad's position: the substrate, or the whole anchor when held.
+      const double base = Pad ? sub.s : r.anchor;
       // Everything the loop carries lives in locals (written back once at the end), so the
       // stores into the state cannot force reloads; the sums are formed in the same order.
       Array w{}, y{}, mobile{}, dir{};
@@ -105,9 +119,12 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
         mobile[i] = st.mobile[lo + i];
         dir[i] = st.dir[lo + i];
       }
+      PadStageState pad{};
+      if constexpr (Pad) pad = {st.x, st.xd, st.sum_w};
       double t = st.t, dissipated = *r.dissipated, max_speed = r.max_speed;
       std::int64_t steps = 0, sliding_block_steps = 0;
       int sliding = 0, n_released = 0;
+      bool far_break = false;
       // Each block's friction magnitude |phi(y)| at its current velocity: the power at the
       // end of one step needs it, and the first stage of the next step and the power at
       // its start need it again (the same value, so it is divided out once).
@@ -120,7 +137,7 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
       // The phantom always goes in the left slot: k_c ((w - 2w) + w_n) rounds once, as
       // spring_force's k_c (0 + (w_n - w)) does; in the right slot (w_n - 2w) + w would
       // round twice.
-      auto force = [&](const Array& x, int i) {
+      auto force = [&](const Array& x, int i, double anchor) {
         if constexpr (FreeLeft) {
           if (i == 1) return forces.interior_force<Terms>(x[1], x[1], x[2], anchor);
         }
@@ -129,18 +146,24 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
         }
         return forces.interior_force<Terms>(x[i - 1], x[i], x[i + 1], anchor);
       };
-      auto acceleration = [&](const Array& x, const Array& v, Array& a) {
+      auto acceleration = [&](const Array& x, const Array& v, double anchor, Array& a) {
         for (int i = 1; i <= K; ++i)
-          a[i] = flagged(
-              i, forces.acceleration<Law, Terms, false>(law, force(x, i), v[i], dir[i], sub));
+          a[i] = flagged(i, forces.acceleration<Law, Terms, false>(law, force(x, i, anchor), v[i],
+                                                                   dir[i], sub));
       };
       for (bool done = false; !done;) {
         const Array y0 = y, magnitude0 = magnitude;
+        const double xd_old = pad.xd;
+        const double anchor0 = Pad ? base + pad.x : base;
         Array a;  // the first stage's accelerations, at the start of the step
         for (int i = 1; i <= K; ++i)
-          a[i] = flagged(i, forces.acceleration_given<Law, Terms, false>(force(w, i), magnitude[i],
-                                                                         y[i], dir[i], sub));
-        advance(acceleration, w, y, a, dt);
+          a[i] = flagged(i, forces.acceleration_given<Law, Terms, false>(
+                                force(w, i, anchor0), magnitude[i], y[i], dir[i], sub));
+        {
+          ClusterLayout<typename Method::Round, decltype(acceleration), Array, Pad> layout(
+              forces, base, acceleration, w, y, a, pad, velocity_dependent);
+          Method::advance(layout, dt);
+        }
         t += dt;
         ++steps;
         for (int i = 1; i <= K; ++i) w_all[lo + i] = w[i];  // the spring forces below read them
@@ -156,6 +179,7 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
         dissipated += half_dt_m * power.total();
 
         // The stick rule (model/stick.hpp), block by block.
+        const double anchor = Pad ? base + pad.x : base;
         sliding = 0;
         n_released = 0;
         for (int i = first; i <= last; ++i) {
@@ -178,13 +202,25 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
             magnitude[i] = magnitude_at_rest;  // it stuck
           }
         }
+        if constexpr (Pad) dissipated += half_dt_cp * (xd_old * xd_old + pad.xd * pad.xd);
         sliding_block_steps += sliding;
-        done = sliding == 0 || n_released > 0 || !std::isfinite(max_speed) || steps >= r.max_steps;
+        // query_tree_failures' test, with the anchor formed as anchor() forms it.
+        if constexpr (Pad)
+          far_break = far_max + kp * anchor > fr.threshold ||
+                      (fr.backslip && far_min + kp * anchor < -fr.threshold);
+        done = sliding == 0 || n_released > 0 || far_break || !std::isfinite(max_speed) ||
+               steps >= r.max_steps;
       }
       for (int i = first; i <= last; ++i) {
         st.wd[lo + i] = y[i];
         st.mobile[lo + i] = mobile[i];
         st.dir[lo + i] = dir[i];
+      }
+      if constexpr (Pad) {
+        st.x = pad.x;
+        st.xd = pad.xd;
+        st.sum_w = pad.sum_w;
+        r.far_break = far_break;
       }
       st.t = t;
       *r.dissipated = dissipated;
@@ -201,16 +237,15 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r, Advance&
 // Free chain ends take this many blocks at most into a cluster (fewer instantiations).
 inline constexpr int kMaxClusterAtEnd = 4;
 
-// Calls run_cluster_sized with K = r.k and the free ends as compile-time constants;
-// `advance` must accept the ClusterArray of every size. False if there is no such
-// instantiation (a cluster at a chain end larger than kMaxClusterAtEnd).
-template <class Advance>
-bool run_cluster(const ChainForces& forces, ClusterRelaxation& r, Advance&& advance) {
+// Calls run_cluster_sized with K = r.k and the free ends as compile-time constants. False
+// if there is no such instantiation (a cluster at a chain end larger than kMaxClusterAtEnd).
+template <class Method, bool Pad>
+bool run_cluster(const ChainForces& forces, ClusterRelaxation& r) {
   auto sized = [&]<bool FreeLeft, bool FreeRight, int Max>() {
     return [&]<int... Ks>(std::integer_sequence<int, Ks...>) {
       bool ran = false;
       ((r.k == Ks + 1 &&
-        (ran = run_cluster_sized<Ks + 1, FreeLeft, FreeRight>(forces, r, advance), true)) ||
+        (ran = run_cluster_sized<Method, Pad, Ks + 1, FreeLeft, FreeRight>(forces, r), true)) ||
        ...);
       return ran;
     }

@@ -9,8 +9,6 @@
 
 #include "integrate/cluster.hpp"
 #include "integrate/layouts.hpp"
-#include "integrate/pad_cluster.hpp"
-#include "integrate/pad_held.hpp"
 #include "integrate/stepper.hpp"
 
 namespace bkq {
@@ -44,40 +42,20 @@ class ExplicitScheme final : public Stepper {
 
   void step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                  Ranges ranges) override {
-    if constexpr (!Method::fusable) {
+    if constexpr (!Method::fusable)
       step(forces, sub, st, dt, ranges);
-    } else if (forces.params().pad_moves()) {
-      scratch_.fit(forces, ranges);
-      step_held_with_pad<Method>(forces, sub, st, dt, ranges, scratch_);
-    } else {
-      const SubstrateState frozen = sub.at(st.t);
-      // The anchor as the general step forms it (substrate + held pad at 0).
-      const HeldInput in{st.mobile.data(), st.dir.data(), frozen.s + 0.0, frozen};
-      forces.with_switches([&]<class Law, class Terms>(const Law&) {
-        for (const Range& r : ranges) {
-          scratch_.fit(forces, Ranges(&r, 1));
-          HeldRangeLayout<typename Method::Round, Law, Terms> layout(forces, in, r, st, scratch_);
-          Method::advance(layout, dt);
-        }
-      });
-      st.t += dt;
-    }
+    else if (forces.params().pad_moves())
+      step_held_ranges<true>(forces, sub, st, dt, ranges);
+    else
+      step_held_ranges<false>(forces, sub, st, dt, ranges);
   }
 
   bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override {
-    const bool velocity_dependent = bkq::velocity_dependent(forces.params(), false);
-    return run_cluster(
-        forces, r,
-        [velocity_dependent](const auto& acceleration, auto& w, auto& v, auto& a, double h) {
-          ClusterLayout<typename Method::Round, std::remove_cvref_t<decltype(acceleration)>,
-                        std::remove_reference_t<decltype(w)>>
-              layout(acceleration, w, v, a, velocity_dependent);
-          Method::advance(layout, h);
-        });
+    return run_cluster<Method, false>(forces, r);
   }
 
-  bool relax_pad_cluster(const ChainForces& forces, PadClusterRelaxation& r) const override {
-    return run_pad_cluster<Method>(forces, r);
+  bool relax_pad_cluster(const ChainForces& forces, ClusterRelaxation& r) const override {
+    return run_cluster<Method, true>(forces, r);
   }
 
  private:
@@ -92,6 +70,26 @@ class ExplicitScheme final : public Stepper {
     const ModelParams& p = forces.params();
     return hi - lo > 4 * blocks + 256 && !p.pad_moves() &&
            !(p.boundary == Boundary::Periodic && (lo == 0 || hi == forces.n()));
+  }
+  // step_held's fused step: with the pad moving all ranges in one layout (the pad couples
+  // them), without it one range at a time (the scratch then holds one range).
+  template <bool Pad>
+  void step_held_ranges(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+                        Ranges ranges) {
+    const SubstrateState frozen = sub.at(st.t);
+    forces.with_switches([&]<class Law, class Terms>(const Law&) {
+      auto fused = [&](Ranges rs) {
+        scratch_.fit(forces, rs);
+        HeldRangeLayout<typename Method::Round, Law, Terms, Pad> layout(forces, frozen, st, rs,
+                                                                        scratch_);
+        Method::advance(layout, dt);
+      };
+      if constexpr (Pad)
+        fused(ranges);
+      else
+        for (const Range& r : ranges) fused(Ranges(&r, 1));
+    });
+    st.t += dt;
   }
   void step_together(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                      Ranges ranges) {

@@ -3,13 +3,13 @@
 // stage formulas, so every layout runs the same operations and they agree bit for bit.
 //   ChainLayout      the blocks in a set of ranges and the pad (when it moves), with the
 //                    substrate at each stage's time: the general step.
-//   HeldRangeLayout  the interior blocks of one range whose end blocks are stuck, the pad
-//                    held and the substrate frozen: each stage is one fused pass
-//                    (accelerations and updates together), the stage points
+//   HeldRangeLayout  the interior blocks of ranges whose end blocks are stuck, the
+//                    substrate frozen, and the pad where it moves: each stage is one fused
+//                    pass per range (accelerations and updates together), the stage points
 //                    double-buffered; only for schemes whose stages never write the
 //                    positions they are evaluated at (Method::fusable).
 //   ClusterLayout    the interior entries of a fixed-size cluster (integrate/cluster.hpp),
-//                    held in registers.
+//                    held in registers, and the pad where it moves.
 #pragma once
 
 #include <algorithm>
@@ -189,6 +189,27 @@ template <class B, class Accel, class Update, class Sum, class Earlier>
 
 }  // namespace layout_detail
 
+// What a layout with a moving pad keeps for it besides the state: the pad's stage point,
+// accumulators and spare velocity, and the stage's sum of block positions.
+struct PadStage {
+  double x = 0, xd = 0, cx = 0, cxd = 0, xu = 0, sum = 0;
+};
+
+// A stage's end for the moving pad (x, xd, sum_w its state): its update at acceleration ax,
+// then its sum of positions from `total`, the blocks' sum of `sum`'s terms.
+template <class Round, class Update, class Sum>
+inline void pad_stage_end(Update& update, double ax, double& x, double& xd, double& sum_w,
+                          PadStage& ps, const Sum& sum, double total) {
+  StageElement<typename Round::PadRound> e{x, xd, ps.x, ps.xd, ps.x, ps.xd, ps.cx, ps.cxd, ps.xu};
+  update(e, ax);
+  if constexpr (!std::is_same_v<Sum, NoSum>) {
+    if (sum.into_state)
+      sum_w += sum.scale * total;
+    else
+      ps.sum = sum_w + sum.scale * total;
+  }
+}
+
 template <class Round, bool Fusable = false>
 class ChainLayout {
  public:
@@ -224,8 +245,8 @@ class ChainLayout {
     const SubstrateState sub = sub_.at(st_.t + time_offset);
     const double* w_at = state_positions ? st_.w.data() : s_.x.data();
     const double* v_at = pick(Point::velocities, st_.wd.data(), s_.y.data(), s_.u.data());
-    const double x_at = state_positions ? st_.x : x_;
-    const double xd_at = pick(Point::velocities, st_.xd, xd_, xu_);
+    const double x_at = state_positions ? st_.x : ps_.x;
+    const double xd_at = pick(Point::velocities, st_.xd, ps_.xd, ps_.xu);
     const double anchor = sub.s + (pad_ ? x_at : 0.0);
     const double anchor_v = sub.v + (pad_ ? xd_at : 0.0);
     // Rayleigh damping on the pad needs the blocks' velocities at the stage point (taken
@@ -235,7 +256,7 @@ class ChainLayout {
       for (const Range& r : ranges_)
         for (int j = r.lo; j < r.hi; ++j) sum_wd += v_at[j];
     auto pad_acceleration = [&] {
-      const double sum_w = state_positions ? st_.sum_w : sum_;
+      const double sum_w = state_positions ? st_.sum_w : ps_.sum;
       return pad_ ? forces_.pad_acceleration(x_at, xd_at, sum_w, sub.s, sum_wd, sub.v) : 0.0;
     };
     // Before the pass where it can (its division overlaps the loops).
@@ -264,17 +285,10 @@ class ChainLayout {
     }
     if (!pad_) return;
     if constexpr (joint) {
-      sum_ = st_.sum_w + earlier.scale * totals[1];
+      ps_.sum = st_.sum_w + earlier.scale * totals[1];
       ax = pad_acceleration();
     }
-    StageElement<typename Round::PadRound> e{st_.x, st_.xd, x_, xd_, x_, xd_, cx_, cxd_, xu_};
-    update(e, ax);
-    if constexpr (!std::is_same_v<Sum, NoSum>) {
-      if (sum.into_state)
-        st_.sum_w += sum.scale * totals[0];
-      else
-        sum_ = st_.sum_w + sum.scale * totals[0];
-    }
+    pad_stage_end<Round>(update, ax, st_.x, st_.xd, st_.sum_w, ps_, sum, totals[0]);
   }
   void finish(double h) { st_.t += h; }
 
@@ -290,8 +304,7 @@ class ChainLayout {
   Ranges ranges_;
   ExplicitScratch& s_;
   bool pad_;
-  // The pad's stage point, accumulators and spare velocity, and the stage's sum of w.
-  double x_ = 0, xd_ = 0, cx_ = 0, cxd_ = 0, xu_ = 0, sum_ = 0;
+  PadStage ps_;
 };
 
 // What a held range's fused stages read besides the stage point.
@@ -305,19 +318,21 @@ struct HeldInput {
 namespace layout_detail {
 
 // One fused pass over the inner blocks [lo, hi): the acceleration at the stage point
-// (x, v) as the chain's kernel forms it, then the scheme's update. Everything is a
-// restrict parameter, so the compiler knows the stores cannot change what the pass reads
-// and vectorises it.
+// (x, v) as the chain's kernel forms it, the scheme's update, and (unless Sum is NoSum)
+// the block's term of the pad's sum, added to `total` in block order; returns the total.
+// Everything is a restrict parameter, so the compiler knows the stores cannot change what
+// the pass reads and vectorises it.
 // At the state (AtState) the stage point is (w, wd) itself and x, v are not read.
 // Kept out of line: inlined into the scheme's advance(), the restrict qualifiers no
-// longer tell the compiler the arrays are apart and the pass stays scalar.
-template <class Law, class Terms, class B, bool AtState, class Update>
-[[gnu::noinline]] void fused_stage(const ChainForces& forces, const HeldInput& in, int lo, int hi,
-                                   double* __restrict w, double* __restrict wd,
-                                   const double* __restrict x_in, const double* __restrict v_in,
-                                   double* __restrict xo, double* __restrict yo,
-                                   double* __restrict cw, double* __restrict cv,
-                                   double* __restrict u, Update& update) {
+// longer tell the compiler the arrays are apart and the pass stays scalar. Not cloned:
+// GCC's clone without the unused sum (IPA-SRA) checked the arrays against the forces at
+// run time instead of loading the force constants once.
+template <class Law, class Terms, class B, bool AtState, class Update, class Sum>
+[[gnu::noinline, gnu::noclone]] double fused_stage(
+    const ChainForces& forces, const HeldInput& in, int lo, int hi, double* __restrict w,
+    double* __restrict wd, const double* __restrict x_in, const double* __restrict v_in,
+    double* __restrict xo, double* __restrict yo, double* __restrict cw, double* __restrict cv,
+    double* __restrict u, Update& update, const Sum& sum, double total) {
   const Law& law = forces.law<Law>();
   const double* x = AtState ? w : x_in;
   const double* v = AtState ? wd : v_in;
@@ -332,20 +347,36 @@ template <class Law, class Terms, class B, bool AtState, class Update>
                         dir[j], frozen);
     StageElement<B> e{w[j], wd[j], x[j], v[j], xo[j], yo[j], cw[j], cv[j], u[j]};
     update(e, a);
+    if constexpr (!std::is_same_v<Sum, NoSum>) total += sum.term(e);
   }
+  return total;
+}
+
+template <bool Summed, class Sum>
+const auto& sum_if(const Sum& sum) {
+  if constexpr (Summed)
+    return sum;
+  else
+    return no_sum;
 }
 
 }  // namespace layout_detail
 
-template <class Round, class Law, class Terms>
+// The interior blocks of ranges whose end blocks are stuck, the substrate frozen, and with
+// Pad the pad moving: each stage is one fused pass per range (accelerations at the anchor
+// substrate + the pad's stage position, the update, the pad's sum's terms) and then the
+// pad's update, as ChainLayout does them, so the result is step()'s bit for bit. The stuck
+// end blocks are left out: their accelerations, updates and terms of the pad's sum are
+// exactly zero (their velocities are 0, their stage positions their positions). Without
+// the pad the pad's parts compile away.
+template <class Round, class Law, class Terms, bool Pad>
 class HeldRangeLayout {
  public:
-  HeldRangeLayout(const ChainForces& forces, const HeldInput& in, Range r, ChainState& st,
+  HeldRangeLayout(const ChainForces& forces, SubstrateState frozen, ChainState& st, Ranges ranges,
                   ExplicitScratch& s)
       : forces_(forces),
-        in_(in),
-        lo_(r.lo + 1),
-        hi_(r.hi - 1),
+        st_(st),
+        ranges_(ranges),
         w_(st.w.data()),
         wd_(st.wd.data()),
         x_in_(s.x2.data()),
@@ -354,45 +385,87 @@ class HeldRangeLayout {
         y_out_(s.y.data()),
         cw_(s.cw.data()),
         cv_(s.cv.data()),
-        u_(s.u.data()) {
+        u_(s.u.data()),
+        // The anchor as ChainLayout forms it (substrate + held pad at 0; stage() adds the
+        // moving pad's stage position).
+        in_{st.mobile.data(), st.dir.data(), frozen.s + 0.0, frozen} {
     // The end blocks are stuck: their stage positions are their positions.
-    s.x[r.lo] = s.x2[r.lo] = w_[r.lo];
-    s.x[hi_] = s.x2[hi_] = w_[hi_];
+    for (const Range& r : ranges) {
+      x_out_[r.lo] = x_in_[r.lo] = w_[r.lo];
+      x_out_[r.hi - 1] = x_in_[r.hi - 1] = w_[r.hi - 1];
+    }
   }
 
-  bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), false); }
+  bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), Pad); }
 
-  template <class Point, class Update, class... Sums>
-  void stage(Point, double, Update&& update, const Sums&...) {
+  // With `earlier` (ChainLayout's meaning): the sum of the stage point this stage evaluates
+  // at, which the stage before left out, its terms read before this stage's update.
+  template <class Point, class Update, class Sum, class Earlier = NoSum>
+  void stage(Point, double, Update&& update, const Sum& sum, const Earlier& earlier = no_sum) {
     static_assert(
         Point::positions == Buf::W ? Point::velocities == Buf::V : Point::velocities == Buf::Y,
         "a held range evaluates at the state or at the last stage point");
     constexpr bool at_state = Point::positions == Buf::W;
-    layout_detail::fused_stage<Law, Terms, typename Round::BlockRound, at_state>(
-        forces_, in_, lo_, hi_, w_, wd_, x_in_, y_in_, x_out_, y_out_, cw_, cv_, u_, update);
+    constexpr bool summed = Pad && !std::is_same_v<Sum, NoSum>;
+    if constexpr (Pad && !std::is_same_v<Earlier, NoSum>) {
+      double earlier_total = 0;
+      for (const Range& r : ranges_)
+        for (int j = r.lo + 1; j < r.hi - 1; ++j) {
+          StageElement<typename Round::BlockRound> e{w_[j],    wd_[j], x_in_[j], y_in_[j], x_in_[j],
+                                                     y_in_[j], cw_[j], cv_[j],   u_[j]};
+          earlier_total += earlier.term(e);
+        }
+      ps_.sum = st_.sum_w + earlier.scale * earlier_total;
+    }
+    const double x_at = at_state ? st_.x : ps_.x;
+    const double xd_at = at_state ? st_.xd : ps_.xd;
+    double ax = 0;
+    if constexpr (Pad) {
+      ax = forces_.pad_acceleration(x_at, xd_at, at_state ? st_.sum_w : ps_.sum, in_.frozen.s);
+      in_.anchor = in_.frozen.s + x_at;  // ChainLayout's anchor
+    }
+    // Without the pad the blocks' pass adds no terms.
+    const auto& block_sum = layout_detail::sum_if<summed>(sum);
+    double total = 0;
+    for (const Range& r : ranges_)
+      total = layout_detail::fused_stage<Law, Terms, typename Round::BlockRound, at_state>(
+          forces_, in_, r.lo + 1, r.hi - 1, w_, wd_, x_in_, y_in_, x_out_, y_out_, cw_, cv_, u_,
+          update, block_sum, total);
     std::swap(x_in_, x_out_);
     std::swap(y_in_, y_out_);
+    if constexpr (Pad) pad_stage_end<Round>(update, ax, st_.x, st_.xd, st_.sum_w, ps_, sum, total);
   }
   void finish(double) {}
 
  private:
   const ChainForces& forces_;
-  const HeldInput& in_;
-  int lo_, hi_;
+  ChainState& st_;
+  Ranges ranges_;
   double *w_, *wd_, *x_in_, *y_in_, *x_out_, *y_out_, *cw_, *cv_, *u_;
+  HeldInput in_;
+  PadStage ps_;
 };
 
-// `acceleration(x, v, a)` sets a[1..K] at stage positions x and velocities v; on entry
-// `a` holds the accelerations at the state (the first stage's, which the cluster loop has
-// already formed).
-template <class Round, class Acceleration, class Array>
+// The pad's state while a cluster runs with the pad moving (written back at the end).
+struct PadStageState {
+  double x, xd, sum_w;
+};
+
+// `acceleration(x, v, anchor, a)` sets a[1..K] at stage positions x and velocities v; on
+// entry `a` holds the accelerations at the state (the first stage's, which the cluster
+// loop has already formed). With Pad the pad is one more element, advanced and summed as
+// ChainLayout does it, and the anchor is `base` (the substrate) plus the pad's stage
+// position; without, `base` is the anchor and the pad's parts compile away.
+template <class Round, class Acceleration, class Array, bool Pad>
 class ClusterLayout {
  public:
   static constexpr int K = static_cast<int>(std::tuple_size_v<Array>) - 2;
 
-  ClusterLayout(const Acceleration& acceleration, Array& w, Array& v, Array& a,
-                bool velocity_dependent)
-      : acceleration_(acceleration),
+  ClusterLayout(const ChainForces& forces, double base, const Acceleration& acceleration, Array& w,
+                Array& v, Array& a, PadStageState& pad, bool velocity_dependent)
+      : forces_(forces),
+        base_(base),
+        acceleration_(acceleration),
         w_(w),
         v_(v),
         a_(a),
@@ -401,38 +474,71 @@ class ClusterLayout {
         cw_(w),
         cv_(w),
         u_(v),
+        pad_(pad),
         velocity_dependent_(velocity_dependent) {}
 
   bool velocity_dependent() const { return velocity_dependent_; }
 
-  template <class Point, class Update, class... Sums>
-  void stage(Point, double, Update&& update, const Sums&...) {
-    constexpr bool at_state = Point::positions == Buf::W && Point::velocities == Buf::V;
+  template <class Point, class Update, class Sum, class Earlier = NoSum>
+  void stage(Point, double, Update&& update, const Sum& sum, const Earlier& earlier = no_sum) {
+    constexpr bool state_positions = Point::positions == Buf::W;
+    constexpr bool at_state = state_positions && Point::velocities == Buf::V;
+    constexpr bool joint = Pad && !std::is_same_v<Earlier, NoSum>;
+    constexpr bool summed = Pad && !std::is_same_v<Sum, NoSum>;
+    const double x_at = state_positions ? pad_.x : ps_.x;
+    const double xd_at = pick<Point::velocities>(pad_.xd, ps_.xd, ps_.xu);
     if (!at_state || evaluated_)
-      acceleration_(Point::positions == Buf::W ? w_ : x_, pick<Point::velocities>(), a_);
+      acceleration_(state_positions ? w_ : x_, pick<Point::velocities>(v_, y_, u_),
+                    Pad ? base_ + x_at : base_, a_);
     evaluated_ = true;
+    auto pad_acceleration = [&] {
+      return forces_.pad_acceleration(x_at, xd_at, state_positions ? pad_.sum_w : ps_.sum, base_);
+    };
+    double ax = !Pad || joint ? 0.0 : pad_acceleration();
+    auto element = [&](int i) {
+      return StageElement<typename Round::BlockRound>{w_[i], v_[i],  x_[i],  y_[i], x_[i],
+                                                      y_[i], cw_[i], cv_[i], u_[i]};
+    };
+    double total = 0, earlier_total = 0;
+    // ChainLayout's order: `earlier`'s terms before the update, `sum`'s after it.
+    if constexpr (joint) {
+      for (int i = 1; i <= K; ++i) earlier_total += earlier.term(element(i));
+    }
     for (int i = 1; i <= K; ++i) {
-      StageElement<typename Round::BlockRound> e{w_[i], v_[i],  x_[i],  y_[i], x_[i],
-                                                 y_[i], cw_[i], cv_[i], u_[i]};
+      auto e = element(i);
       update(e, a_[i]);
+    }
+    if constexpr (summed) {
+      for (int i = 1; i <= K; ++i) total += sum.term(element(i));
+    }
+    if constexpr (Pad) {
+      if constexpr (joint) {
+        ps_.sum = pad_.sum_w + earlier.scale * earlier_total;
+        ax = pad_acceleration();
+      }
+      pad_stage_end<Round>(update, ax, pad_.x, pad_.xd, pad_.sum_w, ps_, sum, total);
     }
   }
   void finish(double) {}
 
  private:
-  template <Buf B>
-  const Array& pick() const {
+  template <Buf B, class T>
+  static T& pick(T& v, T& y, T& u) {
     if constexpr (B == Buf::V)
-      return v_;
+      return v;
     else if constexpr (B == Buf::Y)
-      return y_;
+      return y;
     else
-      return u_;
+      return u;
   }
 
+  const ChainForces& forces_;
+  double base_;
   const Acceleration& acceleration_;
   Array &w_, &v_, &a_;
   Array x_, y_, cw_, cv_, u_;
+  PadStageState& pad_;
+  PadStage ps_;
   bool velocity_dependent_;
   bool evaluated_ = false;
 };

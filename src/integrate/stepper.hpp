@@ -30,7 +30,6 @@
 namespace bkq {
 
 struct ClusterRelaxation;
-struct PadClusterRelaxation;
 
 enum class StickRule { Crossing, Projection, Located };
 
@@ -82,8 +81,8 @@ class Stepper {
   // (integrate/cluster.hpp); false when the stepper has no such form for that cluster
   // (the event engine then uses step()).
   virtual bool relax_cluster(const ChainForces&, ClusterRelaxation&) const { return false; }
-  // The same with the pad moving (integrate/pad_cluster.hpp).
-  virtual bool relax_pad_cluster(const ChainForces&, PadClusterRelaxation&) const { return false; }
+  // The same with the pad moving (ClusterRelaxation's pad fields set).
+  virtual bool relax_pad_cluster(const ChainForces&, ClusterRelaxation&) const { return false; }
   // What the stepper carries from one step() to the next besides the chain state (the
   // adaptive scheme's next step size, the theta-method's reused factorisation), as plain
   // numbers: a continuous run keeps it in its checkpoint and restores it into a fresh

@@ -1,5 +1,5 @@
 // The event engine's fast paths with the pad moving (BK–Pad): the cluster path
-// (integrate/pad_cluster.hpp) and the fused held-range step (integrate/pad_held.hpp) must
+// (integrate/cluster.hpp) and the fused held-range step (integrate/layouts.hpp) must
 // give the same events, counters and final state bit for bit as the general step, for
 // every explicit scheme (rk4 fuses held ranges; rk2 and verlet fall back to the general
 // step there) and for the switches that change the code (backslip, periodic ends, the
