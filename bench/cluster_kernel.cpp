@@ -234,6 +234,17 @@ struct MinimalConstants {
     const double f = k_p * (anchor - x[i]) + k_c * (x[i - 1] - 2.0 * x[i] + x[i + 1]);
     return f * inv_m - kinetic0 / std::fma(std::max(y[i], 0.0), inv_scale, 1.0);
   };
+  // The second and third stages: from the point (xs, ys) to the next at h c.
+  auto middle = [&](double c, const double* __restrict xs, const double* __restrict ys,
+                    double* __restrict xo, double* __restrict yo) {
+    for (int i = 1; i <= k; ++i) {
+      const double a = acc(xs, ys, i);
+      cw[i] += 2.0 * ys[i];
+      cv[i] += 2.0 * a;
+      xo[i] = std::fma(c, ys[i], w[i]);
+      yo[i] = std::fma(c, a, v[i]);
+    }
+  };
   for (int s = 0; s < steps; ++s) {
     for (int i = 1; i <= k; ++i) {
       const double a = acc(w, v, i);
@@ -242,20 +253,8 @@ struct MinimalConstants {
       xa[i] = std::fma(h2, v[i], w[i]);
       ya[i] = std::fma(h2, a, v[i]);
     }
-    for (int i = 1; i <= k; ++i) {
-      const double a = acc(xa, ya, i);
-      cw[i] += 2.0 * ya[i];
-      cv[i] += 2.0 * a;
-      xb[i] = std::fma(h2, ya[i], w[i]);
-      yb[i] = std::fma(h2, a, v[i]);
-    }
-    for (int i = 1; i <= k; ++i) {
-      const double a = acc(xb, yb, i);
-      cw[i] += 2.0 * yb[i];
-      cv[i] += 2.0 * a;
-      xa[i] = std::fma(h, yb[i], w[i]);
-      ya[i] = std::fma(h, a, v[i]);
-    }
+    middle(h2, xa, ya, xb, yb);
+    middle(h, xb, yb, xa, ya);
     for (int i = 1; i <= k; ++i) {
       const double a = acc(xa, ya, i);
       w[i] += h6 * (cw[i] + ya[i]);
@@ -305,6 +304,19 @@ template <int K>
     const double f = k_p * (anchor - p[i]) + k_c * (p[i - 1] - 2.0 * p[i] + p[i + 1]);
     return f * inv_m - kinetic0 / std::fma(std::max(q[i], 0.0), inv_scale, 1.0);
   };
+  // The second and third stages: from the point (x, y) to the next at h c.
+  auto middle = [&](double c) {
+    Array xn = x, yn = y;
+    for (int i = 1; i <= K; ++i) {
+      const double a = acc(x, y, i);
+      cw[i] += 2.0 * y[i];
+      cv[i] += 2.0 * a;
+      xn[i] = std::fma(c, y[i], w[i]);
+      yn[i] = std::fma(c, a, v[i]);
+    }
+    x = xn;
+    y = yn;
+  };
   for (int s = 0; s < steps; ++s) {
     Array xn = x, yn = y;
     for (int i = 1; i <= K; ++i) {
@@ -316,24 +328,8 @@ template <int K>
     }
     x = xn;
     y = yn;
-    for (int i = 1; i <= K; ++i) {
-      const double a = acc(x, y, i);
-      cw[i] += 2.0 * y[i];
-      cv[i] += 2.0 * a;
-      xn[i] = std::fma(h2, y[i], w[i]);
-      yn[i] = std::fma(h2, a, v[i]);
-    }
-    x = xn;
-    y = yn;
-    for (int i = 1; i <= K; ++i) {
-      const double a = acc(x, y, i);
-      cw[i] += 2.0 * y[i];
-      cv[i] += 2.0 * a;
-      xn[i] = std::fma(h, y[i], w[i]);
-      yn[i] = std::fma(h, a, v[i]);
-    }
-    x = xn;
-    y = yn;
+    middle(h2);
+    middle(h);
     for (int i = 1; i <= K; ++i) {
       const double a = acc(x, y, i);
       w[i] += h6 * (cw[i] + y[i]);
