@@ -263,14 +263,18 @@ struct MinimalConstants {
   }
 }
 
+// The scene's numbers as the minimal loops take them (the anchor at 0).
+MinimalConstants minimal_constants(const ClusterScene& scene) {
+  const bkq::law::Clst91& law = scene.forces.law<bkq::law::Clst91>();
+  return {scene.p.k_p, scene.p.k_c, 1.0 / scene.p.m_u, law.kinetic0, law.inv_scale, 0.0};
+}
+
 // The minimal loop from the same start, run on without restarts (it has no stick test:
 // the blocks oscillate about the anchor, the same operations whatever the values).
 void BM_Minimal(benchmark::State& state) {
   ClusterScene scene(static_cast<int>(state.range(0)));
   const int k = scene.k, lo = scene.range.lo;
-  const bkq::law::Clst91& law = scene.forces.law<bkq::law::Clst91>();
-  const MinimalConstants c{scene.p.k_p,  scene.p.k_c,   1.0 / scene.p.m_u,
-                           law.kinetic0, law.inv_scale, 0.0};
+  const MinimalConstants c = minimal_constants(scene);
   std::vector<double> w(scene.saved.w.begin() + lo, scene.saved.w.begin() + lo + k + 2),
       v(k + 2, 0.0), xa = w, ya(k + 2, 0.0), xb = w, yb(k + 2, 0.0), cw(k + 2), cv(k + 2);
   double sliding = 0;
@@ -344,9 +348,7 @@ template <int K>
 void BM_MinimalRegisters(benchmark::State& state) {
   ClusterScene scene(static_cast<int>(state.range(0)));
   const int k = scene.k, lo = scene.range.lo;
-  const bkq::law::Clst91& law = scene.forces.law<bkq::law::Clst91>();
-  const MinimalConstants c{scene.p.k_p,  scene.p.k_c,   1.0 / scene.p.m_u,
-                           law.kinetic0, law.inv_scale, 0.0};
+  const MinimalConstants c = minimal_constants(scene);
   std::vector<double> w(scene.saved.w.begin() + lo, scene.saved.w.begin() + lo + k + 2),
       v(k + 2, 0.0);
   auto run = [&]<int K>() { minimal_registers<K>(scene.steps, kDt, c, w.data(), v.data()); };
