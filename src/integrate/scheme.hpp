@@ -39,7 +39,6 @@ struct Rounding {
 // a spare velocity (u).
 template <class Round>
 struct StageElement {
-  using R = Round;
   // y + a x with this element's rounding: the stage formulas write e.axpy(a, x, y).
   static double axpy(double a, double x, double y) { return Round::axpy(a, x, y); }
   double& w;
