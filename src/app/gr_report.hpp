@@ -20,6 +20,10 @@ inline Json fit_number(double x) {
   return Json::number(x, Json::Real::shortest);
 }
 
+// Why a run or a merge has no fit when it holds fewer than two events (summary.json's
+// fit_error, and the line printed about it).
+inline constexpr const char* kTooFewToFit = "fewer than 2 events";
+
 // Human-readable block of lines (trailing newline included).
 std::string gr_fit_table(const GrFit& f);
 std::string class_counts_table(const EventClassCounts& c);

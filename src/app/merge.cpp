@@ -195,8 +195,8 @@ void merge_runs(const MergeRequest& request, std::ostream& out) {
       out << where << "; no fit: " << e.what() << "\n";
     }
   } else {
-    s.set("fit_error", "fewer than 2 events");
-    out << where << "; fewer than 2 events, no fit\n";
+    s.set("fit_error", kTooFewToFit);
+    out << where << "; " << kTooFewToFit << ", no fit\n";
   }
   write_file_atomic(folder.path("summary.json"), s.str() + "\n");
 }

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <utility>
 
+#include "app/gr_report.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"

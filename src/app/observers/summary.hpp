@@ -52,7 +52,6 @@ class SummaryOfEvents : public RunObserver {
   std::string add_fit(Json& summary, const RunEnd& end);
   static constexpr const char* kInterruptedFit =
       "no fit: interrupted (the resumed run fits when it finishes)";
-  static constexpr const char* kTooFewToFit = "fewer than 2 events";
   void fit();
 
   const Scene& scene_;
