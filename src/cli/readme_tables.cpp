@@ -1,6 +1,9 @@
-// `bkquake readme-tables [--update README.md]` (not listed in --help: a maintainer's tool):
-// prints the README's generated tables with their markers, or rewrites them in place in the
-// given README (io/readme_tables.hpp).
+// `bkquake readme-tables [--update DOCS_DIR | --update PAGE.md]` (not listed in --help: a
+// maintainer's tool): prints the documentation's generated tables with their markers, or
+// rewrites them in place: in every page under a docs folder (each table in the one page
+// that holds its markers), or in one markdown file that holds them all
+// (io/readme_tables.hpp).
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -21,8 +24,21 @@ int cmd_readme_tables(const std::vector<std::string>& args) {
     return 0;
   }
   if (args.size() != 2 || args[0] != "--update")
-    throw Error("readme-tables: usage: bkquake readme-tables [--update README.md]");
+    throw Error("readme-tables: usage: bkquake readme-tables [--update DOCS_DIR | PAGE.md]");
   const std::string& path = args[1];
+  if (std::filesystem::is_directory(path)) {
+    const auto before = read_doc_pages(path);
+    const auto after = update_doc_pages(before, readme_tables());
+    int changed = 0;
+    for (std::size_t i = 0; i < before.size(); ++i) {
+      if (after[i].text == before[i].text) continue;
+      write_file_atomic((std::filesystem::path(path) / after[i].path).string(), after[i].text);
+      std::cout << path << "/" << after[i].path << ": tables updated\n";
+      ++changed;
+    }
+    if (changed == 0) std::cout << path << ": tables already up to date\n";
+    return 0;
+  }
   const std::string before = read_text_file(path, "README");
   const std::string after = update_readme(before);
   if (after != before) write_file_atomic(path, after);

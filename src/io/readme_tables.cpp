@@ -1,7 +1,9 @@
-// Implementation of the generated README tables (see readme_tables.hpp).
+// Implementation of the generated documentation tables (see readme_tables.hpp).
 #include "io/readme_tables.hpp"
 
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <utility>
 
 #include "core/error.hpp"
@@ -119,6 +121,67 @@ std::string update_readme(const std::string& readme) {
       throw Error("README: no '" + readme_begin_marker(table.name) + "' ... '" +
                   readme_end_marker(table.name) + "' block");
     out.replace(r->first, r->second - r->first, table.markdown);
+  }
+  return out;
+}
+
+std::string update_blocks(const std::string& text, const std::vector<ReadmeTable>& tables,
+                          std::vector<std::string>* found) {
+  std::string out = text;
+  for (const auto& table : tables) {
+    const auto r = block_range(out, table.name);
+    if (!r) continue;
+    out.replace(r->first, r->second - r->first, table.markdown);
+    if (found) found->push_back(table.name);
+  }
+  return out;
+}
+
+std::vector<DocPage> read_doc_pages(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw Error("readme-tables: '" + dir.string() + "' is not a folder of markdown pages");
+  std::vector<DocPage> pages;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator();
+       ++it) {
+    if (it->is_symlink() || !it->is_regular_file() || it->path().extension() != ".md") continue;
+    std::ifstream f(it->path(), std::ios::binary);
+    if (!f) throw Error("readme-tables: cannot read '" + it->path().string() + "'");
+    std::ostringstream text;
+    text << f.rdbuf();
+    pages.push_back({fs::relative(it->path(), dir).generic_string(), text.str()});
+  }
+  std::sort(pages.begin(), pages.end(),
+            [](const DocPage& a, const DocPage& b) { return a.path < b.path; });
+  return pages;
+}
+
+const DocPage* page_with_block(const std::vector<DocPage>& pages, const std::string& name) {
+  for (const auto& p : pages)
+    if (block_range(p.text, name)) return &p;
+  return nullptr;
+}
+
+std::vector<DocPage> update_doc_pages(const std::vector<DocPage>& pages,
+                                      const std::vector<ReadmeTable>& tables) {
+  std::vector<DocPage> out;
+  std::vector<std::pair<std::string, std::string>> holder;  // table name, page path
+  for (const auto& p : pages) {
+    std::vector<std::string> found;
+    out.push_back({p.path, update_blocks(p.text, tables, &found)});
+    for (const auto& name : found) holder.emplace_back(name, p.path);
+  }
+  for (const auto& table : tables) {
+    std::vector<std::string> where;
+    for (const auto& [name, path] : holder)
+      if (name == table.name) where.push_back(path);
+    if (where.empty())
+      throw Error("docs: no page holds the block '" + readme_begin_marker(table.name) + "' ... '" +
+                  readme_end_marker(table.name) + "'");
+    if (where.size() > 1)
+      throw Error("docs: the table '" + table.name + "' is in two pages, " + where[0] + " and " +
+                  where[1] + "; keep it in one");
   }
   return out;
 }

@@ -1,8 +1,9 @@
-// The README's tables against their declarations: the scene-key table against
-// parameter_table() (every key, default, allowed values, units, doc) and the column tables
-// of catalog.csv, histogram.csv, timeseries.csv and accuracy.csv against their schemas. On a
-// difference the failure prints the expected table; regenerate the README with
-//   build/bkquake readme-tables --update README.md
+// The documentation's generated tables (pages under docs/, mostly docs/reference/) against
+// their declarations: the scene-key table against parameter_table() (every key, default,
+// allowed values, units, doc) and the column tables of catalog.csv, histogram.csv,
+// timeseries.csv and accuracy.csv against their schemas. On a difference the failure prints
+// the expected table; regenerate the pages with
+//   build/bkquake readme-tables --update docs
 // The schemas are also checked against the headers of the recorded golden outputs, so a
 // schema cannot drift from what the program writes.
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -78,25 +80,61 @@ std::vector<std::vector<std::string>> rows(const std::string& block) {
   return out;
 }
 
-TEST(ReadmeTables, EveryGeneratedTableMatchesTheReadme) {
-  const std::string readme = slurp(kSource / "README.md");
-  ASSERT_FALSE(readme.empty());
+const fs::path kDocs = kSource / "docs";
+
+// The block of table `name` in the docs page that holds it; nullopt when none does.
+std::optional<std::string> docs_block(const std::string& name) {
+  const auto pages = read_doc_pages(kDocs);
+  const DocPage* page = page_with_block(pages, name);
+  if (!page) return std::nullopt;
+  return readme_block(page->text, name);
+}
+
+TEST(ReadmeTables, EveryGeneratedTableMatchesItsDocsPage) {
+  const auto pages = read_doc_pages(kDocs);
+  ASSERT_GT(pages.size(), 10u);
   for (const auto& t : readme_tables()) {
-    const auto block = readme_block(readme, t.name);
-    ASSERT_TRUE(block) << "README.md lacks the block " << readme_begin_marker(t.name) << " ... "
-                       << readme_end_marker(t.name);
-    EXPECT_EQ(*block, t.markdown) << "README.md's " << t.name
+    const DocPage* page = page_with_block(pages, t.name);
+    ASSERT_TRUE(page) << "no page under docs/ holds the block " << readme_begin_marker(t.name)
+                      << " ... " << readme_end_marker(t.name);
+    const auto block = readme_block(page->text, t.name);
+    ASSERT_TRUE(block);
+    EXPECT_EQ(*block, t.markdown) << "docs/" << page->path << ": the " << t.name
                                   << " table differs from its declaration; regenerate it with\n"
-                                     "  build/bkquake readme-tables --update README.md\nexpected:\n"
+                                     "  build/bkquake readme-tables --update docs\nexpected:\n"
                                   << t.markdown;
   }
-  EXPECT_TRUE(update_readme(readme) == readme);
+  const auto updated = update_doc_pages(pages, readme_tables());
+  ASSERT_EQ(updated.size(), pages.size());
+  for (std::size_t i = 0; i < pages.size(); ++i)
+    EXPECT_TRUE(updated[i].text == pages[i].text) << pages[i].path;
+}
+
+TEST(ReadmeTables, ATableInTwoPagesOrInNoneIsRefused) {
+  std::vector<DocPage> pages = {{"a.md", "# a\n"}, {"b.md", "# b\n"}};
+  for (const auto& t : readme_tables())
+    pages[0].text +=
+        readme_begin_marker(t.name) + "\n| stale |\n" + readme_end_marker(t.name) + "\n";
+  const auto updated = update_doc_pages(pages, readme_tables());
+  EXPECT_EQ(updated[0].text.find("| stale |"), std::string::npos);
+  EXPECT_EQ(updated[1].text, pages[1].text);
+  auto twice = pages;
+  twice[1].text += readme_begin_marker("catalog.csv") + "\n\n" + readme_end_marker("catalog.csv");
+  try {
+    update_doc_pages(twice, readme_tables());
+    ADD_FAILURE() << "a table in two pages was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("catalog.csv"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("b.md"), std::string::npos) << e.what();
+  }
+  const std::vector<DocPage> none = {{"a.md", "# nothing\n"}};
+  EXPECT_THROW(update_doc_pages(none, readme_tables()), std::exception);
 }
 
 TEST(ReadmeTables, SceneKeyRowsCarryEveryFieldOfTheParameterTable) {
   // Read back independently of the generator: each row names one key with its default,
   // allowed values, units and doc, in table order, and no key is missing or extra.
-  const auto block = readme_block(slurp(kSource / "README.md"), "scene-keys");
+  const auto block = docs_block("scene-keys");
   ASSERT_TRUE(block);
   const auto body = rows(*block);
   const auto& table = parameter_table();
@@ -113,14 +151,13 @@ TEST(ReadmeTables, SceneKeyRowsCarryEveryFieldOfTheParameterTable) {
 }
 
 TEST(ReadmeTables, ColumnRowsCarryEveryFieldOfTheSchemas) {
-  const std::string readme = slurp(kSource / "README.md");
   const std::vector<std::pair<std::string, const Schema*>> files = {
       {"catalog.csv", &catalog_schema()},
       {"histogram.csv", &histogram_schema()},
       {"timeseries.csv", &timeseries_schema()},
       {"accuracy.csv", &accuracy_schema()}};
   for (const auto& [name, schema] : files) {
-    const auto block = readme_block(readme, name);
+    const auto block = docs_block(name);
     ASSERT_TRUE(block) << name;
     const auto body = rows(*block);
     ASSERT_EQ(body.size(), schema->size()) << name;
@@ -145,11 +182,11 @@ TEST(ReadmeTables, SchemasMatchTheHeadersTheProgramWrote) {
   EXPECT_EQ(first_line(golden / "accuracy" / "accuracy.csv"), header_of(accuracy_schema()));
 }
 
-// Issue 19, item 13: every CSV file any recorded run wrote has a generated README table,
-// and its header is that table's column list, so no output file or column goes undocumented.
+// Every CSV file any recorded run wrote has a generated table in the docs, and its header is
+// that table's column list, so no output file or column goes undocumented.
 // blocks.csv is the one exception: its columns (t, u0 ... u{N-1}) depend on N and are
 // described in words.
-TEST(ReadmeTables, EveryCsvTheProgramWritesHasItsTableInTheReadme) {
+TEST(ReadmeTables, EveryCsvTheProgramWritesHasItsTableInTheDocs) {
   std::map<std::string, std::string> documented;  // file name -> header from its table
   for (const auto& t : readme_tables()) {
     if (t.name.size() < 4 || t.name.substr(t.name.size() - 4) != ".csv") continue;
@@ -170,7 +207,7 @@ TEST(ReadmeTables, EveryCsvTheProgramWritesHasItsTableInTheReadme) {
     const std::string name = entry.path().filename().string();
     if (entry.path().extension() != ".csv" || name == "blocks.csv") continue;
     ++seen;
-    ASSERT_TRUE(documented.count(name)) << entry.path() << " has no generated README table";
+    ASSERT_TRUE(documented.count(name)) << entry.path() << " has no generated table in docs/";
     EXPECT_EQ(first_line(entry.path()), documented[name]) << entry.path();
   }
   EXPECT_GT(seen, 30);
@@ -189,21 +226,30 @@ TEST(ReadmeTables, UpdateRewritesOnlyTheMarkedBlocks) {
   EXPECT_THROW(update_readme("# no markers\n"), std::exception);
 }
 
-TEST(ReadmeTables, TheCommandRegeneratesACopyOfTheReadme) {
+TEST(ReadmeTables, TheCommandRegeneratesACopyOfTheDocs) {
   const fs::path dir = fs::temp_directory_path() / "bkq_test_readme_tables";
   fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path copy = dir / "README.md";
-  std::string stale = slurp(kSource / "README.md");
-  const auto at = stale.find("| `model.kind` |");
-  ASSERT_NE(at, std::string::npos);
-  stale.insert(at, "| `stale.key` | | | | |\n");
-  std::ofstream(copy) << stale;
+  const fs::path copy = dir / "docs";
+  const auto pages = read_doc_pages(kDocs);
+  const DocPage* keys = page_with_block(pages, "scene-keys");
+  ASSERT_TRUE(keys);
+  for (const auto& p : pages) {
+    fs::create_directories((copy / p.path).parent_path());
+    std::string text = p.text;
+    if (&p == keys) {
+      const auto at = text.find("| `model.kind` |");
+      ASSERT_NE(at, std::string::npos);
+      text.insert(at, "| `stale.key` | | | | |\n");
+    }
+    std::ofstream(copy / p.path, std::ios::binary) << text;
+  }
   const std::string cmd = std::string(BKQUAKE_BINARY) + " readme-tables --update " + copy.string() +
                           " > " + (dir / "out.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / "out.txt");
-  EXPECT_TRUE(slurp(copy) == slurp(kSource / "README.md"));
-  EXPECT_NE(slurp(dir / "out.txt").find("tables updated"), std::string::npos);
+  for (const auto& p : pages) EXPECT_TRUE(slurp(copy / p.path) == p.text) << p.path;
+  const std::string out = slurp(dir / "out.txt");
+  EXPECT_NE(out.find(keys->path + ": tables updated"), std::string::npos) << out;
+  EXPECT_EQ(out.find("tables updated", out.find("tables updated") + 1), std::string::npos) << out;
 }
 
 }  // namespace
