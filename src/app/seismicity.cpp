@@ -43,6 +43,21 @@ std::optional<fs::path> catalog_in(const fs::path& dir) {
   return std::nullopt;
 }
 
+// The first "mu_min" of a summary.json (a run's fit_window.mu_min, a merge's mu_min);
+// nullopt without the file or the number.
+std::optional<double> fit_window_mu_min(const fs::path& summary) {
+  if (!fs::is_regular_file(summary)) return std::nullopt;
+  const std::string text = slurp(summary);
+  const std::string key = "\"mu_min\":";
+  const auto at = text.find(key);
+  if (at == std::string::npos) return std::nullopt;
+  char* end = nullptr;
+  const char* from = text.c_str() + at + key.size();
+  const double v = std::strtod(from, &end);
+  if (end == from || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
 seis::Quake quake_of(const CatalogEvent& e, const CatalogReader& r) {
   seis::Quake q;
   q.event = e.event;
@@ -268,7 +283,19 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   opt.mainshock.blocks = blocks;
   opt.mainshock.mu = req.mainshock_mu;
   if (req.interevent_mu) opt.interevent_mu = *req.interevent_mu;
+  // The b-values' lower magnitude: --b-mu-min, else the lower end of the run's own
+  // Gutenberg-Richter window (summary.json fit_window.mu_min: above the discrete one- and
+  // two-block events), else maximum curvature.
+  std::string b_rule = "--b-mu-min";
   opt.b_mu_min = req.b_mu_min;
+  if (!opt.b_mu_min) {
+    if (const auto mu = fit_window_mu_min(folder / "summary.json")) {
+      opt.b_mu_min = *mu;
+      b_rule = "the lower end of the run's Gutenberg-Richter window (summary.json mu_min)";
+    } else {
+      b_rule = "maximum curvature (the fullest 0.2 bin of mu; Wiemer & Wyss 2000)";
+    }
+  }
   log << "seismicity of " << rep.catalog << " (N = " << blocks << ", from " << rep.blocks_from
       << ")\n  time: " << rep.clock << "\n  mainshocks: " << opt.mainshock.describe() << "\n";
 
@@ -376,24 +403,28 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   j.set("moment_budget", num(s.moment_rate().budget(blocks)));
   {
     Json o = Json::object();
-    const auto& L = s.scaling().length().fit;
-    const auto& T = s.scaling().duration().fit;
+    const seis::LineFit L = s.scaling().length().binned_fit();
+    const seis::LineFit T = s.scaling().duration().binned_fit();
+    const auto& Le = s.scaling().length().fit;
+    const auto& Te = s.scaling().duration().fit;
     o.set("length_exponent", num(L.slope()));
     o.set("length_exponent_err", num(L.slope_err()));
-    o.set("length_events", L.n());
+    o.set("length_bins", L.n());
     o.set("duration_exponent", num(T.slope()));
     o.set("duration_exponent_err", num(T.slope_err()));
-    o.set("duration_events", T.n());
+    o.set("duration_bins", T.n());
+    o.set("method",
+          "least squares of the log bins' mean ln M on their mean ln L (ln T), one "
+          "point a bin of 3 events or more; the *_per_event fits weight every event");
+    o.set("length_exponent_per_event", num(Le.slope()));
+    o.set("duration_exponent_per_event", num(Te.slope()));
     j.set("scaling", std::move(o));
   }
   {
     Json o = Json::object();
     const Estimate b = s.spacetime().all().b(s.b_mu_min());
     o.set("b_mu_min", num(s.b_mu_min()));
-    o.set("b_mu_min_rule", s.b_mu_min_auto()
-                               ? "maximum curvature (the fullest 0.2 bin of mu), Wiemer & Wyss "
-                                 "2000"
-                               : "--b-mu-min");
+    o.set("b_mu_min_rule", b_rule);
     o.set("b_all", num(b.value));
     o.set("b_all_err", num(b.err));
     o.set("b_all_note", "Aki's b of every event that is not a mainshock, mu >= b_mu_min");

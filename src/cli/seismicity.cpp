@@ -8,6 +8,8 @@
 #include "cli/commands.hpp"
 #include "cli/scene_args.hpp"
 #include "core/error.hpp"
+#include "io/readme_tables.hpp"
+#include "io/seismicity_csv.hpp"
 
 namespace bkq {
 
@@ -58,6 +60,14 @@ int cmd_seismicity(const std::vector<std::string>& args) {
     ("mw-offset", po::value<double>()->default_value(0.0), "C of Mw = (2/3) log10 M + C in "
                                                            "the export");
   // clang-format on
+  // Hidden: the docs page's column tables (docs/explanation/seismicity.md), with their
+  // markers, from the schemas; tests/regression/test_seismicity.cpp checks the page.
+  if (args.size() == 1 && args[0] == "--doc-tables") {
+    for (const auto& [name, schema] : seismicity_schemas())
+      std::cout << readme_begin_marker(name) << "\n"
+                << column_table(*schema) << readme_end_marker(name) << "\n\n";
+    return 0;
+  }
   const po::variables_map vm = parse_command_line("seismicity", args, opts, "input", 1);
   if (printed_help(vm, opts)) return 0;
   if (!vm.count("input"))

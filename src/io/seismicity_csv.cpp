@@ -127,8 +127,8 @@ const Schema& scaling_schema() {
       {"mean_moment", "length", "mean moment of the bin's events"},
       {"geo_mean_moment", "length", "exp(mean ln M) of the bin's events"},
       {"fit_moment", "length",
-       "the fitted power law exp(a) x^s at the bin's geometric centre (exponent s in "
-       "seismicity.json)"},
+       "the power law fitted to the bins' mean ln M (bins of 3 events or more) at the "
+       "bin's geometric centre (exponent in seismicity.json)"},
   };
   return s;
 }
@@ -260,6 +260,7 @@ std::string scaling_csv(const seis::Seismicity& s, const std::vector<std::string
   std::string out = head(scaling_schema(), comments);
   auto axis = [&](const char* name, const seis::ScalingAxis& ax, const LogBins& bins) {
     const auto [a, b] = filled(ax.events);
+    const seis::LineFit fit = ax.binned_fit();
     for (std::size_t k = a; k <= b && k < ax.events.size(); ++k) {
       if (ax.events[k] == 0) continue;
       const double n = static_cast<double>(ax.events[k]);
@@ -267,7 +268,7 @@ std::string scaling_csv(const seis::Seismicity& s, const std::vector<std::string
       const double x = lo > 0 ? std::sqrt(lo * hi) : 0.5 * hi;
       row(out, {name, r(lo), r(hi), i(ax.events[k]), r(ax.sum_moment[k] / n),
                 r(std::exp(ax.sum_log_moment[k] / n)),
-                r(std::exp(ax.fit.intercept() + ax.fit.slope() * std::log(x)))});
+                r(std::exp(fit.intercept() + fit.slope() * std::log(x)))});
     }
   };
   axis("length", s.scaling().length(), s.scaling().length_bins());

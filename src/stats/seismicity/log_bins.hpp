@@ -4,6 +4,7 @@
 // accumulator's memory independent of the number of events.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -18,11 +19,11 @@ class LogBins {
   std::size_t index(double t) const {
     if (!(t >= t0_)) return 0;
     const double k = std::floor(std::log10(t / t0_) * per_);
-    if (!(k < per_ * dec_)) return size() - 1;
-    std::size_t i = static_cast<std::size_t>(k) + 1;
+    const double top = static_cast<double>(per_) * dec_;
+    std::size_t i = static_cast<std::size_t>(std::clamp(k, 0.0, top)) + 1;
     // log10 rounding at an edge: keep t inside [low(i), high(i)).
-    if (t < low(i)) --i;
-    if (i + 1 < size() && t >= high(i)) ++i;
+    while (i > 1 && t < low(i)) --i;
+    while (i + 1 < size() && t >= high(i)) ++i;
     return i;
   }
   double low(std::size_t i) const {

@@ -9,6 +9,7 @@ void init(ScalingAxis& a, std::size_t n) {
   a.events.assign(n, 0);
   a.sum_log_moment.assign(n, 0);
   a.sum_moment.assign(n, 0);
+  a.sum_log_x.assign(n, 0);
 }
 
 void take(ScalingAxis& a, const LogBins& bins, double x, const Quake& q) {
@@ -16,10 +17,21 @@ void take(ScalingAxis& a, const LogBins& bins, double x, const Quake& q) {
   ++a.events[i];
   a.sum_log_moment[i] += q.mu;
   a.sum_moment[i] += q.moment;
+  a.sum_log_x[i] += std::log(x);
   a.fit.add(std::log(x), q.mu);
 }
 
 }  // namespace
+
+LineFit ScalingAxis::binned_fit(std::int64_t min_events) const {
+  LineFit f;
+  for (std::size_t i = 0; i < events.size(); ++i)
+    if (events[i] >= min_events) {
+      const double n = static_cast<double>(events[i]);
+      f.add(sum_log_x[i] / n, sum_log_moment[i] / n);
+    }
+  return f;
+}
 
 Scaling::Scaling() {
   init(length_, lbins_.size());

@@ -1,7 +1,8 @@
 // Moment against rupture length (blocks from the first to the last that slipped) and
 // against duration: the mean of ln M on log bins of each, and the exponents of M ~ L^a and
-// M ~ T^g by least squares of ln M on ln L (ln T) over every event with a positive length
-// (duration).
+// M ~ T^g by least squares of the bins' mean ln M on their mean ln L (ln T), one point a
+// bin, so every scale counts alike (the many one-block events would otherwise set the
+// slope alone); the same over every event is kept beside it.
 #pragma once
 
 #include <cstdint>
@@ -15,8 +16,10 @@ namespace bkq::seis {
 
 struct ScalingAxis {
   std::vector<std::int64_t> events;
-  std::vector<double> sum_log_moment, sum_moment;
-  LineFit fit;
+  std::vector<double> sum_log_moment, sum_moment, sum_log_x;
+  LineFit fit;  // over every event
+  // Over the bins' means (bins with at least `min_events`).
+  LineFit binned_fit(std::int64_t min_events = 3) const;
 };
 
 class Scaling {
