@@ -85,10 +85,9 @@ Json num_or_null(bool ok, double x) {
   return ok ? num(x) : Json::null();
 }
 
-Json estimate_pair(Json& o, const std::string& key, const Estimate& e, bool ok) {
+void estimate_pair(Json& o, const std::string& key, const Estimate& e, bool ok) {
   o.set(key, num_or_null(ok, e.value));
   o.set(key + "_err", num_or_null(ok, e.err));
-  return o;
 }
 
 Json intervals_json(const seis::Intervals& iv, const seis::WeibullFit& w,

@@ -87,7 +87,6 @@ class Seismicity {
   const OmoriFit& foreshocks() const { return before_fit_; }
   const Bath& bath() const { return bath_; }
   double b_mu_min() const { return b_mu_min_; }
-  bool b_mu_min_auto() const { return !opt_.b_mu_min.has_value(); }
 
  private:
   SeismicityOptions opt_;
