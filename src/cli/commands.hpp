@@ -18,6 +18,7 @@ int cmd_special_law(const std::vector<std::string>& args);     // src/cli/specia
 int cmd_sweep(const std::vector<std::string>& args);           // src/cli/sweep.cpp
 int cmd_friction_study(const std::vector<std::string>& args);  // src/cli/friction_study.cpp
 int cmd_stability(const std::vector<std::string>& args);       // src/cli/stability.cpp
+int cmd_seismicity(const std::vector<std::string>& args);      // src/cli/seismicity.cpp
 // Hidden: regenerates the documentation's key and column tables (docs/reference/).
 int cmd_readme_tables(const std::vector<std::string>& args);  // src/cli/readme_tables.cpp
 

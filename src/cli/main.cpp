@@ -28,6 +28,7 @@ Usage:
   bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume]
   bkquake friction-study [--out DIR] [--seeds N] [--jobs J] [--segment T]
   bkquake stability [SCENE] [--set section.key=value]... [--sweep KEY=FROM:TO:COUNT] [--out DIR]
+  bkquake seismicity RUN_DIR|CATALOG [--out DIR] [--mainshock-mu X] [--blocks N] [--export FILE]
   bkquake --help | --version
 
 Commands:
@@ -43,6 +44,8 @@ Commands:
   sweep   run every point of a sweep file (also under mpirun) and write sweep.csv
   friction-study the four configurations of thesis Fig. 4.6 over the speed grid
   stability  steady sliding and the complex eigenvalues of its linearisation (stability.csv)
+  seismicity waiting times, recurrence, Omori-Utsu and Båth, moment rate, rupture scaling
+            and the Mogi picture of a catalogue (RUN_DIR/seismicity/)
 
 Examples:
   bkquake run                                    the Carlson-Langer reference, event-driven
@@ -82,6 +85,7 @@ int main(int argc, char** argv) {
     if (command == "sweep") return bkq::cmd_sweep(args);
     if (command == "friction-study") return bkq::cmd_friction_study(args);
     if (command == "stability") return bkq::cmd_stability(args);
+    if (command == "seismicity") return bkq::cmd_seismicity(args);
     if (command == "readme-tables") return bkq::cmd_readme_tables(args);
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {

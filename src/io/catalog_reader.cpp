@@ -18,7 +18,7 @@ namespace {
 // The columns an HDF5 catalogue is read with, in the order of h5 below.
 const std::vector<std::string> kH5Columns = {col::event,       col::load,       col::blocks,
                                              col::first_block, col::last_block, col::moment,
-                                             col::magnitude};
+                                             col::magnitude,   col::trigger,    col::duration};
 
 }  // namespace
 
@@ -27,7 +27,8 @@ CatalogReader::~CatalogReader() = default;
 CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.string()) {
   if (is_hdf5_file(file_)) {
     h5_ = std::make_unique<CatalogH5Reader>(file_, kH5Columns);
-    int* c[] = {&c_event_, &c_load_, &c_blocks_, &c_first_, &c_last_, &c_moment_, &c_magnitude_};
+    int* c[] = {&c_event_,  &c_load_,      &c_blocks_,  &c_first_,   &c_last_,
+                &c_moment_, &c_magnitude_, &c_trigger_, &c_duration_};
     for (std::size_t k = 0; k < kH5Columns.size(); ++k)
       *c[k] = h5_->has(k) ? static_cast<int>(k) : -1;
     if (c_moment_ < 0 && c_magnitude_ < 0)
@@ -50,6 +51,8 @@ CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.str
   c_last_ = csv::find_column(header, schema, col::last_block);
   c_moment_ = csv::find_column(header, schema, col::moment);
   c_magnitude_ = csv::find_column(header, schema, col::magnitude);
+  c_trigger_ = csv::find_column(header, schema, col::trigger);
+  c_duration_ = csv::find_column(header, schema, col::duration);
   if (c_moment_ < 0 && c_magnitude_ < 0)
     throw Error(file_ + ": missing column '" + col::moment + "' (header: " + header_line + ")");
 }
@@ -73,6 +76,8 @@ bool CatalogReader::next_h5(CatalogEvent& e) {
   if (c_blocks_ >= 0) e.blocks = as_int(c_blocks_, col::blocks);
   if (c_first_ >= 0) e.first_block = as_int(c_first_, col::first_block);
   if (c_last_ >= 0) e.last_block = as_int(c_last_, col::last_block);
+  if (c_trigger_ >= 0) e.trigger = as_int(c_trigger_, col::trigger);
+  if (c_duration_ >= 0) e.duration = v[c_duration_];
   if (c_moment_ >= 0) {
     e.moment = v[c_moment_];
     if (!(e.moment > 0) || !std::isfinite(e.moment))
@@ -113,6 +118,9 @@ bool CatalogReader::next(CatalogEvent& e) {
     if (c_blocks_ >= 0) e.blocks = as_int(c_blocks_, col::blocks);
     if (c_first_ >= 0) e.first_block = as_int(c_first_, col::first_block);
     if (c_last_ >= 0) e.last_block = as_int(c_last_, col::last_block);
+    if (c_trigger_ >= 0) e.trigger = as_int(c_trigger_, col::trigger);
+    if (c_duration_ >= 0)
+      e.duration = csv::parse_double(field(c_duration_), file_, lineno_, col::duration);
     if (c_moment_ >= 0) {
       e.moment = csv::parse_double(field(c_moment_), file_, lineno_, col::moment);
       if (!(e.moment > 0) || !std::isfinite(e.moment))

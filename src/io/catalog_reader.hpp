@@ -4,8 +4,9 @@
 // declares (no column order is assumed), and every problem is a bkq::Error that names the
 // file and the line, e.g. "catalog.csv line 17: moment must be > 0, got -0.3".
 // Required: a header line and the column `moment` (or, failing that, `magnitude`).
-// Optional: event, load, blocks, first_block, last_block (the event classes need the
-// last three). The magnitude used is ln(moment) (thesis eq. 2.6).
+// Optional: event, load, trigger, blocks, duration, first_block, last_block (the event
+// classes need blocks and the extent; bkquake seismicity the others). The magnitude used is
+// ln(moment) (thesis eq. 2.6).
 #pragma once
 
 #include <cstdint>
@@ -33,6 +34,8 @@ class CatalogReader {
   bool next(CatalogEvent& e);
   bool has_extent() const { return c_blocks_ >= 0 && c_first_ >= 0 && c_last_ >= 0; }
   bool has_load() const { return c_load_ >= 0; }
+  bool has_trigger() const { return c_trigger_ >= 0; }
+  bool has_duration() const { return c_duration_ >= 0; }
   std::int64_t events_read() const { return events_; }
   const std::string& file() const { return file_; }
 
@@ -44,7 +47,7 @@ class CatalogReader {
   std::int64_t events_ = 0;
   std::size_t n_fields_ = 0;
   int c_event_ = -1, c_load_ = -1, c_blocks_ = -1, c_first_ = -1, c_last_ = -1;
-  int c_moment_ = -1, c_magnitude_ = -1;
+  int c_moment_ = -1, c_magnitude_ = -1, c_trigger_ = -1, c_duration_ = -1;
   // catalog.h5: the columns in the order of the c_ indices above, read a block at a time.
   bool next_h5(CatalogEvent& e);
   std::unique_ptr<CatalogH5Reader> h5_;

@@ -1,0 +1,520 @@
+// The seismicity analysis of a catalogue; see seismicity.hpp.
+#include "app/seismicity.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include "bkquake_version.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/catalog_reader.hpp"
+#include "io/folder_lock.hpp"
+#include "io/json.hpp"
+#include "io/output.hpp"
+#include "io/run_folder.hpp"
+#include "io/seismicity_csv.hpp"
+
+namespace bkq {
+
+namespace {
+
+namespace fs = std::filesystem;
+using seis::Estimate;
+
+const char* kOutFolder = "seismicity";
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// The catalogue of a run folder.
+std::optional<fs::path> catalog_in(const fs::path& dir) {
+  for (const char* name : {"catalog.csv", "catalog.h5"})
+    if (fs::is_regular_file(dir / name)) return dir / name;
+  return std::nullopt;
+}
+
+// The first "mu_min" of a summary.json (a run's fit_window.mu_min, a merge's mu_min);
+// nullopt without the file or the number.
+std::optional<double> fit_window_mu_min(const fs::path& summary) {
+  if (!fs::is_regular_file(summary)) return std::nullopt;
+  const std::string text = slurp(summary);
+  const std::string key = "\"mu_min\":";
+  const auto at = text.find(key);
+  if (at == std::string::npos) return std::nullopt;
+  char* end = nullptr;
+  const char* from = text.c_str() + at + key.size();
+  const double v = std::strtod(from, &end);
+  if (end == from || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+seis::Quake quake_of(const CatalogEvent& e, const CatalogReader& r) {
+  seis::Quake q;
+  q.event = e.event;
+  q.t = e.load;
+  q.moment = e.moment;
+  q.mu = e.magnitude;
+  q.duration = r.has_duration() ? e.duration : 0.0;
+  q.trigger = e.trigger;
+  if (r.has_extent()) {
+    q.first = e.first_block;
+    q.last = e.last_block;
+    q.blocks = e.blocks;
+  } else {
+    q.first = 1;
+    q.last = 0;  // unknown
+  }
+  if (!r.has_trigger() && r.has_extent()) q.trigger = (e.first_block + e.last_block) / 2;
+  return q;
+}
+
+Json num(double x) {
+  return Json::number(x, Json::Real::shortest);
+}
+Json num_or_null(bool ok, double x) {
+  return ok ? num(x) : Json::null();
+}
+
+void estimate_pair(Json& o, const std::string& key, const Estimate& e, bool ok) {
+  o.set(key, num_or_null(ok, e.value));
+  o.set(key + "_err", num_or_null(ok, e.err));
+}
+
+Json intervals_json(const seis::Intervals& iv, const seis::WeibullFit& w,
+                    const seis::LognormalFit& l) {
+  Json o = Json::object();
+  o.set("intervals", iv.moments.n());
+  o.set("mean", num(iv.moments.mean()));
+  o.set("cov", num(iv.moments.cov()));
+  o.set("cov_err", num(iv.moments.cov_err()));
+  estimate_pair(o, "weibull_k", w.k, w.ok);
+  estimate_pair(o, "weibull_lambda", w.lambda, w.ok);
+  estimate_pair(o, "lognormal_mu", l.m, l.ok);
+  estimate_pair(o, "lognormal_sigma", l.s, l.ok);
+  return o;
+}
+
+Json omori_json(const seis::OmoriFit& f, std::int64_t sequences, bool after) {
+  Json o = Json::object();
+  o.set("sequences", sequences);
+  o.set("excess", f.excess);
+  o.set("likelihood_ratio", num(f.lr));
+  o.set("fit_t_max", num(f.t_max));
+  if (after) {
+    estimate_pair(o, "K", f.K, f.excess);
+    estimate_pair(o, "c", f.c, f.excess);
+    estimate_pair(o, "p", f.p, f.excess);
+    estimate_pair(o, "background", f.background, f.excess);
+    o.set("aftershocks", num(f.excess ? f.excess_events : 0.0));
+  } else {
+    estimate_pair(o, "p_inverse", f.p, f.excess);
+    estimate_pair(o, "K", f.K, f.excess);
+    estimate_pair(o, "c", f.c, f.excess);
+    estimate_pair(o, "background", f.background, f.excess);
+    o.set("foreshocks", num(f.excess ? f.excess_events : 0.0));
+  }
+  if (!f.excess) o.set("background_rate", num(f.background_only));
+  if (!f.note.empty()) o.set("note", f.note);
+  return o;
+}
+
+// Writes the output files into `dir` (which exists).
+void write_outputs(const fs::path& dir, const seis::Seismicity& s,
+                   const std::vector<std::string>& comments, const std::string& json) {
+  auto with = [&](const char* what) {
+    std::vector<std::string> c = {what};
+    c.insert(c.end(), comments.begin(), comments.end());
+    return c;
+  };
+  write_file_atomic((dir / "interevent.csv").string(),
+                    interevent_csv(s, with("waiting times between consecutive events")));
+  write_file_atomic((dir / "recurrence.csv").string(),
+                    recurrence_csv(s, with("recurrence intervals of mainshocks")));
+  write_file_atomic((dir / "omori.csv").string(),
+                    omori_csv(s, with("event rates stacked around mainshocks")));
+  write_file_atomic((dir / "moment_rate.csv").string(),
+                    moment_rate_csv(s, with("moment released per time bin")));
+  write_file_atomic((dir / "scaling.csv").string(),
+                    scaling_csv(s, with("moment against rupture length and duration")));
+  write_file_atomic((dir / "spacetime.csv").string(),
+                    spacetime_csv(s, with("seismicity before mainshocks in space and time")));
+  write_file_atomic((dir / "seismicity.json").string(), json + "\n");
+}
+
+// The catalogue's export in seismology's conventions, streamed to FILE.tmp and renamed at
+// the end.
+class ExportFile {
+ public:
+  ExportFile(const std::string& path, double offset, const std::vector<std::string>& comments)
+      : path_(path), tmp_(path + ".tmp-" + std::to_string(::getpid())), offset_(offset) {
+    f_ = std::fopen(tmp_.c_str(), "w");
+    if (!f_) throw Error("seismicity: --export " + path + ": cannot open for writing");
+    std::string head;
+    for (const auto& c : comments) head += "# " + c + "\n";
+    head += header_of(seismicity_export_schema()) + "\n";
+    put(head);
+  }
+  ~ExportFile() {
+    if (f_) {
+      std::fclose(f_);
+      std::remove(tmp_.c_str());
+    }
+  }
+  void add(const seis::Quake& q) {
+    line_ = seismicity_export_row(q, offset_);
+    line_ += '\n';
+    put(line_);
+  }
+  void close() {
+    const bool ok = std::fflush(f_) == 0 && ::fsync(::fileno(f_)) == 0;
+    std::fclose(f_);
+    f_ = nullptr;
+    if (!ok) throw Error("seismicity: --export " + path_ + ": write failed");
+    rename_file(tmp_, path_);
+  }
+
+ private:
+  void put(const std::string& s) {
+    if (std::fwrite(s.data(), 1, s.size(), f_) != s.size())
+      throw Error("seismicity: --export " + path_ + ": write failed");
+  }
+  std::string path_, tmp_;
+  double offset_;
+  std::FILE* f_ = nullptr;
+  std::string line_;
+};
+
+}  // namespace
+
+std::vector<std::string> seismicity_inputs(const std::string& input) {
+  const fs::path p(input);
+  if (!fs::exists(p)) throw Error("seismicity: " + input + ": no such file or folder");
+  if (!fs::is_directory(p)) return {input};
+  const fs::path summary = p / "summary.json";
+  if (fs::exists(summary) && slurp(summary).find("\"merged_from\"") != std::string::npos)
+    throw Error("seismicity: " + input +
+                " is a merged folder: merged runs have no single clock (each run's load starts "
+                "afresh) and no catalogue; run bkquake seismicity on each run listed under "
+                "merged_from in its summary.json");
+  if (catalog_in(p)) return {input};
+  if (fs::exists(p / "sweep.csv")) {
+    std::vector<std::string> runs;
+    for (const auto& entry : fs::directory_iterator(p))
+      if (entry.is_directory() && catalog_in(entry.path())) runs.push_back(entry.path().string());
+    std::sort(runs.begin(), runs.end());
+    if (runs.empty())
+      throw Error("seismicity: sweep folder " + input + " has no point with a catalogue");
+    return runs;
+  }
+  throw Error("seismicity: " + input +
+              " holds no catalog.csv or catalog.h5 (a run with output.catalog = none keeps "
+              "none)");
+}
+
+SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) {
+  const auto t_start = std::chrono::steady_clock::now();
+  const fs::path in(req.input);
+  SeismicityReport rep;
+  fs::path folder;  // the run folder, or the catalogue's folder
+  if (fs::is_directory(in)) {
+    const auto c = catalog_in(in);
+    if (!c) throw Error("seismicity: " + req.input + " holds no catalog.csv or catalog.h5");
+    rep.catalog = c->string();
+    folder = in;
+  } else {
+    if (!fs::is_regular_file(in)) throw Error("seismicity: " + req.input + ": no such file");
+    rep.catalog = in.string();
+    folder = in.has_parent_path() ? in.parent_path() : fs::path(".");
+  }
+  // The scene beside the catalogue, when there is one.
+  std::optional<Scene> scene;
+  const fs::path scene_ini = folder / "scene.ini";
+  if (fs::is_regular_file(scene_ini)) scene = read_run_scene(scene_ini);
+  const bool continuous = scene && scene->choice("drive.mode") == "continuous";
+  rep.clock = continuous ? "load at the start of each slip episode (continuous run: the "
+                           "substrate displacement v t at the episode's start)"
+                         : "load (substrate displacement at the trigger; event-driven run)";
+
+  int blocks = 0;
+  if (scene) {
+    blocks = static_cast<int>(scene->integer("model.blocks"));
+    rep.blocks_from = "scene.ini";
+    if (req.blocks && *req.blocks != blocks)
+      throw Error("seismicity: --blocks = " + std::to_string(*req.blocks) + " contradicts " +
+                  scene_ini.string() + " (model.blocks = " + std::to_string(blocks) + ")");
+  } else if (req.blocks) {
+    blocks = *req.blocks;
+    rep.blocks_from = "--blocks";
+  } else {
+    CatalogReader pre(rep.catalog);
+    if (!pre.has_extent())
+      throw Error("seismicity: " + rep.catalog +
+                  " has no first_block/last_block columns and no scene.ini beside it: give "
+                  "--blocks N");
+    CatalogEvent e;
+    while (pre.next(e)) blocks = std::max(blocks, e.last_block + 1);
+    rep.blocks_from = "max(last_block) + 1 of the catalogue";
+  }
+  if (blocks < 1)
+    throw Error("seismicity: N = " + std::to_string(blocks) + " (" + rep.blocks_from +
+                "): expected at least 1 block");
+
+  CatalogReader reader(rep.catalog);
+  if (!reader.has_load())
+    throw Error("seismicity: " + rep.catalog + ": missing column 'load' (the events' time)");
+  if (!req.mainshock_mu && !reader.has_extent())
+    throw Error("seismicity: " + rep.catalog +
+                " has no first_block/last_block columns, so mainshocks cannot be told by their "
+                "extent: give --mainshock-mu X");
+
+  seis::SeismicityOptions opt;
+  opt.blocks = blocks;
+  opt.mainshock.blocks = blocks;
+  opt.mainshock.mu = req.mainshock_mu;
+  if (req.interevent_mu) opt.interevent_mu = *req.interevent_mu;
+  // The b-values' lower magnitude: --b-mu-min, else the lower end of the run's own
+  // Gutenberg-Richter window (summary.json fit_window.mu_min: above the discrete one- and
+  // two-block events), else maximum curvature.
+  std::string b_rule = "--b-mu-min";
+  opt.b_mu_min = req.b_mu_min;
+  if (!opt.b_mu_min) {
+    if (const auto mu = fit_window_mu_min(folder / "summary.json")) {
+      opt.b_mu_min = *mu;
+      b_rule = "the lower end of the run's Gutenberg-Richter window (summary.json mu_min)";
+    } else {
+      b_rule = "maximum curvature (the fullest 0.2 bin of mu; Wiemer & Wyss 2000)";
+    }
+  }
+  log << "seismicity of " << rep.catalog << " (N = " << blocks << ", from " << rep.blocks_from
+      << ")\n  time: " << rep.clock << "\n  mainshocks: " << opt.mainshock.describe() << "\n";
+
+  std::vector<std::string> comments;
+  if (scene) {
+    comments = provenance_lines(*scene);
+  } else {
+    comments = {std::string("bkquake ") + kVersion + " (git " + kGitRevision + ")",
+                "written " + utc_now_iso()};
+  }
+  comments.insert(comments.begin(), "input " + rep.catalog);
+
+  std::optional<ExportFile> exporter;
+  if (!req.export_file.empty()) {
+    std::vector<std::string> c = {
+        "catalogue in seismology's conventions: time, Mw = (2/3) log10(moment) + " +
+        format_real(req.mw_offset) + ", x = position along strike (trigger block)"};
+    c.insert(c.end(), comments.begin(), comments.end());
+    exporter.emplace(req.export_file, req.mw_offset, c);
+  }
+
+  seis::Seismicity s(opt);
+  CatalogEvent e;
+  double last_t = -INFINITY;
+  while (reader.next(e)) {
+    const seis::Quake q = quake_of(e, reader);
+    if (q.t < last_t)
+      throw Error("seismicity: " + rep.catalog + " event " + std::to_string(e.event) +
+                  ": time (load) " + format_real(q.t) + " is before the previous event's " +
+                  format_real(last_t) + "; the events must be in time order");
+    last_t = q.t;
+    s.add(q);
+    if (exporter) exporter->add(q);
+  }
+  if (s.events() < 2)
+    throw Error("seismicity: " + rep.catalog + ": need at least 2 events, found " +
+                std::to_string(s.events()));
+  s.finish();
+  if (exporter) exporter->close();
+
+  // seismicity.json
+  Json j = Json::object();
+  j.set("input", rep.catalog);
+  j.set("clock", rep.clock);
+  j.set("events", s.events());
+  j.set("blocks", static_cast<std::int64_t>(blocks));
+  j.set("blocks_from", rep.blocks_from);
+  Json main = Json::object();
+  main.set("rule", opt.mainshock.describe());
+  main.set("count", s.mainshocks());
+  main.set("min_mu", num_or_null(s.mainshocks() > 0, s.min_mainshock_mu()));
+  j.set("mainshocks", std::move(main));
+  {
+    const auto& all = s.interevent().all().moments;
+    Json o = Json::object();
+    o.set("intervals", all.n());
+    o.set("mean", num(all.mean()));
+    o.set("cov", num(all.cov()));
+    o.set("cov_err", num(all.cov_err()));
+    Json subsets = Json::array();
+    for (const auto& w : s.interevent().subsets()) {
+      Json x = Json::object();
+      x.set("subset", w.subset);
+      x.set("intervals", w.moments.n());
+      x.set("mean", num(w.moments.mean()));
+      x.set("cov", num(w.moments.cov()));
+      x.set("cov_err", num(w.moments.cov_err()));
+      subsets.push(std::move(x));
+    }
+    o.set("subsets", std::move(subsets));
+    j.set("interevent", std::move(o));
+  }
+  {
+    Json o = intervals_json(s.recurrence().system(), s.weibull(), s.lognormal());
+    o.set("per_block",
+          intervals_json(s.recurrence().per_block(), s.block_weibull(), s.block_lognormal()));
+    j.set("recurrence", std::move(o));
+  }
+  Json om = omori_json(s.aftershocks(), s.omori().after().sequences, true);
+  om.set("method",
+         "Ogata (1983) maximum likelihood of mu + K/(t + c)^p on the stacked sequences, times "
+         "in 10 log bins a decade up to fit_t_max (a tenth of the mean sequence window, short "
+         "against the loading cycle), each sequence's window from its mainshock to the next "
+         "mainshock (or the catalogue's end); errors from the expected Fisher information; "
+         "an excess needs 2 dlnL > 16.27 over the background alone");
+  j.set("omori", std::move(om));
+  j.set("foreshock", omori_json(s.foreshocks(), s.omori().before().sequences, false));
+  {
+    const auto& b = s.bath();
+    Json o = Json::object();
+    const bool ok = b.sequences > 0;
+    o.set("delta_mu", num_or_null(ok, b.delta_mu));
+    o.set("delta_mu_err", num_or_null(ok && std::isfinite(b.delta_mu_err), b.delta_mu_err));
+    o.set("delta_mw", num_or_null(ok, b.delta_mw()));
+    o.set("delta_mw_err",
+          num_or_null(ok && std::isfinite(b.delta_mu_err), b.delta_mu_err / seis::kMuPerMw));
+    o.set("sequences", b.sequences);
+    o.set("window", num_or_null(ok, b.window));
+    o.set("window_rule", b.window_rule);
+    o.set("units",
+          "delta_mu in mu = ln M; delta_mw in Mw = (2/3) log10 M; delta_mu = 1.5 ln 10 "
+          "delta_mw = 3.454 delta_mw");
+    j.set("bath", std::move(o));
+  }
+  j.set("moment_budget", num(s.moment_rate().budget(blocks)));
+  {
+    Json o = Json::object();
+    const seis::LineFit L = s.scaling().length().binned_fit();
+    const seis::LineFit T = s.scaling().duration().binned_fit();
+    const auto& Le = s.scaling().length().fit;
+    const auto& Te = s.scaling().duration().fit;
+    o.set("length_exponent", num(L.slope()));
+    o.set("length_exponent_err", num(L.slope_err()));
+    o.set("length_bins", L.n());
+    o.set("duration_exponent", num(T.slope()));
+    o.set("duration_exponent_err", num(T.slope_err()));
+    o.set("duration_bins", T.n());
+    o.set("method",
+          "least squares of the log bins' mean ln M on their mean ln L (ln T), one "
+          "point a bin of 3 events or more; the *_per_event fits weight every event");
+    o.set("length_exponent_per_event", num(Le.slope()));
+    o.set("duration_exponent_per_event", num(Te.slope()));
+    j.set("scaling", std::move(o));
+  }
+  {
+    Json o = Json::object();
+    const Estimate b = s.spacetime().all().b(s.b_mu_min());
+    o.set("b_mu_min", num(s.b_mu_min()));
+    o.set("b_mu_min_rule", b_rule);
+    o.set("b_all", num(b.value));
+    o.set("b_all_err", num(b.err));
+    o.set("b_all_note", "Aki's b of every event that is not a mainshock, mu >= b_mu_min");
+    o.set("distance_band", static_cast<std::int64_t>(s.spacetime().band_width()));
+    o.set("mainshocks", s.spacetime().mainshocks());
+    j.set("spacetime", std::move(o));
+  }
+  {
+    Json p = Json::object();
+    p.set("version", kVersion);
+    p.set("git", kGitRevision);
+    p.set("seed", scene ? Json::string(scene->text("run.seed")) : Json::null());
+    p.set("scene", scene ? Json::string(scene->origin) : Json::null());
+    p.set("lines", Json::strings(comments));
+    j.set("provenance", std::move(p));
+  }
+  rep.json = j.str();
+
+  // Output: the folder's lock, then seismicity/ replaced as a whole (or --out's files).
+  if (req.out.empty()) {
+    FolderLock lock(folder.string(), "seismicity", StaleLock::Refuse);
+    const fs::path final_dir = folder / kOutFolder;
+    const std::string tag = std::to_string(::getpid());
+    const fs::path tmp = folder / (std::string(".") + kOutFolder + ".new-" + tag);
+    const fs::path old = folder / (std::string(".") + kOutFolder + ".old-" + tag);
+    std::error_code ec;
+    fs::remove_all(tmp, ec);
+    fs::create_directory(tmp, ec);
+    if (ec) throw Error("seismicity: cannot create " + tmp.string() + ": " + ec.message());
+    try {
+      write_outputs(tmp, s, comments, rep.json);
+    } catch (...) {
+      fs::remove_all(tmp, ec);
+      throw;
+    }
+    if (fs::exists(final_dir)) rename_file(final_dir.string(), old.string());
+    rename_file(tmp.string(), final_dir.string());
+    sync_folder(folder.string());
+    fs::remove_all(old, ec);
+    rep.out = final_dir.string();
+  } else {
+    std::error_code ec;
+    fs::create_directories(req.out, ec);
+    if (ec) throw Error("seismicity: --out " + req.out + ": " + ec.message());
+    FolderLock lock(req.out, "seismicity", StaleLock::Refuse);
+    write_outputs(req.out, s, comments, rep.json);
+    rep.out = req.out;
+  }
+  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+
+  char line[512];
+  const auto& ie = s.interevent().all().moments;
+  std::snprintf(line, sizeof line,
+                "  %lld events, %lld mainshocks (smallest mu %.4g)\n"
+                "  waiting times: mean %.6g, COV %.4f +- %.4f (Poisson: 1)\n",
+                static_cast<long long>(s.events()), static_cast<long long>(s.mainshocks()),
+                s.min_mainshock_mu(), ie.mean(), ie.cov(), ie.cov_err());
+  log << line;
+  const auto& rs = s.recurrence().system().moments;
+  if (rs.n() > 0) {
+    std::snprintf(line, sizeof line, "  mainshock recurrence: mean %.6g, COV %.4f", rs.mean(),
+                  rs.cov());
+    log << line;
+    if (s.weibull().ok)
+      log << ", Weibull k = " << format_with_error(s.weibull().k.value, s.weibull().k.err);
+    log << "\n";
+  }
+  const auto& af = s.aftershocks();
+  if (af.excess)
+    log << "  aftershocks: Omori-Utsu p = " << format_with_error(af.p.value, af.p.err)
+        << ", c = " << format_real(af.c.value) << ", " << format_real(af.excess_events)
+        << " events above the background\n";
+  else
+    log << "  aftershocks: " << af.note << "\n";
+  const auto& fo = s.foreshocks();
+  if (fo.excess)
+    log << "  foreshocks: inverse Omori p = " << format_with_error(fo.p.value, fo.p.err) << "\n";
+  else
+    log << "  foreshocks: " << fo.note << "\n";
+  if (s.bath().sequences > 0) {
+    std::snprintf(line, sizeof line,
+                  "  Båth: delta_mu = %.4f (in ln M), delta_Mw = %.4f (in Mw), %lld sequences\n",
+                  s.bath().delta_mu, s.bath().delta_mw(),
+                  static_cast<long long>(s.bath().sequences));
+    log << line;
+  }
+  std::snprintf(line, sizeof line, "  moment budget %.5f (1 when the chain slips as loaded)\n",
+                s.moment_rate().budget(blocks));
+  log << line << "  written " << rep.out << " in " << format_real(rep.seconds) << " s\n";
+  if (!req.export_file.empty()) log << "  exported " << req.export_file << "\n";
+  return rep;
+}
+
+}  // namespace bkq

@@ -1,0 +1,39 @@
+// The files of `bkquake seismicity` (app/seismicity.hpp): each one's columns declared once
+// here, and the whole text of each written from the analysis (stats/seismicity/). Every
+// file starts with '#' lines (what it holds, the input, provenance), then the header.
+// The docs page docs/explanation/seismicity.md carries the column tables, checked against
+// these schemas by tests/regression/test_seismicity.cpp.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/schema.hpp"
+#include "stats/seismicity/seismicity.hpp"
+
+namespace bkq {
+
+const Schema& interevent_schema();
+const Schema& recurrence_schema();
+const Schema& omori_schema();
+const Schema& moment_rate_schema();
+const Schema& scaling_schema();
+const Schema& spacetime_schema();
+// The catalogue in seismology's column conventions (`bkquake seismicity --export FILE`).
+const Schema& seismicity_export_schema();
+
+// (file name, schema) of every file above, in the docs' order.
+std::vector<std::pair<std::string, const Schema*>> seismicity_schemas();
+
+// Each file's whole text: `comments` as '# ' lines, the header, the rows.
+std::string interevent_csv(const seis::Seismicity& s, const std::vector<std::string>& comments);
+std::string recurrence_csv(const seis::Seismicity& s, const std::vector<std::string>& comments);
+std::string omori_csv(const seis::Seismicity& s, const std::vector<std::string>& comments);
+std::string moment_rate_csv(const seis::Seismicity& s, const std::vector<std::string>& comments);
+std::string scaling_csv(const seis::Seismicity& s, const std::vector<std::string>& comments);
+std::string spacetime_csv(const seis::Seismicity& s, const std::vector<std::string>& comments);
+// One row of the export (no newline); `mw_offset`: the constant of Mw.
+std::string seismicity_export_row(const seis::Quake& q, double mw_offset);
+
+}  // namespace bkq
