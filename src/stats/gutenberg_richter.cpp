@@ -342,11 +342,17 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
                "to within the KS tolerance";
     return r;
   }
+  // When the events above depart from every top, the shortest window (and a note).
+  const auto shortest = [&](std::int64_t from) {
+    std::int64_t top = from + opt.min_window_bins - 1;
+    while (top < last && (h.count(top) == 0 || h.count_range(from, top) < opt.min_tail)) ++top;
+    return top;
+  };
   std::optional<std::int64_t> hi = upper_cut(*lo);
+  if (const auto lo2 = lower_cut(hi.value_or(shortest(*lo)))) lo = lo2;
+  hi = upper_cut(*lo);
   if (!hi) {
-    // The events above depart from every top: the shortest window, and a note.
-    hi = *lo + opt.min_window_bins - 1;
-    while (*hi < last && (h.count(*hi) == 0 || h.count_range(*lo, *hi) < opt.min_tail)) ++*hi;
+    hi = shortest(*lo);
     if (!big_enough(*lo, *hi) || !(mle_or_nan(h, *lo, *hi, truncated(*hi)).b > 0)) {
       r.reason = "no window from mu_min = " + fmt(h.mu_low(*lo)) +
                  " below a rise of the distribution has b > 0";
@@ -355,8 +361,6 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
     r.notes.push_back("the events above depart from the power law at every top from mu_min = " +
                       fmt(h.mu_low(*lo)) + "; mu_max is the top of the shortest window");
   }
-  if (const auto lo2 = lower_cut(*hi)) lo = lo2;
-  if (const auto hi2 = upper_cut(*lo)) hi = hi2;
   r.ok = true;
   r.lo = *lo;
   r.hi = *hi;
