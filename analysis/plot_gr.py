@@ -1,7 +1,7 @@
 #!/usr/bin/env -S /usr/bin/python3
 """Plot the magnitude distributions of bkquake runs (Gutenberg-Richter plots).
 
-    analysis/plot_gr.py RUN_DIR... [--out PNG] [--rates]
+    analysis/plot_gr.py RUN_DIR... [--out PNG] [--rates] [--mu-min A --mu-max B]
 
 For each run folder (an event run or a merge; any folder with histogram.csv) it reads
 histogram.csv and summary.json and draws D(mu) (events per unit magnitude) and R(mu)
@@ -12,8 +12,12 @@ window, so that it passes through the data there:
   D(mu): the expected counts per unit magnitude of the window's (truncated) geometric law;
   R(mu): the same law's survival function times the window's events, plus the events
          above the window (R counts them too).
-A run whose summary has no b (no acceptable window) gets the reason in the legend and no
-line. --rates plots the per-unit-loading-per-block columns D_rate, R_rate instead, so runs
+The band around the line is b's systematic error (b_mle_sys_err of summary.json: half the
+range of b over the windows within 1 unit of mu inside both ends; docs/how-to/fit-window.md).
+--mu-min/--mu-max refit every run on that window here (binned maximum likelihood of Tinti &
+Mulargia, truncated at mu_max, as `bkquake fit --mu-min A --mu-max B`; the systematic band
+by the same rule) and mark it. A run whose summary has no b (no acceptable window) gets the
+reason in the legend and no line. --rates plots the per-unit-loading-per-block columns D_rate, R_rate instead, so runs
 of different lengths compare. The legend label is taken from scene.ini (alpha, N) or the
 folder name. Default output: RUN_DIR/gr.png for one run, gr.png for several. A folder
 without histogram.csv is refused with a one-line message (exit 2).
@@ -62,6 +66,57 @@ def fitted_law(h, b, lo, hi):
     return edges, centres, d_fit, r_fit
 
 
+def binned_mle(h, lo, hi):
+    """Truncated binned MLE (Tinti & Mulargia 1987) on the bins in [lo, hi), with the
+    Shi & Bolt error: the model's mean bin offset solved for b by bisection."""
+    w = float(h["mu_high"][0] - h["mu_low"][0])
+    sel = (h["mu_low"] >= lo - 1e-9) & (h["mu_low"] < hi - 1e-9)
+    c = h["count"][sel].astype(float)
+    n = c.sum()
+    if n < 2:
+        return float("nan"), float("nan")
+    j = np.round((h["mu_low"][sel] - lo) / w)
+    mean = (c * j * w).sum() / n
+    var = (c * (j * w - mean) ** 2).sum()
+    span = round((hi - lo) / w) * w
+
+    def hfun(x):
+        return 0.5 - x / 12 if abs(x) < 1e-6 else 1 / x - 1 / np.expm1(x)
+
+    def m(b):
+        return span * hfun(b * span) - w * hfun(b * w)
+
+    a, z = -20.0, 50.0
+    for _ in range(200):
+        mid = 0.5 * (a + z)
+        a, z = (mid, z) if m(mid) > mean else (a, mid)
+    b = 0.5 * (a + z)
+    eps = 1e-6
+    dm = (m(b + eps) - m(b - eps)) / (2 * eps)
+    return b, np.sqrt(var / (n * (n - 1))) / abs(dm)
+
+
+def systematic(h, lo, hi, width=1.0, min_bins=10, min_tail=50):
+    """Half the range of b over the windows with ends within `width` inside [lo, hi)
+    (populated end bins, >= min_bins bins, >= min_tail events): the rule of
+    b_mle_sys_err."""
+    w = float(h["mu_high"][0] - h["mu_low"][0])
+    nb = int(round(width / w))
+    counts = {int(round(m / w)): int(c) for m, c in zip(h["mu_low"], h["count"])}
+    klo, khi = int(round(lo / w)), int(round(hi / w)) - 1
+    bs = []
+    for a in range(klo, klo + nb):
+        for z in range(khi, khi - nb, -1):
+            if (a != klo and counts.get(a, 0) == 0) or (z != khi and counts.get(z, 0) == 0):
+                continue
+            if z - a + 1 < min_bins or sum(counts.get(k, 0) for k in range(a, z + 1)) < min_tail:
+                continue
+            b, _ = binned_mle(h, a * w, (z + 1) * w)
+            if np.isfinite(b) and b > 0:
+                bs.append(b)
+    return 0.5 * (max(bs) - min(bs)) if bs else float("nan")
+
+
 def plot_run(run, i, args, ax_d, ax_r, dcol, rcol):
     bkquake_io.require_files(
         run, ["histogram.csv"], "plot_gr.py needs a run or merge folder with a histogram")
@@ -80,12 +135,20 @@ def plot_run(run, i, args, ax_d, ax_r, dcol, rcol):
     ax_d.plot(centre[keep], d[keep], "o", ms=3, color=colour, label=name)
     ax_r.plot(h["mu_low"][r > 0], r[r > 0], "o", ms=3, color=colour, label=name)
     fit = bkquake_io.fit_window(summary)
+    err = summary.get("b_mle_err", float("nan"))
+    sys_err = summary.get("b_mle_sys_err", float("nan"))
+    if args.mu_min is not None:
+        lo, hi = args.mu_min, args.mu_max
+        b, err = binned_mle(h, lo, hi)
+        sys_err = systematic(h, lo, hi)
+        fit = (b, lo, hi) if np.isfinite(b) else None
     if fit is None:
         reason = bkquake_io.no_fit_reason(summary) or "no fit in summary.json"
         ax_r.plot([], [], " ", label=textwrap.fill(f"no b: {reason}", 60))
         return
     b, lo, hi = fit
-    err = summary.get("b_mle_err", float("nan"))
+    if sys_err is None:
+        sys_err = float("nan")
     # One run: the window shaded over the whole height; several: a strip per run at the
     # bottom, so that the windows stay apart.
     for ax in (ax_d, ax_r):
@@ -95,9 +158,19 @@ def plot_run(run, i, args, ax_d, ax_r, dcol, rcol):
             ax.axvspan(lo, hi, ymin=0.025 * i, ymax=0.025 * (i + 1), color=colour, alpha=0.6, lw=0)
     edges, centres, d_fit, r_fit = fitted_law(h, b, lo, hi)
     mark = "shaded" if len(args.runs) == 1 else "strip at the bottom"
-    text = f"b = {b:.3f} ± {err:.3f} on [{lo:.1f}, {hi:.1f}) ({mark})"
+    given = " given" if args.mu_min is not None else ""
+    text = (f"b = {b:.3f} ± {err:.3f} (stat.) ± {sys_err:.3f} (sys.), b_mw = 1.5 b = "
+            f"{1.5 * b:.3f}, on{given} [{lo:.1f}, {hi:.1f}) ({mark})")
     ax_d.plot(centres, d_fit * scale, "-", color=colour, lw=1.5, label=text)
     ax_r.plot(edges, r_fit * scale, "-", color=colour, lw=1.5, label=text)
+    # b's systematic band: the law with b -/+ sys, normalised alike.
+    if np.isfinite(sys_err) and sys_err > 0:
+        lows = fitted_law(h, b - sys_err, lo, hi)
+        highs = fitted_law(h, b + sys_err, lo, hi)
+        ax_d.fill_between(centres, lows[2] * scale, highs[2] * scale, color=colour, alpha=0.25,
+                          lw=0)
+        ax_r.fill_between(edges, lows[3] * scale, highs[3] * scale, color=colour, alpha=0.25,
+                          lw=0)
 
 
 def main(argv=None):
@@ -105,7 +178,14 @@ def main(argv=None):
     ap.add_argument("runs", nargs="+", metavar="RUN_DIR")
     ap.add_argument("--out", help="PNG file (default RUN_DIR/gr.png for one run, else gr.png)")
     ap.add_argument("--rates", action="store_true", help="plot D_rate and R_rate")
+    ap.add_argument("--mu-min", type=float, help="refit every run on [MU_MIN, MU_MAX)")
+    ap.add_argument("--mu-max", type=float, help="upper end of the refit window")
     args = ap.parse_args(argv)
+    if (args.mu_min is None) != (args.mu_max is None) or (
+            args.mu_min is not None and not args.mu_max > args.mu_min):
+        print("plot_gr.py: --mu-min and --mu-max go together, with --mu-max > --mu-min",
+              file=sys.stderr)
+        return 2
 
     fig, (ax_d, ax_r) = plt.subplots(1, 2, figsize=(12, 5))
     dcol, rcol = ("D_rate", "R_rate") if args.rates else ("D", "R")

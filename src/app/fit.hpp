@@ -1,7 +1,17 @@
-// `bkquake fit`: reads an event catalogue, fits the Gutenberg-Richter law (binned and
-// unbinned maximum likelihood, least squares, KS window, two power laws, large-event
-// excess; stats/gutenberg_richter.hpp) and counts the event classes. The chain length and
-// boundary for the classes come from the request, else from scene.ini beside the catalogue.
+// `bkquake fit`: fits the Gutenberg-Richter law (binned and unbinned maximum likelihood,
+// least squares, the automatic window with b's systematic error, two power laws,
+// large-event excess; stats/gutenberg_richter.hpp) to whatever holds events:
+//   - a catalogue (catalog.csv or catalog.h5), or a folder holding one (a run, a sweep
+//     replica): every estimate, and the event classes (N and boundary from the request,
+//     else scene.ini beside the catalogue);
+//   - a histogram.csv, or a folder holding one and no catalogue (a merged folder, a sweep
+//     point): the binned estimates only. A histogram cannot give the unbinned (Aki) b, the
+//     event classes or another bin width: it holds the counts of its own bins only;
+//   - a sweep folder (sweep.ini and sweep.csv): each point's merged histogram refitted on
+//     the request's window, written to sweep_fit.csv beside sweep.csv.
+// With `scan`, b_scan.csv (io/b_scan_csv.hpp) goes into the folder fitted (or `out`). Files
+// written into a folder are written under its lock (io/folder_lock.hpp) and replace only
+// their own earlier versions.
 #pragma once
 
 #include <filesystem>
@@ -14,16 +24,19 @@
 namespace bkq {
 
 struct FitRequest {
-  std::filesystem::path catalog;
+  std::filesystem::path catalog;  // the input: a catalogue, histogram.csv or a folder
   double bin_width = MagnitudeHistogram::kDefaultBinWidth;  // > 0
-  std::optional<double> mu_min, mu_max;                     // the fit window, else automatic
-  std::optional<int> blocks;                                // N for the event classes
-  std::optional<std::string> boundary;                      // "free" | "periodic"
-  std::optional<std::filesystem::path> json;                // also write the result here
+  bool bin_width_given = false;               // a histogram's own width must then agree
+  std::optional<double> mu_min, mu_max;       // the fit window, else automatic
+  std::optional<int> blocks;                  // N for the event classes
+  std::optional<std::string> boundary;        // "free" | "periodic"
+  std::optional<std::filesystem::path> json;  // also write the result here
+  bool scan = false;                          // write b_scan.csv
+  std::optional<std::filesystem::path> out;   // folder for b_scan.csv (default: the input's)
 };
 
-// Prints the fit table (and the class counts) to `out` and writes the JSON when asked.
-// User errors throw bkq::Error.
+// Prints the fit table (and the class counts) to `out` and writes the JSON, b_scan.csv or
+// sweep_fit.csv when asked. User errors throw bkq::Error.
 void fit_catalog(const FitRequest& request, std::ostream& out);
 
 }  // namespace bkq

@@ -59,7 +59,12 @@ Json gr_fit_json(const GrFit& f) {
       .set("n_in_window", f.n_in_window);
   set_fit_numbers(o, {{"b_mle", f.b_mle},
                       {"b_mle_err", f.b_mle_err},
-                      {"b_aki", f.b_aki},
+                      {"b_mle_sys_err", f.b_mle_sys_err},
+                      {"b_mw", b_moment_magnitude(f.b_mle)},
+                      {"b_mw_err", b_moment_magnitude(f.b_mle_err)},
+                      {"b_mw_sys_err", b_moment_magnitude(f.b_mle_sys_err)}});
+  o.set("sys_windows", f.sys_windows);
+  set_fit_numbers(o, {{"b_aki", f.b_aki},
                       {"b_aki_err", f.b_aki_err},
                       {"b_lsq", f.b_lsq},
                       {"b_lsq_err", f.b_lsq_err},
@@ -96,8 +101,13 @@ std::string gr_fit_table(const GrFit& f) {
     t += two_laws_and_notes(f);
     return t;
   }
-  t += "b  binned MLE     " + pm(f.b_mle, f.b_mle_err) +
-       "   (Tinti & Mulargia 1987; Shi & Bolt error)\n";
+  t += "b  binned MLE     " + pm(f.b_mle, f.b_mle_err) + " (stat.) +/- " + fixed(f.b_mle_sys_err) +
+       " (sys.)   per unit of mu = ln M (Tinti & Mulargia 1987; Shi & "
+       "Bolt error; sys.: half the range of b over " +
+       std::to_string(f.sys_windows) + " nearby windows)\n";
+  t += "b_mw              " + pm(b_moment_magnitude(f.b_mle), b_moment_magnitude(f.b_mle_err)) +
+       " (stat.) +/- " + fixed(b_moment_magnitude(f.b_mle_sys_err)) +
+       " (sys.)   per unit of Mw = (2/3) log10 M + const (= 1.5 b)\n";
   if (std::isnan(f.b_aki))
     t += "b  unbinned MLE   n/a (needs the magnitudes themselves, not a histogram)\n";
   else

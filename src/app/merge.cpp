@@ -186,6 +186,9 @@ void merge_runs(const MergeRequest& request, std::ostream& out) {
       const GrFit fit = fit_histogram(*merged, request.mu_min, request.mu_max);
       s.set("b_mle", fit_number(fit.b_mle))
           .set("b_mle_err", fit_number(fit.b_mle_err))
+          .set("b_mle_sys_err", fit_number(fit.b_mle_sys_err))
+          .set("b_mw", fit_number(b_moment_magnitude(fit.b_mle)))
+          .set("b_mw_err", fit_number(b_moment_magnitude(fit.b_mle_err)))
           .set("mu_min", fit_number(fit.mu_min))
           .set("mu_max", fit_number(fit.mu_max))
           .set("fit", gr_fit_json(fit));

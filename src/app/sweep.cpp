@@ -28,6 +28,7 @@
 #include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
+#include "stats/gutenberg_richter.hpp"
 
 namespace bkq {
 
@@ -103,7 +104,7 @@ struct PointResult {
   enum class State { Pending, Ok, Failed } state = State::Pending;
   std::string error;
   std::int64_t events = 0;
-  std::optional<double> b, b_err, mu_min, mu_max;
+  std::optional<double> b, b_err, b_sys_err, mu_min, mu_max;
   double seconds = 0;
 };
 
@@ -329,6 +330,7 @@ class Sweep {
         res.events = static_cast<std::int64_t>(json_number(s, "events").value_or(0));
         res.b = json_number(s, "b_mle");
         res.b_err = json_number(s, "b_mle_err");
+        res.b_sys_err = json_number(s, "b_mle_sys_err");
         res.mu_min = json_number(s, "mu_min");
         res.mu_max = json_number(s, "mu_max");
         if (!spec_.keep_histogram)
@@ -352,6 +354,7 @@ class Sweep {
     j.set("events", res.events);
     j.set("b", Json::number(res.b.value_or(NAN)));
     j.set("b_err", Json::number(res.b_err.value_or(NAN)));
+    j.set("b_sys_err", Json::number(res.b_sys_err.value_or(NAN)));
     j.set("mu_min", Json::number(res.mu_min.value_or(NAN)));
     j.set("mu_max", Json::number(res.mu_max.value_or(NAN)));
     j.set("run_seconds", res.seconds);
@@ -369,6 +372,7 @@ class Sweep {
     res.events = static_cast<std::int64_t>(json_number(f, "events").value_or(0));
     res.b = json_number(f, "b");
     res.b_err = json_number(f, "b_err");
+    res.b_sys_err = json_number(f, "b_sys_err");
     res.mu_min = json_number(f, "mu_min");
     res.mu_max = json_number(f, "mu_max");
     res.seconds = json_number(f, "run_seconds").value_or(0);
@@ -403,6 +407,8 @@ class Sweep {
       f.push_back(have ? std::to_string(r.events) : "");
       f.push_back(num(r.b));
       f.push_back(num(r.b_err));
+      f.push_back(num(r.b_sys_err));
+      f.push_back(num(r.b ? std::optional<double>(b_moment_magnitude(*r.b)) : std::nullopt));
       f.push_back(num(r.mu_min));
       f.push_back(num(r.mu_max));
       f.push_back(have ? format_real(r.seconds) : "");

@@ -1,6 +1,7 @@
-// `bkquake fit CATALOG.csv`: parses the arguments and calls app/fit.hpp, which fits the
-// Gutenberg-Richter law to the catalogue, prints a short table and, with --json, writes the
-// same as JSON.
+// `bkquake fit CATALOG|HISTOGRAM|RUN_DIR|MERGED_DIR|SWEEP_DIR`: parses the arguments and
+// calls app/fit.hpp, which fits the Gutenberg-Richter law, prints a short table and, with
+// --json, writes the same as JSON; --scan writes b_scan.csv; a sweep folder gets
+// sweep_fit.csv.
 #include <boost/program_options.hpp>
 #include <cstdlib>
 #include <iostream>
@@ -20,28 +21,32 @@ namespace po = boost::program_options;
 
 int cmd_fit(const std::vector<std::string>& args) {
   po::options_description opts(
-      "bkquake fit CATALOG.csv|CATALOG.h5 [options]\n"
-      "Fits R(mu) = A exp(-b mu), mu = ln(moment), to an event catalogue");
+      "bkquake fit CATALOG.csv|CATALOG.h5|histogram.csv|RUN_DIR|MERGED_DIR|SWEEP_DIR [options]\n"
+      "Fits R(mu) = A exp(-b mu), mu = ln(moment), to anything that holds events; b is per\n"
+      "unit of mu, b_mw = 1.5 b per unit of moment magnitude Mw = (2/3) log10 M + const");
   // clang-format off
   opts.add_options()
     ("help,h", "show this help")
     ("mu-min", po::value<std::string>(), "lower end of the fit window, in [-50, 50] (default "
-                                         "or auto: automatic, README \"How b is fitted\")")
+                                         "or auto: automatic, by b-value stability)")
     ("mu-max", po::value<std::string>(), "upper end of the fit window, in [-50, 50]; truncates "
-                                         "the likelihood (default or auto: automatic, below the "
-                                         "bump of large events)")
+                                         "the likelihood (default or auto: automatic, where the "
+                                         "events above depart from the power law)")
     ("bin-width", po::value<std::string>()->default_value(
                       format_real(MagnitudeHistogram::kDefaultBinWidth)),
                   "magnitude bin width, in (0, 10]")
     ("blocks", po::value<std::string>(), "chain length N for the event classes (default: "
                                          "scene.ini beside the catalogue)")
     ("boundary", po::value<std::string>(), "free | periodic (default: scene.ini, else free)")
-    ("json", po::value<std::string>(), "also write the result as JSON to this file");
+    ("json", po::value<std::string>(), "also write the result as JSON to this file")
+    ("scan", "also write b_scan.csv: b on every window, and the windows of its systematic "
+             "error (into the folder fitted, or --out)")
+    ("out", po::value<std::string>(), "folder for b_scan.csv (default: the folder fitted)");
   // clang-format on
   const po::variables_map vm = parse_command_line("fit", args, opts, "catalog", 1);
   if (printed_help(vm, opts)) return 0;
   if (!vm.count("catalog"))
-    throw Error("fit: missing CATALOG.csv or CATALOG.h5 (see bkquake fit --help)");
+    throw Error("fit: missing CATALOG, histogram.csv or a folder (see bkquake fit --help)");
   // Each option is checked against the scene key it stands for (one declaration each).
   const auto real_option = [&](const char* name, const char* key) -> std::optional<double> {
     if (!vm.count(name)) return std::nullopt;
@@ -51,14 +56,15 @@ int cmd_fit(const std::vector<std::string>& args) {
     return std::strtod(v.c_str(), nullptr);
   };
   const double w = *real_option("bin-width", "stats.bin_width");
-  const std::optional<double> mu_min = real_option("mu-min", "stats.mu_min");
-  const std::optional<double> mu_max = real_option("mu-max", "stats.mu_max");
+  const std::optional<double> mu_min = window_option(vm, "fit", "mu-min", "stats.mu_min");
+  const std::optional<double> mu_max = window_option(vm, "fit", "mu-max", "stats.mu_max");
   if (mu_min && mu_max && !(*mu_max > *mu_min))
     throw Error("fit: --mu-max must be greater than --mu-min");
 
   FitRequest request;
   request.catalog = vm["catalog"].as<std::string>();
   request.bin_width = w;
+  request.bin_width_given = !vm["bin-width"].defaulted();
   request.mu_min = mu_min;
   request.mu_max = mu_max;
   if (vm.count("blocks"))
@@ -66,6 +72,8 @@ int cmd_fit(const std::vector<std::string>& args) {
         std::stoi(option_value("fit: --blocks", "model.blocks", vm["blocks"].as<std::string>()));
   if (vm.count("boundary")) request.boundary = vm["boundary"].as<std::string>();
   if (vm.count("json")) request.json = vm["json"].as<std::string>();
+  request.scan = vm.count("scan") > 0;
+  if (vm.count("out")) request.out = vm["out"].as<std::string>();
   fit_catalog(request, std::cout);
   return 0;
 }

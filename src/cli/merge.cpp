@@ -19,16 +19,27 @@ int cmd_merge(const std::vector<std::string>& args) {
   po::options_description opts(
       "bkquake merge RUN_DIR... --out DIR\n"
       "Merges the histograms of runs of the same scene and fits the result");
-  opts.add_options()("help,h", "show this help")("out", po::value<std::string>(),
-                                                 "output folder (created if missing)")(
-      "force", "write into an output folder that already holds files");
+  // clang-format off
+  opts.add_options()
+    ("help,h", "show this help")
+    ("out", po::value<std::string>(), "output folder (created if missing)")
+    ("force", "write into an output folder that already holds files")
+    ("mu-min", po::value<std::string>(), "lower end of the fit window, in [-50, 50] (default "
+                                         "or auto: automatic)")
+    ("mu-max", po::value<std::string>(), "upper end of the fit window, in [-50, 50] (default "
+                                         "or auto: automatic)");
+  // clang-format on
   const po::variables_map vm = parse_command_line("merge", args, opts, "runs", -1);
   if (printed_help(vm, opts)) return 0;
   if (!vm.count("runs")) throw Error("merge: no RUN_DIR given (see bkquake merge --help)");
   if (!vm.count("out")) throw Error("merge: --out DIR is required");
-  merge_runs({vm["runs"].as<std::vector<std::string>>(), vm["out"].as<std::string>(),
-              vm.count("force") > 0},
-             std::cout);
+  MergeRequest request{vm["runs"].as<std::vector<std::string>>(), vm["out"].as<std::string>(),
+                       vm.count("force") > 0};
+  request.mu_min = window_option(vm, "merge", "mu-min", "stats.mu_min");
+  request.mu_max = window_option(vm, "merge", "mu-max", "stats.mu_max");
+  if (request.mu_min && request.mu_max && !(*request.mu_max > *request.mu_min))
+    throw Error("merge: --mu-max must be greater than --mu-min");
+  merge_runs(request, std::cout);
   return 0;
 }
 

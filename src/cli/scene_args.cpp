@@ -1,6 +1,7 @@
 // The shared SCENE / --set command line; see scene_args.hpp.
 #include "cli/scene_args.hpp"
 
+#include <cstdlib>
 #include <iostream>
 
 #include "core/error.hpp"
@@ -69,6 +70,14 @@ Scene scene_from_command_line(const std::string& command, const po::variables_ma
 void drop_inapplicable_keys(Scene& scene) {
   for (const auto& w : scene.drop_inapplicable())
     std::cerr << "bkquake: warning: " << escape_unprintable(w) << "\n";
+}
+
+std::optional<double> window_option(const po::variables_map& vm, const std::string& command,
+                                    const char* name, const char* key) {
+  if (!vm.count(name)) return std::nullopt;
+  const std::string v = option_value(command + ": --" + name, key, vm[name].as<std::string>());
+  if (v == "auto") return std::nullopt;
+  return std::strtod(v.c_str(), nullptr);
 }
 
 }  // namespace bkq

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <boost/program_options.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ boost::program_options::variables_map parse_command_line(
 // True, after printing `usage` and the options, when the command line asked for --help.
 bool printed_help(const boost::program_options::variables_map& vm,
                   const boost::program_options::options_description& opts, const char* usage = "");
+
+// A fit window end given as --<name> (--mu-min, --mu-max), checked against the scene key it
+// stands for (`key`: one declaration of the range); nullopt when absent or "auto".
+std::optional<double> window_option(const boost::program_options::variables_map& vm,
+                                    const std::string& command, const char* name, const char* key);
 
 // Parses `args` with `opts` plus the positional SCENE, without abbreviations (`--for`
 // silently meaning --force would be a surprise). Errors read "<command>: ...".

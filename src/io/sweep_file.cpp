@@ -229,10 +229,30 @@ const Schema& sweep_csv_schema() {
        kInteger},
       {"b", "", "binned maximum-likelihood b of the merged histogram; empty when no window fits"},
       {"b_err", "", "its standard error (Shi & Bolt); empty when no window fits"},
+      {"b_sys_err", "",
+       "systematic error of b: half its range over the windows within 1 unit of mu inside "
+       "both ends; empty when no window fits"},
+      {"b_mw", "", "b per unit of moment magnitude Mw = (2/3) log10 M + const: 1.5 b"},
       {"mu_min", "", "lower end of the fit window (the scene's stats.mu_min, or automatic)"},
       {"mu_max", "", "upper end of the fit window"},
       {"run_seconds", "wall s", "wall-clock seconds of the point's replicas, summed"},
       {"error", "", "why the point failed (double-quoted), empty when ok", kText},
+  };
+  return schema;
+}
+
+const Schema& sweep_fit_schema() {
+  static const Schema schema = {
+      {sweep_col::point, "", "0-based point number, as in sweep.csv; the swept keys follow",
+       kInteger},
+      {"events", "", "events in the point's merged histogram", kInteger},
+      {"b", "", "binned maximum-likelihood b on the refit's window; empty when none fits"},
+      {"b_err", "", "its standard error (Shi & Bolt)"},
+      {"b_sys_err", "", "its systematic error (half the range over the nearby windows)"},
+      {"b_mw", "", "1.5 b: per unit of moment magnitude Mw"},
+      {"mu_min", "", "lower end of the window (given, or automatic)"},
+      {"mu_max", "", "upper end of the window"},
+      {"error", "", "why the point has no b (double-quoted), empty when it has one", kText},
   };
   return schema;
 }

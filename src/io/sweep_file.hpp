@@ -67,6 +67,9 @@ std::vector<std::string> expand_sweep_values(const std::string& key, const std::
 
 // sweep.csv: `point`, then one column per swept key (named by the key), then these.
 const Schema& sweep_csv_schema();
+// sweep_fit.csv, written by `bkquake fit SWEEP_DIR` beside sweep.csv: one row per point
+// refitted from its merged histogram.csv (the swept keys after `point`, as in sweep.csv).
+const Schema& sweep_fit_schema();
 namespace sweep_col {
 inline constexpr const char* point = "point";
 }

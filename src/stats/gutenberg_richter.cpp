@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 #include "core/error.hpp"
 
@@ -199,6 +201,206 @@ double ks_distance_binned(const MagnitudeHistogram& h, std::int64_t k_lo, std::i
   return d;
 }
 
+namespace {
+
+// The binned MLE on bins lo..hi, NaN when they hold fewer than 2 events.
+BEstimate mle_or_nan(const MagnitudeHistogram& h, std::int64_t lo, std::int64_t hi,
+                     bool truncated) {
+  if (hi < lo || h.count_range(lo, hi) < 2) return {kNaN, kNaN, 0};
+  return binned_mle(h, lo, hi, truncated);
+}
+
+struct AutoWindow {
+  bool ok = false;
+  std::int64_t lo = 0, hi = 0;
+  std::string reason;  // why no window, when !ok
+  std::vector<std::string> notes;
+};
+
+// The automatic window (docs/how-to/fit-window.md): a ceiling below any rise of D(mu)
+// (the dip and bump of large events), the lower cut by b-value stability, the upper cut
+// by the departure test of the events above, each cut found again once with the other's
+// result. A given end stays where it is.
+template <class Poll>
+AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int64_t> lo_given,
+                            std::optional<std::int64_t> hi_given, const GrFitOptions& opt,
+                            const Poll& poll) {
+  AutoWindow r;
+  const double w = h.bin_width();
+  const std::int64_t first = h.first_bin(), last = h.last_bin();
+  const auto bins_of = [w](double width) {
+    return std::max<std::int64_t>(1, std::llround(width / w));
+  };
+  const auto truncated = [&](std::int64_t hi) { return hi_given.has_value() || hi < last; };
+  const auto big_enough = [&](std::int64_t lo, std::int64_t hi) {
+    return hi - lo + 1 >= opt.min_window_bins && h.count_range(lo, hi) >= opt.min_tail;
+  };
+  // Goodness of fit (Wiemer & Wyss 2000, as a KS distance between the binned survival
+  // functions): a share ks_systematic of the window's events plus the statistical
+  // ks_tolerance / sqrt(n).
+  const auto fits = [&](std::int64_t lo, std::int64_t hi, double b) {
+    const double n = static_cast<double>(h.count_range(lo, hi));
+    return ks_distance_binned(h, lo, hi, b, truncated(hi)) <=
+           opt.ks_systematic + opt.ks_tolerance / std::sqrt(n);
+  };
+
+  // Ceiling of a window starting at `start`: the running sum S of the counts over
+  // smooth_width, walked up from there, must not climb to rise_factor times its lowest
+  // value below, by rise_sigma Poisson standard deviations; the highest populated bin
+  // before such a rise.
+  const std::int64_t half =
+      std::max<std::int64_t>(1, std::llround(0.5 * (opt.smooth_width / w - 1)));
+  const auto S = [&](std::int64_t k) {
+    return static_cast<double>(h.count_range(std::max(first, k - half), std::min(last, k + half)));
+  };
+  const auto ceiling = [&](std::int64_t start) {
+    if (hi_given) return *hi_given;
+    std::int64_t top = last;
+    double s_min = S(start);
+    for (std::int64_t k = start; k <= last; ++k) {
+      const double s = S(k);
+      if (s > opt.rise_factor * s_min && s - s_min > opt.rise_sigma * std::sqrt(s + s_min)) {
+        top = k - 1;
+        break;
+      }
+      s_min = std::min(s_min, s);
+    }
+    while (top > start && h.count(top) == 0) --top;
+    return top;
+  };
+
+  // Lower cut: for each populated bin edge lo, b from lo + j up to hi (the upper cut, at
+  // most lo's ceiling) for j = 0..L; lo is stable when b moves by at most
+  // max(stability_db, sigma_b) from each edge to the next. The lowest stable edge wins;
+  // when none is, the one whose largest step is the smallest share of its tolerance, with
+  // a note.
+  const std::int64_t L = bins_of(opt.stability_width);
+  std::string fallback_note;  // set by the last lower_cut that found no stable edge
+  const auto lower_cut = [&](std::int64_t hi_cap) -> std::optional<std::int64_t> {
+    if (lo_given) return lo_given;
+    std::optional<std::int64_t> best;
+    double best_ratio = kInf;
+    for (std::int64_t lo = first; lo + L <= hi_cap; ++lo) {
+      if (h.count(lo) == 0) continue;
+      poll();
+      const std::int64_t hi = std::min(hi_cap, ceiling(lo));
+      if (hi < lo + L || !big_enough(lo, hi)) continue;
+      const BEstimate b0 = mle_or_nan(h, lo, hi, truncated(hi));
+      if (!(b0.b > 0) || !std::isfinite(b0.err)) continue;
+      // worst: the largest step of b as a share of its tolerance max(db, k sigma_b).
+      double worst = 0, prev = b0.b;
+      for (std::int64_t j = 1; j <= L && std::isfinite(worst); ++j) {
+        const BEstimate bj = mle_or_nan(h, lo + j, hi, truncated(hi));
+        worst = std::isfinite(bj.b) && std::isfinite(bj.err)
+                    ? std::max(worst, std::fabs(bj.b - prev) /
+                                          std::max(opt.stability_db, opt.stability_sigma * bj.err))
+                    : kInf;
+        prev = bj.b;
+      }
+      if (worst <= 1) return lo;
+      if (worst < best_ratio && fits(lo, hi, b0.b)) {
+        best_ratio = worst;
+        best = lo;
+      }
+    }
+    fallback_note.clear();
+    if (best)
+      fallback_note = ("b is stable to within max(" + fmt_short(opt.stability_db) + ", " +
+                       fmt_short(opt.stability_sigma) + " sigma_b) from no lower cut; mu_min = " +
+                       fmt(h.mu_low(*best)) + " is the most stable (steps up to " +
+                       fmt_short(best_ratio) + " times the tolerance)");
+    return best;
+  };
+
+  // Upper cut: the highest populated top <= lo's ceiling from which the events of the next
+  // departure_width still follow the window's law (their own slope within a factor
+  // departure_ratio of b, widened by departure_sigma standard errors).
+  const std::int64_t D = bins_of(opt.departure_width);
+  const auto upper_cut = [&](std::int64_t lo) -> std::optional<std::int64_t> {
+    if (hi_given) return hi_given;
+    for (std::int64_t hi = ceiling(lo); hi >= lo + opt.min_window_bins - 1; --hi) {
+      poll();
+      if (h.count(hi) == 0 || !big_enough(lo, hi)) continue;
+      const BEstimate bw = mle_or_nan(h, lo, hi, truncated(hi));
+      if (!(bw.b > 0) || !std::isfinite(bw.err)) continue;
+      const std::int64_t s_hi = std::min(last, hi + D);
+      if (h.count_range(hi + 1, s_hi) < opt.departure_min_events || s_hi - hi < 2) return hi;
+      const BEstimate bs = mle_or_nan(h, hi + 1, s_hi, true);
+      if (!std::isfinite(bs.b) || !std::isfinite(bs.err)) continue;
+      const double z = opt.departure_sigma * bs.err;
+      if (bs.b >= bw.b / opt.departure_ratio - z && bs.b <= bw.b * opt.departure_ratio + z)
+        return hi;
+    }
+    return std::nullopt;
+  };
+
+  std::optional<std::int64_t> lo = lower_cut(hi_given.value_or(last));
+  if (!lo) {
+    r.reason = "no window with >= " + std::to_string(opt.min_tail) +
+               " events and >= " + std::to_string(opt.min_window_bins) +
+               " bins below a rise of the distribution has b > 0 and is fitted by one power law "
+               "to within the KS tolerance";
+    return r;
+  }
+  // When the events above depart from every top, the shortest window (and a note).
+  const auto shortest = [&](std::int64_t from) {
+    std::int64_t top = from + opt.min_window_bins - 1;
+    while (top < last && (h.count(top) == 0 || h.count_range(from, top) < opt.min_tail)) ++top;
+    return top;
+  };
+  std::optional<std::int64_t> hi = upper_cut(*lo);
+  if (const auto lo2 = lower_cut(hi.value_or(shortest(*lo)))) lo = lo2;
+  hi = upper_cut(*lo);
+  if (!hi) {
+    hi = shortest(*lo);
+    if (!big_enough(*lo, *hi) || !(mle_or_nan(h, *lo, *hi, truncated(*hi)).b > 0)) {
+      r.reason = "no window from mu_min = " + fmt(h.mu_low(*lo)) +
+                 " below a rise of the distribution has b > 0";
+      return r;
+    }
+    r.notes.push_back("the events above depart from the power law at every top from mu_min = " +
+                      fmt(h.mu_low(*lo)) + "; mu_max is the top of the shortest window");
+  }
+  r.ok = true;
+  r.lo = *lo;
+  r.hi = *hi;
+  if (!fallback_note.empty()) r.notes.push_back(fallback_note);
+  return r;
+}
+
+// Whether [lo, hi] is one of the windows of the systematic error of the fit on
+// [k_lo, k_hi]: its ends within sys_width inside the fit's, on populated bins (or the
+// fit's own ends), with >= min_tail events and >= min_window_bins bins.
+bool in_sys_set(const MagnitudeHistogram& h, std::int64_t k_lo, std::int64_t k_hi, std::int64_t lo,
+                std::int64_t hi, const GrFitOptions& opt) {
+  const std::int64_t S = std::max<std::int64_t>(1, std::llround(opt.sys_width / h.bin_width()));
+  if (lo < k_lo || lo >= k_lo + S || hi > k_hi || hi <= k_hi - S) return false;
+  if ((lo != k_lo && h.count(lo) == 0) || (hi != k_hi && h.count(hi) == 0)) return false;
+  return hi - lo + 1 >= opt.min_window_bins && h.count_range(lo, hi) >= opt.min_tail;
+}
+
+// Half the range of b over the windows of GrFitOptions::sys_width around [k_lo, k_hi]
+// (the window itself included when it fits); with the number of windows.
+std::pair<double, std::int64_t> systematic_spread(const MagnitudeHistogram& h, std::int64_t k_lo,
+                                                  std::int64_t k_hi, bool truncated,
+                                                  const GrFitOptions& opt) {
+  const std::int64_t S = std::max<std::int64_t>(1, std::llround(opt.sys_width / h.bin_width()));
+  double lo_b = kInf, hi_b = -kInf;
+  std::int64_t n = 0;
+  for (std::int64_t lo = k_lo; lo < k_lo + S; ++lo)
+    for (std::int64_t hi = k_hi; hi > k_hi - S; --hi) {
+      if (!in_sys_set(h, k_lo, k_hi, lo, hi, opt)) continue;
+      const BEstimate e = mle_or_nan(h, lo, hi, truncated || hi < h.last_bin());
+      if (!(e.b > 0) || !std::isfinite(e.b)) continue;
+      lo_b = std::min(lo_b, e.b);
+      hi_b = std::max(hi_b, e.b);
+      ++n;
+    }
+  return {n > 0 ? 0.5 * (hi_b - lo_b) : kNaN, n};
+}
+
+}  // namespace
+
 GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
                     std::optional<double> mu_max, const GrFitOptions& opt) {
   GrFit f;
@@ -266,91 +468,13 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
                   fmt(h.max_mu()) + " span " + std::to_string(span) + " bins of width " + fmt(w) +
                   ", more than the " + std::to_string(kMaxScanBins) +
                   " the window search covers; use a wider bin width or give mu_min and mu_max");
-    // The rule (README "How b is fitted"): among the windows whose ends sit on populated
-    // bins (unless given), with >= min_window_bins bins, >= min_tail events and >= 2
-    // populated bins, keep those (1) in which, unless mu_max is given, the running sum S
-    // of the counts over smooth_width never rises to more than rise_factor times its
-    // lowest value further down the window (at rise_sigma Poisson standard deviations): no
-    // bump, and no climbing out of the dip before it; (2) whose binned MLE b is > 0; (3) whose KS
-    // distance is within ks_systematic + ks_tolerance / sqrt(n_window). The widest wins
-    // (most bins, then most events, then smallest KS distance).
-    const std::int64_t first = h.first_bin(), last = h.last_bin();
-    std::vector<std::int64_t> prefix(static_cast<std::size_t>(span + 1), 0);  // counts below
-    for (std::int64_t i = 0; i < span; ++i)
-      prefix[static_cast<std::size_t>(i + 1)] =
-          prefix[static_cast<std::size_t>(i)] + h.count(first + i);
-    const auto below = [&](std::int64_t k) {  // events in bins < k
-      return prefix[static_cast<std::size_t>(std::clamp(k, first, last + 1) - first)];
-    };
-    const std::int64_t half =
-        std::max<std::int64_t>(1, std::llround(0.5 * (opt.smooth_width / w - 1)));
-    const auto S = [&](std::int64_t k) {
-      return static_cast<double>(below(k + half + 1) - below(k - half));
-    };
-    const std::int64_t lo_first = k_lo_given.value_or(first);
-    const std::int64_t lo_last = k_lo_given.value_or(last);
-    const std::int64_t hi_first = k_hi_given.value_or(first);
-    const std::int64_t hi_last = k_hi_given.value_or(last);
-    struct Pick {
-      std::int64_t lo, hi, n;
-      double d;
-    };
-    // First the cheap conditions (ends, size, no rise) over every window, in the order
-    // lo, then hi; then the fits (binned MLE, KS distance), widest windows first: once a
-    // width holds an accepted window no narrower one can win, so the rest are not fitted.
-    // Equal widths keep the lo order, so ties go to the same window as in one pass.
-    std::vector<Pick> cands;
-    for (std::int64_t lo = lo_first; lo <= lo_last; ++lo) {
-      if (!k_lo_given && h.count(lo) == 0) continue;
-      poll();
-      double s_min = S(lo);
-      for (std::int64_t hi = lo; hi <= hi_last; ++hi) {
-        const double s = S(hi);
-        // A rise inside [lo, hi] stays inside every wider window: stop here. A given mu_max
-        // includes what lies below it, rise or not.
-        if (!k_hi_given && s > opt.rise_factor * s_min &&
-            s - s_min > opt.rise_sigma * std::sqrt(s + s_min))
-          break;
-        s_min = std::min(s_min, s);
-        if (hi < hi_first || hi - lo + 1 < opt.min_window_bins) continue;
-        if (!k_hi_given && h.count(hi) == 0) continue;
-        const std::int64_t n = below(hi + 1) - below(lo);
-        if (n < opt.min_tail) continue;
-        int populated = 0;
-        for (std::int64_t j = lo; j <= hi && populated < 2; ++j) populated += h.count(j) > 0;
-        if (populated < 2) continue;
-        cands.push_back(Pick{lo, hi, n, 0});
-      }
-    }
-    std::stable_sort(cands.begin(), cands.end(),
-                     [](const Pick& a, const Pick& b) { return a.hi - a.lo > b.hi - b.lo; });
-    std::optional<Pick> pick;
-    const auto candidates = static_cast<std::int64_t>(cands.size());
-    std::int64_t positive = 0;
-    for (const Pick& c : cands) {
-      if (pick && c.hi - c.lo < pick->hi - pick->lo) break;
-      poll();
-      const bool tr = truncated_at(c.hi);
-      const BEstimate e = binned_mle(h, c.lo, c.hi, tr);
-      if (!(e.b > 0) || !std::isfinite(e.err)) continue;
-      ++positive;
-      const double d = ks_distance_binned(h, c.lo, c.hi, e.b, tr);
-      if (!(d <= opt.ks_systematic + opt.ks_tolerance / std::sqrt(static_cast<double>(c.n))))
-        continue;
-      if (!pick || c.n > pick->n || (c.n == pick->n && d < pick->d))
-        pick = Pick{c.lo, c.hi, c.n, d};
-    }
-    if (pick) {
-      k_lo = pick->lo;
-      k_hi = pick->hi;
-    } else if (candidates == 0) {
-      no_window = "no window with >= " + std::to_string(opt.min_tail) +
-                  " events and >= " + std::to_string(opt.min_window_bins) +
-                  " bins lies below a rise of the distribution";
-    } else if (positive == 0) {
-      no_window = "the events do not decrease with magnitude in any window (b <= 0)";
+    const AutoWindow win = automatic_window(h, k_lo_given, k_hi_given, opt, poll);
+    if (win.ok) {
+      k_lo = win.lo;
+      k_hi = win.hi;
+      f.notes.insert(f.notes.end(), win.notes.begin(), win.notes.end());
     } else {
-      no_window = "no window is fitted by one power law to within the KS tolerance";
+      no_window = win.reason;
     }
   }
   poll();
@@ -368,6 +492,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   const BEstimate e = binned_mle(h, k_lo, k_hi, f.truncated);
   f.b_mle = e.b;
   f.b_mle_err = e.err;
+  std::tie(f.b_mle_sys_err, f.sys_windows) = systematic_spread(h, k_lo, k_hi, f.truncated, opt);
   if (!std::isfinite(e.b))
     f.notes.push_back("b_mle is unbounded: the window's events fill one bin");
   if (no_window.empty() && !(e.b > 0))
@@ -486,7 +611,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   if (!no_window.empty()) {
     f.b_ok = false;
     f.no_b_reason = no_window;
-    f.b_mle = f.b_mle_err = f.b_aki = f.b_aki_err = f.b_lsq = f.b_lsq_err = kNaN;
+    f.b_mle = f.b_mle_err = f.b_mle_sys_err = f.b_aki = f.b_aki_err = f.b_lsq = f.b_lsq_err = kNaN;
     f.ln_A = f.ks_distance = kNaN;
     f.excess_found = false;
     f.excess_observed = 0;
@@ -510,6 +635,41 @@ GrFit fit_magnitudes(std::span<const double> mu, double bin_width, std::optional
   GrFit f = fit_histogram(h, mu_min, mu_max, opt);
   add_unbinned(f, mu);
   return f;
+}
+
+std::vector<WindowFit> scan_windows(const MagnitudeHistogram& h, const GrFit& fit,
+                                    const GrFitOptions& opt) {
+  if (h.events() < 2)
+    throw Error("b scan: need at least 2 events, found " + std::to_string(h.events()));
+  const std::int64_t first = h.first_bin(), last = h.last_bin();
+  if (last - first + 1 > kMaxScanBins)
+    throw Error("b scan: the magnitudes span " + std::to_string(last - first + 1) +
+                " bins, more than the " + std::to_string(kMaxScanBins) +
+                " a scan covers; use a wider bin width");
+  const double w = h.bin_width();
+  const std::int64_t k_lo = std::llround(fit.mu_min / w), k_hi = std::llround(fit.mu_max / w) - 1;
+  std::vector<WindowFit> rows;
+  for (std::int64_t lo = first; lo <= last; ++lo) {
+    if (h.count(lo) == 0 && lo != k_lo) continue;
+    for (std::int64_t hi = lo + opt.min_window_bins - 1; hi <= last; ++hi) {
+      if (h.count(hi) == 0 && hi != k_hi) continue;
+      const std::int64_t n = h.count_range(lo, hi);
+      if (n < opt.min_tail) continue;
+      const bool truncated = !fit.mu_max_auto || hi < last;
+      const BEstimate e = mle_or_nan(h, lo, hi, truncated);
+      WindowFit r;
+      r.mu_min = h.mu_low(lo);
+      r.mu_max = h.mu_high(hi);
+      r.events = n;
+      r.b = e.b;
+      r.b_err = e.err;
+      r.ks_distance = ks_distance_binned(h, lo, hi, e.b, truncated);
+      r.accepted =
+          fit.b_ok && e.b > 0 && std::isfinite(e.b) && in_sys_set(h, k_lo, k_hi, lo, hi, opt);
+      rows.push_back(r);
+    }
+  }
+  return rows;
 }
 
 }  // namespace bkq

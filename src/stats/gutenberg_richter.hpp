@@ -3,9 +3,10 @@
 // eq. 2.6), so the law is R(mu) = A e^{-b mu} with no ln 10 factors anywhere.
 //
 // The estimators (Aki, Tinti & Mulargia, Shi & Bolt, weighted least squares, two power
-// laws), the automatic window (the widest window below any rise of the distribution that
-// one power law fits to within a KS tolerance) and the large-event excess are described in
-// README.md, section "How b is fitted".
+// laws), the automatic window (a ceiling below any rise of the distribution, the lower cut
+// by b-value stability, the upper cut by a departure test of the events above), the
+// systematic error of b and the large-event excess are described in
+// docs/how-to/fit-window.md.
 #pragma once
 
 #include <cstdint>
@@ -38,17 +39,42 @@ struct GrFitOptions {
   // Fewest bins in a candidate window (10 bins of 0.2 = a factor e^2 in moment).
   std::int64_t min_window_bins = 10;
   double excess_tail_probability = 0.02275;  // one-sided 2 sigma
-  // Automatic window: a candidate is fitted by one power law when its KS distance is at
-  // most ks_systematic (a share of the window's events, whatever their number: the
-  // curvature a reader of D(mu) tolerates) + ks_tolerance / sqrt(n_window) (statistical).
-  double ks_systematic = 0.03;
-  double ks_tolerance = 0.5;
-  // Automatic window: the running sum of the counts over smooth_width (in mu) must not
-  // rise inside the window to more than rise_factor times its lowest value further down,
-  // by more than rise_sigma Poisson standard deviations (the dip and bump of large events).
+  // Ceiling of the automatic window: the running sum of the counts over smooth_width (in
+  // mu) must not rise inside the window to more than rise_factor times its lowest value
+  // further down, by more than rise_sigma Poisson standard deviations (the dip and bump of
+  // large events).
   double smooth_width = 1.0;
   double rise_factor = 2.0;
   double rise_sigma = 3.0;
+  // Lower cut, b-value stability (Cao & Gao 2002; Woessner & Wiemer 2005) adapted to
+  // mu = ln M: mu_min is the lowest populated bin edge from which b (binned MLE up to the
+  // upper cut) changes by at most max(stability_db, stability_sigma * sigma_b) from each
+  // bin edge to the next over stability_width units of mu (1.6 in mu = 0.46 units of Mw,
+  // about the 0.5 of Woessner & Wiemer; 0.03 is the step of Cao & Gao; sigma_b the Shi &
+  // Bolt error of the later window, as Woessner & Wiemer's tolerance). When no edge is
+  // stable, the most stable one that passes the goodness-of-fit test below.
+  double stability_width = 1.6;
+  double stability_db = 0.03;
+  double stability_sigma = 2.0;
+  // Upper cut, departure from the power law: the events in the departure_width units of
+  // mu above the window are fitted alone (truncated binned MLE); the law holds on when
+  // that slope lies within [b / departure_ratio, b * departure_ratio] widened by
+  // departure_sigma of its standard errors. mu_max is the highest window top (below the
+  // ceiling) at which the law holds on; a segment of fewer than departure_min_events
+  // events cannot show a departure.
+  double departure_width = 1.6;
+  double departure_ratio = 1.5;
+  double departure_sigma = 2.0;
+  std::int64_t departure_min_events = 20;
+  // Systematic error: half the range of b over the windows whose lower end lies within
+  // sys_width above mu_min and whose upper end lies within sys_width below mu_max, on
+  // populated bins, with >= min_tail events and >= min_window_bins bins (given ends too:
+  // a window by eye is a choice as well).
+  double sys_width = 1.0;
+  // Goodness of fit reported for every window (Wiemer & Wyss 2000, as a KS distance): a
+  // window is a fit when d <= ks_systematic + ks_tolerance / sqrt(n_window).
+  double ks_systematic = 0.03;
+  double ks_tolerance = 0.5;
   // Polled between the steps of the fit (well under a millisecond apart at <= kMaxScanBins
   // bins); when it returns true the fit throws FitCancelled. Empty: never cancelled.
   std::function<bool()> cancelled;
@@ -74,6 +100,10 @@ struct GrFit {
   // Binned MLE (Tinti & Mulargia 1987) and its error.
   double b_mle = 0;
   double b_mle_err = 0;
+  // Systematic error of b_mle: half the range of b over the windows of
+  // GrFitOptions::sys_width around this one (sys_windows of them); NaN when no b.
+  double b_mle_sys_err = 0;
+  std::int64_t sys_windows = 0;
   // Unbinned MLE (Aki 1965) and its error (Shi & Bolt 1982); NaN when the magnitudes
   // themselves are not available.
   double b_aki = 0;
@@ -102,6 +132,29 @@ struct GrFit {
   double excess_count = 0;  // largest observed - expected over the excess run
   std::vector<std::string> notes;
 };
+
+// b per unit of moment magnitude Mw = (2/3) log10 M + const for a law that has slope b
+// per unit of mu = ln M: mu = 1.5 ln(10) Mw + const, so R = A e^{-b mu} = A' 10^{-1.5 b Mw}.
+// Errors scale the same way.
+inline constexpr double kMwPerMu = 1.5;
+inline double b_moment_magnitude(double b_mu) {
+  return kMwPerMu * b_mu;
+}
+
+// One window of a b scan: the binned MLE on [mu_min, mu_max) and whether the automatic
+// method counts it among the windows of the systematic error.
+struct WindowFit {
+  double mu_min = 0, mu_max = 0;
+  std::int64_t events = 0;
+  double b = 0, b_err = 0, ks_distance = 0;
+  bool accepted = false;
+};
+// Every window [lo, hi) between populated bins with >= min_tail events and >=
+// min_window_bins bins (lo in the order of the bins, then hi), fitted like the fit's own
+// window (truncated unless it reaches the largest populated bin); `fit` marks as accepted
+// the windows of its systematic error. At most kMaxScanBins bins (bkq::Error beyond).
+std::vector<WindowFit> scan_windows(const MagnitudeHistogram& h, const GrFit& fit,
+                                    const GrFitOptions& opt = {});
 
 // A maximum-likelihood estimate with its standard error.
 struct BEstimate {

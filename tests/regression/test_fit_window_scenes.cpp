@@ -1,7 +1,7 @@
 // The automatic fit window on real catalogues (issue 19, item 10), 10^5 events each (under a
 // second per scene): on the Carlson-Langer scenes alpha = 2, 2.5, 3 the automatic b agrees
 // with the b on the window read off by eye, [-7.6, -2.0), on the same catalogue within two
-// combined standard errors, and the window keeps a reasonable share of the events; on the
+// combined errors (statistical, and the automatic b's systematic one); on the
 // Mori-Kawamura ring the window stays below the bump of large events and b is positive; a
 // given window on which the events increase gives no b in summary.json, with the reason.
 // Before the rule of README "How b is fitted" the default scene gave 0.975 +/- 0.015 on
@@ -39,14 +39,17 @@ TEST_P(CarlsonLangerWindow, AutomaticBAgreesWithTheWindowByEye) {
   const GrFit eye = fit_histogram(h, -7.6, -2.0);
   const GrFit f = fit_histogram(h, std::nullopt, std::nullopt);
   ASSERT_TRUE(f.b_ok) << f.no_b_reason;
-  EXPECT_NEAR(f.b_mle, eye.b_mle, 2 * std::hypot(f.b_mle_err, eye.b_mle_err))
+  // Two combined errors: statistical of both, systematic of the automatic b.
+  const double combined = std::sqrt(f.b_mle_err * f.b_mle_err + f.b_mle_sys_err * f.b_mle_sys_err +
+                                    eye.b_mle_err * eye.b_mle_err);
+  EXPECT_NEAR(f.b_mle, eye.b_mle, 2 * combined)
       << "automatic [" << f.mu_min << ", " << f.mu_max << ")";
-  // In the power-law region: above the atom of one-block events, below the bump (which
-  // peaks at mu ~ 4.2 at N = 100), and holding at least the events of the window by eye.
-  EXPECT_GE(f.mu_min, -8.0 - 1e-9);
-  EXPECT_LE(f.mu_min, -7.0 + 1e-9);
+  EXPECT_LE(f.b_mle_sys_err, 0.05);
+  // In the power-law region: above the atom of one-block events (mu = -8.9) and its
+  // few-block neighbours, below the bump (which peaks at mu ~ 4.2 at N = 100).
+  EXPECT_GE(f.mu_min, -8.4 - 1e-9);
+  EXPECT_LE(f.mu_min, -6.4 + 1e-9);
   EXPECT_LE(f.mu_max, 3.0 + 1e-9);
-  EXPECT_GE(f.n_in_window, eye.n_in_window);
 }
 
 INSTANTIATE_TEST_SUITE_P(Alpha, CarlsonLangerWindow,
@@ -61,7 +64,9 @@ TEST(MoriKawamuraWindow, StaysBelowTheBumpWithAPositiveB) {
   EXPECT_GT(f.b_mle, 0.5);
   // D(mu) turns up again above mu ~ 0.8 (the bump peaks near 3.6).
   EXPECT_LE(f.mu_max, 1.2 + 1e-9);
-  EXPECT_LE(f.mu_min, -3.0);
+  // Above the few-block bins, at the start of the power law (stability from -2.8 at
+  // 10^5 events; the rule before 2026-11 took -4.0, inside the uneven bins).
+  EXPECT_LE(f.mu_min, -2.6);
 }
 
 TEST(NoAcceptableWindow, SummaryGivesNoBAndSaysWhy) {

@@ -138,39 +138,71 @@ TEST(Window, RisingDistributionGivesNoB) {
   EXPECT_NE(g.no_b_reason.find("do not decrease"), std::string::npos) << g.no_b_reason;
 }
 
-// The search fits the widest windows first and stops at the first width holding an
-// accepted one: with mu_max given (so no rise rule) and a curved D(mu) that KS rejects
-// over its whole range, the window picked is accepted and every wider one that meets the
-// cheap conditions (populated first bin, >= 50 events, >= 10 bins) is rejected by b or KS.
-TEST(Window, PicksTheWidestAcceptedWindowWhenTheWidestAreRejected) {
-  std::mt19937_64 rng(11);
+// Done criterion (a) of the automatic window: a catalogue with a known b, a discrete lower
+// end (one-block atom, two- and three-block events at fixed moments, alternating bins) and
+// a bump of large events above a dip. The automatic b is within two statistical errors of
+// the truth, the window lies between the discrete end and the bump, and the systematic
+// error is small against the statistical one's scale (it stays honest: < 0.05).
+class WindowKnownB : public ::testing::TestWithParam<std::uint64_t> {};
+
+TEST_P(WindowKnownB, AutomaticBIsWithinTwoErrorsOfTheTruth) {
+  std::mt19937_64 rng(GetParam());
+  constexpr double b_true = 0.8;
+  std::vector<double> mu;
+  for (int i = 0; i < 200000; ++i) mu.push_back(-6.9);  // one-block atom
+  for (int i = 0; i < 30000; ++i) mu.push_back(-6.2);   // two-block moment
+  for (int i = 0; i < 6000; ++i) mu.push_back(-5.8);    // three-block moment
+  for (int i = 0; i < 12000; ++i) mu.push_back(-5.5 + 0.2 * uniform(rng));
+  for (int i = 0; i < 100000; ++i) mu.push_back(truncated_exponential(rng, b_true, -5.0, 3.0));
+  for (int i = 0; i < 300; ++i) mu.push_back(3.0 + 2.0 * uniform(rng));  // the dip
+  for (int i = 0; i < 2000; ++i) mu.push_back(6.0 + 0.6 * (uniform(rng) + uniform(rng) - 1));
+  const GrFit f = fit_magnitudes(mu, 0.2, std::nullopt, std::nullopt);
+  ASSERT_TRUE(f.b_ok) << f.no_b_reason;
+  EXPECT_NEAR(f.b_mle, b_true, 2 * f.b_mle_err)
+      << "[" << f.mu_min << ", " << f.mu_max << ") sys " << f.b_mle_sys_err;
+  EXPECT_GE(f.mu_min, -5.0 - 1e-9);
+  EXPECT_LE(f.mu_max, 5.0 + 1e-9);
+  EXPECT_GT(f.sys_windows, 1);
+  EXPECT_LT(f.b_mle_sys_err, 0.05);
+  EXPECT_DOUBLE_EQ(b_moment_magnitude(f.b_mle), 1.5 * f.b_mle);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, WindowKnownB, ::testing::Values(1u, 2u, 3u, 4u, 5u));
+
+// The systematic error is half the range of b over the windows whose ends lie within
+// sys_width inside the fit's; b_scan marks exactly those windows as accepted.
+TEST(Window, SystematicErrorIsTheSpreadOverTheAcceptedWindowsOfTheScan) {
+  std::mt19937_64 rng(12);
   std::vector<double> mu;
   for (int i = 0; i < 20000; ++i) mu.push_back(truncated_exponential(rng, 0.4, 0.0, 3.0));
   for (int i = 0; i < 20000; ++i) mu.push_back(truncated_exponential(rng, 1.5, 0.0, 8.0));
-  const GrFit f = fit_magnitudes(mu, 0.2, std::nullopt, 8.0);
-  ASSERT_TRUE(f.b_ok) << f.no_b_reason;
   MagnitudeHistogram h(0.2);
   for (const double m : mu) h.add(m);
-  const GrFitOptions opt;
-  const auto k_of = [&](double edge) { return std::llround(edge / 0.2); };
-  const std::int64_t lo_pick = k_of(f.mu_min), hi = k_of(f.mu_max) - 1;
-  const auto accepted = [&](std::int64_t lo) {
-    const BEstimate e = binned_mle(h, lo, hi, true);
-    if (!(e.b > 0) || !std::isfinite(e.err)) return false;
-    const double n = static_cast<double>(h.count_range(lo, hi));
-    return ks_distance_binned(h, lo, hi, e.b, true) <=
-           opt.ks_systematic + opt.ks_tolerance / std::sqrt(n);
-  };
-  EXPECT_TRUE(accepted(lo_pick));
-  int wider = 0;
-  for (std::int64_t lo = h.first_bin(); lo < lo_pick; ++lo) {
-    if (h.count(lo) == 0 || hi - lo + 1 < opt.min_window_bins ||
-        h.count_range(lo, hi) < opt.min_tail)
-      continue;
-    ++wider;
-    EXPECT_FALSE(accepted(lo)) << "a wider window [" << h.mu_low(lo) << ", 8) is accepted";
+  const GrFit f = fit_histogram(h, std::nullopt, std::nullopt);
+  ASSERT_TRUE(f.b_ok) << f.no_b_reason;
+  const std::vector<WindowFit> scan = scan_windows(h, f);
+  double lo = 1e9, hi = -1e9;
+  std::int64_t accepted = 0;
+  bool own = false;
+  for (const WindowFit& w : scan) {
+    if (!w.accepted) continue;
+    ++accepted;
+    lo = std::min(lo, w.b);
+    hi = std::max(hi, w.b);
+    EXPECT_GE(w.mu_min, f.mu_min - 1e-9);
+    EXPECT_LT(w.mu_min, f.mu_min + 1.0 - 1e-9);
+    EXPECT_LE(w.mu_max, f.mu_max + 1e-9);
+    EXPECT_GT(w.mu_max, f.mu_max - 1.0 + 1e-9);
+    if (std::fabs(w.mu_min - f.mu_min) < 1e-9 && std::fabs(w.mu_max - f.mu_max) < 1e-9) {
+      own = true;
+      EXPECT_DOUBLE_EQ(w.b, f.b_mle);
+    }
   }
-  EXPECT_GT(wider, 3) << "the widest windows were not rejected: the test shows nothing";
+  EXPECT_TRUE(own);
+  EXPECT_EQ(accepted, f.sys_windows);
+  EXPECT_GE(accepted, 5);
+  EXPECT_DOUBLE_EQ(f.b_mle_sys_err, 0.5 * (hi - lo));
+  EXPECT_GT(scan.size(), static_cast<std::size_t>(accepted));  // the scan covers more
 }
 
 }  // namespace

@@ -143,6 +143,10 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
   const GrFit& fit = *fit_;
   summary.set("b_mle", fit.b_mle);
   summary.set("b_mle_err", fit.b_mle_err);
+  summary.set("b_mle_sys_err", fit.b_mle_sys_err);
+  // The same slope per unit of moment magnitude Mw (b_mw = 1.5 b_mle; b_mle is per mu = ln M).
+  summary.set("b_mw", b_moment_magnitude(fit.b_mle));
+  summary.set("b_mw_err", b_moment_magnitude(fit.b_mle_err));
   summary.set("b_lsq", fit.b_lsq);
   summary.set("b_lsq_err", fit.b_lsq_err);
   Json window = Json::object();
@@ -156,8 +160,12 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
   std::snprintf(line, sizeof line, " (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.mu_min,
                 fit.mu_max, static_cast<long long>(fit.n_in_window));
   // An error that rounds to zero gets more digits; no estimate, a reason (issue 19 item 9).
-  if (std::isfinite(fit.b_mle) && std::isfinite(fit.b_mle_err))
-    return "b = " + format_with_error(fit.b_mle, fit.b_mle_err) + line;
+  if (std::isfinite(fit.b_mle) && std::isfinite(fit.b_mle_err)) {
+    char sys[120];
+    std::snprintf(sys, sizeof sys, " (sys. +/- %.2g; b_mw = 1.5 b = %.4g per unit of Mw)",
+                  fit.b_mle_sys_err, b_moment_magnitude(fit.b_mle));
+    return "b = " + format_with_error(fit.b_mle, fit.b_mle_err) + line + sys;
+  }
   return "b: no fit (the estimate is not finite: too few events or too few bins in the window" +
          std::string(line) + ")";
 }
