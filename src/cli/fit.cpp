@@ -26,7 +26,7 @@ int cmd_fit(const std::vector<std::string>& args) {
   opts.add_options()
     ("help,h", "show this help")
     ("mu-min", po::value<std::string>(), "lower end of the fit window, in [-50, 50] (default "
-                                         "or auto: automatic, README \"How b is fitted\")")
+                                         "or auto: automatic, docs/explanation/b-fit.md)")
     ("mu-max", po::value<std::string>(), "upper end of the fit window, in [-50, 50]; truncates "
                                          "the likelihood (default or auto: automatic, below the "
                                          "bump of large events)")
