@@ -5,7 +5,7 @@
 // file and the line, e.g. "catalog.csv line 17: moment must be > 0, got -0.3".
 // Required: a header line and the column `moment` (or, failing that, `magnitude`).
 // Optional: event, load, blocks, first_block, last_block (the event classes need the
-// last three). The magnitude used is ln(moment) (thesis eq. 2.6).
+// last three). The magnitude used is ln(moment) (Ferre 2018 eq. 2.6).
 #pragma once
 
 #include <cstdint>

@@ -266,7 +266,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
                   fmt(h.max_mu()) + " span " + std::to_string(span) + " bins of width " + fmt(w) +
                   ", more than the " + std::to_string(kMaxScanBins) +
                   " the window search covers; use a wider bin width or give mu_min and mu_max");
-    // The rule (README "How b is fitted"): among the windows whose ends sit on populated
+    // The rule (docs/explanation/b-fit.md): among the windows whose ends sit on populated
     // bins (unless given), with >= min_window_bins bins, >= min_tail events and >= 2
     // populated bins, keep those (1) in which, unless mu_max is given, the running sum S
     // of the counts over smooth_width never rises to more than rise_factor times its
@@ -408,7 +408,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     f.b_lsq_err = l.slope_err;
   }
 
-  // Two power laws on ln D (thesis eq. 2.10), crossover scanned over the bin edges.
+  // Two power laws on ln D (Ferre 2018 eq. 2.10), crossover scanned over the bin edges.
   {
     std::vector<double> x, y, wt;
     std::vector<std::int64_t> kk;
