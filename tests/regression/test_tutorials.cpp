@@ -1,7 +1,7 @@
-// The tutorials (docs/tutorials/*.md) run as written, so the documentation cannot drift from
-// the program: every fenced ```bash block of a page is run, in page order, by bash (-e, with
-// pipefail) in a fresh folder that holds `data/` and `analysis/` of the source tree and
-// `build/bkquake`, the binary under test. Reduced sizes follow one documented convention: a
+// The tutorials (docs/tutorials/*.md) and the README's tour run as written, so the documentation
+// cannot drift from the program: every fenced ```bash block of a page is run, in page order, by
+// bash (-e, with pipefail) in a fresh folder that holds `data/` and `analysis/` of the source tree
+// and `build/bkquake`, the binary under test. Reduced sizes follow one documented convention: a
 // comment right above a block,
 //   <!-- test SUBCOMMAND: OPTIONS -->
 // appends OPTIONS to every `build/bkquake SUBCOMMAND ...` command of that block (before a
@@ -123,7 +123,13 @@ std::vector<std::string> tutorial_pages() {
     for (const auto& e : fs::directory_iterator(dir))
       if (e.path().extension() == ".md") pages.push_back(e.path().stem().string());
   std::sort(pages.begin(), pages.end());
+  pages.push_back("README");  // the README's five-minute tour, under the same rules
   return pages;
+}
+
+// The markdown file of a page name: docs/tutorials/NAME.md, or the top README.md.
+fs::path page_path(const std::string& name) {
+  return name == "README" ? kSource / "README.md" : kSource / "docs" / "tutorials" / (name + ".md");
 }
 
 TEST(Tutorials, TheTestOptionsGoAfterThePagesOwnOptionsAndBeforeRedirections) {
@@ -155,7 +161,7 @@ TEST(Tutorials, ThereAreTheThreeTutorials) {
 class Tutorial : public testing::TestWithParam<std::string> {};
 
 TEST_P(Tutorial, EveryCommandRunsAtReducedSize) {
-  const fs::path page = kSource / "docs" / "tutorials" / (GetParam() + ".md");
+  const fs::path page = page_path(GetParam());
   const auto blocks = bash_blocks(slurp(page));
   ASSERT_FALSE(blocks.empty()) << page << " has no ```bash block";
   // One folder per page and process: suites of several checkouts may run at once.
