@@ -1,4 +1,4 @@
-// The work–precision study behind `bkquake accuracy` (README, "What accuracy costs"):
+// The work–precision study behind `bkquake accuracy` (docs/explanation/accuracy.md):
 // how much precision each second buys, for the user's own scene, driven event by event.
 //
 // Every point is one scheme at one dt (the adaptive scheme: one tolerance, at the scene's

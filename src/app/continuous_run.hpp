@@ -1,4 +1,4 @@
-// Continuously driven runs (SPEC §3), fresh or continued from a checkpoint: the loop
+// Continuously driven runs (Ferre 2018 ch. 4), fresh or continued from a checkpoint: the loop
 // steps the driver to run.duration, samples it every output.every and notifies the
 // observers it attaches (time series, block trajectories, episode catalog, magnitude
 // histogram, pad-friction statistics, summary with the Gutenberg-Richter fit of the

@@ -1,7 +1,7 @@
-// Event-driven runs (SPEC §2), fresh or continued from a checkpoint: the loop runs the
-// transient events, then the recorded ones, and notifies the observers it attaches
-// (catalog, histogram, summary, checkpoint timing, progress). Checkpoints are written
-// when the timer asks, on SIGINT/SIGTERM (then exit 130/143) and before a failed event
+// Event-driven runs (quasistatic loading, Carlson & Langer 1989), fresh or continued from a
+// checkpoint: the loop runs the transient events, then the recorded ones, and notifies the
+// observers it attaches (catalog, histogram, summary, checkpoint timing, progress). Checkpoints are
+// written when the timer asks, on SIGINT/SIGTERM (then exit 130/143) and before a failed event
 // propagates its error; each observer puts its own state into them.
 #pragma once
 

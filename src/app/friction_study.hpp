@@ -1,4 +1,4 @@
-// The friction study of thesis Fig. 4.6 (§4.2): each model configuration (a scene of
+// The friction study of Ferre 2018 Fig. 4.6 (§4.2): each model configuration (a scene of
 // data/scenes/brake/) runs the speed range 0.005 .. 1 as five continuous runs of speed
 // segments, the lower speeds with a finer increment; the segment statistics of every run
 // (segments.csv) are gathered into friction_study.csv. The special 1DOF, whose law is the

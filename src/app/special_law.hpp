@@ -1,5 +1,5 @@
 // `bkquake special-law BK_RUN_DIR...`: the friction law felt by the pad held still in plain
-// BK runs (thesis §4.2, Fig. 4.8, the "special" 1DOF's law), tabulated from the runs'
+// BK runs (Ferre 2018 §4.2, Fig. 4.8, the "special" 1DOF's law), tabulated from the runs'
 // segments.csv: at each segment's speed y, friction = -pad_friction_mean / (N m_u), the
 // mean pad friction per block and per unit block mass with the sign of a friction law.
 // Segments of several runs at the same speed are averaged.

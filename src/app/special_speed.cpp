@@ -1,4 +1,4 @@
-// The special speed of thesis eq. 4.8; see special_speed.hpp.
+// The special speed of Ferre 2018 eq. 4.8; see special_speed.hpp.
 #include "app/special_speed.hpp"
 
 #include <cmath>

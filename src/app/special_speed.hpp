@@ -1,4 +1,4 @@
-// The special speed of thesis eq. 4.8. The chain is equally spaced, every block pulled
+// The special speed of Ferre 2018 eq. 4.8. The chain is equally spaced, every block pulled
 // back to the slip threshold (spring force F0 m_u, displacement D0 = F0 m_u / k_p), the
 // substrate at rest and the pad held still (for bkp, as in the plain BK model: the
 // thesis's "system of one spring"); equally spaced, the neighbour springs carry nothing

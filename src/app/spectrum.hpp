@@ -1,7 +1,7 @@
 // `bkquake spectrum RUN_DIR`: the amplitude spectrum of one signal of a continuous run
 // (stats/spectrum.hpp) over a segment's input (its last half, as segments.csv uses), a time
 // span, or the whole run; writes spectrum.csv and reports the strongest peaks beside the
-// scene's natural frequencies (thesis eqs. 4.5-4.7).
+// scene's natural frequencies (Ferre 2018 eqs. 4.5-4.7).
 #pragma once
 
 #include <cstdint>

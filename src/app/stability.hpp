@@ -1,4 +1,4 @@
-// `bkquake stability` (issue 18): the sliding equilibrium of a scene at its disc speed
+// `bkquake stability`: the sliding equilibrium of a scene at its disc speed
 // (drive.speed), the eigenvalues of its linearisation (stats/stability.hpp), optionally
 // over a sweep of one scene key, written to stability.csv, stability_summary.csv and, for
 // the modes asked for, modes.csv. Also the start of a continuous run at the sliding

@@ -19,7 +19,18 @@ int cmd_sweep(const std::vector<std::string>& args);           // src/cli/sweep.
 int cmd_friction_study(const std::vector<std::string>& args);  // src/cli/friction_study.cpp
 int cmd_stability(const std::vector<std::string>& args);       // src/cli/stability.cpp
 int cmd_seismicity(const std::vector<std::string>& args);      // src/cli/seismicity.cpp
-// Hidden: regenerates the documentation's key and column tables (docs/reference/).
+// Hidden: regenerates the documentation's generated blocks (the key and column tables and
+// the commands' help texts, mostly in docs/reference/).
 int cmd_readme_tables(const std::vector<std::string>& args);  // src/cli/readme_tables.cpp
+
+// What `bkquake --help` prints (src/cli/usage.cpp).
+const char* usage_text();
+// The commands `bkquake --help` lists, in its order, each with the function that runs it
+// (src/cli/usage.cpp); docs/reference/commands.md shows each one's --help.
+struct CommandEntry {
+  const char* name;
+  int (*run)(const std::vector<std::string>& args);
+};
+const std::vector<CommandEntry>& listed_commands();
 
 }  // namespace bkq

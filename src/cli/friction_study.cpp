@@ -1,4 +1,4 @@
-// `bkquake friction-study`: thesis Fig. 4.6 (app/friction_study.hpp).
+// `bkquake friction-study`: Ferre (2018, MSc thesis, NTNU) Fig. 4.6 (app/friction_study.hpp).
 #include <boost/program_options.hpp>
 #include <iostream>
 
@@ -13,9 +13,9 @@ int cmd_friction_study(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   po::options_description opts(
       "bkquake friction-study [options]\n"
-      "Runs the configurations of thesis Fig. 4.6 (scenes DIR/<config>.ini) over the speed\n"
+      "Runs the configurations of Ferre (2018) Fig. 4.6 (scenes DIR/<config>.ini) over the speed\n"
       "grid 0.005..1 (five runs of speed segments) and writes OUT/friction_study.csv;\n"
-      "plot it with analysis/plot_friction_study.py OUT");
+      "plot it with analysis/plot_brake.py study OUT");
   // clang-format off
   opts.add_options()
     ("help,h", "show this help")
@@ -27,7 +27,7 @@ int cmd_friction_study(const std::vector<std::string>& args) {
     ("seeds", po::value<int>()->default_value(1), "run bkp and bk with this many seeds")
     ("jobs", po::value<int>()->default_value(2), "runs in parallel")
     ("segment", po::value<double>()->default_value(2000), "time units per speed segment "
-                                                          "(the thesis: 2000)")
+                                                          "(Ferre 2018: 2000)")
     ("quiet", "no progress lines");
   // clang-format on
   const auto vm = parse_command_line("friction-study", args, opts, "unused", 0);

@@ -11,64 +11,17 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 
-namespace {
-
-const char* kUsage =
-    R"(bkquake: earthquake statistics for Burridge-Knopoff spring-block chains and the BK-Pad model
-
-Usage:
-  bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume] [--force]
-  bkquake run --dump-defaults      print a commented scene with every key at its default
-  bkquake fit CATALOG.csv [--mu-min A] [--mu-max B] [--bin-width W] [--blocks N] [--json OUT]
-  bkquake merge RUN_DIR... --out DIR [--force]
-  bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]
-  bkquake spectrum RUN_DIR [--signal S] [--segment K | --from T0 --to T1] [--out FILE]
-  bkquake special-speed [SCENE] [--set section.key=value]...
-  bkquake special-law BK_RUN_DIR... > law.csv
-  bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume]
-  bkquake friction-study [--out DIR] [--seeds N] [--jobs J] [--segment T]
-  bkquake stability [SCENE] [--set section.key=value]... [--sweep KEY=FROM:TO:COUNT] [--out DIR]
-  bkquake seismicity RUN_DIR|CATALOG [--out DIR] [--mainshock-mu X] [--blocks N] [--export FILE]
-  bkquake --help | --version
-
-Commands:
-  run     simulate a scene (event-driven or continuously driven) and write
-          scene.ini, catalog.csv, histogram.csv, summary.json (+ timeseries.csv)
-  fit     fit the Gutenberg-Richter law R = A exp(-b mu) to an event catalogue
-  merge   merge the histograms of runs of the same scene and fit the result
-  accuracy  work-precision study: error against time per event for every scheme and dt
-  spectrum  amplitude spectrum of a continuous run's signal, peaks beside the natural
-            frequencies (thesis §4.3)
-  special-speed  t_death and v_special = F0/(k_p t_death) of thesis eq. 4.8
-  special-law    the friction a held pad feels in BK runs, as a table (thesis Fig. 4.8)
-  sweep   run every point of a sweep file (also under mpirun) and write sweep.csv
-  friction-study the four configurations of thesis Fig. 4.6 over the speed grid
-  stability  steady sliding and the complex eigenvalues of its linearisation (stability.csv)
-  seismicity waiting times, recurrence, Omori-Utsu and Båth, moment rate, rupture scaling
-            and the Mogi picture of a catalogue (RUN_DIR/seismicity/)
-
-Examples:
-  bkquake run                                    the Carlson-Langer reference, event-driven
-  bkquake run data/scenes/thesis.ini --out runs/thesis
-  bkquake run data/scenes/carlson-langer.ini --set friction.alpha=1 --set run.events=20000
-
-Each command takes --help. Every scene key, its default, range and meaning:
-'bkquake run --dump-defaults' and README.md (section Scenes).
-)";
-
-}  // namespace
-
 int main(int argc, char** argv) {
   const std::vector<std::string> all(argv + 1, argv + argc);
   try {
     if (all.empty()) {
-      std::cerr << kUsage;
+      std::cerr << bkq::usage_text();
       return bkq::kExitBadInput;
     }
     const std::string& command = all.front();
     const std::vector<std::string> args(all.begin() + 1, all.end());
     if (command == "--help" || command == "-h" || command == "help") {
-      std::cout << kUsage;
+      std::cout << bkq::usage_text();
       return 0;
     }
     if (command == "--version") {

@@ -1,10 +1,13 @@
 // `bkquake readme-tables [--update DOCS_DIR | --update PAGE.md]` (not listed in --help: a
-// maintainer's tool): prints the documentation's generated tables with their markers, or
-// rewrites them in place: in every page under a docs folder (each table in the one page
-// that holds its markers), or in one markdown file that holds them all
-// (io/readme_tables.hpp).
+// maintainer's tool): prints the documentation's generated blocks with their markers, or
+// rewrites them in place: in every page under a docs folder (each block in the one page
+// that holds its markers), or in one markdown file that holds the tables
+// (io/readme_tables.hpp). Besides io's tables of scene keys and output columns, the docs
+// get the text `bkquake --help` prints (block "help") and each listed command's `--help`
+// (blocks "help run", "help fit", ...), captured from the commands themselves.
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,9 +19,42 @@
 
 namespace bkq {
 
+namespace {
+
+// A help text as a fenced block, trailing blank lines dropped.
+std::string fenced(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return "```text\n" + text + "\n```\n";
+}
+
+// What `bkquake COMMAND --help` prints, captured from the command itself.
+std::string help_of(const CommandEntry& command) {
+  std::ostringstream captured;
+  std::streambuf* const saved = std::cout.rdbuf(captured.rdbuf());
+  try {
+    command.run({"--help"});
+  } catch (...) {
+    std::cout.rdbuf(saved);
+    throw;
+  }
+  std::cout.rdbuf(saved);
+  return captured.str();
+}
+
+// io's tables, then the help texts.
+std::vector<ReadmeTable> doc_blocks() {
+  auto blocks = readme_tables();
+  blocks.push_back({"help", fenced(usage_text())});
+  for (const auto& command : listed_commands())
+    blocks.push_back({std::string("help ") + command.name, fenced(help_of(command))});
+  return blocks;
+}
+
+}  // namespace
+
 int cmd_readme_tables(const std::vector<std::string>& args) {
   if (args.empty()) {
-    for (const auto& t : readme_tables())
+    for (const auto& t : doc_blocks())
       std::cout << readme_begin_marker(t.name) << "\n"
                 << t.markdown << readme_end_marker(t.name) << "\n\n";
     return 0;
@@ -28,7 +64,7 @@ int cmd_readme_tables(const std::vector<std::string>& args) {
   const std::string& path = args[1];
   if (std::filesystem::is_directory(path)) {
     const auto before = read_doc_pages(path);
-    const auto after = update_doc_pages(before, readme_tables());
+    const auto after = update_doc_pages(before, doc_blocks());
     int changed = 0;
     for (std::size_t i = 0; i < before.size(); ++i) {
       if (after[i].text == before[i].text) continue;

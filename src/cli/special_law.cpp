@@ -14,7 +14,7 @@ int cmd_special_law(const std::vector<std::string>& args) {
   boost::program_options::options_description opts(
       "bkquake special-law BK_RUN_DIR... > law.csv\n"
       "Tabulates the friction the held pad feels in continuous bk runs: per segment speed,\n"
-      "-pad_friction_mean / (N m_u) from segments.csv (thesis Fig. 4.8); CSV on stdout");
+      "-pad_friction_mean / (N m_u) from segments.csv (Ferre 2018 Fig. 4.8); CSV on stdout");
   opts.add_options()("help,h", "show this help");
   const auto vm = parse_command_line("special-law", args, opts, "runs", -1);
   if (printed_help(vm, opts)) return 0;

@@ -1,4 +1,5 @@
-// `bkquake special-speed [SCENE]`: thesis eq. 4.8 for a scene (app/special_speed.hpp).
+// `bkquake special-speed [SCENE]`: Ferre (2018, MSc thesis, NTNU) eq. 4.8 for a scene
+// (app/special_speed.hpp).
 #include <boost/program_options.hpp>
 #include <cstdio>
 #include <iostream>
@@ -15,7 +16,7 @@ int cmd_special_speed(const std::vector<std::string>& args) {
       "bkquake special-speed [SCENE] [--set section.key=value]...\n"
       "Releases the equally spaced chain from the slip threshold (substrate at rest, pad\n"
       "held) and prints t_death, the time until it is again at rest relative to the\n"
-      "substrate, and v_special = F0 m_u / (k_p t_death) (thesis eq. 4.8)");
+      "substrate, and v_special = F0 m_u / (k_p t_death) (Ferre 2018 eq. 4.8)");
   opts.add_options()("help,h", "show this help");
   add_scene_options(opts);
   const auto vm = parse_scene_command_line("special-speed", args, opts);

@@ -28,7 +28,7 @@ int cmd_spectrum(const std::vector<std::string>& args) {
     ("window", po::value<std::string>()->default_value("hann"), "hann | rectangular")
     ("peaks", po::value<int>()->default_value(6), "how many peaks to print")
     ("fmin", po::value<double>()->default_value(0.0), "report no peak below this frequency "
-                                                      "(slow drift; the thesis disregards it)")
+                                                      "(slow drift; Ferre 2018 disregards it)")
     ("out", po::value<std::string>(), "output file (default RUN_DIR/spectrum.csv)");
   // clang-format on
   const po::variables_map vm = parse_command_line("spectrum", args, opts, "run_dir", 1);

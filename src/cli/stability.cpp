@@ -24,7 +24,7 @@ constexpr const char* kUsage =
     "[--sweep KEY=FROM:TO:COUNT] [--out DIR]\n"
     "Steady sliding at the disc speed drive.speed and the complex eigenvalues of its\n"
     "linearisation: each mode's growth rate Re lambda, frequency Im lambda / 2 pi and\n"
-    "whether it is unstable (README, Stability of steady sliding).\n\n";
+    "whether it is unstable (docs/tutorials/stability.md, docs/validation/stability.md).\n\n";
 
 int cmd_stability(const std::vector<std::string>& args) {
   po::options_description opts("bkquake stability [SCENE] [options]");

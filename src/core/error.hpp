@@ -13,7 +13,7 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Exit status for bad input (user error), as promised in the README.
+// Exit status for bad input (user error), as docs/reference/commands.md promises.
 inline constexpr int kExitBadInput = 2;
 
 }  // namespace bkq

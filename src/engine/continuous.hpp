@@ -1,4 +1,4 @@
-// Continuous driving (SPEC §3, thesis ch. 4): the substrate moves on its schedule and
+// Continuous driving (Ferre 2018 ch. 4): the substrate moves on its schedule and
 // every block and the pad are integrated at finite speed. Slip episodes — maximal
 // stretches of time with at least one block sliding — form an event catalogue, so runs at
 // small speed can be compared with the event-driven engine.

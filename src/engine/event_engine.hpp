@@ -1,5 +1,5 @@
-// The event-driven earthquake engine (SPEC §2): a quasistatic loader and a dynamic
-// relaxation with the full BK–Pad equations. README, "How it works", sets out the paths.
+// The event-driven earthquake engine (Carlson & Langer 1989): a quasistatic loader and a
+// dynamic relaxation with the full BK–Pad equations. docs/explanation/event-engine.md: the paths.
 //
 // Loading: every stuck block's force grows at one rate (ModelParams::loading_rate); the
 // ForceTree gives the largest, and the substrate jumps so that block sits at the threshold.

@@ -1,4 +1,4 @@
-// "Which stuck block fails next" as a query, not a scan (SPEC §2). Every stuck block's
+// "Which stuck block fails next" as a query, not a scan. Every stuck block's
 // spring force is f_j = g_j + k_p·anchor, where g_j depends only on the block and its
 // neighbours and the anchor (substrate + pad) is shared by all. The tree keeps the largest
 // and the smallest g_j with their blocks: O(log N) to change one block, O(1) to ask.

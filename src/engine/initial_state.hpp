@@ -1,5 +1,5 @@
 // The starting configuration of a run: block displacements drawn uniformly from
-// ±disorder·D0 (D0 = F0 m_u/k_p, the slip that unloads a pulling spring; thesis §3.4 uses
+// ±disorder·D0 (D0 = F0 m_u/k_p, the slip that unloads a pulling spring; Ferre 2018 §3.4 uses
 // ±0.75), all blocks stuck, the substrate at 0. The generator is std::mt19937_64 with our
 // own conversion to [0, 1), so a seed gives the same chain on every platform.
 #pragma once

@@ -23,8 +23,8 @@
 // too narrow for it), the engine integrates the event directly instead. The bound is ten
 // times the worst case of the rounding a direct integration of that many steps at those
 // positions can accumulate, every rounding adding up (lone_slip_tolerance). The bound
-// grows with the positions, so a long run's replays thin out as its load grows (README,
-// "How it works", gives the measured share).
+// grows with the positions, so a long run's replays thin out as its load grows
+// (docs/explanation/event-engine.md, "How it works", gives the measured share).
 //
 // What the replay changes is rounding only, but rounding is all that separates two
 // integrations of a chaotic chain: a long run with the replay on and off from the same

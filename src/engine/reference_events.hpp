@@ -1,9 +1,9 @@
 // The straightforward event engine, kept as a yardstick: what EventEngine must agree with
-// and what its speed is measured against (issue 3 quotes such an engine's rate).
+// and what its speed is measured against (a straightforward engine's rate is the usual yardstick).
 //
-// It does what SPEC §2 says and nothing clever. The loader scans every block for the
-// largest spring force and moves the substrate until that block sits at the threshold
-// (ties to the lowest index); the relaxation steps the whole chain, [0, N), with the
+// It does what the quasistatic model says (Carlson & Langer 1989) and nothing clever. The loader
+// scans every block for the largest spring force and moves the substrate until that block sits at
+// the threshold (ties to the lowest index); the relaxation steps the whole chain, [0, N), with the
 // stepper's general step() and the Crossing rule (settle_contacts) until every block is
 // stuck. Stuck blocks have zero acceleration and zero velocity, so stepping them changes
 // nothing: EventEngine, which steps only the sliding blocks and their stuck neighbours,

@@ -4,7 +4,7 @@
 // not drop to first order at transitions. Order 5 in smooth phases. Stability: the
 // step-size control keeps every step stable (integrator.dt is only the macro step).
 // Stick rule: Located. The scheme, the error control, the event location and its limits
-// are set out in README.md, "The adaptive reference".
+// are set out in docs/explanation/integrators.md, "The adaptive reference".
 #pragma once
 
 #include <array>

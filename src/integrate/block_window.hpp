@@ -3,7 +3,7 @@
 // with the block number j, as they index the chain state; a window hands them, for each
 // array, an address p with p[j] the entry of block j, valid for every j in the window.
 // So what a stepper or the event engine keeps besides the chain state grows with the
-// blocks a step touches, not with the chain (README, "Performance": bytes per block).
+// blocks a step touches, not with the chain (docs/validation/performance.md: bytes per block).
 //
 // fit(ranges) before a step: the window then holds every block of the ranges and one more
 // on each side (the neighbours the force kernels read; with periodic ends a range at either

@@ -217,7 +217,7 @@ class ChainLayout {
   // A single range this long takes the fused pass in pieces (the continuous driver's
   // whole chain); shorter ones, the event engine's, the two-pass form, which costs them
   // less. Schemes whose stages never write the positions they read (Method::fusable)
-  // gain from it from one piece on, the others from two (README "Performance").
+  // gain from it from one piece on, the others from two (docs/validation/performance.md).
   static constexpr int kLongRange = (Fusable ? 1 : 2) * layout_detail::kPiece;
   ChainLayout(const ChainForces& forces, const Substrate& sub, ChainState& st, Ranges ranges,
               ExplicitScratch& s)

@@ -1,4 +1,4 @@
-// Explicit midpoint rule (thesis eq. 3.6), the thesis's baseline scheme.
+// Explicit midpoint rule (Ferre 2018 eq. 3.6), the thesis's baseline scheme.
 //   y* = y + dt/2 f(y),  y_{n+1} = y + dt f(y*)
 // Order 2 in smooth phases; two force evaluations per step. Stability: not A-stable on
 // the imaginary axis: an undamped mode of frequency omega grows by

@@ -1,12 +1,12 @@
 // The theta-method with set-valued friction: velocity-level Moreau–Jean time stepping
-// (seed 004 §3.3; Jean 1999). Keyword `theta`, theta in [1/2, 1] (integrator.theta,
-// default 1/2: trapezoidal). Implicit in the springs, the pad and the friction; one
-// tridiagonal solve per contact iteration. Order 2 in smooth phases at theta = 1/2 (1
+// (Sinou, Chiello & Charroyer 2019 §3.3; Jean 1999). Keyword `theta`, theta in [1/2, 1]
+// (integrator.theta, default 1/2: trapezoidal). Implicit in the springs, the pad and the friction;
+// one tridiagonal solve per contact iteration. Order 2 in smooth phases at theta = 1/2 (1
 // otherwise), 1 across stick transitions. Stability: none on the linear part (A-stable;
 // theta > 1/2 damps, theta = 1/2 conserves an undamped chain's energy); under weakening
 // friction dt < v_c/(theta F0) (unique sliding speed), checked.
 // Stick rule: Projection, exact (v+ = 0, no threshold velocity). The scheme, the friction
-// rule, the contact solver and the order are set out in README.md, "The θ-method".
+// rule, the contact solver and the order: docs/explanation/integrators.md, "The θ-method".
 #pragma once
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // accuracy.csv's columns (written by `bkquake accuracy`, app/accuracy.cpp): one row per
 // scheme and dt of the work-precision study. Declared here with the other file schemas so
-// the header, the README table and analysis/plot_work_precision.py agree.
+// the header, the docs table and analysis/plot_work_precision.py agree.
 #pragma once
 
 #include "io/schema.hpp"

@@ -1,4 +1,4 @@
-// The event catalogue schema (SPEC §5): each column listed once with its units and
+// The event catalogue schema: each column listed once with its units and
 // meaning. catalog_header() and catalog_row() are both driven by the column order here,
 // and numbers are written so they read back to the same double.
 #include "io/catalog.hpp"

@@ -2,7 +2,7 @@
 // one table, the dataset "catalog", whose compound rows have the columns of
 // catalog_schema() in order (integer columns as 64-bit integers, the others as doubles), in
 // chunks of 8192 rows: stored as they are (hdf5, the cheap one) or shuffled and deflated
-// (hdf5-deflate: a quarter of the size at several times the cost; README "Performance").
+// (hdf5-deflate: a quarter of the size at several times the cost; docs/validation/performance.md).
 // The provenance lines and the effective scene are attributes of the dataset
 // ("provenance", "scene"). Readable by any HDF5 reader, e.g. Debian's python3-h5py:
 // h5py.File("catalog.h5")["catalog"][:] is a structured array.

@@ -6,7 +6,7 @@
 // Required: a header line and the column `moment` (or, failing that, `magnitude`).
 // Optional: event, load, trigger, blocks, duration, first_block, last_block (the event
 // classes need blocks and the extent; bkquake seismicity the others). The magnitude used is
-// ln(moment) (thesis eq. 2.6).
+// ln(moment) (Ferre 2018 eq. 2.6).
 #pragma once
 
 #include <cstdint>

@@ -23,7 +23,7 @@ const Schema& energy_schema() {
        "mean of E_t = (E(t_i+1) - E(t_i))/(t_i+1 - t_i) over the window"},
       {"tau_energy", "1/time",
        "rate of relative change of the mean energy, energy_rate_mean / "
-       "energy_mean (seed 004 eq. of tau_E)"},
+       "energy_mean (tau_E of Sinou, Chiello & Charroyer 2019)"},
       {"braking_mean", "force", "mean braking force over the window"},
   };
   return schema;

@@ -119,7 +119,9 @@ std::string update_readme(const std::string& readme) {
     const auto r = block_range(out, table.name);
     if (!r)
       throw Error("README: no '" + readme_begin_marker(table.name) + "' ... '" +
-                  readme_end_marker(table.name) + "' block");
+                  readme_end_marker(table.name) +
+                  "' block (the generated tables live in docs/: bkquake readme-tables "
+                  "--update docs)");
     out.replace(r->first, r->second - r->first, table.markdown);
   }
   return out;

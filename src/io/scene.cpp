@@ -92,7 +92,8 @@ ParamSpec auto_real(const char* key, double limit, const char* units, const char
 
 std::vector<ParamSpec> make_table() {
   return {
-      // --- model: which chain, in which units (SPEC §1) ---
+      // --- model: which chain, in which units (Ferre 2018 eq. 3.1; Carlson & Langer 1989 eq. 2.2)
+      // ---
       choice("model.kind", "bk", {"bk", "bkp", "1dof"},
              "bk: plain Burridge-Knopoff chain, pad fixed; bkp: BK-Pad, the pad moves; "
              "1dof: one block with spring and damper (thesis eq. 2.11)"),
@@ -120,7 +121,7 @@ std::vector<ParamSpec> make_table() {
       real("model.rayleigh_beta", "0", '[', 0, kHuge, ']', "time",
            "Rayleigh damping alpha_M M + beta_K K: beta_K"),
 
-      // --- friction: the law phi(y) of SPEC §1 ---
+      // --- friction: the law phi(y) (Ferre 2018 eq. 3.5; Carlson et al. 1991 eq. 2.9) ---
       choice("friction.law", "clst91", law_names(),
              "thesis (eq. 3.5, backslip allowed), clst91 (Carlson et al. 1991 eq. 2.9, no "
              "backslip), cl89 (Carlson-Langer 1989 eq. 2.3), none (frictionless, continuous "
@@ -134,8 +135,8 @@ std::vector<ParamSpec> make_table() {
       real("friction.vc", "1", '(', 0, kHuge, ']', "length/time",
            "characteristic velocity v_c (thesis only)"),
       path("friction.table",
-           "CSV file of the table law (friction.law = table): columns speed, friction (README, "
-           "Friction laws); relative to the scene file's folder"),
+           "CSV file of the table law (friction.law = table): columns speed, friction "
+           "(docs/reference/scenes.md); relative to the scene file's folder"),
 
       // --- drive: how the substrate moves ---
       choice("drive.mode", "events", {"events", "continuous"},

@@ -1,5 +1,5 @@
 // A file's columns declared once: name, units, number format and meaning. The writer takes
-// its header from the schema and the reader finds its columns by the same names; the README
+// its header from the schema and the reader finds its columns by the same names; the docs
 // tables of output columns are tested against the schemas.
 #pragma once
 

@@ -1,4 +1,4 @@
-// segments.csv: one row per speed segment of a continuous run (thesis §4.2, eqs. 4.1-4.4;
+// segments.csv: one row per speed segment of a continuous run (Ferre 2018 §4.2, eqs. 4.1-4.4;
 // statistics in stats/segment_stats.hpp), columns declared once in segments_schema(): the
 // segment, its time span and speed, then for each signal S of kSegmentSignals the mean,
 // its block error, the amplitude and its block error. Written by the segment observer,

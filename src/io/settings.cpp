@@ -1,6 +1,6 @@
-// From the validated scene to the typed settings. The physical parameters (SPEC §1) come
-// from thesis Table 3.1 (block quantities scaled from the pad's) or Carlson–Langer
-// dimensionless units (eq. 2.2).
+// From the validated scene to the typed settings. The physical parameters (Ferre 2018 Table 3.1;
+// Carlson & Langer 1989) come from Ferre 2018 Table 3.1 (block quantities scaled from the pad's) or
+// Carlson–Langer dimensionless units (eq. 2.2).
 #include "io/settings.hpp"
 
 #include <algorithm>

@@ -71,7 +71,7 @@ struct OutputSettings {
   int block_first = 0, block_count = 0;  // blocks.csv: these blocks (count resolved, > 0)
   CatalogFormat catalog = CatalogFormat::Csv;
   bool catalog_deflate = false;  // hdf5-deflate: catalog.h5 shuffled and deflated
-  int segment_blocks = 4;        // M of the segment statistics' block errors (thesis eq. 4.3)
+  int segment_blocks = 4;        // M of the segment statistics' block errors (Ferre 2018 eq. 4.3)
   bool status = false;           // node-status columns in timeseries.csv
   bool energy = false;           // energy_samples.csv and energy.csv
   double energy_window = 0, energy_tol = 0;

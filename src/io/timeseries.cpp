@@ -1,5 +1,5 @@
-// The time-series schema (SPEC §3): each column listed once with its units and meaning;
-// header and rows follow its order.
+// The time-series schema (continuous runs, Ferre 2018 ch. 4): each column listed once with its
+// units and meaning; header and rows follow its order.
 #include "io/timeseries.hpp"
 
 #include "core/format.hpp"

@@ -22,7 +22,7 @@ std::string timeseries_header();
 // One CSV row (no newline), numbers printed round-trip exactly.
 std::string timeseries_row(const TimeSeriesRow& r);
 
-// Node status (issue 18 item 7, seed 004 §4.3.4): the columns output.status = true appends
+// Node status (Sinou, Chiello & Charroyer 2019 §4.3.4): the columns output.status = true appends
 // to timeseries.csv: blocks stuck, sliding with positive relative velocity (the disc drags
 // them) and with negative relative velocity (backslip); they add up to N.
 struct NodeStatus {

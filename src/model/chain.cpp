@@ -1,4 +1,4 @@
-// Forces of the BK–Pad chain (thesis eq. 3.1) in the substrate frame; see chain.hpp.
+// Forces of the BK–Pad chain (Ferre 2018 eq. 3.1) in the substrate frame; see chain.hpp.
 #include "model/chain.hpp"
 
 #include <algorithm>

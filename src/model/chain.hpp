@@ -1,4 +1,4 @@
-// The BK–Pad equations of motion (thesis eq. 3.1), written in the frame of the substrate:
+// The BK–Pad equations of motion (Ferre 2018 eq. 3.1), written in the frame of the substrate:
 // w_j = u_j + s, where s is the substrate displacement. Then the friction argument
 // v + u'_j is simply w'_j, a stuck block has w'_j = 0 exactly, and loading the chain is
 // a change of s alone. The pulling springs pull towards the "anchor" s + x (pad at x).

@@ -1,4 +1,4 @@
-// Closed-form motion of a damped linear oscillator m xi'' + c xi' + k xi = 0 (thesis eq.
+// Closed-form motion of a damped linear oscillator m xi'' + c xi' + k xi = 0 (Ferre 2018 eq.
 // 3.11–3.13), all three regimes, plus a bound on |xi| over all later times. The event
 // engine uses it for the pad once every block is stuck.
 #pragma once

@@ -1,6 +1,6 @@
-// Steady sliding (issue 18, seed 004 §2.3 applied to thesis eq. 3.1): at disc speed v > 0
-// every block slides with relative speed v and rests in the lab frame, the pad is at rest,
-// friction is m_u phi(v) on every block. The static equations are the chain's tridiagonal
+// Steady sliding (Sinou, Chiello & Charroyer 2019 §2.3 applied to Ferre 2018 eq. 3.1): at disc
+// speed v > 0 every block slides with relative speed v and rests in the lab frame, the pad is at
+// rest, friction is m_u phi(v) on every block. The static equations are the chain's tridiagonal
 // (cyclic for a periodic chain) stiffness k_p I + k_c L bordered by the pad row:
 //   k_c (u_{j-1} - 2u_j + u_{j+1}) - k_p (u_j - x) = m_u phi_j,
 //   k_p sum_j (u_j - x) - k_p0 x = 0                    (bkp; x = 0 for bk and 1dof),

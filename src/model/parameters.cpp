@@ -1,4 +1,5 @@
-// Derived quantities of the physical parameters (SPEC §1).
+// Derived quantities of the physical parameters (Ferre 2018 eq. 3.1, Table 3.1; Carlson & Langer
+// 1989 eq. 2.2).
 #include "model/parameters.hpp"
 
 #include <algorithm>
@@ -6,7 +7,7 @@
 
 namespace bkq {
 
-// Critical damping of a mass m on a spring k is 2 sqrt(k m); zeta scales it (thesis §3.1).
+// Critical damping of a mass m on a spring k is 2 sqrt(k m); zeta scales it (Ferre 2018 §3.1).
 double critical_damping(double zeta, double k, double m) {
   return zeta * 2.0 * std::sqrt(k * m);
 }
@@ -32,7 +33,7 @@ double ModelParams::max_angular_frequency() const {
 }
 
 double ModelParams::loading_rate() const {
-  // SPEC §2: BK, every stuck block gains k_p per unit substrate displacement; with a
+  // Quasistatic loading: BK, every stuck block gains k_p per unit substrate displacement; with a
   // quasi-statically relaxing pad the pad follows by N k_p/(k_p0 + N k_p) of the way.
   if (!pad_moves()) return k_p;
   return k_p * k_p0 / (k_p0 + n * k_p);

@@ -1,6 +1,6 @@
 // Physical parameters of a chain, derived once from a scene in one of the two
-// parameterisations of SPEC §1 (thesis Table 3.1, or the dimensionless Carlson–Langer
-// units of eq. 2.2). Everything downstream sees only these numbers.
+// parameterisations of Ferre 2018 eq. 3.1 (Ferre 2018 Table 3.1, or the dimensionless
+// Carlson–Langer units of eq. 2.2). Everything downstream sees only these numbers.
 #pragma once
 
 #include <string>
@@ -27,14 +27,14 @@ struct ModelParams {
   double m_u = 1;  // block mass
   double k_p = 1;  // pulling spring (block to pad)
   double k_c = 0;  // neighbour spring
-  double c_u = 0;  // block damper (1DOF model only, thesis eq. 2.11)
+  double c_u = 0;  // block damper (1DOF model only, Ferre 2018 eq. 2.11)
 
   double m_x = 0;   // pad mass (BKP)
   double k_p0 = 0;  // caliper-pad spring (BKP)
   double c_p = 0;   // pad damper (BKP)
 
-  // Rayleigh damping alpha_M M + beta_K K of the whole linear structure (seed 004 §4.2): M
-  // and K are the mass and stiffness matrices of blocks and pad (K holds k_c, the k_p
+  // Rayleigh damping alpha_M M + beta_K K of the whole linear structure (Sinou, Chiello & Charroyer
+  // 2019 §4.2): M and K are the mass and stiffness matrices of blocks and pad (K holds k_c, the k_p
   // coupling and, for bkp, the pad row with k_p0). Off (0) by default; the analysis
   // (stats/stability) and the continuous runs' force kernels (model/chain) apply it.
   double rayleigh_alpha = 0;  // alpha_M [1/time]
@@ -50,14 +50,14 @@ struct ModelParams {
   bool has_neighbours() const { return k_c != 0 && n > 1; }
   // Static threshold on the spring force of one block.
   double threshold() const { return F0 * m_u; }
-  // Largest angular frequency of the linear part (thesis eq. 3.2, and the pad's), or the
+  // Largest angular frequency of the linear part (Ferre 2018 eq. 3.2, and the pad's), or the
   // largest damping rate where that is larger (dampers, Rayleigh damping).
   double max_angular_frequency() const;
-  // Stuck blocks' force grows by this much per unit substrate displacement (SPEC §2).
+  // Stuck blocks' force grows by this much per unit substrate displacement (quasistatic load).
   double loading_rate() const;
 };
 
-// Damper of a mass m on a spring k at damping ratio zeta: zeta 2 sqrt(k m) (thesis §3.1).
+// Damper of a mass m on a spring k at damping ratio zeta: zeta 2 sqrt(k m) (Ferre 2018 §3.1).
 double critical_damping(double zeta, double k, double m);
 
 const char* to_string(ModelKind k);

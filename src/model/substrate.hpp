@@ -1,7 +1,7 @@
-// The substrate's motion (SPEC §3): constant speed, a step schedule (thesis §4: start at
-// v0 and add an increment every interval) or a linear ramp. The displacement s(t) is the
-// exact integral of the speed, so long runs accumulate no drift from the schedule.
-// Event-driven relaxation uses a frozen substrate (speed 0 at a fixed s).
+// The substrate's motion (Ferre 2018 ch. 4): constant speed, a step schedule (Ferre 2018 §4: start
+// at v0 and add an increment every interval) or a linear ramp. The displacement s(t) is the exact
+// integral of the speed, so long runs accumulate no drift from the schedule. Event-driven
+// relaxation uses a frozen substrate (speed 0 at a fixed s).
 #pragma once
 
 #include <cmath>

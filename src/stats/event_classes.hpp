@@ -1,4 +1,4 @@
-// Event classes of Carlson & Langer (1989) and Carlson et al. (1991) (thesis section 2.2:
+// Event classes of Carlson & Langer (1989) and Carlson et al. (1991) (Ferre 2018 section 2.2:
 // "microscopic", "localized" and "delocalized" events), made operational for a chain of
 // N blocks. Every event falls in exactly one class, tested in this order:
 //   single-block  blocks == 1 (the "microscopic" one-block events);

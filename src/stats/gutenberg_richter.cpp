@@ -533,7 +533,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     f.b_lsq_err = l.slope_err;
   }
 
-  // Two power laws on ln D (thesis eq. 2.10), crossover scanned over the bin edges.
+  // Two power laws on ln D (Ferre 2018 eq. 2.10), crossover scanned over the bin edges.
   {
     std::vector<double> x, y, wt;
     std::vector<std::int64_t> kk;

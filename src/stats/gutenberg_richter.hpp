@@ -1,5 +1,5 @@
-// Gutenberg-Richter fits of a magnitude distribution (SPEC section 4; thesis eqs. 2.7,
-// 2.8 and 2.10). Magnitudes are natural logarithms of the moment (mu = ln M, thesis
+// Gutenberg-Richter fits of a magnitude distribution (Gutenberg & Richter 1944; Ferre 2018
+// eqs. 2.7, 2.8 and 2.10). Magnitudes are natural logarithms of the moment (mu = ln M, thesis
 // eq. 2.6), so the law is R(mu) = A e^{-b mu} with no ln 10 factors anywhere.
 //
 // The estimators (Aki, Tinti & Mulargia, Shi & Bolt, weighted least squares, two power
@@ -114,7 +114,7 @@ struct GrFit {
   // R(mu) = A e^{-b_mle mu}, normalised so the window holds n_in_window events.
   double ln_A = 0;
   double ks_distance = 0;
-  // Two power laws (thesis eq. 2.10).
+  // Two power laws (Ferre 2018 eq. 2.10).
   bool two_law_ok = false;
   double two_law_b1 = 0;            // slope below the crossover (localised events)
   double two_law_b2 = 0;            // slope above the crossover (delocalised events)

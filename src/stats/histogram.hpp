@@ -1,6 +1,6 @@
 // Streaming magnitude histogram: the observer that turns a stream of event magnitudes
-// into the D(mu) and R(mu) distributions of SPEC section 4 (Carlson & Langer 1989;
-// thesis section 2.2, eqs. 2.7-2.8). Memory grows with the magnitude range covered,
+// into the D(mu) and R(mu) distributions of Carlson & Langer (1989;
+// Ferre 2018 section 2.2, eqs. 2.7-2.8). Memory grows with the magnitude range covered,
 // never with the number of events, so unattended runs of millions of events stay flat.
 //
 // Bins have width w (default 0.2) and are anchored at integer multiples of w:
@@ -9,7 +9,7 @@
 //   D_k = count_k / w    events per unit magnitude
 //   R_k = sum_{j>=k} count_j   events with magnitude >= mu_low = k w
 //   D_rate, R_rate       the same divided by (total_load * N): per unit substrate
-//                        displacement per block (SPEC section 4).
+//                        displacement per block.
 // Besides the counts it keeps n, min/max mu and the sums of mu and mu^2 (for the
 // unbinned maximum-likelihood fit). The sums are accumulated in fixed point (mu
 // quantised to 2^-40, about 1e-12) in 128-bit integers so that merging is exact and

@@ -1,4 +1,4 @@
-// Statistics of a speed segment (thesis §4.2, eqs. 4.1-4.4), streamed: the input signal is
+// Statistics of a speed segment (Ferre 2018 §4.2, eqs. 4.1-4.4), streamed: the input signal is
 // fed one value at a time and nothing is kept but per-block moments. The input (the last
 // half of the segment) holds a known number n of values, split into M contiguous blocks of
 // floor(n/M) values, the remainder going to the last block.

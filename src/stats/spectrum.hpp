@@ -1,4 +1,4 @@
-// Amplitude spectra of sampled signals (thesis §4.3, Figs. 4.13-4.14) with GSL's real FFT,
+// Amplitude spectra of sampled signals (Ferre 2018 §4.3, Figs. 4.13-4.14) with GSL's real FFT,
 // and the natural frequencies of a scene to compare the peaks with.
 //   The signal is cut to the largest length n = 2^a 3^b 5^c that fits (the earliest samples
 //   go; GSL's mixed-radix FFT is slow for large prime factors), its mean is removed, it is

@@ -1,11 +1,11 @@
-// Linear stability of steady sliding (issue 18; seed 004 §2.3 and §3.2 applied to thesis
-// eq. 3.1). About the sliding equilibrium (model/equilibrium.hpp) a small perturbation
-// obeys M u'' + C u' + K u = 0, where friction enters as a damping m_u phi'(v) on every
-// block (negative for a velocity-weakening law), C also holds the pad damper c_p, the
-// 1DOF damper c_u and the Rayleigh damping alpha_M M + beta_K K (model/parameters.hpp),
-// and M, K are the masses and springs of blocks and pad. Eigenvalues lambda of
-// det(lambda^2 M + lambda C + K) = 0 give each mode's growth rate Re lambda and frequency
-// Im lambda / 2 pi; steady sliding is unstable when any Re lambda > 0.
+// Linear stability of steady sliding (Sinou, Chiello & Charroyer 2019 §2.3 and §3.2 applied to
+// thesis eq. 3.1). About the sliding equilibrium (model/equilibrium.hpp) a small perturbation obeys
+// M u'' + C u' + K u = 0, where friction enters as a damping m_u phi'(v) on every block (negative
+// for a velocity-weakening law), C also holds the pad damper c_p, the 1DOF damper c_u and the
+// Rayleigh damping alpha_M M + beta_K K (model/parameters.hpp), and M, K are the masses and springs
+// of blocks and pad. Eigenvalues lambda of det(lambda^2 M + lambda C + K) = 0 give each mode's
+// growth rate Re lambda and frequency Im lambda / 2 pi; steady sliding is unstable when any Re
+// lambda > 0.
 //
 // Two solvers that check each other:
 //   modal  the exact reduction of the uniform chain: the chain's graph Laplacian has the

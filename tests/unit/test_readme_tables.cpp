@@ -8,6 +8,7 @@
 // schema cannot drift from what the program writes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -211,6 +212,43 @@ TEST(ReadmeTables, EveryCsvTheProgramWritesHasItsTableInTheDocs) {
     EXPECT_EQ(first_line(entry.path()), documented[name]) << entry.path();
   }
   EXPECT_GT(seen, 30);
+}
+
+// What the program prints, read through the binary (not the generator): `bkquake --help`
+// and each command's --help it lists, against docs/reference/commands.md's blocks.
+std::string output_of(const std::string& args) {
+  const fs::path out = fs::temp_directory_path() / "bkq_test_readme_tables_help.txt";
+  const std::string cmd =
+      std::string(BKQUAKE_BINARY) + " " + args + " > " + out.string() + " 2>/dev/null";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  return slurp(out);
+}
+
+std::string as_fenced(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return "```text\n" + text + "\n```\n";
+}
+
+TEST(ReadmeTables, TheCommandsPageShowsWhatEveryCommandsHelpPrints) {
+  const std::string usage = output_of("--help");
+  EXPECT_EQ(docs_block("help"), as_fenced(usage));
+  std::vector<std::string> commands;  // each `  bkquake NAME` line of the usage, once
+  std::istringstream in(usage);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("  bkquake ", 0) != 0) continue;
+    const std::string name = line.substr(10, line.find(' ', 10) - 10);
+    if (name.rfind("--", 0) == 0) continue;
+    if (std::find(commands.begin(), commands.end(), name) == commands.end())
+      commands.push_back(name);
+  }
+  EXPECT_GE(commands.size(), 10u);
+  const std::string page = slurp(kDocs / "reference" / "commands.md");
+  for (const auto& name : commands) {
+    const auto block = readme_block(page, "help " + name);
+    ASSERT_TRUE(block) << "docs/reference/commands.md has no block for " << name;
+    EXPECT_EQ(*block, as_fenced(output_of(name + " --help"))) << name;
+  }
 }
 
 TEST(ReadmeTables, UpdateRewritesOnlyTheMarkedBlocks) {

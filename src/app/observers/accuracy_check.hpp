@@ -7,7 +7,7 @@
 // runs; an event reaching the cap fails the run). They go into summary.json ("accuracy");
 // after the outputs are written, each one above its threshold gives one warning line on
 // stderr, or with run.accuracy = error a bkq::Error (exit 2, outputs kept). The
-// thresholds are README's "Accuracy indicators".
+// thresholds are in docs/explanation/accuracy.md, "Accuracy indicators of every run".
 #pragma once
 
 #include <cstdint>

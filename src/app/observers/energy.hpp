@@ -1,4 +1,4 @@
-// Energy diagnostics of continuous runs (output.energy; issue 18 item 6, seed 004
+// Energy diagnostics of continuous runs (output.energy; Sinou, Chiello & Charroyer 2019
 // §4.3.2-4.3.3). At every sample: the mechanical energy of blocks and pad measured from
 // the sliding equilibrium at the current speed, E = 1/2 du^T K du + 1/2 u'^T M u'
 // (energy_samples.csv, with the braking force N_b = k_p0 x + c_p x'); over windows of

@@ -1,5 +1,5 @@
 // segments.csv (io/segments_csv.hpp): the statistics of each speed segment of a continuous
-// run (thesis §4.2), streamed per integration step. A segment is the stretch at one
+// run (Ferre 2018 §4.2), streamed per integration step. A segment is the stretch at one
 // substrate speed: each step of a steps schedule starts one (the last ends with the run),
 // a constant speed is one segment, a ramp has none (the summary says so). Only the
 // segment's last half enters (the "input signal", stats/segment_stats.hpp), in

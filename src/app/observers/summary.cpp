@@ -94,7 +94,7 @@ void SummaryOfEvents::fit() {
   opt.cancelled = stop_requested_;
   try {
     fit_ = fit_histogram(hist_, settings_.stats.mu_min, settings_.stats.mu_max, opt);
-    if (!fit_->b_ok) {  // no b rather than a meaningless one (README "How b is fitted")
+    if (!fit_->b_ok) {  // no b rather than a meaningless one (docs/explanation/b-fit.md)
       fit_error_ = "no acceptable fit window: " + fit_->no_b_reason;
       fit_.reset();
     }
@@ -159,7 +159,7 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
   char line[200];
   std::snprintf(line, sizeof line, " (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.mu_min,
                 fit.mu_max, static_cast<long long>(fit.n_in_window));
-  // An error that rounds to zero gets more digits; no estimate, a reason (issue 19 item 9).
+  // An error that rounds to zero gets more digits; no estimate, a reason.
   if (std::isfinite(fit.b_mle) && std::isfinite(fit.b_mle_err)) {
     char sys[120];
     std::snprintf(sys, sizeof sys, " (sys. +/- %.2g; b_mw = 1.5 b = %.4g per unit of Mw)",

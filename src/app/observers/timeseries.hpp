@@ -1,6 +1,6 @@
 // The outputs of continuous runs sampled every output.every: timeseries.csv (columns in
 // io/timeseries.hpp), blocks.csv (block trajectories, when output.blocks is set) and the
-// mean and amplitude of the pad friction in summary.json (thesis eqs. 4.1-4.2). Each keeps
+// mean and amplitude of the pad friction in summary.json (Ferre 2018 eqs. 4.1-4.2). Each keeps
 // its state in a checkpoint under its own name: the two files how many rows and bytes of
 // them it covers (a resumed run cuts them back to that and appends), the statistics their
 // sums.

@@ -1,6 +1,6 @@
-// The velocity-weakening family the thesis and Carlson–Langer laws share (SPEC §1):
-// |phi(y)| = kinetic0 / (1 + |y| inv_scale), and the static threshold F0 m_u. The theta
-// scheme solves its implicit step in closed form for this family (integrate/theta.cpp).
+// The velocity-weakening family of Ferre 2018 eq. 3.5 and Carlson et al. 1991 eq. 2.9:
+// |phi(y)| = kinetic0 / (1 + |y| inv_scale), static threshold F0 m_u. The theta scheme
+// solves its implicit step in closed form for this family (integrate/theta.cpp).
 #pragma once
 
 #include <cmath>
@@ -18,7 +18,7 @@ struct Rational {
   // |phi| at |y| = abs_y.
   double at(double abs_y) const { return kinetic0 / std::fma(abs_y, inv_scale, 1.0); }
 
-  // F0 (1-s)/(1 + |y|/((1-s) v_c)): thesis eq. 3.5, Carlson et al. 1991 eq. 2.9.
+  // F0 (1-s)/(1 + |y|/((1-s) v_c)): Ferre 2018 eq. 3.5, Carlson et al. 1991 eq. 2.9.
   static Rational weakening(const ModelParams& p) {
     return Rational{p.F0 * (1.0 - p.sigma),
                     std::isfinite(p.v_c) ? 1.0 / ((1.0 - p.sigma) * p.v_c) : 0.0, p.threshold()};

@@ -1,4 +1,4 @@
-// A tabulated law (friction.law = table; issue 17, the special 1DOF of thesis Fig. 4.8):
+// A tabulated law (friction.law = table; the special 1DOF of Ferre 2018 Fig. 4.8):
 // |phi| given at speeds y_0 < ... < y_n (ModelParams::table, read from a file by
 // io/friction_table), odd in y (backslip allowed, the thesis stick rule), and
 //   |phi(y)| = f_0                                  for 0 <= |y| <= y_0 (held; the static
