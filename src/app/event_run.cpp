@@ -12,6 +12,7 @@
 #include "app/observers/accuracy_check.hpp"
 #include "app/observers/catalog.hpp"
 #include "app/observers/checkpoint_timer.hpp"
+#include "app/observers/event_slip.hpp"
 #include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
 #include "app/observers/summary.hpp"
@@ -103,6 +104,11 @@ class EventRun {
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
                                        resumed ? prog_.events_done : -1,
                                        settings_.output.catalog_deflate);
+    if (settings_.output.event_slip) {
+      engine_->keep_slips(true);
+      observers_.attach<EventSlipWriter>(out_.path(EventSlipWriter::kFileName),
+                                         *settings_.output.event_slip, *engine_);
+    }
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
     accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);

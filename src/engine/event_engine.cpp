@@ -592,12 +592,15 @@ EventRecord EventEngine::next_event() {
   const double stored_change = stored_energy_change(x0);
   double moment = 0;
   int first = n_, last = -1;
+  if (keep_slips_) slips_.clear();
   for (int j : slipped_list_) {
     moment += st_.w[j] - w_before_[j];
+    if (keep_slips_) slips_.emplace_back(j, st_.w[j] - w_before_[j]);
     first = std::min(first, j);
     last = std::max(last, j);
     slipped_[j] = 0;
   }
+  if (keep_slips_) std::sort(slips_.begin(), slips_.end());
   e.blocks = static_cast<int>(slipped_list_.size());
   slipped_list_.clear();
   e.first_block = first;

@@ -67,6 +67,10 @@ class EventEngine {
 
   const ChainState& state() const { return st_; }
   const EngineCounters& counters() const { return counters_; }
+  // Keep the slip of every block of each event (output.event_slip): after next_event(),
+  // slips() holds (block, slip) for the blocks that slipped, by block. Off: nothing kept.
+  void keep_slips(bool on) { keep_slips_ = on; }
+  const std::vector<std::pair<int, double>>& slips() const { return slips_; }
   double load() const { return st_.s; }
   // Throws bkq::Error when the model cannot be driven event by event (no friction, no
   // drop from static to kinetic friction, or Rayleigh block damping).
@@ -156,6 +160,8 @@ class EventEngine {
   std::vector<unsigned char> slipped_;
   std::vector<int> slipped_list_;
   std::vector<double> w_before_;
+  bool keep_slips_ = false;
+  std::vector<std::pair<int, double>> slips_;
   double max_speed_ = 0, last_stick_time_ = 0;
   double dissipated_ = 0;  // work done against friction and dampers during the event
   int sliding_ = 0;

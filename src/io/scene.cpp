@@ -90,6 +90,14 @@ ParamSpec auto_real(const char* key, double limit, const char* units, const char
   return p;
 }
 
+// A Real key whose default `none` turns its output off.
+ParamSpec none_real(const char* key, double limit, const char* units, const char* doc) {
+  ParamSpec p = real(key, "none", '[', -limit, limit, ']', units, doc);
+  p.allow_auto = true;
+  p.keyword = "none";
+  return p;
+}
+
 std::vector<ParamSpec> make_table() {
   return {
       // --- model: which chain, in which units (Ferre 2018 eq. 3.1; Carlson & Langer 1989 eq. 2.2)
@@ -221,6 +229,9 @@ std::vector<ParamSpec> make_table() {
              "the event catalogue: csv (catalog.csv), hdf5 (catalog.h5, one table), "
              "hdf5-deflate (the same table compressed: a quarter of the size, slower), none (no "
              "catalogue; the histogram and the fit are still written)"),
+      none_real("output.event_slip", kMuLimit, "",
+                "write event_slip.csv (event runs): the slip of every block of each event with "
+                "mu >= this, one row per block (event,block,slip); none: not written"),
       integer("output.segment_blocks", "4", 1, 1e6, "",
               "blocks M of the segment statistics' errors in segments.csv (thesis eq. 4.3)"),
 
@@ -326,7 +337,7 @@ std::string normalise(const ParamSpec& p, const std::string& raw, const std::str
       return std::to_string(v);
     }
     case ParamType::Real: {
-      if (p.allow_auto && text == "auto") return text;
+      if (p.allow_auto && text == p.keyword) return text;
       const std::string what = "expected a value in " + allowed_text(p);
       double v = 0;
       const char* b = text.data();
@@ -382,7 +393,7 @@ const std::vector<KeyDependency>& dependencies() {
         "output.block_first", "output.block_count", "output.segment_blocks", "output.status",
         "output.energy", "output.energy_window", "output.energy_tol"},
        {{"drive.mode", {"continuous"}}}},
-      {{"run.events", "run.transient_events", "run.max_steps_per_event"},
+      {{"run.events", "run.transient_events", "run.max_steps_per_event", "output.event_slip"},
        {{"drive.mode", {"events"}}}},
       {{"drive.step_increment", "drive.step_interval"}, {{"drive.schedule", {"steps"}}}},
       {{"drive.ramp_from", "drive.ramp_to", "drive.ramp_duration"}, {{"drive.schedule", {"ramp"}}}},
@@ -460,7 +471,7 @@ std::string allowed_text(const ParamSpec& p) {
     case ParamType::Real: {
       std::string s = std::string(p.min_open ? "(" : "[") + bound_text(p, p.min) + ", " +
                       bound_text(p, p.max) + (p.max_open ? ")" : "]");
-      if (p.allow_auto) s += " or auto";
+      if (p.allow_auto) s += " or " + p.keyword;
       return s;
     }
   }
@@ -627,15 +638,15 @@ const ParamSpec& spec_of(const std::string& key, ParamType type) {
 double Scene::real(const std::string& key) const {
   const ParamSpec& p = spec_of(key, ParamType::Real);
   const std::string& t = values_.at(key);
-  if (p.allow_auto && t == "auto")
-    throw std::logic_error("scene: " + key + " is auto; read it with real_or_auto()");
+  if (p.allow_auto && t == p.keyword)
+    throw std::logic_error("scene: " + key + " is " + t + "; read it with real_or_auto()");
   return std::strtod(t.c_str(), nullptr);
 }
 
 std::optional<double> Scene::real_or_auto(const std::string& key) const {
-  spec_of(key, ParamType::Real);
+  const ParamSpec& p = spec_of(key, ParamType::Real);
   const std::string& t = values_.at(key);
-  if (t == "auto") return std::nullopt;
+  if (p.allow_auto && t == p.keyword) return std::nullopt;
   return std::strtod(t.c_str(), nullptr);
 }
 

@@ -30,7 +30,8 @@ struct ParamSpec {
   std::vector<std::string> choices;  // Choice only
   std::string units;                 // "" for dimensionless or not applicable
   std::string doc;                   // one line
-  bool allow_auto = false;           // Real only: the word `auto` is accepted too
+  bool allow_auto = false;           // Real only: the word `keyword` is accepted too
+  std::string keyword = "auto";      // `auto` (chosen for you) or `none` (the output is off)
 };
 
 // The parameter table (the single place a key is declared).
@@ -68,6 +69,8 @@ class Scene {
   bool flag(const std::string& key) const;
   // A Real key that also accepts `auto` (stats.mu_min, stats.mu_max): nullopt for auto.
   std::optional<double> real_or_auto(const std::string& key) const;
+  // The same for a Real key that also accepts `none` (output.event_slip): nullopt for none.
+  std::optional<double> real_or_none(const std::string& key) const { return real_or_auto(key); }
   // True when the key was given explicitly (file or --set), false when it holds its default.
   bool is_set(const std::string& key) const;
   // The value as text (default or given).

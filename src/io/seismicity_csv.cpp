@@ -168,11 +168,20 @@ const Schema& seismicity_export_schema() {
   return s;
 }
 
+const Schema& event_slip_schema() {
+  static const Schema s = {
+      {"event", "", "the catalogue's event number", kInteger},
+      {"block", "", "0-based index of a block that slipped in the event", kInteger},
+      {"slip", "length", "its slip over the event; the event's slips sum to its moment"},
+  };
+  return s;
+}
+
 std::vector<std::pair<std::string, const Schema*>> seismicity_schemas() {
   return {{"interevent.csv", &interevent_schema()}, {"recurrence.csv", &recurrence_schema()},
           {"omori.csv", &omori_schema()},           {"moment_rate.csv", &moment_rate_schema()},
           {"scaling.csv", &scaling_schema()},       {"spacetime.csv", &spacetime_schema()},
-          {"export", &seismicity_export_schema()}};
+          {"export", &seismicity_export_schema()},  {"event_slip.csv", &event_slip_schema()}};
 }
 
 std::string interevent_csv(const seis::Seismicity& s, const std::vector<std::string>& comments) {

@@ -23,6 +23,10 @@ const Schema& spacetime_schema();
 // The catalogue in seismology's column conventions (`bkquake seismicity --export FILE`).
 const Schema& seismicity_export_schema();
 
+// event_slip.csv of a run with output.event_slip: the slip of each block of each event
+// with mu >= the threshold, long form.
+const Schema& event_slip_schema();
+
 // (file name, schema) of every file above, in the docs' order.
 std::vector<std::pair<std::string, const Schema*>> seismicity_schemas();
 

@@ -134,6 +134,7 @@ Settings settings_from_scene(const Scene& scene) {
 
   s.stats.bin_width = scene.real("stats.bin_width");
   s.stats.mu_min = scene.real_or_auto("stats.mu_min");
+  s.output.event_slip = scene.real_or_none("output.event_slip");
   s.stats.mu_max = scene.real_or_auto("stats.mu_max");
   return s;
 }

@@ -75,6 +75,7 @@ struct OutputSettings {
   bool status = false;           // node-status columns in timeseries.csv
   bool energy = false;           // energy_samples.csv and energy.csv
   double energy_window = 0, energy_tol = 0;
+  std::optional<double> event_slip;  // event_slip.csv for events with mu >= this
 };
 
 // stats.*: histogram and Gutenberg-Richter fit window (nullopt: chosen automatically).

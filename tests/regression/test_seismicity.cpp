@@ -66,7 +66,7 @@ TEST_F(SeismicityCli, RunFolderGetsEveryFileAndTheMomentBudgetIsOne) {
       << r.out;
   const fs::path out = fs::path(run()) / "seismicity";
   for (const auto& [name, schema] : seismicity_schemas()) {
-    if (name == "export") continue;
+    if (name == "export" || name == "event_slip.csv") continue;
     const std::string text = read_file((out / name).string());
     std::string header = "\n";
     header += header_of(*schema);

@@ -1,0 +1,67 @@
+// The event-slip writer; see event_slip.hpp.
+#include "app/observers/event_slip.hpp"
+
+#include <filesystem>
+#include <system_error>
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "engine/event_engine.hpp"
+#include "io/checkpoint.hpp"
+#include "io/output.hpp"
+#include "io/seismicity_csv.hpp"
+
+namespace bkq {
+
+namespace {
+constexpr const char* kState = "event_slip.bytes";
+}  // namespace
+
+EventSlipWriter::EventSlipWriter(std::string path, double mu_min, const EventEngine& engine)
+    : path_(std::move(path)), mu_min_(mu_min), engine_(engine) {}
+
+EventSlipWriter::~EventSlipWriter() = default;
+
+// The file as the checkpoint knew it: cut back to the bytes it recorded.
+void EventSlipWriter::on_resume(const Checkpoint& c) {
+  std::uint64_t bytes = 0;
+  if (!find_state(c, kState, bytes))
+    throw Error(path_ +
+                ": the checkpoint has no event_slip.csv state (the run was started "
+                "without output.event_slip; it must keep its scene to resume)");
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path_, ec);
+  if (ec || size < bytes)
+    throw Error(path_ + ": shorter than its checkpoint (" + std::to_string(bytes) +
+                " bytes): the file was changed since, and the run cannot resume");
+  std::filesystem::resize_file(path_, bytes, ec);
+  if (ec) throw Error(path_ + ": cannot cut back to its checkpoint: " + ec.message());
+  resumed_ = true;
+}
+
+void EventSlipWriter::on_start() {
+  file_ = std::make_unique<CsvStream>(path_, header_of(event_slip_schema()), resumed_,
+                                      CsvStream::kWhenFull);
+}
+
+void EventSlipWriter::on_event(const EventRecord& e) {
+  if (!(e.magnitude >= mu_min_)) return;
+  const std::string event = std::to_string(e.event) + ",";
+  for (const auto& [block, slip] : engine_.slips())
+    file_->row(event + std::to_string(block) + "," + format_real(slip));
+}
+
+void EventSlipWriter::on_phase_end(const Advance&) {
+  file_->flush();
+}
+
+void EventSlipWriter::on_checkpoint(Checkpoint& c) {
+  const std::uint64_t bytes = file_->sync();
+  put_state(c, kState, bytes);
+}
+
+void EventSlipWriter::on_end(const RunEnd&) {
+  file_->close();
+}
+
+}  // namespace bkq
