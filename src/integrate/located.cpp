@@ -13,6 +13,8 @@ namespace {
 
 // Transitions are bisected on the dense output to this fraction of the step.
 constexpr double kLocate = 1e-13;
+// Newton steps at most on real steps after the dense output's estimate (one or two suffice).
+constexpr int kPolish = 3;
 
 // Cubic Hermite interpolation on [0, 1] of a function with values y0, y1 and derivatives
 // d0, d1 (with respect to time) at the ends of a step of length h, at fraction s.
@@ -149,6 +151,28 @@ void LocatedTransitions::transit(const ChainForces& forces, const Substrate& sub
     }
 }
 
+double LocatedTransitions::newton_ratio(const ChainForces& forces, const Substrate& sub,
+                                        const ChainState& st, int j) {
+  const bool pad = forces.params().pad_moves();
+  const SubstrateState s = sub.at(st.t);
+  if (st.mobile[j] != 0.0) {
+    // dir w' over dir w'': the acceleration with the flags of the step.
+    const Range one{j, j + 1};
+    forces.block_accelerations(st.w.data(), st.wd.data(), st.mobile.data(), st.dir.data(),
+                               s.s + (pad ? st.x : 0.0), s.v + (pad ? st.xd : 0.0), s,
+                               Ranges(&one, 1), a1_.data());
+    return st.wd[j] / a1_[j];
+  }
+  // threshold - |f| over its rate: the spring force is linear in the positions and the
+  // anchor, so its rate is the same expression in their velocities.
+  const Friction& fr = forces.friction();
+  const double f = forces.spring_force(st.w.data(), j, s.s + (pad ? st.x : 0.0));
+  for (int k : {(j - 1 + n_) % n_, j, (j + 1) % n_}) wq_[k] = in_ranges(k) ? st.wd[k] : 0.0;
+  const double df = forces.spring_force(wq_.data(), j, s.v + (pad ? st.xd : 0.0));
+  const double side = fr.backslip && f < 0.0 ? -1.0 : 1.0;
+  return (fr.threshold - side * f) / (-side * df);
+}
+
 double LocatedTransitions::sub_step_work(const ChainForces& forces, const ChainState& st,
                                          Ranges ranges, double tau) const {
   const ModelParams& p = forces.params();
@@ -246,11 +270,25 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
     int who = -1;
     const double theta = locate(forces, sub, st, who);
     if (theta < 1.0) {
-      // The step again, by the same scheme, from its start to the located instant.
+      // The step again, by the same scheme, from its start to the located instant, then
+      // Newton's method on such real steps: the dense output's end values come from a
+      // step that ran past the transition, where the right-hand side has a kink (friction
+      // at zero velocity), which limits the interpolant's accuracy there; the real steps
+      // end before it, so the polished instant has the scheme's own accuracy.
+      double tau = theta * h;
       restore_start(st, cur);
-      scheme_->step(forces, sub, st, theta * h, cur);
+      scheme_->step(forces, sub, st, tau, cur);
       ++scheme_steps_;
-      work_ += sub_step_work(forces, st, cur, theta * h);
+      for (int k = 0; k < kPolish; ++k) {
+        const double g_over_rate = newton_ratio(forces, sub, st, who);
+        const double next = tau - g_over_rate;
+        if (!(next > 0.0 && next < h) || std::abs(next - tau) <= kLocate * h) break;
+        tau = next;
+        restore_start(st, cur);
+        scheme_->step(forces, sub, st, tau, cur);
+        ++scheme_steps_;
+      }
+      work_ += sub_step_work(forces, st, cur, tau);
     } else {
       st.t = t_end;  // located at the end: the attempted step stands
       work_ += sub_step_work(forces, st, cur, h);

@@ -97,6 +97,9 @@ class LocatedTransitions final : public Stepper {
   // Adds block k to this step's ranges (own_), and sets the dense output's held blocks.
   void include(int k, const ChainState& st);
   void halo(const ChainState& st);
+  // Block j's event function over its time derivative at the current state (the Newton
+  // correction of the located instant, on a real step).
+  double newton_ratio(const ChainForces& forces, const Substrate& sub, const ChainState& st, int j);
   // The work of one piece of length tau: from the velocities v0_ at its start to st's.
   double sub_step_work(const ChainForces& forces, const ChainState& st, Ranges ranges,
                        double tau) const;
