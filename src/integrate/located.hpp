@@ -8,18 +8,22 @@
 // instant of the earliest such transition is located on the cubic Hermite interpolant of
 // the step (positions from w, w' at both ends; velocities from w', w'' at both ends, the
 // accelerations at the ends evaluated with the frozen flags), bisected to 1e-13 of the
-// step. The step is then taken again, by the same scheme, from its start to that instant;
-// there the located block (and every other block whose transition has happened by then)
-// changes state by the stick rule below, and the rest of the step proceeds the same way.
-// This is a whole-cluster cut: every block of the ranges is stepped to the transition
-// instant. A per-block cut (only the blocks a transition concerns stepped to it) is not
-// possible within one explicit step, whose stages couple each block to its neighbours at
-// the intermediate times: a block stepped alone to the instant would see its neighbours
-// at the step's end, which is first order again.
+// step. The step is then taken again, by the same scheme, from its start to that instant,
+// and the instant polished by at most three Newton steps on such real steps (the attempted
+// step ran past the transition, where friction has a kink at zero velocity, which limits
+// the interpolant there; the real steps end before it); there the located block (and every other
+// block whose transition has happened by then) changes state by the stick rule below, and the rest
+// of the step proceeds the same way. The work against friction and the block dampers is summed
+// piece by piece (step_work()). This is a whole-cluster cut: every block of the ranges is stepped
+// to the transition instant. A per-block cut (only the blocks a transition concerns stepped to it)
+// is not possible within one explicit step, whose stages couple each block to its neighbours at the
+// intermediate times: a block stepped alone to the instant would see its neighbours at the step's
+// end, which is first order again.
 //
 // Order. Between transitions the scheme's own (order p; rk2 2, rk4 4, verlet 2). The
 // cubic Hermite interpolant is exact to O(h^4) locally and passes through the scheme's
-// values, so a transition time is located to O(h^min(p, 4)): a failure time's error enters
+// values, and the polish brings the instant to the accuracy of the scheme's state, so a
+// transition time is located to O(h^p): a failure time's error enters
 // the slip linearly, a stick time's only quadratically (the velocity is zero there). The
 // event therefore keeps the scheme's order (Hairer, Nørsett & Wanner 1993, Solving ODEs I,
 // §II.6 on dense output; Shampine 1986, Appl. Math. Comput., on event location).
