@@ -32,6 +32,10 @@ STYLE = {
     "verlet": ("tab:green", "^"),
     "theta": ("tab:purple", "D"),
     "adaptive": ("black", "v"),
+    # integrator.transitions = located (accuracy.csv's transitions column): dashed, hollow.
+    "rk2 located": ("tab:red", "o"),
+    "rk4 located": ("tab:blue", "s"),
+    "verlet located": ("tab:green", "^"),
 }
 
 
@@ -105,6 +109,10 @@ def main():
     else:
         fail(f"{args.folder}: no such folder or file")
     rows = read_rows(csv_path)
+    # Rows of located transitions are their own curve (a CSV without the column has none).
+    for r in rows:
+        if r.get("transitions") == "located" and r["scheme"] in ("rk2", "rk4", "verlet"):
+            r["scheme"] += " located"
 
     fig, (ax_e, ax_ks) = plt.subplots(1, 2, figsize=(13, 5.5))
     labels = []
@@ -121,11 +129,13 @@ def main():
         # An exact 0 cannot go on a log axis: show it at the smallest error we can print.
         err = [max(num(r, "moment_error_median"), 1e-16) for r in ok]
         ks = [num(r, "ks_distance") for r in ok]
-        ax_e.loglog(t, err, marker=marker, color=color, label=scheme)
+        located = scheme.endswith(" located")
+        line = dict(ls="--", markerfacecolor="none") if located else {}
+        ax_e.loglog(t, err, marker=marker, color=color, label=scheme, **line)
         # A KS distance of exactly 0 (the same histogram) has no place on a log axis.
         pos = [(x, k) for x, k in zip(t, ks) if k is not None and k > 0]
         zero = len(ks) - len(pos)
-        ax_ks.loglog([x for x, _ in pos], [k for _, k in pos], marker=marker, color=color,
+        ax_ks.loglog([x for x, _ in pos], [k for _, k in pos], marker=marker, color=color, **line,
                      label=scheme + (f" ({zero} point{'s' * (zero > 1)} at KS = 0 not drawn)" if zero else ""))
         for r, x, y in zip(ok, t, err):
             tag = f"tol {r['tolerance']}" if scheme == "adaptive" else f"dt {r['dt']}"

@@ -11,6 +11,7 @@
 
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
+#include "integrate/located.hpp"
 #include "integrate/stepper.hpp"
 #include "io/scene.hpp"
 #include "io/settings.hpp"
@@ -32,8 +33,8 @@ struct Sim {
   explicit Sim(const Scene& scene)
       : p(model_from_scene(scene)),
         forces(p),
-        stepper(make_stepper(scene.choice("integrator.scheme"), p.n,
-                             scene.real("integrator.tolerance"))),
+        stepper(with_transitions(scene, make_stepper(scene.choice("integrator.scheme"), p.n,
+                                                     scene.real("integrator.tolerance")))),
         engine(forces, *stepper, checked_dt(scene),
                initial_state(forces, static_cast<std::uint64_t>(scene.integer("run.seed")),
                              scene.real("run.initial_disorder"), true)) {}
@@ -42,6 +43,13 @@ struct Sim {
     const double dt = scene.real("integrator.dt");
     check_time_step(*stepper, p, dt);
     return dt;
+  }
+  // integrator.transitions as the run applies it (io/settings.cpp, stepper_of).
+  std::unique_ptr<Stepper> with_transitions(const Scene& scene, std::unique_ptr<Stepper> s) const {
+    if (scene.applies("integrator.transitions") &&
+        scene.choice("integrator.transitions") == "located")
+      return with_located_transitions(std::move(s), p.n);
+    return s;
   }
   void run(int events) {
     for (int i = 0; i < events; ++i) engine.next_event();

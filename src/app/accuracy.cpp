@@ -12,6 +12,7 @@
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
 #include "integrate/adaptive.hpp"
+#include "integrate/located.hpp"
 #include "integrate/stepper.hpp"
 #include "io/accuracy_schema.hpp"
 #include "io/json.hpp"
@@ -31,6 +32,7 @@ constexpr double kReferenceMacroStep = 1e-3;
 
 struct Reference {
   double moment = 0, duration = 0;
+  int blocks = 0;
 };
 
 struct LongRun {
@@ -77,12 +79,26 @@ class Study {
     // The engine checks stuck blocks outside the integrated ranges once per macro step;
     // a short macro step keeps that lag out of the reference.
     Adaptive reference(p_.n, opt_.reference_tolerance);
+    // The reference's own error floor: its difference from a reference at 10x its tolerance
+    // (whose error is the larger, so this bounds the floor from above).
+    Adaptive looser(p_.n, std::min(10.0 * opt_.reference_tolerance, 1e-2));
+    std::vector<double> fm, fd, fm1, fd1;
     for (const EngineSnapshot& s : states_) {
       EventEngine e(forces_, reference, std::min(dt_, kReferenceMacroStep), s);
       const EventRecord r = e.next_event();
-      references_.push_back({r.moment, r.duration});
+      references_.push_back({r.moment, r.duration, r.blocks});
+      EventEngine l(forces_, looser, std::min(dt_, kReferenceMacroStep), s);
+      const EventRecord q = l.next_event();
+      fm.push_back(relative_error(q.moment, r.moment));
+      fd.push_back(relative_error(q.duration, r.duration));
+      if (r.blocks == 1) {
+        fm1.push_back(fm.back());
+        fd1.push_back(fd.back());
+      }
     }
+    floor_ = {median(fm), median(fm1), median(fd), median(fd1)};
   }
+  const ReferenceFloor& floor() const { return floor_; }
 
   // The reference long run and the noise floor (the reference from another seed).
   std::vector<AccuracyPoint> reference_rows(AccuracyStudy& study) {
@@ -97,6 +113,7 @@ class Study {
 
     AccuracyPoint ref;
     ref.scheme = "reference";
+    ref.transitions = "located";
     ref.dt = dt_;
     ref.tolerance = opt_.long_reference_tolerance;
     ref.note = "long-run reference";
@@ -113,12 +130,19 @@ class Study {
     return {ref, floor};
   }
 
-  AccuracyPoint measure(const std::string& scheme, double dt, double tolerance) {
+  AccuracyPoint measure(const std::string& scheme, double dt, double tolerance,
+                        const std::string& transitions) {
     AccuracyPoint pt;
     pt.scheme = scheme;
     pt.dt = dt;
     pt.tolerance = scheme == "adaptive" ? tolerance : 0.0;
     auto stepper = make_stepper(scheme, p_.n, tolerance > 0 ? tolerance : 1e-8);
+    if (stepper->stick_rule() == StickRule::Crossing) {
+      pt.transitions = transitions;
+      if (transitions == "located") stepper = with_located_transitions(std::move(stepper), p_.n);
+    } else {
+      pt.transitions = stepper->stick_rule() == StickRule::Located ? "located" : "projection";
+    }
     const double limit = stability_limit(*stepper, p_);
     if (dt > limit) {
       pt.status = "unstable";
@@ -128,17 +152,24 @@ class Study {
       return pt;
     }
     try {
-      std::vector<double> dm, dd;
+      std::vector<double> dm, dd, dm1, dd1;
       for (std::size_t k = 0; k < states_.size(); ++k) {
         EventEngine e(forces_, *stepper, dt, states_[k]);
         e.max_steps_per_event = kMaxStepsPerEvent;
         const EventRecord r = e.next_event();
         dm.push_back(relative_error(r.moment, references_[k].moment));
         dd.push_back(relative_error(r.duration, references_[k].duration));
+        if (references_[k].blocks == 1) {
+          dm1.push_back(dm.back());
+          dd1.push_back(dd.back());
+        }
       }
       pt.sampled = static_cast<int>(dm.size());
       pt.moment_error_median = median(dm);
       pt.duration_error_median = median(dd);
+      pt.sampled_single = static_cast<int>(dm1.size());
+      pt.moment_error_median_single = median(dm1);
+      pt.duration_error_median_single = median(dd1);
       pt.moment_error_max = dm.empty() ? 0 : *std::max_element(dm.begin(), dm.end());
       pt.duration_error_max = dd.empty() ? 0 : *std::max_element(dd.begin(), dd.end());
       LongRun run = long_run(*stepper, dt, seed_);
@@ -201,7 +232,22 @@ class Study {
   LongRun reference_run_{MagnitudeHistogram(), 0, 0};
   double b_reference_ = 0;
   std::optional<double> window_min_, window_max_;
+  ReferenceFloor floor_;
 };
+
+// Least-squares slope of log(y) against log(x).
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
 
 }  // namespace
 
@@ -245,17 +291,66 @@ AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
   for (const std::string& scheme : options.schemes) {
     if (scheme == "adaptive") {
       for (double tol : options.tolerances) {
-        study.points.push_back(s.measure(scheme, settings.integrator.dt, tol));
+        study.points.push_back(s.measure(scheme, settings.integrator.dt, tol, "located"));
         if (report) report(study.points.back());
       }
       continue;
     }
-    for (double dt : options.dts) {
-      study.points.push_back(s.measure(scheme, dt, 0.0));
-      if (report) report(study.points.back());
-    }
+    // Each transition mode for the Crossing schemes; the others resolve their own.
+    const bool crossing = make_stepper(scheme, 1)->stick_rule() == StickRule::Crossing;
+    for (const std::string& transitions :
+         crossing ? options.transitions : std::vector<std::string>{"step"})
+      for (double dt : options.dts) {
+        study.points.push_back(s.measure(scheme, dt, 0.0, transitions));
+        if (report) report(study.points.back());
+      }
   }
+  fit_orders(study, s.floor());
   return study;
+}
+
+void fit_orders(AccuracyStudy& study, const ReferenceFloor& floor) {
+  study.orders.clear();
+  // The fixed-step (scheme, transitions) pairs in the order of the points.
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (const AccuracyPoint& p : study.points) {
+    if (p.tolerance > 0 || p.scheme == "reference" || p.scheme == "noise-floor") continue;
+    const std::pair<std::string, std::string> key{p.scheme, p.transitions};
+    if (std::find(pairs.begin(), pairs.end(), key) == pairs.end()) pairs.push_back(key);
+  }
+  struct Quantity {
+    const char *quantity, *events;
+    double AccuracyPoint::*median;
+    double floor;
+  };
+  const Quantity quantities[] = {
+      {"moment", "all", &AccuracyPoint::moment_error_median, floor.moment_all},
+      {"moment", "single", &AccuracyPoint::moment_error_median_single, floor.moment_single},
+      {"duration", "all", &AccuracyPoint::duration_error_median, floor.duration_all},
+      {"duration", "single", &AccuracyPoint::duration_error_median_single, floor.duration_single},
+  };
+  for (const auto& [scheme, transitions] : pairs)
+    for (const Quantity& q : quantities) {
+      AccuracyOrder o{scheme, transitions, q.quantity, q.events, std::nan(""), 0, 0, 0, q.floor};
+      std::vector<double> dts, errors;
+      for (const AccuracyPoint& p : study.points) {
+        if (p.scheme != scheme || p.transitions != transitions || p.tolerance > 0 ||
+            p.status != "ok" || p.sampled == 0)
+          continue;
+        const double e = p.*q.median;
+        // A floor of NaN (no such events) leaves every point out.
+        if (!(e > 10.0 * q.floor) || !std::isfinite(e)) continue;
+        dts.push_back(p.dt);
+        errors.push_back(e);
+      }
+      o.points = static_cast<int>(dts.size());
+      if (!dts.empty()) {
+        o.dt_min = *std::min_element(dts.begin(), dts.end());
+        o.dt_max = *std::max_element(dts.begin(), dts.end());
+      }
+      if (o.points >= 2 && o.dt_min < o.dt_max) o.order = log_log_slope(dts, errors);
+      study.orders.push_back(o);
+    }
 }
 
 namespace {
@@ -269,13 +364,18 @@ std::string csv_field(const std::string& text) {
 std::string accuracy_csv(const AccuracyStudy& study) {
   std::string out = header_of(accuracy_schema()) + "\n";
   for (const AccuracyPoint& p : study.points) {
-    out += p.scheme + ',' + format_real(p.dt) + ',' + format_real(p.tolerance) + ',' + p.status +
-           ',' + std::to_string(p.sampled);
+    out += p.scheme + ',' + p.transitions + ',' + format_real(p.dt) + ',' +
+           format_real(p.tolerance) + ',' + p.status + ',' + std::to_string(p.sampled);
     // Blank where nothing was measured: not run, or (reference rows) no per-event errors.
     const bool ran = p.status == "ok", per_event = ran && p.sampled > 0;
     for (double v :
          {p.moment_error_median, p.moment_error_max, p.duration_error_median, p.duration_error_max})
       out += ',' + (per_event ? format_real(v) : std::string());
+    out += ',' + (per_event ? std::to_string(p.sampled_single) : std::string());
+    // No single-block event among the samples: nothing to take a median of.
+    const bool single = per_event && p.sampled_single > 0;
+    for (double v : {p.moment_error_median_single, p.duration_error_median_single})
+      out += ',' + (single ? format_real(v) : std::string());
     for (double v : {p.ks_distance, p.b, p.b_shift, p.seconds_per_event, p.steps_per_event})
       out += ',' + (ran ? format_real(v) : std::string());
     out += ',' + csv_field(p.note) + '\n';
@@ -283,16 +383,31 @@ std::string accuracy_csv(const AccuracyStudy& study) {
   return out;
 }
 
+std::string accuracy_orders_csv(const AccuracyStudy& study) {
+  std::string out = header_of(accuracy_orders_schema()) + "\n";
+  for (const AccuracyOrder& o : study.orders) {
+    const bool fitted = std::isfinite(o.order), used = o.points > 0;
+    out += o.scheme + ',' + o.transitions + ',' + o.quantity + ',' + o.events + ',' +
+           (fitted ? format_real(o.order) : std::string()) + ',' + std::to_string(o.points) + ',' +
+           (used ? format_real(o.dt_min) : std::string()) + ',' +
+           (used ? format_real(o.dt_max) : std::string()) + ',' +
+           (std::isfinite(o.floor) ? format_real(o.floor) : std::string()) + '\n';
+  }
+  return out;
+}
+
 std::string accuracy_table(const AccuracyStudy& study) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "%-11s %8s %8s %11s %11s %9s %8s %11s %9s  %s\n", "scheme", "dt",
-                "tol", "dM/M med", "dT/T med", "KS", "db", "s/event", "steps/ev", "status");
+  std::snprintf(line, sizeof line, "%-11s %-10s %8s %8s %11s %11s %9s %8s %11s %9s  %s\n", "scheme",
+                "transits", "dt", "tol", "dM/M med", "dT/T med", "KS", "db", "s/event", "steps/ev",
+                "status");
   out += line;
   for (const AccuracyPoint& p : study.points) {
     if (p.status != "ok") {
-      std::snprintf(line, sizeof line, "%-11s %8.3g %8s %11s %11s %9s %8s %11s %9s  %s (%s)\n",
-                    p.scheme.c_str(), p.dt,
+      std::snprintf(line, sizeof line,
+                    "%-11s %-10s %8.3g %8s %11s %11s %9s %8s %11s %9s  %s (%s)\n", p.scheme.c_str(),
+                    p.transitions.c_str(), p.dt,
                     p.tolerance > 0 ? format_real(p.tolerance).c_str() : "-", "", "", "", "", "",
                     "", p.status.c_str(), p.note.c_str());
     } else {
@@ -301,8 +416,9 @@ std::string accuracy_table(const AccuracyStudy& study) {
         std::snprintf(dm, sizeof dm, "%.3g", p.moment_error_median);
         std::snprintf(dd, sizeof dd, "%.3g", p.duration_error_median);
       }
-      std::snprintf(line, sizeof line, "%-11s %8.3g %8s %11s %11s %9.4f %+8.4f %11.3g %9.4g  ok\n",
-                    p.scheme.c_str(), p.dt,
+      std::snprintf(line, sizeof line,
+                    "%-11s %-10s %8.3g %8s %11s %11s %9.4f %+8.4f %11.3g %9.4g  ok\n",
+                    p.scheme.c_str(), p.transitions.c_str(), p.dt,
                     p.tolerance > 0 ? format_real(p.tolerance).c_str() : "-", dm, dd, p.ks_distance,
                     p.b_shift, p.seconds_per_event, p.steps_per_event);
     }
@@ -312,6 +428,27 @@ std::string accuracy_table(const AccuracyStudy& study) {
                 "b fitted on mu in [%.2f, %.2f) (the reference run's automatic window)\n",
                 study.mu_min, study.mu_max);
   out += line;
+  if (study.orders.empty()) return out;
+  out +=
+      "observed orders (slope of log median error vs log dt; points within 10x of the "
+      "reference's floor left out):\n";
+  std::snprintf(line, sizeof line, "%-11s %-10s %10s %10s %10s %10s\n", "scheme", "transits",
+                "M all", "M single", "T all", "T single");
+  out += line;
+  for (std::size_t i = 0; i + 3 < study.orders.size(); i += 4) {
+    char cells[4][32];
+    for (int k = 0; k < 4; ++k) {
+      const AccuracyOrder& o = study.orders[i + k];
+      if (std::isfinite(o.order))
+        std::snprintf(cells[k], sizeof cells[k], "%.2f (%d)", o.order, o.points);
+      else
+        std::snprintf(cells[k], sizeof cells[k], "- (%d)", o.points);
+    }
+    std::snprintf(line, sizeof line, "%-11s %-10s %10s %10s %10s %10s\n",
+                  study.orders[i].scheme.c_str(), study.orders[i].transitions.c_str(), cells[0],
+                  cells[1], cells[2], cells[3]);
+    out += line;
+  }
   return out;
 }
 

@@ -17,6 +17,12 @@
 //      same two numbers between the reference run and a reference run from another seed: below it a
 //      scheme's statistics are as good as the reference's.
 //  (c) Cost: wall seconds per event of the long run (and steps per event).
+// The fixed-step schemes run with each transition mode asked for (integrator.transitions:
+// step, located). Per scheme and mode the study fits the observed order: the least-squares
+// slope of log median per-event error against log dt over the ladder's stable points,
+// leaving out points within 10x of the reference's own error floor (the median difference
+// between the reference and a reference at 10x its tolerance), for the moment and the
+// duration, over all sampled events and over those in which one block slips.
 // A dt above a scheme's stability limit stays in the table as "unstable" (not run); a run
 // that fails (non-finite state, an event that does not end) as "failed".
 #pragma once
@@ -34,7 +40,8 @@ namespace bkq {
 struct AccuracyOptions {
   std::vector<std::string> schemes{"rk2", "rk4", "verlet", "theta", "adaptive"};
   std::vector<double> dts{0.05, 0.02, 0.01, 0.005, 0.002, 0.001};
-  std::vector<double> tolerances{1e-3, 1e-5, 1e-7, 1e-9};  // adaptive scheme
+  std::vector<double> tolerances{1e-3, 1e-5, 1e-7, 1e-9};   // adaptive scheme
+  std::vector<std::string> transitions{"step", "located"};  // rk2, rk4, verlet
   int samples = 40;                        // K pre-event states for the per-event errors
   int sample_spacing = 25;                 // events between two sampled states
   std::int64_t long_events = 50000;        // events per long run, after the scene's transient
@@ -57,6 +64,7 @@ void check_accuracy_options(const AccuracyOptions& options);
 
 struct AccuracyPoint {
   std::string scheme;
+  std::string transitions = "step";  // step | located | projection (theta)
   double dt = 0;
   double tolerance = 0;       // adaptive only (0 otherwise)
   std::string status = "ok";  // ok | unstable | failed
@@ -64,13 +72,27 @@ struct AccuracyPoint {
   int sampled = 0;
   double moment_error_median = 0, moment_error_max = 0;
   double duration_error_median = 0, duration_error_max = 0;
+  int sampled_single = 0;  // sampled events in which one block slips (the reference's count)
+  double moment_error_median_single = 0, duration_error_median_single = 0;
   double ks_distance = 0, b = 0, b_shift = 0;
   double seconds_per_event = 0, steps_per_event = 0;
 };
 
+// The observed order of one scheme and transition mode (accuracy_orders.csv).
+struct AccuracyOrder {
+  std::string scheme, transitions;
+  std::string quantity;  // moment | duration
+  std::string events;    // all | single
+  double order = 0;      // NaN with fewer than two points
+  int points = 0;
+  double dt_min = 0, dt_max = 0;
+  double floor = 0;  // the reference's own error floor
+};
+
 struct AccuracyStudy {
   std::vector<AccuracyPoint> points;  // the first two rows: the reference and the noise floor
-  double mu_min = 0, mu_max = 0;      // the b-fit window
+  std::vector<AccuracyOrder> orders;
+  double mu_min = 0, mu_max = 0;  // the b-fit window
 };
 
 // Runs the study (options checked first); `report` (if set) is told about each point as it
@@ -80,6 +102,14 @@ AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
 
 // accuracy.csv: the header line, then one row per point.
 std::string accuracy_csv(const AccuracyStudy& study);
+// accuracy_orders.csv: the header line, then one row per observed order.
+std::string accuracy_orders_csv(const AccuracyStudy& study);
+// The observed orders of the study's fixed-step points (fills study.orders), given the
+// reference's floors: moment and duration, all events and single-block ones.
+struct ReferenceFloor {
+  double moment_all = 0, moment_single = 0, duration_all = 0, duration_single = 0;
+};
+void fit_orders(AccuracyStudy& study, const ReferenceFloor& floor);
 // The table printed at the end of `bkquake accuracy`.
 std::string accuracy_table(const AccuracyStudy& study);
 

@@ -1,6 +1,7 @@
 // `bkquake accuracy [SCENE]`: the work–precision study of app/accuracy.hpp for a scene
 // (the built-in default without one), driven event by event. Writes scene.ini (the
-// effective scene with provenance) and accuracy.csv into --out, and prints the table.
+// effective scene with provenance), accuracy.csv and accuracy_orders.csv (the observed
+// orders) into --out, and prints the table.
 // Thin: the study itself lives in the engine.
 #include <algorithm>
 #include <boost/program_options.hpp>
@@ -60,6 +61,20 @@ std::vector<std::string> parse_schemes(const std::string& text) {
   return out;
 }
 
+// "step,located" -> {"step", "located"}; each one a value of integrator.transitions.
+std::vector<std::string> parse_transitions(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (item != "step" && item != "located")
+      throw Error("accuracy: --transitions: '" + item +
+                  "' is not a transition mode; expected a list of step|located");
+    out.push_back(item);
+  }
+  if (out.empty()) throw Error("accuracy: --transitions: empty list");
+  return out;
+}
+
 }  // namespace
 
 // What --help prints above the options.
@@ -83,6 +98,8 @@ int cmd_accuracy(const std::vector<std::string>& args) {
            "time steps of the fixed-step schemes")
     ("tolerances", po::value<std::string>()->default_value("1e-3,1e-5,1e-7,1e-9"),
                    "tolerances of the adaptive scheme (macro step: the scene's integrator.dt)")
+    ("transitions", po::value<std::string>()->default_value("step,located"),
+                    "transition modes of rk2, rk4 and verlet (integrator.transitions)")
     ("samples", po::value<int>()->default_value(defaults.samples), ("pre-event states for the per-event errors, in [1, " + std::to_string(kMaxAccuracySamples) + "]").c_str())
     ("spacing", po::value<int>()->default_value(defaults.sample_spacing), ("events between sampled states, in [1, " + std::to_string(kMaxAccuracySpacing) + "]").c_str())
     ("long-events", po::value<std::int64_t>()->default_value(defaults.long_events),
@@ -106,6 +123,7 @@ int cmd_accuracy(const std::vector<std::string>& args) {
   opt.dts = parse_list("dt", "integrator.dt", vm["dt"].as<std::string>());
   opt.tolerances =
       parse_list("tolerances", "integrator.tolerance", vm["tolerances"].as<std::string>());
+  opt.transitions = parse_transitions(vm["transitions"].as<std::string>());
   opt.samples = vm["samples"].as<int>();
   opt.sample_spacing = vm["spacing"].as<int>();
   opt.long_events = vm["long-events"].as<std::int64_t>();
@@ -130,7 +148,9 @@ int cmd_accuracy(const std::vector<std::string>& args) {
                  p.status.c_str());
   });
   write_file_atomic(out.path("accuracy.csv"), accuracy_csv(study));
-  std::cout << accuracy_table(study) << "outputs in " << dir << "/ (accuracy.csv, scene.ini)\n";
+  write_file_atomic(out.path("accuracy_orders.csv"), accuracy_orders_csv(study));
+  std::cout << accuracy_table(study) << "outputs in " << dir
+            << "/ (accuracy.csv, accuracy_orders.csv, scene.ini)\n";
   return 0;
 }
 

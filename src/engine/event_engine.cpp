@@ -12,6 +12,7 @@
 #include "core/format.hpp"
 #include "engine/contacts.hpp"
 #include "integrate/cluster.hpp"
+#include "integrate/located.hpp"
 #include "model/damped_oscillator.hpp"
 
 namespace bkq {
@@ -499,6 +500,8 @@ EventRecord EventEngine::next_event() {
 
   const Substrate frozen = Substrate::frozen(st_.s);
   const bool crossing = stepper_.stick_rule() == StickRule::Crossing;
+  // Located transitions keep the work of each piece of a step between transitions.
+  const auto* located = dynamic_cast<const LocatedTransitions*>(&stepper_);
   const double half_dt_m = 0.5 * dt_ * p.m_u, half_dt_cp = 0.5 * dt_ * p.c_p;
   dissipated_ = 0;
   std::int64_t steps = 0;
@@ -540,7 +543,8 @@ EventRecord EventEngine::next_event() {
         released_now_.clear();
         if (old_.joint()) {
           const double* wd_old = old_.data(kWdOld, 0);
-          dissipated_ += half_dt_m * dissipated_power(forces_, st_, wd_old, ranges_);
+          dissipated_ += located ? located->step_work()
+                                 : half_dt_m * dissipated_power(forces_, st_, wd_old, ranges_);
           scan = settle_contacts(forces_, st_, wd_old, anchor(), ranges_, crossing,
                                  [&](int j) { released_now_.push_back(j); });
         } else {
@@ -549,7 +553,7 @@ EventRecord EventEngine::next_event() {
           double power = 0;
           for (std::size_t i = 0; i < ranges_.size(); ++i)
             power += dissipated_power(forces_, st_, old_.data(kWdOld, i), Ranges(&ranges_[i], 1));
-          dissipated_ += half_dt_m * power;
+          dissipated_ += located ? located->step_work() : half_dt_m * power;
           for (std::size_t i = 0; i < ranges_.size(); ++i) {
             const ContactScan part = settle_contacts(forces_, st_, old_.data(kWdOld, i), anchor(),
                                                      Ranges(&ranges_[i], 1), crossing,

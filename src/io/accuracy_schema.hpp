@@ -9,5 +9,7 @@ namespace bkq {
 
 // Column order is the CSV column order.
 const Schema& accuracy_schema();
+// accuracy_orders.csv: the observed orders of each fixed-step scheme and transition mode.
+const Schema& accuracy_orders_schema();
 
 }  // namespace bkq

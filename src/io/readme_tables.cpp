@@ -72,6 +72,7 @@ std::vector<ReadmeTable> readme_tables() {
       {"energy.csv", column_table(energy_schema())},
       {"energy_samples.csv", column_table(energy_samples_schema())},
       {"accuracy.csv", column_table(accuracy_schema())},
+      {"accuracy_orders.csv", column_table(accuracy_orders_schema())},
       {"segments.csv", column_table(segments_schema())},
       {"spectrum.csv", column_table(spectrum_schema())},
       {"special_law.csv", column_table(special_law_schema())},

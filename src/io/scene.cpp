@@ -201,6 +201,10 @@ std::vector<ParamSpec> make_table() {
              "rk2 (explicit midpoint), rk4, verlet, theta (theta-method, set-valued friction), "
              "adaptive (event-located adaptive reference)"),
       real("integrator.dt", "0.01", '(', 0, 1e6, ']', "time", "time step"),
+      choice("integrator.transitions", "step", {"step", "located"},
+             "where stick and slip happen: step (at the end of the step that crosses them, first "
+             "order) or located (inside the step, on its dense output: the scheme's order) "
+             "(schemes rk2, rk4, verlet)"),
       real("integrator.tolerance", "1e-08", '[', 1e-14, 1e-2, ']', "",
            "local error tolerance (scheme adaptive)"),
       real("integrator.theta", "0.5", '[', 0.5, 1, ']', "",
@@ -399,6 +403,7 @@ const std::vector<KeyDependency>& dependencies() {
       {{"drive.ramp_from", "drive.ramp_to", "drive.ramp_duration"}, {{"drive.schedule", {"ramp"}}}},
       {{"integrator.tolerance"}, {{"integrator.scheme", {"adaptive"}}}},
       {{"integrator.theta"}, {{"integrator.scheme", {"theta"}}}},
+      {{"integrator.transitions"}, {{"integrator.scheme", {"rk2", "rk4", "verlet"}}}},
       {{"output.energy_window", "output.energy_tol"}, {{"output.energy", {"true"}}}},
       {{"run.start_mode", "run.start_mode_index", "run.start_amplitude"},
        {{"run.start", {"equilibrium"}}}},
@@ -708,6 +713,9 @@ std::uint64_t Scene::hash() const {
   for (const auto& p : parameter_table()) {
     // An unset file key leaves the hash of the scenes that do not use it as it was.
     if (p.type == ParamType::Path && values_.at(p.key).empty()) continue;
+    // Likewise integrator.transitions at step, its meaning before the key existed, so that
+    // checkpoints and results of those scenes keep their hash.
+    if (p.key == "integrator.transitions" && values_.at(p.key) == "step") continue;
     h = fnv1a64(p.key + "=" + values_.at(p.key) + "\n", h);
   }
   return h;

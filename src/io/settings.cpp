@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "integrate/located.hpp"
 #include "integrate/theta.hpp"
 #include "io/friction_table.hpp"
 #include "io/scene.hpp"
@@ -107,6 +108,8 @@ Settings settings_from_scene(const Scene& scene) {
   s.integrator.dt = scene.real("integrator.dt");
   s.integrator.tolerance = scene.real("integrator.tolerance");
   s.integrator.theta = scene.real("integrator.theta");
+  s.integrator.located_transitions = scene.applies("integrator.transitions") &&
+                                     scene.choice("integrator.transitions") == "located";
 
   s.output.every = scene.real("output.every");
   s.output.blocks = scene.flag("output.blocks");
@@ -154,6 +157,7 @@ Substrate substrate_of(const DriveSettings& drive) {
 std::unique_ptr<Stepper> stepper_of(const IntegratorSettings& integrator, int blocks) {
   std::unique_ptr<Stepper> s = make_stepper(integrator.scheme, blocks, integrator.tolerance);
   if (auto* theta = dynamic_cast<Theta*>(s.get())) theta->set_theta(integrator.theta);
+  if (integrator.located_transitions) s = with_located_transitions(std::move(s), blocks);
   return s;
 }
 

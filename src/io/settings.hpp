@@ -59,6 +59,9 @@ struct IntegratorSettings {
   double dt = 0;
   double tolerance = 0;  // adaptive scheme only
   double theta = 0.5;    // theta scheme only
+  // integrator.transitions = located: stick and slip located inside the step (rk2, rk4,
+  // verlet; integrate/located.hpp); false: at the end of the step (the Crossing rule).
+  bool located_transitions = false;
 };
 
 // output.*: continuous-mode outputs.

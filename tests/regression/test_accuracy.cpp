@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -37,7 +38,8 @@ TEST(Accuracy, SmallStudyOrdersTheSchemesAndKeepsUnstablePoints) {
   opt.sample_spacing = 10;
   opt.long_events = 400;
   const AccuracyStudy study = run_accuracy(scene, opt);
-  ASSERT_EQ(study.points.size(), 2u + 3 * 3 + 1);
+  // rk2 and rk4 in both transition modes, theta once, adaptive once.
+  ASSERT_EQ(study.points.size(), 2u + 2 * 2 * 3 + 3 + 1);
   EXPECT_EQ(study.points[0].scheme, "reference");
   EXPECT_EQ(study.points[0].ks_distance, 0.0);
   EXPECT_EQ(study.points[1].scheme, "noise-floor");
@@ -67,8 +69,65 @@ TEST(Accuracy, SmallStudyOrdersTheSchemesAndKeepsUnstablePoints) {
   const std::string csv = accuracy_csv(study);
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')),
             study.points.size() + 1);
-  EXPECT_EQ(csv.rfind("scheme,dt,tolerance,status,", 0), 0u);
+  EXPECT_EQ(csv.rfind("scheme,transitions,dt,tolerance,status,", 0), 0u);
   EXPECT_NE(accuracy_table(study).find("unstable"), std::string::npos);
+
+  // Located transitions: the same ladder, and at the finest dt a smaller error than the step.
+  for (const char* scheme : {"rk2", "rk4"}) {
+    const AccuracyPoint* step = nullptr;
+    const AccuracyPoint* located = nullptr;
+    for (const AccuracyPoint& p : study.points)
+      if (p.scheme == scheme && p.dt == 0.005) (p.transitions == "step" ? step : located) = &p;
+    ASSERT_TRUE(step && located) << scheme;
+    ASSERT_EQ(located->status, "ok") << located->note;
+    EXPECT_LT(located->moment_error_median, step->moment_error_median) << scheme;
+    // rk4's durations too; rk2's stick time is its velocity error over the small deceleration
+    // at a stick (sigma), which at this dt is still larger than the step's quantisation.
+    if (std::string(scheme) == "rk4") {
+      EXPECT_LT(located->duration_error_median, step->duration_error_median) << scheme;
+    }
+  }
+  // One observed order per scheme, mode, quantity and event set: rk2 and rk4 twice, theta.
+  ASSERT_EQ(study.orders.size(), (2u * 2 + 1) * 4);
+  EXPECT_EQ(study.orders[0].scheme, "rk2");
+  EXPECT_EQ(study.orders[0].transitions, "step");
+  EXPECT_EQ(study.orders[0].quantity, "moment");
+  EXPECT_EQ(study.orders[0].events, "all");
+  const std::string orders = accuracy_orders_csv(study);
+  EXPECT_EQ(orders.rfind("scheme,transitions,quantity,events,order,", 0), 0u);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(orders.begin(), orders.end(), '\n')),
+            study.orders.size() + 1);
+}
+
+// The observed order is the least-squares slope over the points above 10x the floor.
+TEST(Accuracy, ObservedOrderIsTheSlopeAboveTheFloor) {
+  AccuracyStudy study;
+  for (double dt : {0.04, 0.02, 0.01, 0.005}) {
+    AccuracyPoint p;
+    p.scheme = "rk4";
+    p.transitions = "located";
+    p.dt = dt;
+    p.sampled = 10;
+    p.moment_error_median = 3.0 * std::pow(dt, 4);  // exactly 4th order
+    p.duration_error_median = std::max(0.1 * dt, 1e-3);
+    p.sampled_single = 0;
+    p.moment_error_median_single = p.duration_error_median_single = std::nan("");
+    study.points.push_back(p);
+  }
+  ReferenceFloor floor{1e-9, std::nan(""), 1e-5, std::nan("")};
+  fit_orders(study, floor);
+  ASSERT_EQ(study.orders.size(), 4u);
+  // 3 * 0.005^4 = 1.9e-9 is within 10x of the floor 1e-9: left out.
+  EXPECT_EQ(study.orders[0].points, 3);
+  EXPECT_NEAR(study.orders[0].order, 4.0, 1e-12);
+  EXPECT_EQ(study.orders[0].dt_min, 0.01);
+  EXPECT_EQ(study.orders[1].points, 0);  // no single-block events
+  EXPECT_TRUE(std::isnan(study.orders[1].order));
+  // Durations: 0.004, 0.002, 0.001 (and the 1e-3 clamp at 0.005, equal: slope over three
+  // points and a flat one is below 1).
+  EXPECT_EQ(study.orders[2].points, 4);
+  EXPECT_LT(study.orders[2].order, 1.0);
+  EXPECT_GT(study.orders[2].order, 0.5);
 }
 
 TEST(Accuracy, BinnedKolmogorovSmirnovDistance) {
@@ -111,7 +170,11 @@ TEST(AccuracyProgram, RefusesBadOptionsAndWritesTheTable) {
   std::ifstream csv(dir.file("accuracy.csv"));
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header.rfind("scheme,dt,", 0), 0u);
+  EXPECT_EQ(header.rfind("scheme,transitions,dt,", 0), 0u);
+  std::ifstream orders(dir.file("accuracy_orders.csv"));
+  std::string orders_header;
+  std::getline(orders, orders_header);
+  EXPECT_EQ(orders_header.rfind("scheme,transitions,quantity,", 0), 0u);
   EXPECT_TRUE(std::ifstream(dir.file("scene.ini")).good());
   // A second run does not overwrite the table without --force.
   const auto again = test::run_process(BKQUAKE_BINARY, args);

@@ -1,0 +1,134 @@
+// Located transitions for the explicit Crossing schemes (integrator.transitions = located):
+// the scheme's own step (rk2, rk4 or verlet), with every stick and every failure inside a
+// step located on the step's dense output and the step cut there.
+//
+// Method. A step of length h is taken with the stick flags frozen, as the Crossing rule
+// does. If at its end a sliding block's velocity has reached zero against its direction of
+// sliding (dir w' <= 0) or a stuck block's spring force has passed the threshold, the
+// instant of the earliest such transition is located on the cubic Hermite interpolant of
+// the step (positions from w, w' at both ends; velocities from w', w'' at both ends, the
+// accelerations at the ends evaluated with the frozen flags), bisected to 1e-13 of the
+// step. The step is then taken again, by the same scheme, from its start to that instant,
+// and the instant polished by at most three Newton steps on such real steps (the attempted
+// step ran past the transition, where friction has a kink at zero velocity, which limits
+// the interpolant there; the real steps end before it); there the located block (and every other
+// block whose transition has happened by then) changes state by the stick rule below, and the rest
+// of the step proceeds the same way. The work against friction and the block dampers is summed
+// piece by piece (step_work()). This is a whole-cluster cut: every block of the ranges is stepped
+// to the transition instant. A per-block cut (only the blocks a transition concerns stepped to it)
+// is not possible within one explicit step, whose stages couple each block to its neighbours at the
+// intermediate times: a block stepped alone to the instant would see its neighbours at the step's
+// end, which is first order again.
+//
+// Order. Between transitions the scheme's own (order p; rk2 2, rk4 4, verlet 2). The
+// cubic Hermite interpolant is exact to O(h^4) locally and passes through the scheme's
+// values, and the polish brings the instant to the accuracy of the scheme's state, so a
+// transition time is located to O(h^p): a failure time's error enters
+// the slip linearly, a stick time's only quadratically (the velocity is zero there). The
+// event therefore keeps the scheme's order (Hairer, Nørsett & Wanner 1993, Solving ODEs I,
+// §II.6 on dense output; Shampine 1986, Appl. Math. Comput., on event location).
+//
+// Stability limit: the scheme's (a cut step is shorter than dt, never longer).
+//
+// Stick rule at a located instant (Located): a sliding block whose velocity reached zero
+// sticks, with zero velocity, where friction holds its spring force; otherwise it slides
+// on the way its spring pulls (backslip laws: back the way it came; clst91: forwards, since
+// f > threshold > 0). A stuck block whose force reached the threshold breaks loose with
+// zero velocity, sliding the way its spring pulls. These are the rules of model/stick.hpp
+// applied at the located instant instead of at the end of the step.
+//
+// A block released inside a step moves for the rest of it: its neighbours join the step's
+// ranges as stuck blocks (the scheme's stages read their positions), and the caller learns
+// of the release from releases_in_step().
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "integrate/stepper.hpp"
+
+namespace bkq {
+
+class LocatedTransitions final : public Stepper {
+ public:
+  // `scheme` must be a Crossing scheme (rk2, rk4, verlet); bkq::Error otherwise.
+  LocatedTransitions(std::unique_ptr<Stepper> scheme, int n_blocks);
+
+  std::string_view name() const override { return scheme_->name(); }
+  int order() const override { return scheme_->order(); }
+  double stability_constant() const override { return scheme_->stability_constant(); }
+  double damped_stability_constant() const override { return scheme_->damped_stability_constant(); }
+  TimeStepLimit time_step_limit(const ModelParams& p) const override {
+    return scheme_->time_step_limit(p);
+  }
+  StickRule stick_rule() const override { return StickRule::Located; }
+  std::span<const Release> releases_in_step() const override { return releases_; }
+  double located_stick_time() const override { return last_stick_time_; }
+  void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
+            Ranges ranges) override;
+  std::vector<double> carried_state() const override { return {last_stick_time_}; }
+  void restore_carried_state(std::span<const double> s) override;
+
+  // The work done against friction and the block dampers over the last step(): the
+  // trapezoidal rule on each piece between two located transitions, with the flags of that
+  // piece (the event engine's ledger; over the whole step the rule would straddle them).
+  double step_work() const { return work_; }
+
+  // Counters since construction: transitions located inside a step (each one cut), and
+  // scheme steps taken (the attempted steps that found a transition included).
+  std::int64_t located_transitions() const { return located_; }
+  std::int64_t scheme_steps() const { return scheme_steps_; }
+
+ private:
+  // Saves (restore: puts back) the start of the step: the blocks of the ranges, the pad.
+  void save_start(const ChainState& st, Ranges ranges);
+  void restore_start(ChainState& st, Ranges ranges) const;
+  // Blocks whose transition has happened by the end of the attempted step (in fired_).
+  bool fired_at_end(const ChainForces& forces, const Substrate& sub, const ChainState& st,
+                    Ranges ranges);
+  // Whether block j's transition has happened by t0 + theta h on the dense output.
+  bool fired_at(const ChainForces& forces, const Substrate& sub, const ChainState& st, int j,
+                double theta);
+  // The earliest located transition among fired_, as a fraction of the step; `who` its block.
+  double locate(const ChainForces& forces, const Substrate& sub, const ChainState& st, int& who);
+  // The transitions at the current instant: `who`'s, and every other that has happened.
+  void transit(const ChainForces& forces, const Substrate& sub, ChainState& st, int who,
+               Ranges ranges);
+  bool in_ranges(int j) const { return mark_[j] == stamp_; }
+  // Adds block k to this step's ranges (own_), and sets the dense output's held blocks.
+  void include(int k, const ChainState& st);
+  void halo(const ChainState& st);
+  // Block j's event function over its time derivative at the current state (the Newton
+  // correction of the located instant, on a real step).
+  double newton_ratio(const ChainForces& forces, const Substrate& sub, const ChainState& st, int j);
+  // The work of one piece of length tau: from the velocities v0_ at its start to st's.
+  double sub_step_work(const ChainForces& forces, const ChainState& st, Ranges ranges,
+                       double tau) const;
+  double dense_w(int j, double theta) const;
+  double dense_wd(int j, double theta) const;
+
+  std::unique_ptr<Stepper> scheme_;
+  int n_;
+  // The attempted step: its start (w0_, v0_, a0_, pad), end (w1_, v1_, a1_, pad) and length.
+  std::vector<double> w0_, v0_, a0_, w1_, v1_, a1_, wq_;
+  double x0_ = 0, xd0_ = 0, sum0_ = 0, x1_ = 0, xd1_ = 0, t0_ = 0, h_ = 0;
+  std::vector<int> fired_;
+  // The ranges of the step: the caller's, grown by the neighbours of the blocks that break
+  // loose inside it.
+  std::vector<Range> own_;
+  std::vector<std::uint64_t> mark_, released_mark_;
+  std::uint64_t stamp_ = 0;
+  std::vector<Release> releases_;
+  double last_stick_time_ = std::nan("");
+  double work_ = 0;
+  std::int64_t located_ = 0, scheme_steps_ = 0;
+};
+
+// The stepper of `scheme` with located transitions (the wrapper above); bkq::Error naming
+// integrator.transitions when the scheme resolves its transitions itself.
+std::unique_ptr<Stepper> with_located_transitions(std::unique_ptr<Stepper> scheme, int n_blocks);
+
+}  // namespace bkq
