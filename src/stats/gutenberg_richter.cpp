@@ -314,32 +314,23 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
 
   // Upper cut: the highest populated top <= lo's ceiling from which the events of the next
   // departure_width still follow the window's law (their own slope within a factor
-  // departure_ratio of b, widened by departure_sigma standard errors). A top with fewer
-  // than departure_min_events events (or 2 bins) above it cannot be vouched for and is
-  // passed over; when no top can be tested at all, the highest one is kept.
+  // departure_ratio of b, widened by departure_sigma standard errors).
   const std::int64_t D = bins_of(opt.departure_width);
   const auto upper_cut = [&](std::int64_t lo) -> std::optional<std::int64_t> {
     if (hi_given) return hi_given;
-    std::optional<std::int64_t> untested;
-    bool tested = false;
     for (std::int64_t hi = ceiling(lo); hi >= lo + opt.min_window_bins - 1; --hi) {
       poll();
       if (h.count(hi) == 0 || !big_enough(lo, hi)) continue;
       const BEstimate bw = mle_or_nan(h, lo, hi, truncated(hi));
       if (!(bw.b > 0) || !std::isfinite(bw.err)) continue;
       const std::int64_t s_hi = std::min(last, hi + D);
-      if (h.count_range(hi + 1, s_hi) < opt.departure_min_events || s_hi - hi < 2) {
-        if (!untested) untested = hi;
-        continue;
-      }
+      if (h.count_range(hi + 1, s_hi) < opt.departure_min_events || s_hi - hi < 2) return hi;
       const BEstimate bs = mle_or_nan(h, hi + 1, s_hi, true);
       if (!std::isfinite(bs.b) || !std::isfinite(bs.err)) continue;
-      tested = true;
       const double z = opt.departure_sigma * bs.err;
       if (bs.b >= bw.b / opt.departure_ratio - z && bs.b <= bw.b * opt.departure_ratio + z)
         return hi;
     }
-    if (!tested) return untested;
     return std::nullopt;
   };
 

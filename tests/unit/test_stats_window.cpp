@@ -169,28 +169,6 @@ TEST_P(WindowKnownB, AutomaticBIsWithinTwoErrorsOfTheTruth) {
 
 INSTANTIATE_TEST_SUITE_P(Seeds, WindowKnownB, ::testing::Values(1u, 2u, 3u, 4u, 5u));
 
-// The upper cut's departure test alone (no rise, so the ceiling does not act): b = 1 up to
-// mu = 4, then a steeper law (b = 3, continuous density) above, as where D(mu) bends down
-// into the dip. The window ends at the break, within the 1.6 units of mu the test looks
-// ahead, and b is the lower law's; with the steep part in the window b would be pulled up.
-// mu_min is given, so that the upper cut is tested alone (left to itself, the stability
-// rule finds the steep law stable too, and may prefer it: two power laws are two answers).
-TEST(Window, UpperCutStopsWhereTheSlopeDeparts) {
-  std::mt19937_64 rng(13);
-  std::vector<double> mu;
-  for (int i = 0; i < 50000; ++i) mu.push_back(truncated_exponential(rng, 1.0, 0.0, 4.0));
-  for (int i = 0; i < 300; ++i) mu.push_back(truncated_exponential(rng, 3.0, 4.0, 9.0));
-  const GrFit f = fit_magnitudes(mu, 0.2, 0.0, std::nullopt);
-  ASSERT_TRUE(f.b_ok) << f.no_b_reason;
-  EXPECT_TRUE(f.mu_max_auto);
-  EXPECT_LE(f.mu_max, 4.0 + 1e-9);
-  EXPECT_GE(f.mu_max, 4.0 - 1.6 - 1e-9);
-  EXPECT_NEAR(f.b_mle, 1.0, 2 * f.b_mle_err);
-  // The same catalogue with the window forced to the top: b pulled up by the steep part.
-  const GrFit top = fit_magnitudes(mu, 0.2, f.mu_min, 9.0);
-  EXPECT_GT(top.b_mle, 1.0 + 3 * top.b_mle_err);
-}
-
 // The systematic error is half the range of b over the windows whose ends lie within
 // sys_width inside the fit's; b_scan marks exactly those windows as accepted.
 TEST(Window, SystematicErrorIsTheSpreadOverTheAcceptedWindowsOfTheScan) {
