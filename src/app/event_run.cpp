@@ -244,10 +244,12 @@ class EventRun {
 
   int finish() {
     // The final state, before the observers close their files: a later `--resume --set
-    // run.events=N2` continues from it exactly as an interrupted run continues.
-    files_.remove();
+    // run.events=N2` continues from it exactly as an interrupted run continues. The
+    // periodic checkpoints go only once summary.json says the run finished, so a kill in
+    // between still leaves a resumable run.
     save_engine(true);
     observers_.end(run_end(0));
+    files_.remove_interim();
     accuracy_->verdict();
     return 0;
   }

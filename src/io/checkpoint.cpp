@@ -350,6 +350,13 @@ Checkpoint CheckpointFiles::read(std::string* from) const {
   }
 }
 
+void CheckpointFiles::remove_interim() const {
+  std::error_code ec;
+  fs::remove(current(), ec);
+  fs::remove(previous(), ec);
+  remove_temporaries_of(current());
+}
+
 void CheckpointFiles::remove() const {
   std::error_code ec;
   fs::remove(current(), ec);

@@ -263,6 +263,8 @@ class CheckpointFiles {
   // Deletes both checkpoints (and the final state) and any temporary file left by an
   // interrupted write.
   void remove() const;
+  // Deletes both checkpoints and their temporaries, keeping the final state.
+  void remove_interim() const;
 
  private:
   std::string dir_;
