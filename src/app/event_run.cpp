@@ -171,21 +171,21 @@ class EventRun {
 
   // A checkpoint of the running engine, its state lent rather than copied (a copy of a
   // long chain at each checkpoint would be the largest thing the run holds).
-  void save_engine() {
+  void save_engine(bool final = false) {
     EngineSnapshot lent = engine_->lend_snapshot();
     struct GiveBack {
       EventEngine& engine;
       EngineSnapshot& lent;
       ~GiveBack() { engine.take_back(std::move(lent)); }
     } give_back{*engine_, lent};
-    save(lent);
+    save(lent, final);
   }
 
   // Writes a checkpoint of `engine` with the run as it stands. The run fills in its own
   // bookkeeping; the observers add theirs (the catalog syncs and records its size, the
   // histogram and the summary's sums their state). The snapshot moves into the checkpoint
   // and back, unchanged.
-  void save(EngineSnapshot& engine) {
+  void save(EngineSnapshot& engine, bool final = false) {
     prog_.wall_total = wall_total0_ + seconds_since(session_t0_);
     if (prog_.transient_done == transient_)
       prog_.wall_events = wall_events0_ + seconds_since(recording_t0_);
@@ -203,6 +203,10 @@ class EventRun {
       ~MoveBack() { to = std::move(from); }
     } move_back{engine, c.engine};
     observers_.checkpoint(c);
+    if (final) {
+      files_.write_final(c);
+      return;
+    }
     files_.write(c);
     saved_ = true;
   }
@@ -245,9 +249,13 @@ class EventRun {
   }
 
   int finish() {
+    // The final state, before the observers close their files: a later `--resume --set
+    // run.events=N2` continues from it exactly as an interrupted run continues. The
+    // periodic checkpoints go only once summary.json says the run finished, so a kill in
+    // between still leaves a resumable run.
+    save_engine(true);
     observers_.end(run_end(0));
-    // summary.json says the run finished; its checkpoints have served.
-    files_.remove();
+    files_.remove_interim();
     accuracy_->verdict();
     return 0;
   }

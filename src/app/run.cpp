@@ -3,7 +3,8 @@
 // changed before everything is checked), writes scene.ini first and hands over to the
 // drive mode's run (app/event_run, app/continuous_run), whose observers write the rest;
 // summary.json comes last and says whether the run finished or was interrupted (its
-// "status", io/run_folder.hpp): --resume continues an interrupted run, not a finished one.
+// "status", io/run_folder.hpp): --resume continues an interrupted run, and extends a
+// finished event run to a larger run.events from its final state (checkpoint.final.bin).
 #include "app/run.hpp"
 
 #include <cstdio>
@@ -27,6 +28,40 @@
 
 namespace bkq {
 
+namespace {
+
+// The final state of the finished event run in `dir`, checked for an extension to the
+// scene's run.events: only run.events may differ from the finished run's scene, and it
+// must be larger. Throws bkq::Error (the folder untouched) otherwise.
+Checkpoint finished_state(const std::string& dir, const CheckpointFiles& checkpoints,
+                          const Scene& scene, const Settings& settings, bool events) {
+  const std::string finished =
+      "--resume: output folder '" + dir + "' holds a finished run (summary.json)";
+  if (!events)
+    throw Error(finished +
+                ": a continuous run cannot be extended yet (run.duration); use --force to run "
+                "it again");
+  if (!checkpoints.final_exists())
+    throw Error(finished +
+                " without its final state (checkpoint.final.bin): nothing to continue; use "
+                "--force to run it again");
+  Checkpoint saved = checkpoints.read_final();
+  const Scene before = Scene::from_text(saved.scene_ini, checkpoints.final_state());
+  const std::int64_t n1 = before.integer("run.events");
+  const std::int64_t n2 = settings.run.events;
+  if (n2 <= n1)
+    throw Error(finished + " of " + std::to_string(n1) + " events: run.events = " +
+                std::to_string(n2) + " would not extend it (allowed: more than " +
+                std::to_string(n1) + "); nothing to continue");
+  // Every other key must match, as for an interrupted run.
+  Scene same = scene;
+  same.set("run.events", std::to_string(n1), "the finished run");
+  check_checkpoint_matches(saved, same, checkpoints.final_state());
+  return saved;
+}
+
+}  // namespace
+
 int run_scene(const RunRequest& req) {
   const Scene& scene = req.scene;
   const Settings settings = settings_from_scene(scene);
@@ -44,15 +79,18 @@ int run_scene(const RunRequest& req) {
   const OutputFolder out(req.out_dir, req.force, req.resume);
   const CheckpointFiles checkpoints(out.dir());
   if (req.resume) {
-    if (run_status(out.dir()) == RunStatus::Finished)
-      throw Error("--resume: output folder '" + out.dir() +
-                  "' holds a finished run (summary.json): nothing to continue; use --force to run "
-                  "it again");
     // Everything is checked before anything is changed: a refused resume leaves the folder as it
     // was.
     std::string from;
-    const Checkpoint saved = checkpoints.read(&from);
-    check_checkpoint_matches(saved, scene, from);
+    Checkpoint saved;
+    const bool extend = run_status(out.dir()) == RunStatus::Finished;
+    if (extend) {
+      saved = finished_state(out.dir(), checkpoints, scene, settings, events);
+      from = checkpoints.final_state();
+    } else {
+      saved = checkpoints.read(&from);
+      check_checkpoint_matches(saved, scene, from);
+    }
     const CatalogFormat format = settings.output.catalog;
     const std::string catalog =
         format == CatalogFormat::None ? "" : out.path(catalog_file_name(format));
@@ -68,6 +106,18 @@ int run_scene(const RunRequest& req) {
                    "is exact only if the engine did not change in between\n",
                    saved.git_revision.c_str(), kGitRevision);
     if (!events) return resume_continuous(req, settings, out, forces, *stepper, saved, from);
+    if (extend) {
+      // The finished run becomes an interrupted run of the longer scene: its final state is
+      // the checkpoint (now of this scene), scene.ini says run.events = N2 and summary.json
+      // goes until the run ends again. A crash from here on resumes like any interruption.
+      saved.scene_hash = scene.hash();
+      saved.scene_ini = scene.to_ini();
+      checkpoints.write(saved);
+      write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
+      std::filesystem::remove(out.path("summary.json"));
+      std::filesystem::remove(checkpoints.final_state());
+      from = checkpoints.current();
+    }
     // Rows written after the checkpoint are computed again, so they go.
     std::error_code ec;
     if (format == CatalogFormat::Csv)

@@ -272,6 +272,31 @@ std::string CheckpointFiles::previous() const {
   return (fs::path(dir_) / "checkpoint.prev.bin").string();
 }
 
+std::string CheckpointFiles::final_state() const {
+  return (fs::path(dir_) / "checkpoint.final.bin").string();
+}
+
+bool CheckpointFiles::final_exists() const {
+  std::error_code ec;
+  return fs::exists(final_state(), ec);
+}
+
+void CheckpointFiles::write_final(const Checkpoint& c) const {
+  const std::string tmp = write_temp_beside(final_state(), encode_checkpoint(c));
+  try {
+    rename_file(tmp, final_state());
+  } catch (const Error&) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  }
+  sync_folder(dir_);
+}
+
+Checkpoint CheckpointFiles::read_final() const {
+  return decode_checkpoint(read_whole(final_state()), final_state());
+}
+
 bool CheckpointFiles::exist() const {
   std::error_code ec;
   return fs::exists(current(), ec) || fs::exists(previous(), ec);
@@ -325,11 +350,20 @@ Checkpoint CheckpointFiles::read(std::string* from) const {
   }
 }
 
+void CheckpointFiles::remove_interim() const {
+  std::error_code ec;
+  fs::remove(current(), ec);
+  fs::remove(previous(), ec);
+  remove_temporaries_of(current());
+}
+
 void CheckpointFiles::remove() const {
   std::error_code ec;
   fs::remove(current(), ec);
   fs::remove(previous(), ec);
+  fs::remove(final_state(), ec);
   remove_temporaries_of(current());  // of a write cut short by a second signal or a crash
+  remove_temporaries_of(final_state());
 }
 
 }  // namespace bkq

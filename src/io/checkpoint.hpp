@@ -247,6 +247,12 @@ class CheckpointFiles {
   std::string current() const;   // DIR/checkpoint.bin
   std::string previous() const;  // DIR/checkpoint.prev.bin
   bool exist() const;            // either of them
+  // The final state of a finished event run (DIR/checkpoint.final.bin), kept so that
+  // `run --resume --set run.events=N2` can extend it; it never counts as an interruption.
+  std::string final_state() const;
+  bool final_exists() const;
+  void write_final(const Checkpoint& c) const;
+  Checkpoint read_final() const;
   // Writes `c` as the new checkpoint.bin, keeping the old one as checkpoint.prev.bin.
   // Throws bkq::Error naming the file; the existing checkpoints stay intact on failure.
   void write(const Checkpoint& c) const;
@@ -254,8 +260,11 @@ class CheckpointFiles {
   // when a crash came between the renames. Throws bkq::Error when there is none or when
   // checkpoint.bin is damaged (then naming checkpoint.prev.bin, if there is one).
   Checkpoint read(std::string* from = nullptr) const;
-  // Deletes both checkpoints and any temporary file left by an interrupted write.
+  // Deletes both checkpoints (and the final state) and any temporary file left by an
+  // interrupted write.
   void remove() const;
+  // Deletes both checkpoints and their temporaries, keeping the final state.
+  void remove_interim() const;
 
  private:
   std::string dir_;

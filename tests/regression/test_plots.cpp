@@ -66,6 +66,47 @@ TEST_F(Plots, GrFitLinePassesThroughTheDataInTheWindow) {
   EXPECT_EQ(c.status, 0) << c.err;
 }
 
+// plot_gr.py --mu-min/--mu-max refits in Python what `bkquake fit` fits on the same window:
+// b and its systematic error agree to rounding; plot_b_scan.py draws b_scan.csv and refuses
+// a file of another kind in one line.
+TEST_F(Plots, GrRefitAndBScanMatchBkquakeFit) {
+  const std::string run = dir_.file("run");
+  ASSERT_EQ(test::run_bkquake({"run", "--set", "run.events=20000", "--set",
+                               "run.transient_events=500", "--out", run, "--quiet"})
+                .status,
+            0);
+  const std::string json = dir_.file("fit.json");
+  ASSERT_EQ(test::run_bkquake({"fit", run + "/histogram.csv", "--mu-min", "-7.6", "--mu-max", "-2",
+                               "--json", json, "--scan", "--out", dir_.file("scan")})
+                .status,
+            0);
+  const std::string check =
+      "import sys, json; sys.path.insert(0, '" + script("") +
+      "')\n"
+      "import bkquake_io, plot_gr\n"
+      "h = bkquake_io.load_histogram(sys.argv[1]); f = json.load(open(sys.argv[2]))['fit']\n"
+      "b, err = plot_gr.binned_mle(h, -7.6, -2.0)\n"
+      "assert abs(b - f['b_mle']) < 1e-6 * b, (b, f['b_mle'])\n"
+      "assert abs(err - f['b_mle_err']) < 1e-4 * err, (err, f['b_mle_err'])\n"
+      "s = plot_gr.systematic(h, -7.6, -2.0)\n"
+      "assert abs(s - f['b_mle_sys_err']) < 1e-6, (s, f['b_mle_sys_err'])\n";
+  const auto c = test::run_process(kPython, {"-c", check, run, json});
+  EXPECT_EQ(c.status, 0) << c.err;
+  const std::string png = dir_.file("gr.png");
+  const auto p = test::run_process(
+      kPython, {script("plot_gr.py"), run, "--mu-min", "-7.6", "--mu-max", "-2", "--out", png});
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_GT(fs::file_size(png), 10000u);
+  const std::string scan_png = dir_.file("scan.png");
+  const auto q =
+      test::run_process(kPython, {script("plot_b_scan.py"), dir_.file("scan"), "--out", scan_png});
+  ASSERT_EQ(q.status, 0) << q.err;
+  EXPECT_GT(fs::file_size(scan_png), 10000u);
+  expect_one_line_refusal(
+      test::run_process(kPython, {script("plot_b_scan.py"), run + "/histogram.csv"}),
+      "expected the columns");
+}
+
 TEST_F(Plots, AFolderOfTheWrongKindIsOneLine) {
   // A continuous run's folder as it was before it had a histogram: no histogram.csv.
   const std::string cont = dir_.file("continuous");
