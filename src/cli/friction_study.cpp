@@ -15,7 +15,7 @@ int cmd_friction_study(const std::vector<std::string>& args) {
       "bkquake friction-study [options]\n"
       "Runs the configurations of thesis Fig. 4.6 (scenes DIR/<config>.ini) over the speed\n"
       "grid 0.005..1 (five runs of speed segments) and writes OUT/friction_study.csv;\n"
-      "plot it with analysis/plot_friction_study.py OUT");
+      "plot it with analysis/plot_brake.py study OUT");
   // clang-format off
   opts.add_options()
     ("help,h", "show this help")
