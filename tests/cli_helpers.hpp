@@ -154,10 +154,12 @@ inline ProcessResult run_bkquake_for(double timeout_s, const std::vector<std::st
 }
 
 // Runs bkquake and sends SIGTERM once `stop_when()` holds (the run has reached a state,
-// e.g. written its first checkpoint); `guard_s` only catches a hang (r.hung).
+// e.g. written its first checkpoint); `guard_s` only catches a hang (r.hung). After the
+// SIGTERM the run has `guard_s` more seconds to write its last checkpoint (a chain of
+// millions of blocks takes seconds) before SIGKILL.
 inline ProcessResult run_bkquake_until(const std::function<bool()>& stop_when,
                                        const std::vector<std::string>& args, double guard_s = 300) {
-  return run_process(BKQUAKE_BINARY, args, "", guard_s, 5, stop_when);
+  return run_process(BKQUAKE_BINARY, args, "", guard_s, guard_s, stop_when);
 }
 
 // Starts bkquake with `args` (in `cwd` when given; stdout and stderr to the file `log`, or
