@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
@@ -28,8 +29,11 @@ struct ProcessResult {
   std::string out;  // stdout
   std::string err;  // stderr
   // With a time limit: whether it was reached (SIGTERM sent), and how long the program
-  // then took to exit (SIGKILL follows after `kill_after` seconds).
+  // then took to exit (SIGKILL follows after `kill_after` seconds). With a stop condition
+  // (run_bkquake_until): whether it held and SIGTERM was sent, and `hung` when the guard
+  // time passed first.
   bool timed_out = false;
+  bool hung = false;
   double exit_after_term_s = 0;
   // stderr split into lines (without the newlines).
   std::vector<std::string> err_lines() const {
@@ -43,9 +47,13 @@ struct ProcessResult {
 // Runs `program` with `args` (no shell involved, so no quoting worries), optionally in
 // `cwd`, and waits for it. stdin is /dev/null. With `timeout_s` > 0 the program gets SIGTERM
 // once that many seconds have passed, and SIGKILL `kill_after` seconds later.
+// With `stop_when`, the program gets SIGTERM as soon as stop_when() holds (checked every
+// few milliseconds: a state the program has reached, not a time), and `timeout_s` is only a
+// guard against a hang (SIGTERM, then SIGKILL).
 inline ProcessResult run_process(const std::string& program, const std::vector<std::string>& args,
                                  const std::string& cwd = "", double timeout_s = 0,
-                                 double kill_after = 5) {
+                                 double kill_after = 5,
+                                 const std::function<bool()>& stop_when = nullptr) {
   int out_pipe[2], err_pipe[2];
   if (::pipe(out_pipe) != 0 || ::pipe(err_pipe) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = ::fork();
@@ -76,7 +84,14 @@ inline ProcessResult run_process(const std::string& program, const std::vector<s
   bool killed = false;
   // Past the timeout: SIGTERM, then SIGKILL kill_after seconds later.
   auto enforce_timeout = [&](Clock::time_point now) {
+    if (!r.timed_out && stop_when && stop_when()) {
+      ::kill(pid, SIGTERM);
+      r.timed_out = true;
+      termed = now;
+      return;
+    }
     if (!r.timed_out && now - start >= std::chrono::duration<double>(timeout_s)) {
+      r.hung = stop_when != nullptr;
       ::kill(pid, SIGTERM);
       r.timed_out = true;
       termed = now;
@@ -138,6 +153,15 @@ inline ProcessResult run_bkquake_for(double timeout_s, const std::vector<std::st
   return run_process(BKQUAKE_BINARY, args, cwd, timeout_s, kill_after);
 }
 
+// Runs bkquake and sends SIGTERM once `stop_when()` holds (the run has reached a state,
+// e.g. written its first checkpoint); `guard_s` only catches a hang (r.hung). After the
+// SIGTERM the run has `guard_s` more seconds to write its last checkpoint (a chain of
+// millions of blocks takes seconds) before SIGKILL.
+inline ProcessResult run_bkquake_until(const std::function<bool()>& stop_when,
+                                       const std::vector<std::string>& args, double guard_s = 300) {
+  return run_process(BKQUAKE_BINARY, args, "", guard_s, guard_s, stop_when);
+}
+
 // Starts bkquake with `args` (in `cwd` when given; stdout and stderr to the file `log`, or
 // discarded), sends `sig` once `ready()` turns true (`times` times in a row: a second
 // SIGTERM lands while the run is stopping), and returns the exit status (128 + signal when
@@ -175,6 +199,39 @@ int run_and_signal_when(const std::vector<std::string>& args, Ready ready, int s
       break;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
+}
+
+// Starts bkquake with `sig` blocked and already pending (the child inherits the mask and
+// the pending signal across exec), so the signal arrives at the first moment the program
+// unblocks it: a run's stop handler (app/stop_signals.hpp), i.e. before its first event.
+// A stop at a known point, with no race against the clock. Output to `log` (or discarded);
+// returns the exit status (128 + signal when killed by one).
+inline int run_with_pending_signal(const std::vector<std::string>& args, int sig,
+                                   const std::string& log = "") {
+  sigset_t block, old;
+  sigemptyset(&block);
+  sigaddset(&block, sig);
+  ::sigprocmask(SIG_BLOCK, &block, &old);
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    const int fd =
+        ::open(log.empty() ? "/dev/null" : log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    ::raise(sig);  // pending: blocked in this process, kept across exec
+    std::vector<std::string> all = args;
+    std::vector<char*> argv{const_cast<char*>(BKQUAKE_BINARY)};
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(BKQUAKE_BINARY, argv.data());
+    ::_exit(127);
+  }
+  ::sigprocmask(SIG_SETMASK, &old, nullptr);
+  int wstatus = 0;
+  while (::waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
   }
   return WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
 }

@@ -139,6 +139,9 @@ class ContinuousRun {
       driver_ = std::make_unique<ContinuousDriver>(forces, stepper, substrate,
                                                    decode_state(*resumed, next_out_), dt_);
       done_ = resumed->engine.counters.steps;
+      // The checkpoint keeps the next sample's time (k * every, summed); a run stopped just
+      // after writing sample k resumes with k + 1.
+      next_sample_ = std::llround(next_out_ / every_);
       episodes_ = resumed->engine.counters.events;
       prog_ = resumed->progress;
       ++prog_.resumes;
@@ -160,9 +163,14 @@ class ContinuousRun {
     observers_.start();
     observers_.phase({"time", driver_->state().t, duration_});
     while (true) {
-      if (driver_->state().t >= next_out_ - 1e-9 * dt_) {
-        observers_.sample(sample_of(*driver_));
+      if (sample_due()) {
+        Sample sample = sample_of(*driver_);
+        // On the stated grid: sample k is at t = k * output.every exactly (the state's own
+        // time, summed step by step, drifts from it by rounding).
+        if (steps_per_sample_ > 0) sample.values.t = static_cast<double>(next_sample_) * every_;
+        observers_.sample(sample);
         next_out_ += every_;
+        ++next_sample_;
       }
       if (done_ == steps_ || signals.received()) break;
       driver_->step();
@@ -278,11 +286,26 @@ class ContinuousRun {
   const CheckpointFiles files_;
   const double dt_, duration_, every_;
   const std::int64_t steps_;
+  // output.every / integrator.dt when it is a whole number (to rounding): samples are taken
+  // every that many steps and stamped with their grid time k * every. 0 otherwise: a sample
+  // at the first step at or past each k * every, stamped with that step's time.
+  const std::int64_t steps_per_sample_ = whole_steps(every_, dt_);
+
+  static std::int64_t whole_steps(double every, double dt) {
+    const double m = every / dt;
+    const double r = std::round(m);
+    return r >= 1 && std::fabs(m - r) <= 1e-9 * r ? static_cast<std::int64_t>(r) : 0;
+  }
+  bool sample_due() const {
+    if (steps_per_sample_ > 0) return done_ >= next_sample_ * steps_per_sample_;
+    return driver_->state().t >= next_out_ - 1e-9 * dt_;
+  }
 
   std::unique_ptr<ContinuousDriver> driver_;
   AccuracyCheck* accuracy_ = nullptr;     // one of the observers
   std::int64_t done_ = 0, episodes_ = 0;  // steps and finished episodes, all sessions
   double next_out_ = 0;                   // time of the next sample
+  std::int64_t next_sample_ = 0;          // index k of the next sample (on the grid)
   RunProgress prog_;  // wall time and resumes; catalog_bytes and the moment sums are the observers'
   Observers observers_;
   Clock::time_point session_t0_ = Clock::now();

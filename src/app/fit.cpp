@@ -3,6 +3,7 @@
 #include "app/fit.hpp"
 
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -127,13 +128,37 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
   const Boundary bnd = parse_boundary(boundary);
 
   // The catalogue of an interrupted run holds the events recorded so far (whole rows, up to
-  // its checkpoint or beyond): they are fitted, and the report says so. A summary that does
-  // not read leaves the catalogue to speak for itself.
-  bool interrupted = false;
-  try {
-    interrupted = run_status(catalog.parent_path()) == RunStatus::Interrupted;
-  } catch (const Error&) {
+  // its checkpoint or beyond): they are fitted, and the report says so. A run's own catalogue
+  // is checked against its summary's event count. A summary that does not read is named in a
+  // warning and the catalogue speaks for itself.
+  const std::filesystem::path dir = catalog.parent_path();
+  const std::string name = catalog.filename().string();
+  const bool own = name == "catalog.csv" || name == "catalog.h5";
+  RunStatus status = RunStatus::None;
+  std::optional<double> summary_events;
+  if (own && std::filesystem::exists(dir / "summary.json")) {
+    try {
+      status = run_status(dir);
+      summary_events = read_json_number(dir / "summary.json", "events");
+    } catch (const Error& e) {
+      std::fprintf(stderr, "bkquake: warning: %s; the catalogue is fitted without it\n",
+                   escape_unprintable(e.what()).c_str());
+      status = RunStatus::None;
+      summary_events.reset();
+    }
   }
+  const bool interrupted = status == RunStatus::Interrupted;
+  // A run killed (SIGKILL, a crash) before its first summary leaves only its checkpoints.
+  const bool killed = own && status == RunStatus::None &&
+                      (std::filesystem::exists(dir / "checkpoint.bin") ||
+                       std::filesystem::exists(dir / "checkpoint.prev.bin"));
+
+  // The folder rule (io/run_folder.hpp): --json never over the catalogue or a run's files.
+  std::unique_ptr<DerivedOutput> json_out;
+  if (request.json)
+    json_out = std::make_unique<DerivedOutput>(
+        *request.json, std::vector<std::filesystem::path>{catalog, dir / "summary.json", scene},
+        "fit --json");
 
   CatalogReader reader(catalog);
   const bool classes_on = blocks.has_value() && reader.has_extent();
@@ -153,6 +178,16 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
     if (classes_on)
       classes.add(classify_event(e.blocks, e.first_block, e.last_block, *blocks, bnd));
   }
+  // (Only a finished run's count is final: a resumed run cuts its catalogue back to the
+  // checkpoint while the summary of its last stop still counts the events past it.)
+  if (summary_events && status == RunStatus::Finished) {
+    const auto expected = static_cast<std::int64_t>(*summary_events);
+    const std::int64_t found = reader.events_read();
+    if (found != expected)
+      throw Error(reader.file() + ": holds " + std::to_string(found) + " rows, its run's " +
+                  (dir / "summary.json").string() + " counts " + std::to_string(expected) +
+                  " events: the catalogue is truncated or was changed");
+  }
   require_events_to_fit(reader.file(), reader.events_read());
 
   GrFit fit = fit_histogram(hist, request.mu_min, request.mu_max);
@@ -161,6 +196,10 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
   out << "catalogue         " << catalog.string() << "\n";
   if (interrupted)
     out << "note: an interrupted run (summary.json: \"status\": \"interrupted\"): these are its "
+        << reader.events_read() << " events so far; --resume finishes it\n";
+  if (killed)
+    out << "note: an interrupted run (checkpoints beside it, no summary.json: killed?): these "
+           "are its "
         << reader.events_read() << " events so far; --resume finishes it\n";
   out << gr_fit_table(fit);
   if (classes_on)
@@ -173,7 +212,7 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
   if (request.json) {
     Json o = Json::object();
     o.set("catalog", catalog.string()).set("fit", gr_fit_json(fit));
-    if (interrupted) o.set("run_status", status_text(RunStatus::Interrupted));
+    if (interrupted || killed) o.set("run_status", status_text(RunStatus::Interrupted));
     if (classes_on)
       o.set("blocks", static_cast<std::int64_t>(*blocks))
           .set("boundary", boundary)

@@ -11,8 +11,10 @@
 #include "app/gr_report.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "io/histogram_csv.hpp"
 #include "io/ini.hpp"
+#include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
 #include "io/scene.hpp"
@@ -45,6 +47,28 @@ struct Inputs {
   std::vector<std::vector<std::string>> seeds;
 };
 
+// A run's scene.ini must be the scene its summary.json was written for: a key missing from
+// an empty or truncated scene.ini would take its default and pass for the run's physics.
+// The summary's scene_hash (Scene::hash over every key) is compared with the scene read
+// back; a run of another revision (whose keys may differ) is compared too, and the message
+// names both revisions. Merged folders, whose summary has no scene_hash, are compared by
+// their keys alone (check_alike).
+void check_scene_matches_summary(const std::string& run, const fs::path& ini, const Scene& scene) {
+  const fs::path summary = fs::path(run) / "summary.json";
+  const std::string text = read_text_file(summary.string(), "summary");
+  const auto recorded = json_top_level_string(text, "scene_hash", summary.string());
+  if (!recorded) return;
+  if (*recorded == std::to_string(scene.hash())) return;
+  const auto revision = json_top_level_string(text, "git_revision", summary.string());
+  std::string why = "damaged, truncated or edited";
+  if (revision && *revision != kGitRevision)
+    why += ", or written by git revision " + quote_printable(*revision) + " whose scene keys " +
+           "differ from this one's (" + kGitRevision + ")";
+  throw Error("merge: " + ini.string() + " is not the scene of " + summary.string() +
+              " (scene_hash " + quote_printable(*recorded) + ", the file reads as " +
+              std::to_string(scene.hash()) + "): " + why);
+}
+
 // Reads every input's scene and seeds; refuses an input that is not a finished run.
 Inputs read_inputs(const std::vector<std::string>& runs) {
   Inputs in;
@@ -62,6 +86,7 @@ Inputs read_inputs(const std::vector<std::string>& runs) {
       throw Error("merge: " + run +
                   " has no scene.ini, so it cannot be checked to be a run of the same scene");
     in.scenes.push_back(read_run_scene(ini));
+    check_scene_matches_summary(run, ini, in.scenes.back());
     std::vector<std::string> seeds;
     std::istringstream text(read_text_file(ini.string(), "scene"));
     for (std::string line; std::getline(text, line);)

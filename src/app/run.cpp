@@ -91,6 +91,7 @@ int run_scene(const RunRequest& req) {
       saved = checkpoints.read(&from);
       check_checkpoint_matches(saved, scene, from);
     }
+    validate_checkpoint(saved, p.n, scene.real("stats.bin_width"), from);
     const CatalogFormat format = settings.output.catalog;
     const std::string catalog =
         format == CatalogFormat::None ? "" : out.path(catalog_file_name(format));
@@ -98,7 +99,7 @@ int run_scene(const RunRequest& req) {
       check_csv_prefix(catalog, catalog_header(), saved.progress.events_done,
                        saved.progress.catalog_bytes, saved_catalog_checksum(saved));
     else if (format == CatalogFormat::Hdf5)  // cut back when the catalog observer opens it
-      check_catalog_h5(catalog, saved.progress.events_done);
+      check_catalog_h5(catalog, saved.progress.events_done, saved_catalog_checksum(saved));
     if (saved.git_revision != kGitRevision)
       std::fprintf(stderr,
                    "bkquake: warning: the checkpoint was written by git revision %s, this is %s; "

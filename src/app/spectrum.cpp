@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "io/output.hpp"
+#include "io/run_folder.hpp"
 #include "io/scene.hpp"
 #include "io/segments_csv.hpp"
 #include "io/settings.hpp"
@@ -61,6 +62,11 @@ SpectrumReport spectrum_of_run(const SpectrumRequest& req) {
   if (!fs::exists(dir / file))
     throw Error("spectrum: " + (dir / file).string() + " is missing" +
                 (file == "blocks.csv" ? " (run with output.blocks = true)" : ""));
+  // The folder rule (io/run_folder.hpp): never over an input or a run's own file; the run
+  // folder's lock while writing into it.
+  r.out = req.out.empty() ? (dir / "spectrum.csv").string() : req.out;
+  const DerivedOutput output(r.out, {dir / file, dir / "segments.csv", dir / "scene.ini"},
+                             "spectrum");
 
   double lo = 0, hi = settings.run.duration;
   if (req.segment) {
@@ -111,7 +117,6 @@ SpectrumReport spectrum_of_run(const SpectrumRequest& req) {
   r.t_from = last - r.dt * static_cast<double>(r.samples - 1);
   r.t_to = last;
   r.peaks = strongest_peaks(r.spectrum, req.peaks, req.f_min);
-  r.out = req.out.empty() ? (dir / "spectrum.csv").string() : req.out;
 
   std::vector<std::string> comments = provenance_lines(scene);
   std::string what = "spectrum of ";

@@ -1,13 +1,16 @@
 // SIGINT and SIGTERM during a run (event or continuous). The first asks the run to stop
 // at the next point it can (after the current event or time step: checkpoint, flush, exit
 // 128 + signal); a second one exits at once, leaving the last checkpoint intact
-// (checkpoints are renamed into place atomically).
+// (checkpoints are renamed into place atomically) and removing the folder's lock.
 #pragma once
 
+#include <pthread.h>
 #include <signal.h>
 #include <unistd.h>
 
 #include <csignal>
+
+#include "io/folder_lock.hpp"
 
 namespace bkq {
 
@@ -15,7 +18,10 @@ namespace detail {
 inline volatile std::sig_atomic_t g_stop_signal = 0;
 
 inline void on_stop_signal(int sig) {
-  if (g_stop_signal != 0) ::_exit(128 + sig);
+  if (g_stop_signal != 0) {
+    release_folder_locks_from_signal();
+    ::_exit(128 + sig);
+  }
   g_stop_signal = sig;
 }
 }  // namespace detail
@@ -36,8 +42,17 @@ class StopSignals {
     sa.sa_flags = SA_RESTART;  // a write or fsync under way completes instead of failing with EINTR
     ::sigaction(SIGINT, &sa, &old_int_);
     ::sigaction(SIGTERM, &sa, &old_term_);
+    // A run started with the signals blocked (by a job launcher, or a signal sent before
+    // the run could take it) still hears them: one already pending arrives now, and the
+    // run stops at its first event.
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    ::pthread_sigmask(SIG_UNBLOCK, &stop, &old_mask_);
   }
   ~StopSignals() {
+    ::pthread_sigmask(SIG_SETMASK, &old_mask_, nullptr);
     ::sigaction(SIGINT, &old_int_, nullptr);
     ::sigaction(SIGTERM, &old_term_, nullptr);
   }
@@ -48,6 +63,7 @@ class StopSignals {
  private:
   struct sigaction old_int_ {};
   struct sigaction old_term_ {};
+  sigset_t old_mask_{};
 };
 
 }  // namespace bkq

@@ -111,20 +111,20 @@ struct PointResult {
 class Sweep {
  public:
   Sweep(const SweepRequest& req, SweepSpec spec)
-      : req_(req), spec_(std::move(spec)), points_(spec_.points()), out_(req.out_dir) {
+      : req_(req), spec_(std::move(spec)), points_(spec_.point_count()), out_(req.out_dir) {
     seed_swept_ = std::any_of(spec_.keys.begin(), spec_.keys.end(),
                               [](const SweptKey& k) { return k.key == "run.seed"; });
-    results_.resize(points_.size());
-    replica_done_.assign(points_.size(), 0);
-    replica_error_.resize(points_.size());
-    replica_seconds_.assign(points_.size(), 0.0);
+    results_.resize(points_);
+    replica_done_.assign(points_, 0);
+    replica_error_.resize(points_);
+    replica_seconds_.assign(points_, 0.0);
   }
 
-  std::size_t tasks() const { return points_.size() * spec_.replicas; }
+  std::size_t tasks() const { return points_ * spec_.replicas; }
   void set_ranks(int n) { ranks_ = n; }
 
   fs::path point_dir(std::size_t p) const {
-    return out_ / "points" / ("p" + padded(p, points_.size(), 4));
+    return out_ / "points" / ("p" + padded(p, points_, 4));
   }
   fs::path replica_dir(std::size_t p, int r) const {
     return point_dir(p) / ("r" + padded(r, spec_.replicas, 2));
@@ -136,14 +136,32 @@ class Sweep {
     fs::create_directories(out_);
     // The folder's lock (io/folder_lock): a second sweep on it is refused; --resume takes
     // over the lock of a killed sweep of this host.
-    lock_ = std::make_unique<FolderLock>(out_.string(), "sweep",
-                                         req_.resume ? StaleLock::TakeOver : StaleLock::Refuse);
+    lock_ = std::make_unique<FolderLock>(
+        out_.string(), "sweep",
+        req_.resume || req_.force ? StaleLock::TakeOver : StaleLock::Refuse);
     const fs::path ini = out_ / "sweep.ini";
     const std::string plan = plan_text();
+    if (req_.force) {  // the folder rule's --force: what an earlier sweep wrote goes
+      std::error_code ec;
+      for (const char* name : {"points", "sweep.csv", "sweep.ini"}) fs::remove_all(out_ / name, ec);
+    } else if (!req_.resume && !fs::exists(ini)) {
+      // The folder rule: a new sweep starts in a new or empty folder (hidden files and the
+      // lock do not count).
+      std::vector<std::string> found;
+      for (const auto& e : fs::directory_iterator(out_)) {
+        const std::string name = e.path().filename().string();
+        if (!name.empty() && name[0] != '.' && name != FolderLock::kFileName) found.push_back(name);
+      }
+      if (!found.empty())
+        throw Error("output folder '" + out_.string() + "' already holds files (" +
+                    quote_printable(found.front()) + (found.size() > 1 ? ", ..." : "") +
+                    "); choose a new or empty folder, or use --force to write over them");
+    }
     if (fs::exists(ini)) {
       if (!req_.resume)
         throw Error("output folder '" + out_.string() +
-                    "' holds a sweep (sweep.ini); use --resume to finish it, or another --out");
+                    "' holds a sweep (sweep.ini); use --resume to finish it, --force to run it "
+                    "again from the start, or another --out");
       const std::string old = read_text_file(ini.string(), "sweep file");
       if (plan_of(old) != plan_of(plan))
         throw Error("--resume: '" + ini.string() +
@@ -157,7 +175,7 @@ class Sweep {
     write_file_atomic(ini.string(), provenance() + plan);
 
     std::vector<int> order;
-    for (std::size_t p = 0; p < points_.size(); ++p) {
+    for (std::size_t p = 0; p < points_; ++p) {
       if (req_.resume && load_point(p)) continue;
       for (int r = 0; r < spec_.replicas; ++r) {
         if (req_.resume && finished_run(replica_dir(p, r))) {
@@ -170,8 +188,11 @@ class Sweep {
     }
     // Slowest first where the cost is predictable (events x blocks, or steps x blocks);
     // equal costs keep the file's order.
+    std::vector<double> costs(points_);
+    for (std::size_t p = 0; p < points_; ++p) costs[p] = cost(p);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-      return cost(a / spec_.replicas) > cost(b / spec_.replicas);
+      return costs[static_cast<std::size_t>(a / spec_.replicas)] >
+             costs[static_cast<std::size_t>(b / spec_.replicas)];
     });
     left_ = order.size();
     skipped_ = tasks() - order.size();
@@ -186,7 +207,7 @@ class Sweep {
     const auto t0 = Clock::now();
     TaskResult res{task, 0, 0, ""};
     try {
-      Scene scene = points_[p].scene;
+      Scene scene = spec_.point(p).scene;
       const auto seed = sweep_seed(static_cast<std::uint64_t>(scene.integer("run.seed")),
                                    seed_swept_, p, spec_.replicas, r);
       scene.set("run.seed", std::to_string(seed), "sweep");
@@ -245,7 +266,7 @@ class Sweep {
     else
       progress(true);
     int failed = 0;
-    for (std::size_t p = 0; p < points_.size(); ++p)
+    for (std::size_t p = 0; p < points_; ++p)
       if (results_[p].state == PointResult::State::Failed) {
         ++failed;
         std::fprintf(stderr, "bkquake: sweep: point %zu (%s) failed: %s\n", p,
@@ -254,7 +275,7 @@ class Sweep {
     std::printf(
         "bkquake %s sweep: %zu points x %d replicas on %s in %.3g s; %d failed; sweep.csv in "
         "%s/\n",
-        kVersion, points_.size(), spec_.replicas, ranks.c_str(), stats.dispatch_seconds, failed,
+        kVersion, points_, spec_.replicas, ranks.c_str(), stats.dispatch_seconds, failed,
         out_.string().c_str());
     if (size > 1)
       std::printf(
@@ -280,7 +301,7 @@ class Sweep {
   int task_of(std::size_t p, int r) const { return static_cast<int>(p) * spec_.replicas + r; }
 
   double cost(std::size_t p) const {
-    const Scene& s = points_[p].scene;
+    const Scene s = spec_.point(p).scene;
     const double blocks = static_cast<double>(s.integer("model.blocks"));
     if (s.choice("drive.mode") == "events")
       return blocks *
@@ -304,7 +325,7 @@ class Sweep {
 
   std::string point_label(std::size_t p) const {
     std::string s;
-    for (const auto& [k, v] : points_[p].values) s += (s.empty() ? "" : ", ") + k + " = " + v;
+    for (const auto& [k, v] : spec_.point_values(p)) s += (s.empty() ? "" : ", ") + k + " = " + v;
     return s;
   }
 
@@ -314,7 +335,7 @@ class Sweep {
     res.seconds = replica_seconds_[p];
     res.error = replica_error_[p];
     res.state = res.error.empty() ? PointResult::State::Ok : PointResult::State::Failed;
-    const Scene& scene = points_[p].scene;
+    const Scene scene = spec_.point(p).scene;
     // Event runs, and continuous runs with slip episodes, write histogram.csv: merged.
     if (res.state == PointResult::State::Ok && fs::exists(replica_dir(p, 0) / "histogram.csv")) {
       try {
@@ -348,7 +369,7 @@ class Sweep {
     j.set("point", static_cast<std::int64_t>(p));
     j.set("status", res.state == PointResult::State::Ok ? "ok" : "failed");
     Json values = Json::object();
-    for (const auto& [k, v] : points_[p].values) values.set(k, v);
+    for (const auto& [k, v] : spec_.point_values(p)) values.set(k, v);
     j.set("values", std::move(values));
     j.set("replicas", spec_.replicas);
     j.set("events", res.events);
@@ -395,11 +416,11 @@ class Sweep {
     };
     row(header);
     auto num = [](const std::optional<double>& x) { return x ? format_real(*x) : std::string(); };
-    for (std::size_t p = 0; p < points_.size(); ++p) {
+    for (std::size_t p = 0; p < points_; ++p) {
       const PointResult& r = results_[p];
       const bool have = r.state != PointResult::State::Pending;
       std::vector<std::string> f{std::to_string(p)};
-      for (const auto& [k, v] : points_[p].values) f.push_back(csv_field(v));
+      for (const auto& [k, v] : spec_.point_values(p)) f.push_back(csv_field(v));
       f.push_back(r.state == PointResult::State::Ok       ? "ok"
                   : r.state == PointResult::State::Failed ? "failed"
                                                           : "pending");
@@ -436,7 +457,7 @@ class Sweep {
     std::fprintf(stderr,
                  "sweep: points %zu/%zu done (%zu failed); replicas %zu done, %zu running, %zu "
                  "left; elapsed %s, ETA %s\n",
-                 done, points_.size(), failed, tasks() - left_, running, left_ - running,
+                 done, points_, failed, tasks() - left_, running, left_ - running,
                  duration_text(elapsed).c_str(), left_ == 0 ? "0s" : duration_text(eta).c_str());
     std::fflush(stderr);
   }
@@ -454,12 +475,12 @@ class Sweep {
     for (const auto& o : req_.overrides) s += "# --set " + o + "\n";
     s += spec_.text;
     if (!s.empty() && s.back() != '\n') s += '\n';
-    s += "# points: " + std::to_string(points_.size()) + " x " + std::to_string(spec_.replicas) +
+    s += "# points: " + std::to_string(points_) + " x " + std::to_string(spec_.replicas) +
          " replicas\n";
-    for (std::size_t p = 0; p < points_.size(); ++p) {
+    for (std::size_t p = 0; p < points_; ++p) {
       char hash[32];
       std::snprintf(hash, sizeof hash, "%016llx",
-                    static_cast<unsigned long long>(points_[p].scene.hash()));
+                    static_cast<unsigned long long>(spec_.point(p).scene.hash()));
       s += "# point " + std::to_string(p) + ": " + point_label(p) + " (scene hash " + hash + ")\n";
     }
     return s;
@@ -475,7 +496,7 @@ class Sweep {
 
   const SweepRequest& req_;
   SweepSpec spec_;
-  std::vector<SweepPoint> points_;
+  std::size_t points_ = 0;  // spec_.point_count(): points are made on demand
   fs::path out_;
   bool seed_swept_ = false;
   std::unique_ptr<FolderLock> lock_;

@@ -24,6 +24,7 @@ struct SweepRequest {
   std::vector<std::string> overrides;  // --set section.key=value, after the file's [set]
   std::string out_dir;
   bool resume = false;
+  bool force = false;  // write over the folder: an earlier sweep's points and files go
 };
 
 // Runs the sweep on this process's ranks. Returns the exit status: 0 when every point

@@ -1,8 +1,11 @@
 // The bkquake program: dispatches on the first word to a subcommand (commands.hpp) and
 // turns errors into one line on stderr and an exit status: bad input (bkq::Error) exits 2,
 // anything else is a bug and exits 1.
+#include <unistd.h>
+
 #include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -10,6 +13,25 @@
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+
+namespace {
+
+#if defined(__x86_64__) && defined(__AVX2__) && defined(__FMA__)
+// A binary built for x86-64-v3 (or native) on a CPU without AVX2 or FMA would die with
+// SIGILL somewhere in the first event; this runs before main and any static initialiser of
+// this file, compiled for the plain x86-64 instruction set, and says why instead.
+__attribute__((constructor(101), target("arch=x86-64"))) void require_build_cpu() {
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return;
+  static const char msg[] =
+      "bkquake: error: this bkquake was built for CPUs with AVX2 and FMA (x86-64-v3), which this "
+      "CPU lacks; rebuild it on this machine\n";
+  [[maybe_unused]] const ssize_t n = ::write(2, msg, sizeof msg - 1);
+  ::_exit(bkq::kExitBadInput);
+}
+#endif
+
+}  // namespace
 
 int main(int argc, char** argv) {
   const std::vector<std::string> all(argv + 1, argv + argc);
@@ -44,6 +66,12 @@ int main(int argc, char** argv) {
   } catch (const bkq::Error& e) {
     // One line of printable text, whatever file content or value the message quotes.
     std::cerr << "bkquake: error: " << bkq::escape_unprintable(e.what()) << "\n";
+    return bkq::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // Out of memory (a memory limit, a request too large for the machine): what was written
+    // is kept, as for any refusal; the lock is released by unwinding.
+    std::cerr << "bkquake: error: out of memory (the machine or its limit on this process "
+                 "cannot hold what was asked for; ask for less)\n";
     return bkq::kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "bkquake: internal error: " << bkq::escape_unprintable(e.what()) << "\n";

@@ -21,7 +21,7 @@ namespace po = boost::program_options;
 // What --help prints above the options.
 constexpr const char* kUsage =
     "Usage: bkquake stability [SCENE] [--set section.key=value]... "
-    "[--sweep KEY=FROM:TO:COUNT] [--out DIR]\n"
+    "[--sweep KEY=FROM:TO:COUNT] [--out DIR] [--force]\n"
     "Steady sliding at the disc speed drive.speed and the complex eigenvalues of its\n"
     "linearisation: each mode's growth rate Re lambda, frequency Im lambda / 2 pi and\n"
     "whether it is unstable (docs/tutorials/stability.md, docs/validation/stability.md).\n\n";
@@ -36,7 +36,8 @@ int cmd_stability(const std::vector<std::string>& args) {
     ("dense", "use the dense state matrix (N <= 1000) instead of the exact modal reduction")
     ("modes", po::value<std::vector<std::string>>()->composing(),
               "FAMILY,INDEX: write this mode's shape to modes.csv (repeatable)")
-    ("out", po::value<std::string>()->default_value("stability"), "output folder")
+    ("out", po::value<std::string>()->default_value("stability"), "output folder (new or empty)")
+    ("force", "write over the files of an existing output folder")
     ("help,h", "this help");
   // clang-format on
   const po::variables_map vm = parse_scene_command_line("stability", args, opts);
@@ -51,8 +52,10 @@ int cmd_stability(const std::vector<std::string>& args) {
     for (const auto& m : vm["modes"].as<std::vector<std::string>>())
       opt.shapes.push_back(parse_mode(m, "stability: --modes"));
 
+  // The folder rule of every command that writes a folder (io/output.hpp): a new or empty
+  // folder, or --force; its lock while the analysis runs.
+  const OutputFolder out(vm["out"].as<std::string>(), vm.count("force") > 0, false, "stability");
   const std::vector<StabilityPoint> points = run_stability(scene, opt);
-  const OutputFolder out(vm["out"].as<std::string>(), true, false);
   write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
   write_file_atomic(out.path("stability.csv"), stability_csv(points));
   write_file_atomic(out.path("stability_summary.csv"), stability_summary_csv(points));

@@ -17,12 +17,13 @@ namespace po = boost::program_options;
 
 int cmd_sweep(const std::vector<std::string>& args) {
   po::options_description opts(
-      "bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume]\n"
+      "bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume | --force]\n"
       "Runs every point of a sweep file (also as 'mpirun -n K bkquake sweep ...')");
   add_scene_options(opts);
   opts.add_options()("out", po::value<std::string>(), "output folder (required)")(
-      "resume", "finish the sweep in the output folder: only points not done run")("help,h",
-                                                                                   "this help");
+      "resume", "finish the sweep in the output folder: only points not done run")(
+      "force", "write over the output folder (an earlier sweep's points and files go)")(
+      "help,h", "this help");
   const po::variables_map vm = parse_command_line("sweep", args, opts, "sweep", 1);
   if (printed_help(vm, opts)) return 0;
   if (!vm.count("sweep")) throw Error("sweep: no SWEEP.ini given (see bkquake sweep --help)");
@@ -32,6 +33,8 @@ int cmd_sweep(const std::vector<std::string>& args) {
   if (vm.count("set")) req.overrides = vm["set"].as<std::vector<std::string>>();
   req.out_dir = vm["out"].as<std::string>();
   req.resume = vm.count("resume") > 0;
+  req.force = vm.count("force") > 0;
+  if (req.resume && req.force) throw Error("sweep: --resume and --force exclude each other");
   return run_sweep(req);
 }
 

@@ -17,9 +17,9 @@ Usage:
   bkquake spectrum RUN_DIR [--signal S] [--segment K | --from T0 --to T1] [--out FILE]
   bkquake special-speed [SCENE] [--set section.key=value]...
   bkquake special-law BK_RUN_DIR... > law.csv
-  bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume]
+  bkquake sweep SWEEP.ini [--set section.key=value]... --out DIR [--resume] [--force]
   bkquake friction-study [--out DIR] [--seeds N] [--jobs J] [--segment T]
-  bkquake stability [SCENE] [--set section.key=value]... [--sweep KEY=FROM:TO:COUNT] [--out DIR]
+  bkquake stability [SCENE] [--set section.key=value]... [--sweep KEY=FROM:TO:COUNT] [--out DIR] [--force]
   bkquake seismicity RUN_DIR|CATALOG [--out DIR] [--mainshock-mu X] [--blocks N] [--export FILE]
   bkquake --help | --version
 

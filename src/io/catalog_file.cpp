@@ -42,6 +42,8 @@ class H5Catalog : public CatalogFile {
             const std::vector<std::pair<std::string, std::string>>& attributes,
             std::int64_t resumed_rows, bool deflate)
       : h5_(path, attributes, resumed_rows, deflate ? 1 : 0) {}
+  std::optional<std::uint64_t> checksum() const override { return h5_.checksum(); }
+  void set_checksum(std::uint64_t sum) override { h5_.set_checksum(sum); }
   void append(const EventRecord& e) override { h5_.append(e); }
   void flush() override { h5_.sync(); }
   std::uint64_t sync() override {

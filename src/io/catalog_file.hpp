@@ -30,8 +30,8 @@ class CatalogFile {
   virtual std::uint64_t sync() = 0;
   // Syncs and closes; throws on failure. Idempotent.
   virtual void close() = 0;
-  // line_hash (io/checkpoint.hpp) of every line of the file so far (csv), or nothing
-  // (hdf5); a resumed run sets the checksum of the rows it continues.
+  // line_hash (core/fnv1a.hpp) of every line of the file so far (csv) or of every row's
+  // cells (hdf5); a resumed run sets the checksum of the rows it continues.
   virtual std::optional<std::uint64_t> checksum() const { return std::nullopt; }
   virtual void set_checksum(std::uint64_t) {}
 };

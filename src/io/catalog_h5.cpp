@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <string_view>
 
 #include "core/error.hpp"
+#include "core/fnv1a.hpp"
 #include "io/catalog.hpp"
 
 #if BKQUAKE_HAVE_HDF5
@@ -42,11 +44,15 @@ CatalogH5Writer::CatalogH5Writer(const std::string&,
 }
 CatalogH5Writer::~CatalogH5Writer() = default;
 void CatalogH5Writer::append(const EventRecord&) {}
+std::uint64_t CatalogH5Writer::checksum() const {
+  return 0;
+}
+void CatalogH5Writer::set_checksum(std::uint64_t) {}
 std::int64_t CatalogH5Writer::sync() {
   return 0;
 }
 void CatalogH5Writer::close() {}
-void check_catalog_h5(const std::string&, std::int64_t) {
+void check_catalog_h5(const std::string&, std::int64_t, std::optional<std::uint64_t>) {
   unavailable();
 }
 struct CatalogH5Reader::Impl {};
@@ -70,6 +76,7 @@ namespace {
 
 constexpr const char* kTable = "catalog";
 constexpr hsize_t kChunkRows = 8192;
+constexpr unsigned kMetadataReadAttempts = 4;
 
 // Turns HDF5's automatic error printing off once: every failure becomes a bkq::Error.
 void quiet_hdf5() {
@@ -141,6 +148,10 @@ Handle file_access(const std::string& path, bool clear_status) {
   // SWMR needs the 1.10 file format.
   check(H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), path,
         "cannot set up HDF5");
+  // HDF5 retries a metadata read whose checksum fails, for a single-writer reader 100 times
+  // with growing sleeps: on a damaged file that is a silent wait of many minutes. A few tries
+  // cover a torn read of a file being written; a damaged file is then refused at once.
+  check(H5Pset_metadata_read_attempts(fapl, kMetadataReadAttempts), path, "cannot set up HDF5");
   if (clear_status) {
     // A writer killed in SWMR mode leaves the file marked as open for writing; HDF5's own
     // h5clear clears that mark through this file-access property, and so does a resume.
@@ -208,6 +219,7 @@ struct CatalogH5Writer::Impl {
   std::vector<unsigned char> buf;
   std::size_t buffered = 0;
   bool closed = false;
+  std::uint64_t checksum = kLineHashSeed;
 
   // Writes the buffered rows at the end of the table.
   void write_buffer() {
@@ -284,6 +296,8 @@ void CatalogH5Writer::append(const EventRecord& e) {
     else
       std::memcpy(row + 8 * k, &cells[k].x, 8);
   }
+  w.checksum = line_hash(std::string_view(reinterpret_cast<const char*>(row), 8 * kCatalogColumns),
+                         w.checksum);
   if (++w.buffered == kChunkRows) w.write_buffer();
 }
 
@@ -304,11 +318,48 @@ void CatalogH5Writer::close() {
   if (!(w.file.reset() && ok)) fail(w.path, "cannot close the file");
 }
 
-void check_catalog_h5(const std::string& path, std::int64_t rows) {
+std::uint64_t CatalogH5Writer::checksum() const {
+  return impl_->checksum;
+}
+
+void CatalogH5Writer::set_checksum(std::uint64_t sum) {
+  impl_->checksum = sum;
+}
+
+void check_catalog_h5(const std::string& path, std::int64_t rows,
+                      std::optional<std::uint64_t> checksum) {
   const Opened o = open_table(path, false);
   if (o.rows < static_cast<hsize_t>(rows))
     fail(path, "holds " + std::to_string(o.rows) + " rows, the checkpoint counts " +
                    std::to_string(rows));
+  if (!checksum) return;
+  // The rows as the writer laid them out (row_type), hashed a block at a time.
+  const Handle type = row_type(path);
+  const std::size_t row_bytes = 8 * catalog_schema().size();
+  std::vector<unsigned char> buf;
+  std::uint64_t hash = kLineHashSeed;
+  for (hsize_t start = 0; start < static_cast<hsize_t>(rows);) {
+    const hsize_t count = std::min<hsize_t>(65536, static_cast<hsize_t>(rows) - start);
+    buf.assign(count * row_bytes, 0);
+    const Handle space =
+        checked(H5Dget_space(o.table), H5Sclose, path, "cannot read the table (damaged)");
+    check(H5Sselect_hyperslab(space, H5S_SELECT_SET, &start, nullptr, &count, nullptr), path,
+          "cannot select rows");
+    const Handle mem =
+        checked(H5Screate_simple(1, &count, nullptr), H5Sclose, path, "cannot select rows");
+    check(H5Dread(o.table, type, mem, space, H5P_DEFAULT, buf.data()), path,
+          "cannot read rows " + std::to_string(start) + ".." + std::to_string(start + count) +
+              " (damaged)");
+    for (hsize_t k = 0; k < count; ++k)
+      hash = line_hash(
+          std::string_view(reinterpret_cast<const char*>(buf.data() + k * row_bytes), row_bytes),
+          hash);
+    start += count;
+  }
+  if (hash != *checksum)
+    fail(path, "its first " + std::to_string(rows) +
+                   " rows are not those the checkpoint saw (their checksum differs: a row was "
+                   "changed after the checkpoint); start over with --force");
 }
 
 struct CatalogH5Reader::Impl {

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,10 @@ class CatalogH5Writer {
   CatalogH5Writer& operator=(const CatalogH5Writer&) = delete;
 
   void append(const EventRecord& e);
+  // line_hash (core/fnv1a.hpp) of every row's bytes (the row type's 8-byte cells as written)
+  // from the first row on; a resumed writer starts from the checkpoint's value.
+  std::uint64_t checksum() const;
+  void set_checksum(std::uint64_t sum);
   // Writes the buffered rows and flushes the file to disk; returns the rows in the table.
   std::int64_t sync();
   // sync(), then closes; idempotent.
@@ -54,9 +59,11 @@ class CatalogH5Writer {
   std::unique_ptr<Impl> impl_;
 };
 
-// Checks that `path` is a catalogue table with at least `rows` rows (a resume's check,
-// before anything is changed); throws bkq::Error naming the file otherwise.
-void check_catalog_h5(const std::string& path, std::int64_t rows);
+// Checks that `path` is a catalogue table with at least `rows` rows and, with `checksum`,
+// that those rows hash to it (CatalogH5Writer::checksum: an edited row is found, as in
+// catalog.csv); a resume's check, before anything is changed. bkq::Error naming the file.
+void check_catalog_h5(const std::string& path, std::int64_t rows,
+                      std::optional<std::uint64_t> checksum = std::nullopt);
 
 // Reads the columns `names` (each must be a column of the catalogue schema) of a catalog.h5
 // in blocks. A column the file lacks is reported by has(); reading it gives nothing.

@@ -8,6 +8,7 @@
 #include "io/catalog.hpp"
 #include "io/catalog_h5.hpp"
 #include "io/csv_util.hpp"
+#include "io/input_file.hpp"
 
 namespace bkq {
 
@@ -35,12 +36,13 @@ CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.str
       throw Error(file_ + ": missing column '" + col::moment + "'");
     return;
   }
-  in_.open(path);
-  if (!in_) throw Error(file_ + ": cannot open");
+  in_ = open_input(path, "catalogue");
   std::string header_line;
   if (!std::getline(in_, header_line) ||
-      header_line.find_first_not_of(" \t\r") == std::string::npos)
+      header_line.find_first_not_of(" \t\r") == std::string::npos) {
+    check_read(in_, path, "catalogue", 0);
     throw Error(file_ + ": empty file, expected a header line");
+  }
   const auto header = csv::split(header_line);
   n_fields_ = header.size();
   const Schema& schema = catalog_schema();
@@ -99,8 +101,14 @@ bool CatalogReader::next(CatalogEvent& e) {
   while (std::getline(in_, line_)) {
     ++lineno_;
     if (line_.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const auto f = csv::split(line_);
     const std::string where = file_ + " line " + std::to_string(lineno_);
+    // Every row bkquake writes ends in a newline: a last row without one was cut short (its
+    // last field may still parse, as another number).
+    if (in_.eof())
+      throw Error(where +
+                  ": the last row has no line end: the catalogue is cut short "
+                  "(truncated); a whole catalogue ends with a newline");
+    const auto f = csv::split(line_);
     if (f.size() != n_fields_)
       throw Error(where + ": expected " + std::to_string(n_fields_) + " fields, got " +
                   std::to_string(f.size()));
@@ -137,7 +145,7 @@ bool CatalogReader::next(CatalogEvent& e) {
     ++events_;
     return true;
   }
-  if (in_.bad()) throw Error(file_ + ": read error after line " + std::to_string(lineno_));
+  check_read(in_, file_, "catalogue", lineno_);
   return false;
 }
 

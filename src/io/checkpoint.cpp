@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,8 @@
 
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "io/input_file.hpp"
 #include "io/output.hpp"
 #include "io/scene.hpp"
 
@@ -83,10 +86,14 @@ void fixed_fields(Io& io, C& c) {
 }
 
 std::string read_whole(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot read checkpoint '" + path + "': " + std::strerror(errno));
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error("cannot read checkpoint '" + path + "': read error");
+  std::ifstream in = open_input(path, "checkpoint", std::ios::binary);
+  std::string bytes;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    bytes.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (!in) break;
+  }
+  check_read(in, path, "checkpoint", 0);
   return bytes;
 }
 
@@ -162,11 +169,95 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& origin
 
   if (!r.done())
     throw Error("checkpoint '" + origin + "' is malformed: unexpected bytes after the last field");
+  return c;
+}
+
+void validate_checkpoint(const Checkpoint& c, int blocks, double bin_width,
+                         const std::string& origin) {
+  auto bad = [&](const std::string& field, const std::string& value, const char* allowed) {
+    throw Error("checkpoint '" + origin + "' is invalid: " + field + " = " + value + ", expected " +
+                allowed + " (damaged or edited); start over with --force");
+  };
+  auto count = [&](const char* field, std::int64_t v) {
+    if (v < 0) bad(field, std::to_string(v), "a count >= 0");
+  };
+  // Positions, speeds, loads and times: finite and below 1e15, far beyond any run's reach
+  // (a value such as 1e300 would overflow the forces and give another catalogue).
+  auto real = [&](const std::string& field, double v, bool nonnegative = false) {
+    if (!std::isfinite(v) || std::fabs(v) > kCheckpointMaxMagnitude || (nonnegative && v < 0))
+      bad(field, format_real(v),
+          nonnegative ? "a finite value in [0, 1e15]" : "a finite value in [-1e15, 1e15]");
+  };
+  auto counters = [&](const std::string& where, const EngineCounters& k) {
+    count((where + ".events").c_str(), k.events);
+    count((where + ".steps").c_str(), k.steps);
+    count((where + ".block_steps").c_str(), k.block_steps);
+    count((where + ".sliding_block_steps").c_str(), k.sliding_block_steps);
+    count((where + ".releases").c_str(), k.releases);
+  };
+
+  const RunProgress& p = c.progress;
+  count("transient_done", p.transient_done);
+  count("events_done", p.events_done);
+  count("resumes", p.resumes);
+  if (p.nonpositive < 0 || p.nonpositive > p.events_done)
+    bad("nonpositive", std::to_string(p.nonpositive), "a count in [0, events_done]");
+  real("load0", p.load0);
+  real("moment_sum", p.moment_sum);
+  real("wall_events", p.wall_events, true);
+  real("wall_total", p.wall_total, true);
+  counters("counters0", p.counters0);
+
   const ChainState& st = c.engine.state;
   const std::size_t n = st.w.size();
+  if (n == 0) bad("blocks", "0", "at least 1");
   if (st.wd.size() != n || st.mobile.size() != n || st.dir.size() != n)
     throw Error("checkpoint '" + origin + "' is malformed: the chain arrays differ in length");
-  return c;
+  for (std::size_t j = 0; j < n; ++j) {
+    std::string at = "[";  // (built in steps: GCC 12 warns falsely on "[" + to_string(j))
+    at += std::to_string(j);
+    at += ']';
+    real("block position" + at, st.w[j]);
+    real("block velocity" + at, st.wd[j]);
+    if (st.mobile[j] != 0 && st.mobile[j] != 1)
+      bad("mobile" + at, format_real(st.mobile[j]), "0 or 1");
+    if (st.dir[j] != -1 && st.dir[j] != 0 && st.dir[j] != 1)
+      bad("direction" + at, format_real(st.dir[j]), "-1, 0 or 1");
+  }
+  real("pad position", st.x);
+  real("pad velocity", st.xd);
+  real("substrate displacement", st.s);
+  real("time", st.t, true);
+  real("sum of block positions", st.sum_w);
+  counters("engine", c.engine.counters);
+
+  const MagnitudeHistogram::State& h = c.histogram;
+  if (!(h.bin_width > 0) || !std::isfinite(h.bin_width))
+    bad("histogram bin_width", format_real(h.bin_width), "a finite width > 0");
+  // A moment is a finite double, so |ln M| < 710: bins beyond that hold nothing.
+  if (std::fabs(static_cast<double>(h.first_bin) * h.bin_width) > kCheckpointMaxMagnitudeMu)
+    bad("histogram first_bin", std::to_string(h.first_bin),
+        "a bin whose magnitude lies in [-1000, 1000]");
+  count("histogram events", h.events);
+  if (h.events > p.events_done)
+    bad("histogram events", std::to_string(h.events), "at most events_done");
+  real("histogram total_load", h.total_load, true);
+  if (h.blocks < 0) bad("histogram blocks", std::to_string(h.blocks), "a count >= 0");
+  if (h.events > 0) {
+    real("histogram min_mu", h.min_mu);
+    real("histogram max_mu", h.max_mu);
+  }
+  try {
+    (void)MagnitudeHistogram::from_state(h);
+  } catch (const Error& e) {
+    bad("histogram", e.what(), "a consistent histogram");
+  }
+  // The chain and the bins are the scene's (a checkpoint edited with its checksum redone
+  // could still differ).
+  if (n != static_cast<std::size_t>(blocks))
+    bad("blocks", std::to_string(n), ("the model's " + std::to_string(blocks)).c_str());
+  if (h.bin_width != bin_width)
+    bad("histogram bin_width", format_real(h.bin_width), "the scene's stats.bin_width");
 }
 
 void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std::string& origin) {
@@ -335,9 +426,16 @@ Checkpoint CheckpointFiles::read(std::string* from) const {
   std::string path = current();
   if (!fs::exists(path, ec)) {
     path = previous();
-    if (!fs::exists(path, ec))
-      throw Error("--resume: no checkpoint in '" + dir_ +
-                  "' (checkpoint.bin): nothing to continue; start the run without --resume");
+    if (!fs::exists(path, ec)) {
+      // A folder that holds a run's files is refused without --force: say so.
+      const bool has_run = fs::exists(fs::path(dir_) / "scene.ini", ec) ||
+                           fs::exists(fs::path(dir_) / "catalog.csv", ec) ||
+                           fs::exists(fs::path(dir_) / "catalog.h5", ec);
+      throw Error("--resume: no checkpoint in '" + dir_ + "' (checkpoint.bin): nothing to " +
+                  (has_run ? "continue; to run it again from the start, use --force instead of "
+                             "--resume"
+                           : "continue; start the run without --resume"));
+    }
   }
   if (from) *from = path;
   try {

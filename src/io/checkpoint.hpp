@@ -225,6 +225,19 @@ bool find_state(const Checkpoint& c, const std::string& name, T&... fields) {
   return true;
 }
 
+// The largest magnitude of a position, speed, load or time a checkpoint may hold, and of a
+// histogram bin's magnitude (a moment is a finite double: |ln M| < 710).
+inline constexpr double kCheckpointMaxMagnitude = 1e15;
+inline constexpr double kCheckpointMaxMagnitudeMu = 1000;
+
+// Checks every field of a checkpoint as a scene key is checked (counts >= 0, reals finite
+// and in range, flags 0/1, directions -1/0/1, a consistent histogram, the model's `blocks`
+// and the scene's `bin_width`): bkq::Error naming the field, its value and what is
+// allowed. A resume calls it after check_checkpoint_matches and before it changes anything,
+// so an edited checkpoint (with a valid checksum) is refused with the folder as it was.
+void validate_checkpoint(const Checkpoint& c, int blocks, double bin_width,
+                         const std::string& origin);
+
 std::string encode_checkpoint(const Checkpoint& c);
 // Throws bkq::Error naming `origin` when `bytes` are not one complete, intact checkpoint
 // of this format version (wrong magic, truncated, trailing bytes, checksum mismatch).

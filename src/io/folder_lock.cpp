@@ -77,10 +77,11 @@ bool write_fd(int fd, const std::string& text) {
 }
 
 // True when `fd` and `path` are the same file (the lock was not replaced under us).
-bool same_file(int fd, const std::string& path) {
+// (Async-signal-safe: fstat and stat only.)
+bool same_file(int fd, const char* path) {
   struct stat a {
   }, b{};
-  return ::fstat(fd, &a) == 0 && ::stat(path.c_str(), &b) == 0 && a.st_dev == b.st_dev &&
+  return ::fstat(fd, &a) == 0 && ::stat(path, &b) == 0 && a.st_dev == b.st_dev &&
          a.st_ino == b.st_ino;
 }
 
@@ -93,7 +94,62 @@ bool holder_alive(int fd, const LockHolder& h, bool same_host) {
   return same_host && h.pid > 0 && (::kill(static_cast<pid_t>(h.pid), 0) == 0 || errno == EPERM);
 }
 
+// The locks this process holds, for the signal handler: fixed storage, no allocation.
+constexpr int kMaxHeld = 8;
+struct HeldLock {
+  volatile sig_atomic_t used = 0;
+  int fd = -1;
+  char path[4096] = {};
+};
+HeldLock g_held[kMaxHeld];
+
+void register_held(int fd, const std::string& path) {
+  if (path.size() >= sizeof g_held[0].path) return;
+  for (HeldLock& h : g_held) {
+    if (h.used) continue;
+    std::memcpy(h.path, path.c_str(), path.size() + 1);
+    h.fd = fd;
+    h.used = 1;
+    return;
+  }
+}
+
+void unregister_held(int fd) {
+  for (HeldLock& h : g_held)
+    if (h.used && h.fd == fd) h.used = 0;
+}
+
+// SIGINT, SIGTERM, SIGHUP at their default action while a lock is held: remove the locks,
+// then end by the same signal (exit status 128 + signal, as before).
+void release_and_die(int sig) {
+  release_folder_locks_from_signal();
+  static const char msg[] = "bkquake: stopped by a signal; the output folder's lock is released\n";
+  [[maybe_unused]] const ssize_t n = ::write(2, msg, sizeof msg - 1);
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+void install_release_handlers() {
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction old {};
+    if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;
+    struct sigaction sa {};
+    sa.sa_handler = release_and_die;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    ::sigaction(sig, &sa, nullptr);
+  }
+}
+
 }  // namespace
+
+void release_folder_locks_from_signal() noexcept {
+  for (HeldLock& h : g_held) {
+    if (!h.used) continue;
+    if (same_file(h.fd, h.path)) ::unlink(h.path);
+    h.used = 0;
+  }
+}
 
 std::string LockHolder::describe() const {
   if (host.empty() || pid <= 0) return "an unknown process (the lock file is garbled)";
@@ -129,6 +185,7 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
           ::unlink(tmp.c_str());
           ::close(fd);
           fd_ = direct;
+          held();
           return;
         }
         ::unlink(path_.c_str());
@@ -142,6 +199,7 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
     }
     if (linked == 0) {
       fd_ = fd;
+      held();
       return;
     }
     ::close(fd);
@@ -158,10 +216,18 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
     const bool same_host = h.host == me;
     if (holder_alive(old, h, same_host)) {
       ::close(old);
+      // The file still names a process that is gone: another bkquake has just flocked the
+      // stale lock and is rewriting it (it won the race to take it over).
+      const bool named_gone =
+          same_host && h.pid > 0 && ::kill(static_cast<pid_t>(h.pid), 0) != 0 && errno == ESRCH;
+      if (named_gone)
+        throw Error("output folder '" + dir + "' is in use: another bkquake is taking over the " +
+                    "stale lock of " + h.describe() +
+                    ", which is gone; wait for it to finish or choose another --out");
       throw Error("output folder '" + dir + "' is in use by " + h.describe() +
                   "; wait for it to finish or choose another --out");
     }
-    if (!same_file(old, path_)) {  // released and replaced between open and flock
+    if (!same_file(old, path_.c_str())) {  // released and replaced between open and flock
       ::close(old);
       continue;
     }
@@ -187,14 +253,21 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
                  "bkquake: warning: taking over the stale lock of '%s' left by %s, which is gone\n",
                  dir.c_str(), h.describe().c_str());
     fd_ = old;
+    held();
     return;
   }
   throw Error("cannot take the lock '" + path_ + "': it keeps changing under us");
 }
 
+void FolderLock::held() {
+  register_held(fd_, path_);
+  install_release_handlers();
+}
+
 FolderLock::~FolderLock() {
   if (fd_ < 0) return;
-  if (same_file(fd_, path_)) ::unlink(path_.c_str());
+  unregister_held(fd_);
+  if (same_file(fd_, path_.c_str())) ::unlink(path_.c_str());
   ::close(fd_);
 }
 

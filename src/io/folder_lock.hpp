@@ -5,6 +5,9 @@
 // by SIGKILL, so a lock left behind is recognisably stale: on the same host it is reported
 // and taken over when the caller allows it (--resume continues a killed run, --force starts
 // over); a lock written by another host is never taken over (its flock may not reach us).
+// While a lock is held, SIGINT, SIGTERM and SIGHUP whose action is the default (outside a
+// run's own handlers, app/stop_signals.hpp: opening files, checking a resume) remove the lock
+// file before the process ends by that signal, so a signal never leaves a lock behind.
 #pragma once
 
 #include <optional>
@@ -43,9 +46,15 @@ class FolderLock {
   const std::string& path() const { return path_; }
 
  private:
+  void held();  // registers the lock for release on a signal
+
   std::string path_;
   int fd_ = -1;
 };
+
+// Removes every lock this process holds (each only if it is still ours). Async-signal-safe:
+// for signal handlers that end the process (app/stop_signals.hpp's second signal).
+void release_folder_locks_from_signal() noexcept;
 
 // The holder named by DIR/bkquake.lock, or nullopt when there is no lock file. Never throws
 // for a garbled file (its fields stay empty).

@@ -12,6 +12,7 @@
 #include "core/fnv1a.hpp"
 #include "core/format.hpp"
 #include "io/csv_util.hpp"
+#include "io/input_file.hpp"
 
 namespace bkq {
 
@@ -27,8 +28,7 @@ const Schema& friction_table_schema() {
 
 FrictionTable read_friction_table(const std::filesystem::path& path) {
   const std::string file = path.string();
-  std::ifstream f(path);
-  if (!f) throw Error(file + ": cannot open the friction table");
+  std::ifstream f = open_input(path, "friction table");
   namespace col = friction_table_col;
   const Schema& schema = friction_table_schema();
   auto at = [&](std::int64_t line) { return file + " line " + std::to_string(line) + ": "; };
@@ -43,6 +43,7 @@ FrictionTable read_friction_table(const std::filesystem::path& path) {
     if (!skipped(line)) break;
     line.clear();
   }
+  check_read(f, path, "friction table", lineno);
   if (line.empty()) throw Error(file + ": no header line, expected '" + header_of(schema) + "'");
   const std::string header_line = line;
   const auto header = csv::split(header_line);
@@ -79,6 +80,7 @@ FrictionTable read_friction_table(const std::filesystem::path& path) {
     t.speed.push_back(y);
     t.friction.push_back(phi);
   }
+  check_read(f, path, "friction table", lineno);
   if (t.speed.empty()) throw Error(file + ": no rows after the header, expected at least one");
   return t;
 }
@@ -94,9 +96,14 @@ std::string friction_table_csv(const FrictionTable& table,
 }
 
 std::string file_checksum(const std::filesystem::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw Error(path.string() + ": cannot open");
-  const std::string bytes{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+  std::ifstream f = open_input(path, "friction table", std::ios::binary);
+  std::string bytes;
+  char buf[1 << 16];
+  while (f.read(buf, sizeof buf) || f.gcount() > 0) {
+    bytes.append(buf, static_cast<std::size_t>(f.gcount()));
+    if (!f) break;
+  }
+  check_read(f, path, "friction table", 0);
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(bytes)));
   return hex;

@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "io/csv_util.hpp"
+#include "io/input_file.hpp"
 
 namespace bkq {
 
@@ -79,10 +80,12 @@ void write_histogram_csv(const MagnitudeHistogram& h, const std::filesystem::pat
 MagnitudeHistogram read_histogram_csv(const std::filesystem::path& path, double total_load,
                                       int blocks, double bin_width) {
   const std::string file = path.string();
-  std::ifstream f(path);
-  if (!f) throw Error(file + ": cannot open");
+  std::ifstream f = open_input(path, "histogram");
   std::string header_line;
-  if (!std::getline(f, header_line)) throw Error(file + ": empty file, expected a header line");
+  if (!std::getline(f, header_line)) {
+    check_read(f, path, "histogram", 0);
+    throw Error(file + ": empty file, expected a header line");
+  }
   const auto header = csv::split(header_line);
   namespace col = histogram_col;
   const Schema& schema = histogram_schema();
@@ -114,6 +117,7 @@ MagnitudeHistogram read_histogram_csv(const std::filesystem::path& path, double 
                   " must be >= 0, got " + std::to_string(r.n));
     rows.push_back(r);
   }
+  check_read(f, path, "histogram", lineno);
   double w = bin_width;
   if (!rows.empty()) {
     const double wf = rows.front().hi - rows.front().lo;

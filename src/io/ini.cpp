@@ -2,13 +2,11 @@
 #include "io/ini.hpp"
 
 #include <boost/program_options.hpp>
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 
 namespace bkq {
 
@@ -32,15 +30,18 @@ std::vector<IniEntry> parse_ini(const std::string& text, const std::string& wher
 }
 
 std::string read_text_file(const std::string& path, const std::string& what) {
-  const std::string prefix = "cannot read " + what + " '" + path + "': ";
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw Error(prefix + std::strerror(EISDIR));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(prefix + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(prefix + std::strerror(errno));
-  return text.str();
+  std::ifstream in = open_input(path, what, std::ios::binary);
+  std::string text;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    text.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxTextFileBytes)
+      throw Error("cannot read " + what + " '" + path + "': larger than " +
+                  std::to_string(kMaxTextFileBytes >> 20) + " MiB");
+    if (!in) break;
+  }
+  check_read(in, path, what, 0);
+  return text;
 }
 
 }  // namespace bkq

@@ -17,7 +17,8 @@ struct IniEntry {
 // The entries in file order. A syntax error throws bkq::Error ending in " (<where>)".
 std::vector<IniEntry> parse_ini(const std::string& text, const std::string& where);
 
-// The whole file as text; bkq::Error "cannot read <what> '<path>': <reason>".
+// The whole file as text, at most kMaxTextFileBytes (io/input_file.hpp); bkq::Error "cannot
+// read <what> '<path>': <reason>" for a folder, an unreadable or too large file, a read error.
 std::string read_text_file(const std::string& path, const std::string& what);
 
 }  // namespace bkq

@@ -221,31 +221,45 @@ class Scanner {
     if (i_ == b) fail("expected a value");
     return t_.substr(b, i_ - b);
   }
+  // Skips one value of any kind without recursion: nesting deeper than kMaxJsonDepth is
+  // refused, so a hostile or damaged file cannot exhaust the stack.
   void skip_value() {
-    if (at('"')) {
-      string();
-    } else if (at('{') || at('[')) {
-      const char close = t_[i_] == '{' ? '}' : ']';
-      ++i_;
-      if (at(close)) {
+    std::string open;  // the closing bracket of each structure entered
+    while (true) {
+      if (at('"')) {
+        string();
+      } else if (at('{') || at('[')) {
+        const char close = t_[i_] == '{' ? '}' : ']';
         ++i_;
-        return;
-      }
-      while (true) {
-        if (close == '}') {
-          string();
-          expect(':');
+        if (at(close)) {
+          ++i_;
+        } else {
+          if (open.size() >= kMaxJsonDepth)
+            fail("nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+          open += close;
+          if (close == '}') {
+            string();
+            expect(':');
+          }
+          continue;  // the structure's first value
         }
-        skip_value();
+      } else {
+        token();
+      }
+      // After a value: the next one of the innermost structure, or its end.
+      while (true) {
+        if (open.empty()) return;
         if (at(',')) {
           ++i_;
-          continue;
+          if (open.back() == '}') {
+            string();
+            expect(':');
+          }
+          break;
         }
-        expect(close);
-        return;
+        expect(open.back());
+        open.pop_back();
       }
-    } else {
-      token();
     }
   }
   [[noreturn]] void fail(const std::string& what) const {

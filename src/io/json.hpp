@@ -5,6 +5,7 @@
 // numbers written as null (JSON has no inf/nan), strings escaped, pretty-printed by str().
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -65,6 +66,10 @@ class Json {
   std::vector<std::pair<std::string, Json>> members_;  // Object
   std::vector<Json> items_;                            // Array
 };
+
+// The deepest nesting the reader follows (bkquake writes at most 3 levels); deeper text is
+// refused with bkq::Error, as is any text the reader cannot walk.
+inline constexpr std::size_t kMaxJsonDepth = 256;
 
 // A JSON string literal with quotes and escapes.
 std::string json_quote(const std::string& s);

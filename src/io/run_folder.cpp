@@ -3,6 +3,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "io/folder_lock.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
 #include "io/scene.hpp"
@@ -72,5 +73,53 @@ Boundary parse_boundary(const std::string& text) {
 std::optional<double> read_json_number(const std::filesystem::path& json, const std::string& key) {
   return json_top_level_number(read_text_file(json.string(), "JSON file"), key, json.string());
 }
+
+const std::vector<std::string>& run_own_files() {
+  static const std::vector<std::string> names = {
+      "scene.ini",    "catalog.csv",    "catalog.h5",          "histogram.csv",
+      "summary.json", "timeseries.csv", "segments.csv",        "energy.csv",
+      "blocks.csv",   "checkpoint.bin", "checkpoint.prev.bin", FolderLock::kFileName};
+  return names;
+}
+
+bool is_run_folder(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  return fs::exists(dir / "scene.ini", ec) &&
+         (fs::exists(dir / "summary.json", ec) || fs::exists(dir / "checkpoint.bin", ec) ||
+          fs::exists(dir / "checkpoint.prev.bin", ec));
+}
+
+DerivedOutput::DerivedOutput(const std::filesystem::path& target,
+                             const std::vector<std::filesystem::path>& inputs,
+                             const std::string& command)
+    : path_(target.string()) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (target.empty()) throw Error(command + ": empty output path");
+  if (fs::is_directory(target, ec))
+    throw Error(command + ": output '" + path_ + "' is a folder, expected a file name");
+  const fs::path canon = fs::weakly_canonical(fs::absolute(target), ec);
+  for (const fs::path& in : inputs) {
+    const bool same = fs::exists(in, ec) && fs::exists(target, ec)
+                          ? fs::equivalent(in, target, ec)
+                          : fs::weakly_canonical(fs::absolute(in), ec) == canon;
+    if (same)
+      throw Error(command + ": output '" + path_ + "' is its input '" + in.string() + "'; " +
+                  command + " writes nothing over its inputs: choose another output");
+  }
+  const fs::path dir = canon.parent_path();
+  const std::string name = canon.filename().string();
+  if (!is_run_folder(dir)) return;
+  for (const std::string& own : run_own_files())
+    if (name == own)
+      throw Error(command + ": output '" + path_ + "' is the file " + own + " of the run in '" +
+                  dir.string() + "'; " + command +
+                  " writes nothing over a run's own files: choose another name");
+  // A stale lock (a run killed) is taken over, and goes when this output is written.
+  lock_ = std::make_unique<FolderLock>(dir.string(), command, StaleLock::TakeOver);
+}
+
+DerivedOutput::~DerivedOutput() = default;
 
 }  // namespace bkq

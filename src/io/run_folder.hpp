@@ -7,8 +7,10 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/scene.hpp"
 #include "model/parameters.hpp"
@@ -51,5 +53,34 @@ Boundary parse_boundary(const std::string& text);
 // The number stored under a top-level "key" of a JSON file; nullopt when absent or null.
 // bkq::Error if the file cannot be read or the value is not a number.
 std::optional<double> read_json_number(const std::filesystem::path& json, const std::string& key);
+
+// The files a run writes into its folder (its own files): no other command writes over them.
+const std::vector<std::string>& run_own_files();
+
+// Whether `dir` holds a run (scene.ini with summary.json or a checkpoint beside it).
+bool is_run_folder(const std::filesystem::path& dir);
+
+class FolderLock;
+
+// The folder rule for a derived output: a file that a command writes from what it read
+// (spectrum.csv, fit --json, a plot), possibly into an existing run folder. Refuses, with
+// bkq::Error naming both, a target that is one of the command's `inputs` or one of a run's
+// own files (run_own_files() in a run folder); in a run folder it takes that folder's lock
+// (io/folder_lock.hpp) for `command` while alive, so it never writes beside a live run, and
+// replaces only its own earlier version. (A command that writes a whole folder uses
+// OutputFolder, io/output.hpp: new or empty folder, --force, the lock.)
+class DerivedOutput {
+ public:
+  DerivedOutput(const std::filesystem::path& target,
+                const std::vector<std::filesystem::path>& inputs, const std::string& command);
+  ~DerivedOutput();
+  DerivedOutput(const DerivedOutput&) = delete;
+  DerivedOutput& operator=(const DerivedOutput&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::unique_ptr<FolderLock> lock_;
+};
 
 }  // namespace bkq

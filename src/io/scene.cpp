@@ -130,10 +130,12 @@ std::vector<ParamSpec> make_table() {
            "Rayleigh damping alpha_M M + beta_K K: beta_K"),
 
       // --- friction: the law phi(y) (Ferre 2018 eq. 3.5; Carlson et al. 1991 eq. 2.9) ---
-      choice("friction.law", "clst91", law_names(),
-             "thesis (eq. 3.5, backslip allowed), clst91 (Carlson et al. 1991 eq. 2.9, no "
-             "backslip), cl89 (Carlson-Langer 1989 eq. 2.3), none (frictionless, continuous "
-             "verification runs only), table (tabulated, friction.table; thesis Fig. 4.8)"),
+      choice(
+          "friction.law", "clst91", law_names(),
+          "thesis (eq. 3.5, backslip allowed), clst91 (Carlson et al. 1991 eq. 2.9, no "
+          "backslip), cl89 (Carlson-Langer 1989 eq. 2.3; continuous runs only, event runs refuse "
+          "it), none (frictionless, continuous verification runs only), table (tabulated, "
+          "friction.table; thesis Fig. 4.8)"),
       real("friction.F0", "1", '(', 0, kHuge, ']', "force/mass",
            "static threshold per unit block mass F0 (thesis only)"),
       real("friction.sigma", "0.01", '[', 0, 1, ')', "",
@@ -288,28 +290,17 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 [[noreturn]] void unknown_key(const std::string& key, const std::string& origin) {
-  std::string msg = "unknown key '" + key + "'" + suffix(origin);
-  const ParamSpec* best = nullptr;
-  std::size_t best_d = std::numeric_limits<std::size_t>::max();
-  for (const auto& p : parameter_table()) {
-    const std::size_t d = edit_distance(key, p.key);
-    if (d < best_d) {
-      best_d = d;
-      best = &p;
-    }
-  }
-  // A far-off "suggestion" only confuses; offer one when it plausibly is a typo.
-  if (best && best_d <= std::max<std::size_t>(3, key.size() / 3))
-    msg += "; did you mean '" + best->key + "'?";
-  else
-    msg += "; see 'bkquake run --dump-defaults' for all keys";
-  throw Error(msg);
+  throw Error("unknown key '" + key + "'" + suffix(origin) + key_suggestion(key));
 }
 
 // Parses `text` for `p`; returns the normalised text or throws naming key, value and range.
 std::string normalise(const ParamSpec& p, const std::string& raw, const std::string& origin) {
   const std::string text = trim(raw);
   const std::string where = suffix(origin);
+  // A NUL byte would end the message that quotes the value (a C string) and hide the rest.
+  if (const auto nul = raw.find('\0'); nul != std::string::npos)
+    throw Error(p.key + ": the value holds a NUL byte at character " + std::to_string(nul + 1) +
+                ", which no value may contain" + where);
   switch (p.type) {
     case ParamType::Choice:
       if (std::find(p.choices.begin(), p.choices.end(), text) == p.choices.end())
@@ -725,6 +716,22 @@ std::string dump_defaults() {
   return Scene().to_ini({"bkquake scene with every key at its default value",
                          "the built-in default: the Carlson-Langer reference, event-driven",
                          "keys shown as comments are unused by this scene's choices"});
+}
+
+std::string key_suggestion(const std::string& key) {
+  const ParamSpec* best = nullptr;
+  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  for (const auto& p : parameter_table()) {
+    const std::size_t d = edit_distance(key, p.key);
+    if (d < best_d) {
+      best_d = d;
+      best = &p;
+    }
+  }
+  // A far-off "suggestion" only confuses; offer one when it plausibly is a typo.
+  if (best && best_d <= std::max<std::size_t>(3, key.size() / 3))
+    return "; did you mean '" + best->key + "'?";
+  return "; see 'bkquake run --dump-defaults' for all keys";
 }
 
 }  // namespace bkq

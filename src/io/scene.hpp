@@ -37,6 +37,9 @@ struct ParamSpec {
 // The parameter table (the single place a key is declared).
 const std::vector<ParamSpec>& parameter_table();
 const ParamSpec* find_param(const std::string& key);
+// For a key that is not in the table: "; did you mean '<nearest key>'?" when one is a few
+// edits away, else a pointer to --dump-defaults (the tail of an unknown-key message).
+std::string key_suggestion(const std::string& key);
 
 class Scene {
  public:

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "io/csv_util.hpp"
+#include "io/input_file.hpp"
 
 namespace bkq {
 
@@ -71,8 +72,7 @@ std::string segments_row(const SegmentRow& r) {
 std::vector<std::vector<double>> read_numeric_columns(const std::filesystem::path& path,
                                                       const std::vector<std::string>& names) {
   const std::string file = path.string();
-  std::ifstream f(path);
-  if (!f) throw Error(file + ": cannot open");
+  std::ifstream f = open_input(path, "table");
   std::string line;
   std::int64_t lineno = 0;
   std::vector<int> index;
@@ -99,6 +99,7 @@ std::vector<std::vector<double>> read_numeric_columns(const std::filesystem::pat
           csv::parse_double(fields[static_cast<std::size_t>(index[k])], file, lineno, names[k]));
     }
   }
+  check_read(f, path, "table", lineno);
   if (index.empty()) throw Error(file + ": empty file, expected a header line");
   return cols;
 }

@@ -1,6 +1,7 @@
 // Implementation of sweep files (see sweep_file.hpp).
 #include "io/sweep_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -45,8 +46,9 @@ double range_number(const std::string& key, const std::string& text, const std::
 int range_count(const std::string& key, const std::string& text, const std::string& part) {
   char* end = nullptr;
   const long n = std::strtol(part.c_str(), &end, 10);
-  if (part.empty() || *end != '\0' || n < 1 || n > 1000000)
-    throw Error(key + " = " + text + ": count '" + part + "' must be an integer in [1, 1000000]");
+  if (part.empty() || *end != '\0' || n < 1 || n > static_cast<long>(kMaxSweepPoints))
+    throw Error(key + " = " + text + ": count '" + part + "' must be an integer in [1, " +
+                std::to_string(kMaxSweepPoints) + "]");
   return static_cast<int>(n);
 }
 
@@ -99,7 +101,12 @@ SweepSpec parse_sweep(const std::string& text, const std::string& origin,
   std::string scene_file;
   std::vector<IniEntry> sets;
   std::set<std::string> seen;
-  for (const auto& [key, value] : parse_ini(text, "in " + origin)) {
+  const std::vector<IniEntry> entries = parse_ini(text, "in " + origin);
+  // Whether the lists are zipped, known before any list is expanded (see [vary] below).
+  const bool zipped = std::any_of(entries.begin(), entries.end(), [](const IniEntry& e) {
+    return e.key == "sweep.combine" && e.value == "zip";
+  });
+  for (const auto& [key, value] : entries) {
     if (!seen.insert(key).second) throw Error(key + ": given more than once" + where);
     const auto dot = key.find('.');
     const std::string section = key.substr(0, dot);
@@ -138,18 +145,29 @@ SweepSpec parse_sweep(const std::string& text, const std::string& origin,
     } else if (section == "vary") {
       const ParamSpec* p = find_param(name);
       if (!p)
-        throw Error("vary." + name + ": '" + name + "' is not a scene key (see bkquake run " +
-                    "--dump-defaults)" + where);
+        throw Error("vary." + name + ": '" + name + "' is not a scene key" + key_suggestion(name) +
+                    where);
       SweptKey k{name, {}};
+      Scene check;  // one scene checks every value (a scene per value costs 14 KB and time)
       for (const auto& v : expand_sweep_values(name, value)) {
         std::string raw = v;
         if (p->type == ParamType::Integer && v.find_first_of(".eE") != std::string::npos)
           raw = std::to_string(std::llround(std::strtod(v.c_str(), nullptr)));
-        Scene check;
         check.set(name, raw, "vary." + name + " in " + origin);
         k.values.push_back(check.text(name));
       }
       spec.keys.push_back(std::move(k));
+      // The product so far, checked as each list comes, so a huge sweep is refused before its
+      // next lists are expanded (zip's length is checked once all are read).
+      if (!zipped) {
+        double so_far = 1;
+        for (const auto& sk : spec.keys) so_far *= static_cast<double>(sk.values.size());
+        if (so_far > static_cast<double>(kMaxSweepPoints))
+          throw Error("the sweep has at least " + format_real(so_far) +
+                      " points (the product of the lengths of its [vary] lists up to " + name +
+                      "); at most " + std::to_string(kMaxSweepPoints) +
+                      " are allowed: vary fewer values or split the sweep" + where);
+      }
     } else if (section == "set") {
       sets.push_back({name, value});
     } else {
@@ -176,9 +194,16 @@ SweepSpec parse_sweep(const std::string& text, const std::string& origin,
 
   if (!scene_file.empty()) {
     const std::filesystem::path sp(scene_file);
-    spec.base = Scene::from_file(
-        (sp.is_absolute() || base_dir.empty() ? sp : std::filesystem::path(base_dir) / sp)
-            .string());
+    const std::filesystem::path resolved =
+        sp.is_absolute() || base_dir.empty() ? sp : std::filesystem::path(base_dir) / sp;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(resolved, ec))
+      throw Error("sweep.scene = " + scene_file + ": no scene file '" + resolved.string() + "'" +
+                  (sp.is_absolute() ? std::string()
+                                    : " (a relative path is read from the sweep file's folder '" +
+                                          (base_dir.empty() ? std::string(".") : base_dir) + "')") +
+                  where);
+    spec.base = Scene::from_file(resolved.string());
   }
   for (const auto& [key, value] : sets) spec.base.set(key, value, "set." + key + " in " + origin);
   for (const auto& o : overrides) spec.base.apply_override(o);
@@ -188,33 +213,64 @@ SweepSpec parse_sweep(const std::string& text, const std::string& origin,
   return spec;
 }
 
-std::vector<SweepPoint> SweepSpec::points() const {
+std::size_t SweepSpec::point_count() const {
+  const std::string where = " (in " + origin + ")";
   std::size_t count = 1;
-  if (combine == SweepCombine::Zip)
+  if (combine == SweepCombine::Zip) {
     count = keys.front().values.size();
-  else
-    for (const auto& k : keys) count *= k.values.size();
+  } else {
+    // The product, stopped as soon as it passes the bound (so it cannot overflow); the
+    // message gives the whole product as a real number.
+    double whole = 1;
+    for (const auto& k : keys) whole *= static_cast<double>(k.values.size());
+    for (const auto& k : keys) {
+      count *= k.values.size();
+      if (count > kMaxSweepPoints)
+        throw Error("the sweep has " + format_real(whole) + " points (the product of the " +
+                    "[vary] lists' lengths); at most " + std::to_string(kMaxSweepPoints) +
+                    " are allowed: vary fewer values or split the sweep" + where);
+    }
+  }
+  if (count > kMaxSweepPoints)
+    throw Error("the sweep has " + std::to_string(count) + " points; at most " +
+                std::to_string(kMaxSweepPoints) + " are allowed: vary fewer values or split the " +
+                "sweep" + where);
+  if (count * static_cast<std::size_t>(replicas) > kMaxSweepTasks)
+    throw Error("the sweep has " + std::to_string(count) + " points x " + std::to_string(replicas) +
+                " replicas = " + std::to_string(count * static_cast<std::size_t>(replicas)) +
+                " runs; at most " + std::to_string(kMaxSweepTasks) + " are allowed" + where);
+  return count;
+}
+
+std::vector<std::pair<std::string, std::string>> SweepSpec::point_values(std::size_t i) const {
+  std::vector<std::size_t> pick(keys.size());
+  std::size_t rest = i;
+  for (std::size_t j = keys.size(); j-- > 0;) {
+    if (combine == SweepCombine::Zip) {
+      pick[j] = i;
+    } else {
+      pick[j] = rest % keys[j].values.size();
+      rest /= keys[j].values.size();
+    }
+  }
+  std::vector<std::pair<std::string, std::string>> values;
+  for (std::size_t j = 0; j < keys.size(); ++j)
+    values.emplace_back(keys[j].key, keys[j].values[pick[j]]);
+  return values;
+}
+
+SweepPoint SweepSpec::point(std::size_t i) const {
+  SweepPoint p{point_values(i), base};
+  for (const auto& [key, value] : p.values)
+    p.scene.set(key, value, "vary." + key + " in " + origin);
+  return p;
+}
+
+std::vector<SweepPoint> SweepSpec::points() const {
+  const std::size_t count = point_count();
   std::vector<SweepPoint> out;
   out.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    SweepPoint p{{}, base};
-    std::size_t rest = i;
-    std::vector<std::size_t> pick(keys.size());
-    for (std::size_t j = keys.size(); j-- > 0;) {
-      if (combine == SweepCombine::Zip) {
-        pick[j] = i;
-      } else {
-        pick[j] = rest % keys[j].values.size();
-        rest /= keys[j].values.size();
-      }
-    }
-    for (std::size_t j = 0; j < keys.size(); ++j) {
-      const std::string& v = keys[j].values[pick[j]];
-      p.values.emplace_back(keys[j].key, v);
-      p.scene.set(keys[j].key, v, "vary." + keys[j].key + " in " + origin);
-    }
-    out.push_back(std::move(p));
-  }
+  for (std::size_t i = 0; i < count; ++i) out.push_back(point(i));
   return out;
 }
 

@@ -39,6 +39,11 @@ struct SweepPoint {
   Scene scene;
 };
 
+// At most this many points per sweep (each is a folder of runs) and this many tasks (points x
+// replicas, each a run folder): beyond them a sweep is refused with the number it would have.
+inline constexpr std::size_t kMaxSweepPoints = 100000;
+inline constexpr std::size_t kMaxSweepTasks = 1000000;
+
 struct SweepSpec {
   std::string origin;  // the sweep file
   Scene base;          // base scene file + [set] + command-line overrides
@@ -49,7 +54,17 @@ struct SweepSpec {
   bool keep_histogram = true;  // collect: histogram
   std::string text;            // the sweep file as read (written beside sweep.csv)
 
-  // The points in order: product with the last key varying fastest, or zip.
+  // The number of points: the product of the lists' lengths, or their common length under
+  // zip. bkq::Error naming the number when it (or points x replicas) exceeds the bounds
+  // below, checked before anything is planned, so the product of several long lists cannot
+  // overflow or fill memory.
+  std::size_t point_count() const;
+  // Point i (0 <= i < point_count()), made on demand: the plan holds no scene per point, so
+  // its memory does not grow with the number of points. Product: the last key varies fastest.
+  SweepPoint point(std::size_t i) const;
+  // Only its swept values, without building the scene.
+  std::vector<std::pair<std::string, std::string>> point_values(std::size_t i) const;
+  // Every point in order (point(0), point(1), ...); for small sweeps and tests.
   std::vector<SweepPoint> points() const;
 };
 

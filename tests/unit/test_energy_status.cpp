@@ -102,9 +102,10 @@ TEST(NodeStatus, CountsAddUpToTheBlocksOnEveryRow) {
   EXPECT_GT(moving_rows, 0);
   const auto en = read_csv(dir.file("r/energy.csv"));
   EXPECT_EQ(en[0].size(), energy_schema().size());
-  // Centres 10, 20, ..., 280: the last sample lies near t = 299.5, so the window centred at
-  // 290 is incomplete and left out.
-  EXPECT_EQ(en.size(), 1 + 28u);
+  // Centres 10, 20, ..., 290: the samples lie on the grid up to t = 300 exactly, so the
+  // window centred at 290 is complete (before samples were stamped on the grid, the last
+  // one drifted to t = 299.5 and that window was left out).
+  EXPECT_EQ(en.size(), 1 + 29u);
   const auto samples = read_csv(dir.file("r/energy_samples.csv"));
   EXPECT_EQ(samples.size(), ts.size());
   EXPECT_NE(test::read_file(dir.file("r/summary.json")).find("\"energy_settle_time\""),

@@ -25,14 +25,15 @@ CatalogWriter::CatalogWriter(CatalogFormat format, std::string path, const Scene
 }
 
 namespace {
-// "catalog.rowhash": line_hash of the rows. (The "catalog.checksum" of earlier revisions,
-// FNV-1a by byte, is not read: such a checkpoint resumes without the check.)
+// "catalog.rowhash": line_hash of the rows (catalog.h5: of their cells; a checkpoint of an
+// HDF5 run from before this has none and resumes unchecked). (The "catalog.checksum" of earlier
+// revisions, FNV-1a by byte, is not read: such a checkpoint resumes without the check.)
 constexpr const char* kChecksumState = "catalog.rowhash";
 }  // namespace
 
 std::optional<std::uint64_t> saved_catalog_checksum(const Checkpoint& c) {
   const std::string* bytes = c.find(kChecksumState);
-  if (!bytes) return std::nullopt;  // a checkpoint written before checksums, or catalog.h5
+  if (!bytes) return std::nullopt;  // a checkpoint written before checksums
   StateReader in(*bytes, kChecksumState);
   return in.u64();
 }

@@ -3,7 +3,7 @@
 // (io/catalog_file.hpp: catalog.csv or catalog.h5; with none no observer is attached). A
 // checkpoint syncs the file first and records how much of it belongs to it (the bytes of
 // catalog.csv; catalog.h5's rows are the events done), so a resumed run continues after it,
-// and for catalog.csv a checksum of those bytes, so a resume finds a row edited in between.
+// and a checksum of those rows (both formats), so a resume finds a row edited in between.
 #pragma once
 
 #include <cstdint>
