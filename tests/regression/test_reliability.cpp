@@ -81,7 +81,12 @@ TEST(Reliability, ReadErrorsAreNotEmptyFiles) {
   EXPECT_FALSE(fs::exists(out + "/catalog.csv"));
   expect_refused(run_bkquake({"fit", "/proc/self/mem"}),
                  {"cannot read catalogue '/proc/self/mem'"});
-  expect_refused(run_bkquake({"fit", tmp.path().string()}), {"Is a directory"});
+  // A folder is a run folder to fit: one without anything to fit says so; a folder where
+  // the catalogue should be is a read error, not an empty file.
+  expect_refused(run_bkquake({"fit", tmp.path().string()}), {"holds no catalog.csv"});
+  fs::create_directory(tmp.file("d"));
+  fs::create_directory(tmp.file("d") + "/catalog.csv");
+  expect_refused(run_bkquake({"fit", tmp.file("d")}), {"catalog.csv", "Is a directory"});
   expect_refused(run_bkquake({"run", "--quiet", "--set", "friction.law=table", "--set",
                               "friction.table=/proc/self/mem", "--out", tmp.file("t")}),
                  {"/proc/self/mem"});
