@@ -165,6 +165,8 @@ def test_csv_and_hdf5_catalogues_read_the_same(cli_run, tmp_path):
     assert r.returncode == 0, r.stderr
     a, b = bkquake.load(cli_run).columns, bkquake.load(h5).columns
     assert list(a) == list(b)
+    one_file = bkquake.read_catalog(h5 / "catalog.h5")
+    assert all(np.array_equal(one_file[k], b[k]) for k in b)
     for name in a:
         assert a[name].dtype == b[name].dtype, name
         np.testing.assert_array_equal(a[name], b[name], err_msg=name)

@@ -26,7 +26,7 @@ from . import _bkquake
 __version__ = _bkquake.__version__
 git_revision = _bkquake.git_revision
 
-__all__ = ["Scene", "Run", "run", "load", "parameter_table"]
+__all__ = ["Scene", "Run", "run", "load", "read_catalog", "parameter_table"]
 
 
 def parameter_table():
@@ -235,6 +235,11 @@ class Run:
 
     def __repr__(self):
         return f"bkquake.Run({self.path!r})"
+
+
+def read_catalog(path):
+    """One catalogue file (catalog.csv or catalog.h5, any name) as {column: numpy array}."""
+    return _columns(_bkquake.read_catalog(os.fspath(path)))
 
 
 def load(path):
