@@ -49,21 +49,18 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import bkquake_io  # noqa: E402  (the bkquake module's reader when it is importable)
+
 SCENE = "data/scenes/cl-l10-a2.5-n100.ini"
 # substrate displacement per speed: >= ~5000 episodes after the transient at each nu
 DEFAULT_LOAD = {0.01: 100.0, 0.001: 30.0, 0.0001: 25.0}
 
 
 def read_magnitudes(catalog, min_load=None):
-    with open(catalog) as f:
-        header = f.readline().strip().split(",")
-    data = np.loadtxt(catalog, delimiter=",", skiprows=1, ndmin=2)
-    if data.size == 0:
-        return np.empty(0)
-    mu = data[:, header.index("magnitude")]
+    columns = bkquake_io.read_catalog_file(catalog)
+    mu = np.asarray(columns["magnitude"], dtype=float)
     if min_load is not None:
-        load = data[:, header.index("load")]
-        mu = mu[load >= min_load]
+        mu = mu[np.asarray(columns["load"]) >= min_load]
     return mu
 
 

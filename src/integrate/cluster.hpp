@@ -91,7 +91,9 @@ template <class Method, bool Pad, int K, bool FreeLeft, bool FreeRight>
 bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
   static_assert(K >= 1 && K <= kMaxCluster);
   return forces.with_switches([&]<class Law, class Terms>(const Law& law_in) {
-    if constexpr (!Law::drives_events) {
+    // The block damper is the 1DOF model's, a single block free at both ends, which
+    // run_cluster turns away before it gets here: no kernel is compiled for it.
+    if constexpr (!Law::drives_events || Terms::damper) {
       return false;
     } else {
       const Law law = law_in;  // a local, which the stores cannot change
