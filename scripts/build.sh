@@ -17,7 +17,7 @@ programs=(build-essential cmake libboost-program-options-dev libboost-dev libgsl
           python3-dev pybind11-dev python3-numpy python3-matplotlib)
 extras=(pkg-config libhdf5-dev python3-h5py libboost-mpi-dev openmpi-bin libopenmpi-dev
         googletest libgtest-dev libbenchmark-dev clang-format python3-pytest python3-pandas
-        python3-nbclient python3-nbformat python3-ipykernel)
+        python3-nbclient python3-nbformat python3-ipykernel mkdocs mkdocs-material)
 case $what in
   programs) packages=("${programs[@]}") target=(--target programs) ;;
   all) packages=("${programs[@]}" "${extras[@]}") target=() ;;
