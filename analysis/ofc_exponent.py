@@ -70,7 +70,7 @@ def main():
             for alpha in alphas:
                 # Events scale with the sites; the transient is about 2000 drive units per
                 # site at L = 128 (Lise 2002: t_tr ~ L^1.3), checked by the halves' taus.
-                events = (20000 if args.quick else 1000000)
+                events = 20000 if args.quick else (500000 if L < 128 else 200000)
                 transient = (20000 if args.quick else int(40 * L * L))
                 s = run_case(args.bkquake, alpha, L, events, transient, work)
                 s_max = max(L * L / 10.0, 30.0)

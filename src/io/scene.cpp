@@ -112,9 +112,6 @@ std::vector<ParamSpec> make_table() {
       choice("model.boundary_y", "free", {"free", "periodic"},
              "lattice edges across strike (ofc): free is OFC's open edge (stress pushed over "
              "it is lost), periodic wraps row model.rows - 1 to row 0"),
-      real("ofc.alpha", "0.2", '(', 0, 0.25, ']', "",
-           "share alpha of a toppling site's stress given to each of its z = 4 neighbours "
-           "(Olami, Feder & Christensen 1992); 0.25 conserves stress away from free edges"),
       real("model.l", "10", '[', 0, 1e4, ']', "",
            "stiffness ratio l, neighbour spring k_c = l^2 (carlson-langer only)"),
       real("model.pad_mass", "100", '(', 0, kHuge, ']', "mass", "pad mass m_x (thesis only)"),
@@ -132,6 +129,11 @@ std::vector<ParamSpec> make_table() {
            "row; continuous runs and bkquake stability, event runs refuse it): alpha_M"),
       real("model.rayleigh_beta", "0", '[', 0, kHuge, ']', "time",
            "Rayleigh damping alpha_M M + beta_K K: beta_K"),
+
+      // --- ofc: the automaton (Olami, Feder & Christensen 1992) ---
+      real("ofc.alpha", "0.2", '(', 0, 0.25, ']', "",
+           "share alpha of a toppling site's stress given to each of its z = 4 neighbours "
+           "(Olami, Feder & Christensen 1992); 0.25 conserves stress away from free edges"),
 
       // --- friction: the law phi(y) (Ferre 2018 eq. 3.5; Carlson et al. 1991 eq. 2.9) ---
       choice("friction.law", "clst91", law_names(),
@@ -746,14 +748,20 @@ std::string Scene::to_ini(const std::vector<std::string>& header) const {
   std::ostringstream out;
   for (const auto& h : header) out << "# " << h << "\n";
   if (!header.empty()) out << "\n";
+  // A section none of whose keys applies (the automaton's [ofc] in a chain's scene, the
+  // chain's [friction] in the automaton's) is written as comments, header and all, so a
+  // scene's non-comment lines are those of the keys it uses.
+  std::map<std::string, bool> used;
+  for (const auto& p : parameter_table()) used[p.key.substr(0, p.key.find('.'))] |= applies(p.key);
   std::string section;
   for (const auto& p : parameter_table()) {
     const auto dot = p.key.find('.');
     const std::string sec = p.key.substr(0, dot);
     const std::string name = p.key.substr(dot + 1);
     if (sec != section) {
-      if (!section.empty()) out << "\n";
-      out << "[" << sec << "]\n";
+      const char* mark = used[sec] ? "" : "# ";
+      if (!section.empty()) out << (used[sec] ? "\n" : "#\n");
+      out << mark << "[" << sec << "]\n";
       section = sec;
     }
     out << "# " << p.doc;
@@ -771,8 +779,13 @@ std::string Scene::to_ini(const std::vector<std::string>& header) const {
 std::uint64_t Scene::hash() const {
   std::uint64_t h = kFnv1a64Basis;
   for (const auto& p : parameter_table()) {
-    // An unset file key leaves the hash of the scenes that do not use it as it was.
+    // An unset file key leaves the hash of the scenes that do not use it as it was; so do
+    // the lattice's and the automaton's keys at their defaults (added after scenes, their
+    // checkpoints and summaries were hashed without them).
     if (p.type == ParamType::Path && values_.at(p.key).empty()) continue;
+    if ((p.key == "model.rows" || p.key == "model.boundary_y" || p.key == "ofc.alpha") &&
+        values_.at(p.key) == normalise(p, p.default_value, "default"))
+      continue;
     h = fnv1a64(p.key + "=" + values_.at(p.key) + "\n", h);
   }
   return h;

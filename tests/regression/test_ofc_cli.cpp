@@ -12,6 +12,7 @@
 #include "cli_helpers.hpp"
 #include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
+#include "io/scene.hpp"
 #include "refusal.hpp"
 
 namespace bkq {
@@ -128,6 +129,18 @@ TEST(OfcCli, ScenesThatCannotRunAreRefusedInOneLine) {
   test::expect_refused(run_bkquake(run_args({"--set", "ofc.alpha=0.1", "--quiet"}, {"--out", out})),
                        {"ofc.alpha", "model.kind = ofc"});
   EXPECT_FALSE(fs::exists(out + "/catalog.csv"));
+}
+
+// scene.ini writes a [section] line where the table's section changes: a section split in
+// two would repeat its header, which INI readers (Python's configparser) refuse.
+TEST(OfcCli, EachSceneSectionIsDeclaredInOneRun) {
+  std::vector<std::string> seen;
+  for (const auto& p : parameter_table()) {
+    const std::string section = p.key.substr(0, p.key.find('.'));
+    if (!seen.empty() && seen.back() == section) continue;
+    for (const auto& s : seen) ASSERT_NE(s, section) << p.key << " splits [" << section << "]";
+    seen.push_back(section);
+  }
 }
 
 }  // namespace
