@@ -21,6 +21,7 @@
 #include "core/error.hpp"
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
+#include "engine/ofc.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output.hpp"
 
@@ -34,31 +35,124 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// What the loop needs of an engine, so that the chain's event engine and the OFC automaton
+// (engine/ofc.hpp) run under the same loop, observers and checkpoints.
+class LoopEngine {
+ public:
+  virtual ~LoopEngine() = default;
+  virtual EventRecord next_event() = 0;
+  virtual EngineCounters counters() const = 0;
+  virtual double load() const = 0;
+  virtual int sites() const = 0;
+  // Puts the engine's state into a checkpoint (it may be moved there: the engine is not
+  // used until take_back() has returned it).
+  virtual void lend(Checkpoint& c) = 0;
+  virtual void take_back(Checkpoint& c) = 0;
+  // A new engine of the same scene from a checkpoint's state, or from the seed.
+  virtual std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const = 0;
+  // The chain's event engine, for what only a chain has (slip profiles); nullptr otherwise.
+  virtual EventEngine* chain() { return nullptr; }
+};
+
+class ChainLoopEngine : public LoopEngine {
+ public:
+  // `stepper`: the run's; nullptr: a stepper of the engine's own (a replay: the run's may
+  // be mid-event).
+  ChainLoopEngine(const Settings& settings, const ChainForces& forces, Stepper* stepper,
+                  const Checkpoint* from)
+      : settings_(settings),
+        forces_(forces),
+        own_(stepper ? nullptr : stepper_of(settings.integrator, forces.n())),
+        engine_(from ? EventEngine(forces, stepper ? *stepper : *own_, settings.integrator.dt,
+                                   from->engine)
+                     : EventEngine(forces, stepper ? *stepper : *own_, settings.integrator.dt,
+                                   initial_state(forces, settings.run.seed,
+                                                 settings.run.initial_disorder, true))) {
+    engine_.max_steps_per_event = settings.run.max_steps_per_event;
+  }
+  EventRecord next_event() override { return engine_.next_event(); }
+  EngineCounters counters() const override { return engine_.counters(); }
+  double load() const override { return engine_.load(); }
+  int sites() const override { return engine_.state().n(); }
+  // The chain's state is moved, not copied (a copy of a long chain at each checkpoint
+  // would be the largest thing the run holds).
+  void lend(Checkpoint& c) override { c.engine = engine_.lend_snapshot(); }
+  void take_back(Checkpoint& c) override { engine_.take_back(std::move(c.engine)); }
+  EventEngine* chain() override { return &engine_; }
+  std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const override {
+    return std::make_unique<ChainLoopEngine>(settings_, forces_, nullptr, from);
+  }
+
+ private:
+  const Settings& settings_;
+  const ChainForces& forces_;
+  std::unique_ptr<Stepper> own_;
+  EventEngine engine_;
+};
+
+// The OFC automaton's state travels as a named state of the checkpoint ("ofc.engine"); the
+// chain snapshot stays empty.
+constexpr const char* kOfcState = "ofc.engine";
+
+class OfcLoopEngine : public LoopEngine {
+ public:
+  OfcLoopEngine(const Settings& settings, const Checkpoint* from)
+      : settings_(settings),
+        engine_(from ? OfcEngine(settings.ofc.lattice, saved(*from))
+                     : OfcEngine(settings.ofc.lattice,
+                                 ofc_initial_field(settings.ofc.lattice, settings.run.seed))) {}
+  EventRecord next_event() override { return engine_.next_event(); }
+  // steps: topplings (the automaton's unit of work).
+  EngineCounters counters() const override {
+    EngineCounters c;
+    c.events = engine_.counters().events;
+    c.steps = engine_.counters().topplings;
+    return c;
+  }
+  double load() const override { return engine_.load(); }
+  int sites() const override { return engine_.params().sites(); }
+  void lend(Checkpoint& c) override {
+    const OfcSnapshot s = engine_.snapshot();
+    put_state(c, kOfcState, s.g, s.offset, s.load, s.counters.events, s.counters.topplings,
+              s.counters.generations);
+  }
+  void take_back(Checkpoint&) override {}
+  std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const override {
+    return std::make_unique<OfcLoopEngine>(settings_, from);
+  }
+
+ private:
+  static OfcSnapshot saved(const Checkpoint& c) {
+    OfcSnapshot s;
+    if (!find_state(c, kOfcState, s.g, s.offset, s.load, s.counters.events, s.counters.topplings,
+                    s.counters.generations))
+      throw Error("checkpoint: no OFC state (" + std::string(kOfcState) + ") in it");
+    return s;
+  }
+  const Settings& settings_;
+  OfcEngine engine_;
+};
+
 class EventRun {
  public:
+  // `stepper`: the chain's (for the accuracy check), nullptr for the automaton.
   EventRun(const RunRequest& req, const Settings& settings, const OutputFolder& out,
-           const ChainForces& forces, Stepper& stepper, const Checkpoint* resumed)
+           std::unique_ptr<LoopEngine> engine, const Stepper* stepper, const Checkpoint* resumed)
       : req_(req),
         settings_(settings),
-        forces_(forces),
         stepper_(stepper),
         out_(out),
         files_(out.dir()),
         scene_ini_(req.scene.to_ini()),
         transient_(settings.run.transient_events),
-        events_(settings.run.events) {
-    const double dt = settings.integrator.dt;
+        events_(settings.run.events),
+        engine_(std::move(engine)) {
     if (resumed) {
-      engine_ = std::make_unique<EventEngine>(forces, stepper, dt, resumed->engine);
       prog_ = resumed->progress;
       ++prog_.resumes;
-    } else {
-      engine_ = std::make_unique<EventEngine>(
-          forces, stepper, dt,
-          initial_state(forces, settings.run.seed, settings.run.initial_disorder, true));
-      if (transient_ == 0) begin_recording();
+    } else if (transient_ == 0) {
+      begin_recording();
     }
-    engine_->max_steps_per_event = settings.run.max_steps_per_event;
     saved_ = resumed != nullptr;
     wall_total0_ = prog_.wall_total;
     wall_events0_ = prog_.wall_events;
@@ -100,18 +194,23 @@ class EventRun {
   // summary that fits it, the summary (which says how the run ended) after every file.
   void attach_observers(bool resumed) {
     const RunSettings& r = settings_.run;
+    // Slip profiles are a chain's (checked before any file is opened).
+    EventEngine* chain = engine_->chain();
+    if (settings_.output.event_slip && !chain)
+      throw Error("output.event_slip: slip profiles are written for chain models, not for " +
+                  std::string("model.kind = ofc"));
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
                                        resumed ? prog_.events_done : -1,
-                                       settings_.output.catalog_deflate);
+                                       settings_.output.catalog_deflate, settings_.ofc.on);
     if (settings_.output.event_slip) {
-      engine_->keep_slips(true);
+      chain->keep_slips(true);
       observers_.attach<EventSlipWriter>(out_.path(EventSlipWriter::kFileName),
-                                         *settings_.output.event_slip, *engine_);
+                                         *settings_.output.event_slip, *chain);
     }
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
-    accuracy_ = &observers_.attach<AccuracyCheck>(settings_, stepper_);
+    if (stepper_) accuracy_ = &observers_.attach<AccuracyCheck>(settings_, *stepper_);
     observers_.attach<EventSummary>(req_.scene, settings_, out_, hist.histogram(), observers_,
                                     stop_requested);
     if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
@@ -138,7 +237,7 @@ class EventRun {
     const std::int64_t steps0 = engine_->counters().steps;
     try {
       EventRecord e = engine_->next_event();
-      accuracy_->note_event_steps(engine_->counters().steps - steps0);
+      if (accuracy_) accuracy_->note_event_steps(engine_->counters().steps - steps0);
       return e;
     } catch (const Error& e) {
       throw Error(e.what() + save_before_failure(done));
@@ -152,40 +251,28 @@ class EventRun {
   // copy of the chain is kept for it. Returns the note for the error.
   std::string save_before_failure(std::int64_t events_done) {
     try {
-      const std::unique_ptr<Stepper> stepper = stepper_of(settings_.integrator, forces_.n());
-      const double dt = settings_.integrator.dt;
-      const bool seeded = !saved_;
-      EventEngine replay = seeded ? EventEngine(forces_, *stepper, dt,
-                                                initial_state(forces_, settings_.run.seed,
-                                                              settings_.run.initial_disorder, true))
-                                  : EventEngine(forces_, *stepper, dt, files_.read().engine);
-      replay.max_steps_per_event = engine_->max_steps_per_event;
-      while (replay.counters().events < events_done) replay.next_event();
-      EngineSnapshot before = replay.snapshot();
-      save(before);
+      std::unique_ptr<LoopEngine> replay;
+      if (saved_) {
+        const Checkpoint last = files_.read();
+        replay = engine_->restart(&last);
+      } else {
+        replay = engine_->restart(nullptr);
+      }
+      while (replay->counters().events < events_done) replay->next_event();
+      save(*replay);
       return "; the state before this event is saved in '" + files_.current() + "'";
     } catch (const Error& e) {
       return std::string("; saving the state before this event failed: ") + e.what();
     }
   }
 
-  // A checkpoint of the running engine, its state lent rather than copied (a copy of a
-  // long chain at each checkpoint would be the largest thing the run holds).
-  void save_engine(bool final = false) {
-    EngineSnapshot lent = engine_->lend_snapshot();
-    struct GiveBack {
-      EventEngine& engine;
-      EngineSnapshot& lent;
-      ~GiveBack() { engine.take_back(std::move(lent)); }
-    } give_back{*engine_, lent};
-    save(lent, final);
-  }
+  void save_engine(bool final = false) { save(*engine_, final); }
 
   // Writes a checkpoint of `engine` with the run as it stands. The run fills in its own
   // bookkeeping; the observers add theirs (the catalog syncs and records its size, the
-  // histogram and the summary's sums their state). The snapshot moves into the checkpoint
-  // and back, unchanged.
-  void save(EngineSnapshot& engine, bool final = false) {
+  // histogram and the summary's sums their state). The engine lends its state to the
+  // checkpoint and takes it back, unchanged.
+  void save(LoopEngine& engine, bool final = false) {
     prog_.wall_total = wall_total0_ + seconds_since(session_t0_);
     if (prog_.transient_done == transient_)
       prog_.wall_events = wall_events0_ + seconds_since(recording_t0_);
@@ -196,12 +283,12 @@ class EventRun {
     c.scene_ini = scene_ini_;
     c.seed = settings_.run.seed;
     c.progress = prog_;
-    c.engine = std::move(engine);
-    struct MoveBack {
-      EngineSnapshot& to;
-      EngineSnapshot& from;
-      ~MoveBack() { to = std::move(from); }
-    } move_back{engine, c.engine};
+    engine.lend(c);
+    struct GiveBack {
+      LoopEngine& engine;
+      Checkpoint& c;
+      ~GiveBack() { engine.take_back(c); }
+    } give_back{engine, c};
     observers_.checkpoint(c);
     if (final) {
       files_.write_final(c);
@@ -218,7 +305,7 @@ class EventRun {
     end.signal = signal;
     end.events = prog_.events_done;
     end.transient_events = prog_.transient_done;  // all of them unless stopped during them
-    end.blocks = engine_->state().n();
+    end.blocks = engine_->sites();
     end.wall_seconds_total = wall_total0_ + seconds_since(session_t0_);
     end.resumes = prog_.resumes;
     if (prog_.transient_done < transient_) return end;  // recording has not begun
@@ -256,20 +343,19 @@ class EventRun {
     save_engine(true);
     observers_.end(run_end(0));
     files_.remove_interim();
-    accuracy_->verdict();
+    if (accuracy_) accuracy_->verdict();
     return 0;
   }
 
   const RunRequest& req_;
   const Settings& settings_;
-  const ChainForces& forces_;
-  const Stepper& stepper_;
+  const Stepper* stepper_;
   const OutputFolder& out_;
   const CheckpointFiles files_;
   const std::string scene_ini_;
   const std::int64_t transient_, events_;
 
-  std::unique_ptr<EventEngine> engine_;
+  std::unique_ptr<LoopEngine> engine_;
   AccuracyCheck* accuracy_ = nullptr;  // one of the observers
   bool saved_ = false;                 // a checkpoint file holds the state (else the seed does)
   // The run's own part of the checkpoint; catalog_bytes, moment_sum and nonpositive are the
@@ -287,7 +373,17 @@ class EventRun {
 
 int run_events(const RunRequest& req, const Settings& settings, const OutputFolder& out,
                const ChainForces& forces, Stepper& stepper, const Checkpoint* resumed) {
-  return EventRun(req, settings, out, forces, stepper, resumed).run();
+  return EventRun(req, settings, out,
+                  std::make_unique<ChainLoopEngine>(settings, forces, &stepper, resumed), &stepper,
+                  resumed)
+      .run();
+}
+
+int run_ofc_events(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+                   const Checkpoint* resumed) {
+  return EventRun(req, settings, out, std::make_unique<OfcLoopEngine>(settings, resumed), nullptr,
+                  resumed)
+      .run();
 }
 
 }  // namespace bkq

@@ -18,5 +18,8 @@ struct Checkpoint;
 // Returns the exit status: 0 when finished, 128 + signal when stopped by one.
 int run_events(const RunRequest& req, const Settings& settings, const OutputFolder& out,
                const ChainForces& forces, Stepper& stepper, const Checkpoint* resumed);
+// The same loop, observers and checkpoints for model.kind = ofc (engine/ofc.hpp).
+int run_ofc_events(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+                   const Checkpoint* resumed);
 
 }  // namespace bkq

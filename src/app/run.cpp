@@ -17,6 +17,7 @@
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "engine/event_engine.hpp"
+#include "engine/ofc.hpp"
 #include "io/catalog.hpp"
 #include "io/catalog_file.hpp"
 #include "io/catalog_h5.hpp"
@@ -66,11 +67,16 @@ int run_scene(const RunRequest& req) {
   const Scene& scene = req.scene;
   const Settings settings = settings_from_scene(scene);
   const ModelParams& p = settings.model;
+  const bool ofc = settings.ofc.on;
   const ChainForces forces(p);
   const std::unique_ptr<Stepper> stepper = stepper_of(settings.integrator, p.n);
-  check_time_step(*stepper, p, settings.integrator.dt);
   const bool events = settings.drive.mode == DriveMode::Events;
-  if (events) EventEngine::check_model(p);
+  if (ofc) {
+    OfcEngine::check(settings.ofc.lattice);
+  } else {
+    check_time_step(*stepper, p, settings.integrator.dt);
+    if (events) EventEngine::check_model(p);
+  }
   if (settings.output.catalog == CatalogFormat::Hdf5 && !hdf5_available())
     throw Error(
         "output.catalog = hdf5: this bkquake was built without HDF5 (libhdf5-dev); allowed: "
@@ -96,7 +102,7 @@ int run_scene(const RunRequest& req) {
     const std::string catalog =
         format == CatalogFormat::None ? "" : out.path(catalog_file_name(format));
     if (format == CatalogFormat::Csv)
-      check_csv_prefix(catalog, catalog_header(), saved.progress.events_done,
+      check_csv_prefix(catalog, catalog_header(ofc), saved.progress.events_done,
                        saved.progress.catalog_bytes, saved_catalog_checksum(saved));
     else if (format == CatalogFormat::Hdf5)  // cut back when the catalog observer opens it
       check_catalog_h5(catalog, saved.progress.events_done, saved_catalog_checksum(saved));
@@ -131,6 +137,7 @@ int run_scene(const RunRequest& req) {
         static_cast<long long>(saved.progress.transient_done),
         static_cast<long long>(settings.run.transient_events));
     std::fflush(stdout);
+    if (ofc) return run_ofc_events(req, settings, out, &saved);
     return run_events(req, settings, out, forces, *stepper, &saved);
   }
 
@@ -147,6 +154,7 @@ int run_scene(const RunRequest& req) {
   }
   write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
   if (!events) return run_continuous(req, settings, out, forces, *stepper);
+  if (ofc) return run_ofc_events(req, settings, out, nullptr);
   return run_events(req, settings, out, forces, *stepper, nullptr);
 }
 

@@ -19,6 +19,7 @@ struct EventRecord {
   int first_block = 0;          // lowest index that slipped
   int last_block = 0;           // highest index that slipped
   double energy_residual = 0;   // (dE_stored + W_dissipated)/W_dissipated; see event_engine.hpp
+  std::int64_t topplings = 0;   // OFC (engine/ofc.hpp): topplings in the avalanche; 0 otherwise
 };
 
 }  // namespace bkq

@@ -31,8 +31,34 @@ const Schema& catalog_schema() {
   return schema;
 }
 
-std::string catalog_header() {
-  return header_of(catalog_schema());
+const Schema& ofc_catalog_schema() {
+  namespace c = catalog_col;
+  // The common columns keep their names; what they mean for the automaton.
+  static const Schema schema = [] {
+    Schema s = {
+        {c::event, "", "1-based event (avalanche) number, counted after the transient", kInteger},
+        {c::load, "stress", "cumulative uniform drive at the trigger (threshold F_th = 1)"},
+        {c::trigger, "", "site index x + model.blocks * y of the site driven to the threshold",
+         kInteger},
+        {c::blocks, "", "number of distinct sites that toppled", kInteger},
+        {c::moment, "stress", "total stress released: sum over topplings of the site's stress"},
+        {c::magnitude, "", "magnitude mu = ln(moment)"},
+        {c::duration, "", "generations of the parallel update (1: the trigger alone)"},
+        {c::max_speed, "", "0 (the automaton has no speeds)"},
+        {c::pad_displacement, "", "0 (no pad)"},
+        {c::first_block, "", "lowest site index x + model.blocks * y that toppled", kInteger},
+        {c::last_block, "", "highest site index x + model.blocks * y that toppled", kInteger},
+        {c::energy_residual, "", "0 (no energy ledger)"},
+        {c::topplings, "", "topplings in the avalanche (a site may topple more than once)",
+         kInteger},
+    };
+    return s;
+  }();
+  return schema;
+}
+
+std::string catalog_header(bool with_topplings) {
+  return header_of(with_topplings ? ofc_catalog_schema() : catalog_schema());
 }
 
 namespace {
@@ -59,18 +85,22 @@ CatalogCells catalog_cells(const EventRecord& e) {
            {false, 0, e.energy_residual}}};
 }
 
-char* catalog_row_to(char* out, const EventRecord& e) {
+char* catalog_row_to(char* out, const EventRecord& e, bool with_topplings) {
   const CatalogCells cells = catalog_cells(e);
   for (std::size_t k = 0; k < cells.size(); ++k) {
     if (k > 0) *out++ = ',';
     out = cells[k].integer ? integer_to(out, cells[k].i) : format_real_to(out, cells[k].x);
   }
+  if (with_topplings) {
+    *out++ = ',';
+    out = integer_to(out, e.topplings);
+  }
   return out;
 }
 
-std::string catalog_row(const EventRecord& e) {
+std::string catalog_row(const EventRecord& e, bool with_topplings) {
   char buf[kMaxCatalogRow];
-  return std::string(buf, catalog_row_to(buf, e));
+  return std::string(buf, catalog_row_to(buf, e, with_topplings));
 }
 
 }  // namespace bkq

@@ -15,14 +15,15 @@ namespace {
 
 class CsvCatalog : public CatalogFile {
  public:
-  CsvCatalog(const std::string& path, bool append)
-      : csv_(path, catalog_header(), append, CsvStream::kWhenFull),
-        checksum_(line_hash(catalog_header() + "\n", kLineHashSeed)) {}
+  CsvCatalog(const std::string& path, bool append, bool topplings)
+      : csv_(path, catalog_header(topplings), append, CsvStream::kWhenFull),
+        checksum_(line_hash(catalog_header(topplings) + "\n", kLineHashSeed)),
+        topplings_(topplings) {}
   std::optional<std::uint64_t> checksum() const override { return checksum_; }
   void set_checksum(std::uint64_t sum) override { checksum_ = sum; }
   void append(const EventRecord& e) override {
     char* begin = csv_.begin_row(kMaxCatalogRow);
-    char* end = catalog_row_to(begin, e);
+    char* end = catalog_row_to(begin, e, topplings_);
     *end = '\n';  // end_row writes it there too; hashed with the row
     checksum_ = line_hash(std::string_view(begin, end + 1 - begin), checksum_);
     csv_.end_row(end);
@@ -34,6 +35,7 @@ class CsvCatalog : public CatalogFile {
  private:
   CsvStream csv_;
   std::uint64_t checksum_;  // line_hash of every line written to the file so far
+  bool topplings_;          // the OFC catalogue's extra column
 };
 
 class H5Catalog : public CatalogFile {
@@ -73,11 +75,12 @@ const char* catalog_file_name(CatalogFormat format) {
 std::unique_ptr<CatalogFile> open_catalog_file(
     CatalogFormat format, const std::string& path,
     const std::vector<std::pair<std::string, std::string>>& attributes, std::int64_t resumed_rows,
-    bool deflate) {
+    bool deflate, bool topplings) {
   switch (format) {
     case CatalogFormat::Csv:
-      return std::make_unique<CsvCatalog>(path, resumed_rows >= 0);
+      return std::make_unique<CsvCatalog>(path, resumed_rows >= 0, topplings);
     case CatalogFormat::Hdf5:
+      if (topplings) throw Error("output.catalog = hdf5: the OFC catalogue is written as csv only");
       return std::make_unique<H5Catalog>(path, attributes, resumed_rows, deflate);
     case CatalogFormat::None:
       break;

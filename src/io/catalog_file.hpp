@@ -40,10 +40,11 @@ class CatalogFile {
 // or the `attributes` (hdf5: provenance and effective scene); with `resumed_rows` >= 0 the
 // file of a resumed run is continued after its first `resumed_rows` rows (a csv file has
 // already been cut back to its checkpoint by then). `deflate`: a new catalog.h5 is
-// compressed (output.catalog = hdf5-deflate).
+// compressed (output.catalog = hdf5-deflate). `topplings`: the OFC catalogue (csv only),
+// with its topplings column.
 std::unique_ptr<CatalogFile> open_catalog_file(
     CatalogFormat format, const std::string& path,
     const std::vector<std::pair<std::string, std::string>>& attributes,
-    std::int64_t resumed_rows = -1, bool deflate = false);
+    std::int64_t resumed_rows = -1, bool deflate = false, bool topplings = false);
 
 }  // namespace bkq

@@ -102,15 +102,24 @@ std::vector<ParamSpec> make_table() {
   return {
       // --- model: which chain, in which units (Ferre 2018 eq. 3.1; Carlson & Langer 1989 eq. 2.2)
       // ---
-      choice("model.kind", "bk", {"bk", "bkp", "1dof"},
+      choice("model.kind", "bk", {"bk", "bkp", "1dof", "ofc"},
              "bk: plain Burridge-Knopoff chain, pad fixed; bkp: BK-Pad, the pad moves; "
-             "1dof: one block with spring and damper (thesis eq. 2.11)"),
+             "1dof: one block with spring and damper (thesis eq. 2.11); ofc: the "
+             "Olami-Feder-Christensen automaton on model.blocks x model.rows sites (1992)"),
       choice("model.parameterisation", "carlson-langer", {"carlson-langer", "thesis"},
              "carlson-langer: dimensionless units of eq. 2.2 (m_u = k_p = F0 = 1); "
              "thesis: Table 3.1 scalings"),
       integer("model.blocks", "100", 1, 1e7, "", "number of blocks N"),
       choice("model.boundary", "free", {"free", "periodic"},
-             "chain ends: free (missing neighbour, no spring) or periodic (a ring)"),
+             "chain ends: free (missing neighbour, no spring) or periodic (a ring); for ofc the "
+             "lattice's edges along strike: free is OFC's open edge (stress pushed over it is "
+             "lost)"),
+      integer("model.rows", "1", 1, 1e7, "",
+              "rows across strike: the lattice is model.blocks x model.rows (ofc; bk, bkp and "
+              "1dof run one row)"),
+      choice("model.boundary_y", "free", {"free", "periodic"},
+             "lattice edges across strike (ofc): free is OFC's open edge (stress pushed over "
+             "it is lost), periodic wraps row model.rows - 1 to row 0"),
       real("model.l", "10", '[', 0, 1e4, ']', "",
            "stiffness ratio l, neighbour spring k_c = l^2 (carlson-langer only)"),
       real("model.pad_mass", "100", '(', 0, kHuge, ']', "mass", "pad mass m_x (thesis only)"),
@@ -128,6 +137,11 @@ std::vector<ParamSpec> make_table() {
            "row; continuous runs and bkquake stability, event runs refuse it): alpha_M"),
       real("model.rayleigh_beta", "0", '[', 0, kHuge, ']', "time",
            "Rayleigh damping alpha_M M + beta_K K: beta_K"),
+
+      // --- ofc: the automaton (Olami, Feder & Christensen 1992) ---
+      real("ofc.alpha", "0.2", '(', 0, 0.25, ']', "",
+           "share alpha of a toppling site's stress given to each of its z = 4 neighbours "
+           "(Olami, Feder & Christensen 1992); 0.25 conserves stress away from free edges"),
 
       // --- friction: the law phi(y) (Ferre 2018 eq. 3.5; Carlson et al. 1991 eq. 2.9) ---
       choice(
@@ -399,6 +413,32 @@ const std::vector<KeyDependency>& dependencies() {
       {{"run.start_mode", "run.start_mode_index", "run.start_amplitude"},
        {{"run.start", {"equilibrium"}}}},
       {{"friction.table"}, {{"friction.law", {"table"}}}},
+      // The automaton has a threshold and a share alpha, no masses, friction or time steps.
+      {{"model.boundary_y", "ofc.alpha"}, {{"model.kind", {"ofc"}}}},
+      {{"model.parameterisation",
+        "model.l",
+        "model.pad_mass",
+        "model.caliper_stiffness",
+        "model.s_c",
+        "model.s_m",
+        "model.s_p",
+        "model.damping_ratio",
+        "model.rayleigh_alpha",
+        "model.rayleigh_beta",
+        "friction.law",
+        "friction.F0",
+        "friction.sigma",
+        "friction.alpha",
+        "friction.vc",
+        "friction.table",
+        "integrator.scheme",
+        "integrator.dt",
+        "integrator.tolerance",
+        "integrator.theta",
+        "run.initial_disorder",
+        "run.max_steps_per_event",
+        "run.accuracy"},
+       {{"model.kind", {"bk", "bkp", "1dof"}}}},
   };
   return deps;
 }
@@ -541,6 +581,8 @@ void Scene::apply_override(const std::string& assignment) {
 
 bool Scene::applies(const std::string& key) const {
   if (key == "model.blocks") return choice("model.kind") != "1dof" || integer(key) == 1;
+  // A chain is one row: given as 1 it is accepted, any other count is refused by validate().
+  if (key == "model.rows") return choice("model.kind") == "ofc";
   return failing_dependency(key) == nullptr;
 }
 
@@ -548,7 +590,8 @@ std::vector<std::string> Scene::drop_inapplicable() {
   std::vector<std::string> warnings;
   // In table order, so a controller is settled before the keys that depend on it.
   for (const auto& p : parameter_table()) {
-    if (!is_set(p.key) || applies(p.key) || p.key == "model.blocks") continue;
+    if (!is_set(p.key) || applies(p.key) || p.key == "model.blocks" || p.key == "model.rows")
+      continue;
     const std::string& from = set_by_.at(p.key);
     if (from == "--set")
       throw Error("--set " + p.key + "=" + text(p.key) + " does not apply to this scene: it " +
@@ -565,6 +608,13 @@ void Scene::validate() const {
   const std::string where = suffix("scene " + origin);
   for (const auto& p : parameter_table()) {
     if (!is_set(p.key) || applies(p.key)) continue;
+    if (p.key == "model.rows") {
+      if (integer(p.key) == 1) continue;
+      throw Error("model.rows = " + text(p.key) + " with model.kind = " + choice("model.kind") +
+                  ": the BK lattice (more than one row) is not implemented; allowed: model.rows "
+                  "= 1, or model.kind = ofc" +
+                  where);
+    }
     if (p.key == "model.blocks")
       throw Error("model.blocks = " + text(p.key) +
                   " contradicts model.kind = 1dof (a single block); remove model.blocks or set "
@@ -581,6 +631,7 @@ void Scene::validate() const {
   if (choice("model.boundary") == "periodic" && integer("model.blocks") < 3)
     throw Error("model.boundary = periodic needs model.blocks >= 3, got model.blocks = " +
                 text("model.blocks") + where);
+  if (choice("model.kind") == "ofc") check_ofc(where);
   if (choice("run.start") == "equilibrium" && choice("drive.mode") != "continuous")
     throw Error("run.start = equilibrium needs drive.mode = continuous, but drive.mode = " +
                 choice("drive.mode") + where);
@@ -590,6 +641,33 @@ void Scene::validate() const {
     throw Error("stats.mu_min = " + text("stats.mu_min") +
                 " must be below stats.mu_max = " + text("stats.mu_max") + where);
   if (choice("drive.mode") == "continuous") check_continuous_run(where);
+}
+
+void Scene::check_ofc(const std::string& where) const {
+  if (choice("drive.mode") != "events")
+    throw Error("drive.mode = " + choice("drive.mode") +
+                " with model.kind = ofc: the automaton runs event by event only; allowed: "
+                "drive.mode = events" +
+                where);
+  if (choice("output.catalog") != "csv" && choice("output.catalog") != "none")
+    throw Error("output.catalog = " + choice("output.catalog") +
+                " with model.kind = ofc: the automaton's catalogue (with its topplings column) "
+                "is written as csv only; allowed: csv, none" +
+                where);
+  if (integer("model.blocks") * integer("model.rows") > 100'000'000)
+    throw Error("model.blocks x model.rows = " + text("model.blocks") + " x " + text("model.rows") +
+                ": allowed at most 1e8 sites for ofc" + where);
+  const bool px = choice("model.boundary") == "periodic";  // its length is checked above
+  const bool py = choice("model.boundary_y") == "periodic";
+  if (py && integer("model.rows") < 3)
+    throw Error("model.boundary_y = periodic needs model.rows >= 3, got model.rows = " +
+                text("model.rows") + where);
+  if (px && py && real("ofc.alpha") == 0.25)
+    throw Error(
+        "ofc.alpha = 0.25 with model.boundary = periodic and model.boundary_y = periodic: "
+        "stress would never leave the lattice and an avalanche would never end; allowed: "
+        "ofc.alpha < 0.25, or model.boundary or model.boundary_y = free" +
+        where);
 }
 
 void Scene::check_continuous_run(const std::string& where) const {
@@ -677,14 +755,20 @@ std::string Scene::to_ini(const std::vector<std::string>& header) const {
   std::ostringstream out;
   for (const auto& h : header) out << "# " << h << "\n";
   if (!header.empty()) out << "\n";
+  // A section none of whose keys applies (the automaton's [ofc] in a chain's scene, the
+  // chain's [friction] in the automaton's) is written as comments, header and all, so a
+  // scene's non-comment lines are those of the keys it uses.
+  std::map<std::string, bool> used;
+  for (const auto& p : parameter_table()) used[p.key.substr(0, p.key.find('.'))] |= applies(p.key);
   std::string section;
   for (const auto& p : parameter_table()) {
     const auto dot = p.key.find('.');
     const std::string sec = p.key.substr(0, dot);
     const std::string name = p.key.substr(dot + 1);
     if (sec != section) {
-      if (!section.empty()) out << "\n";
-      out << "[" << sec << "]\n";
+      const char* mark = used[sec] ? "" : "# ";
+      if (!section.empty()) out << (used[sec] ? "\n" : "#\n");
+      out << mark << "[" << sec << "]\n";
       section = sec;
     }
     out << "# " << p.doc;
@@ -702,11 +786,16 @@ std::string Scene::to_ini(const std::vector<std::string>& header) const {
 std::uint64_t Scene::hash() const {
   std::uint64_t h = kFnv1a64Basis;
   for (const auto& p : parameter_table()) {
-    // An unset file key leaves the hash of the scenes that do not use it as it was.
+    // An unset file key leaves the hash of the scenes that do not use it as it was; so do
+    // the lattice's and the automaton's keys at their defaults (added after scenes, their
+    // checkpoints and summaries were hashed without them).
     if (p.type == ParamType::Path && values_.at(p.key).empty()) continue;
     // Likewise integrator.transitions at step, its meaning before the key existed, so that
     // checkpoints and results of those scenes keep their hash.
     if (p.key == "integrator.transitions" && values_.at(p.key) == "step") continue;
+    if ((p.key == "model.rows" || p.key == "model.boundary_y" || p.key == "ofc.alpha") &&
+        values_.at(p.key) == normalise(p, p.default_value, "default"))
+      continue;
     h = fnv1a64(p.key + "=" + values_.at(p.key) + "\n", h);
   }
   return h;

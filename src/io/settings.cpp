@@ -71,6 +71,15 @@ ModelParams model_from_scene(const Scene& scene) {
 Settings settings_from_scene(const Scene& scene) {
   Settings s;
   s.model = model_from_scene(scene);
+  if (scene.choice("model.kind") == "ofc") {
+    s.ofc.on = true;
+    OfcParams& o = s.ofc.lattice;
+    o.nx = static_cast<int>(scene.integer("model.blocks"));
+    o.ny = static_cast<int>(scene.integer("model.rows"));
+    o.alpha = scene.real("ofc.alpha");
+    o.periodic_x = scene.choice("model.boundary") == "periodic";
+    o.periodic_y = scene.choice("model.boundary_y") == "periodic";
+  }
 
   DriveSettings& d = s.drive;
   d.mode = scene.choice("drive.mode") == "continuous" ? DriveMode::Continuous : DriveMode::Events;

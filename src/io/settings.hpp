@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "engine/ofc.hpp"
 #include "integrate/stepper.hpp"
 #include "model/parameters.hpp"
 #include "model/substrate.hpp"
@@ -87,8 +88,15 @@ struct StatsSettings {
   std::optional<double> mu_min, mu_max;
 };
 
+// model.kind = ofc: the automaton's lattice and share (the chain's ModelParams unused).
+struct OfcSettings {
+  bool on = false;
+  OfcParams lattice;
+};
+
 struct Settings {
   ModelParams model;
+  OfcSettings ofc;
   DriveSettings drive;
   RunSettings run;
   IntegratorSettings integrator;

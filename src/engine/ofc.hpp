@@ -1,0 +1,119 @@
+// The Olami–Feder–Christensen automaton (Olami, Feder & Christensen 1992, Phys. Rev. Lett.
+// 68, 1244): the quasistatic, massless limit of a two-dimensional spring-block fault. Each
+// site j of an nx × ny square lattice carries a stress F_j; the threshold is F_th = 1.
+//
+// Drive: every site's stress grows at one rate, so the loader jumps by 1 − max F and the
+// largest site (the lowest index in a tie) reaches the threshold. The field is kept as
+// g_j = F_j − offset with one shared offset, so driving is O(1); a max tree over buckets of
+// sites (updated once per event, for the sites the avalanche touched) gives the largest.
+// Toppling (OFC eq. 2): a site with F_j >= 1 sets F_j = 0 and adds α F_j to each of its
+// z = 4 neighbours. Update order: parallel, by generations. Generation 1 is the trigger
+// (with any site holding exactly its stress); generation t + 1 is every site that reached
+// the threshold during generation t. All sites of a generation release the stress they held
+// at its start, then each receiver adds its neighbours' shares in a fixed pairing, so the
+// field does not depend on list order and the lattice's symmetries hold bit for bit; a site
+// may topple again in a later generation of the same avalanche.
+// Boundaries, per axis: free is OFC's open boundary (the share α F_j pushed over the edge is
+// lost; an edge site keeps α, not 1/z_eff); periodic wraps. Stress is conserved in a
+// toppling exactly when α = 1/4 and no share crosses a free edge.
+// An event is one avalanche: sites index j = x + nx y (x along strike, model.blocks).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/event_record.hpp"
+
+namespace bkq {
+
+struct OfcParams {
+  int nx = 1, ny = 1;  // sites along strike (model.blocks) and across (model.rows)
+  double alpha = 0.2;  // share of a toppling site's stress given to each neighbour
+  bool periodic_x = false, periodic_y = false;
+  int sites() const { return nx * ny; }
+};
+
+struct OfcCounters {
+  std::int64_t events = 0;
+  std::int64_t topplings = 0;
+  std::int64_t generations = 0;
+};
+
+// Everything needed to continue exactly: the field as stored, the shared offset, the
+// cumulative drive and the counters (the max tree is rebuilt from the field bit for bit).
+struct OfcSnapshot {
+  std::vector<double> g;
+  double offset = 0, load = 0;
+  OfcCounters counters;
+};
+
+// The starting field of a seed: each site's stress uniform in [0, 1) (std::mt19937_64 and
+// engine/initial_state.hpp's conversion, so a seed gives the same field on every platform).
+std::vector<double> ofc_initial_field(const OfcParams& p, std::uint64_t seed);
+
+class OfcEngine {
+ public:
+  // Throws bkq::Error for a lattice or α that cannot run (no boundary dissipates and α = 1/4:
+  // an avalanche would never end; an axis too short to wrap).
+  static void check(const OfcParams& p);
+
+  // A fresh start from the stresses `initial` (each in [0, 1), one per site).
+  OfcEngine(const OfcParams& p, const std::vector<double>& initial);
+  OfcEngine(const OfcParams& p, const OfcSnapshot& saved);
+
+  // Drives to the next threshold and topples the avalanche. The record: trigger and
+  // first/last_block are site indices j = x + nx y (first/last: lowest and highest index
+  // toppled); blocks = distinct sites toppled; moment = total stress released (the sum of
+  // F_j over topplings); duration = generations; load = cumulative drive at the trigger;
+  // topplings = all topplings; max_speed, pad_displacement, energy_residual = 0.
+  EventRecord next_event();
+
+  OfcSnapshot snapshot() const { return {g_, offset_, load_, counters_}; }
+  const OfcCounters& counters() const { return counters_; }
+  const OfcParams& params() const { return p_; }
+  double load() const { return load_; }
+  double stress(int j) const { return g_[j] + offset_; }
+  std::vector<double> field() const;
+  // The value the loader ranks, F_j - offset (the stored one).
+  double ranked_value(int j) const { return g_[j]; }
+  // The site with the largest stress, the lowest index in a tie (what the loader picks).
+  int argmax() const { return tree_[1].j; }
+  // Stress that left the lattice over free edges in all events so far (for the balance).
+  double lost() const { return lost_; }
+
+ private:
+  struct Node {
+    double g;
+    int j;
+  };
+  static constexpr int kBucket = 8;
+  static bool same(const Node& a, const Node& b) { return a.j == b.j && a.g == b.g; }
+  void build_tree();
+  void scan(int b);
+  void pull(int i);
+  void touch(int j);  // marks j's bucket for the end-of-event tree update
+  void renormalise();
+
+  OfcParams p_;
+  std::vector<double> g_;  // F_j - offset_, padded to whole buckets with -inf
+  double offset_ = 0, load_ = 0;
+  OfcCounters counters_;
+  double lost_ = 0;
+
+  int buckets_ = 1;  // a power of two
+  std::vector<Node> tree_;
+  std::vector<int> touched_buckets_;
+  std::vector<unsigned char> bucket_marked_;
+  void collect_ties(int node, double value);
+  // Per avalanche: the generation lists and the receivers of a generation; per site, the
+  // share alpha F it gives each neighbour and the generation it gave it in, the generation
+  // it last received in, the event it last toppled in.
+  std::vector<int> now_, next_, receivers_;
+  std::vector<double> release_;
+  std::vector<std::int64_t> released_at_, queued_at_, toppled_at_;
+  std::int64_t stamp_ = 0;
+  // x + nx y neighbours in the order left, right, down, up; -1 for a free edge.
+  std::vector<int> nbr_;
+};
+
+}  // namespace bkq
