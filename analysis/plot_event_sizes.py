@@ -2,7 +2,7 @@
 """Time per event against event size, log axes, from the CSV that `build/event_sizes N EVENTS
 --csv FILE` writes (bench/event_sizes.cpp: per event size in blocks, the number of events,
 their mean time in microseconds, mean steps and mean sliding block-steps). Each CSV (one per
-chain length, N = 100 and N = 1000 for the README) is drawn as its per-size means (dots,
+chain length, N = 100 and N = 1000 for docs/validation/performance.md) is drawn as its per-size means (dots,
 sizes seen fewer than --min-count times left out) and the mean over logarithmic bins of
 size, weighted by count (line); dotted, what the same events would take at issue 20's goal
 of 5 ns per sliding block-step.

@@ -6,8 +6,8 @@
 For each run folder (an event run or a merge; any folder with histogram.csv) it reads
 histogram.csv and summary.json and draws D(mu) (events per unit magnitude) and R(mu)
 (events with magnitude >= mu) on logarithmic y-axes, in two panels, with the fit of
-summary.json (b = b_mle on the window [mu_min, mu_max), thesis eqs. 2.7-2.8; README "How b
-is fitted"): the window is shaded (several runs: a strip per run at the bottom), and the fitted law is drawn where it applies, over the
+summary.json (b = b_mle on the window [mu_min, mu_max), thesis eqs. 2.7-2.8;
+docs/explanation/b-fit.md): the window is shaded (several runs: a strip per run at the bottom), and the fitted law is drawn where it applies, over the
 window, so that it passes through the data there:
   D(mu): the expected counts per unit magnitude of the window's (truncated) geometric law;
   R(mu): the same law's survival function times the window's events, plus the events

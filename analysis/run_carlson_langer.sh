@@ -7,7 +7,7 @@
 #
 # For every data/scenes/cl-l10-*.ini it runs EVENTS events (default 10^6) after the
 # scene's transient into runs/cl/<scene>/, fits Gutenberg-Richter with `bkquake fit`
-# twice: on the automatic window (README "How b is fitted") -> fit_auto.txt/.json, and on a fixed
+# twice: on the automatic window (docs/how-to/fit-window.md) -> fit_auto.txt/.json, and on a fixed
 # scaling-region window chosen by eye from the histograms (MU_MIN..MU_MAX, default
 # -7.6..-2.0; see data/reference/carlson-langer-runs.md) -> fit_eye.txt/.json, and
 # overlays the N = 100 runs in runs/cl/gr_alpha.png with analysis/plot_gr.py.

@@ -4,7 +4,7 @@
 // combined errors (statistical, and the automatic b's systematic one); on the
 // Mori-Kawamura ring the window stays below the bump of large events and b is positive; a
 // given window on which the events increase gives no b in summary.json, with the reason.
-// Before the rule of README "How b is fitted" the default scene gave 0.975 +/- 0.015 on
+// Before the rules of docs/explanation/b-fit.md the default scene gave 0.975 +/- 0.015 on
 // [-6.4, 1.8) against 0.920 +/- 0.009 by eye, and the ring b = -0.43.
 #include <gtest/gtest.h>
 

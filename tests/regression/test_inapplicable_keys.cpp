@@ -1,6 +1,6 @@
 // Keys that do not apply to the scene (issue 19, item 8): read and silently ignored before.
-// The rule (README, Scenes): a key given by --set where it does not apply is an error naming
-// the key and why; one from a scene file, which may be shared between scenes, is ignored
+// The rule (docs/reference/scenes.md): a key given by --set where it does not apply is an error
+// naming the key and why; one from a scene file, which may be shared between scenes, is ignored
 // with a one-line warning per key. The effective scene.ini comments such keys out, so a run's
 // own scene.ini runs again (and resumes) without a word; --dump-defaults honours --set.
 #include <gtest/gtest.h>

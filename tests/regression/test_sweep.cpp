@@ -160,7 +160,7 @@ TEST_F(SweepMpi, TwoAndFourRanksWriteTheBytesOfOne) {
 }
 
 // Done-when of the sweep issue: the Carlson-Langer table from the shipped sweep file, the
-// same for 1 and 2 ranks (shortened here; the full table is one command, README).
+// same for 1 and 2 ranks (shortened here; the full table is one command, docs/how-to/sweeps.md).
 TEST_F(SweepMpi, CarlsonLangerTableIsTheSameOnOneAndTwoRanks) {
   TempDir dir;
   const std::string sweep = kSource + "/data/sweeps/carlson-langer-table.ini";

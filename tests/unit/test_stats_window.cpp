@@ -96,8 +96,8 @@ TEST(Window, GivenMuMaxIsKept) {
 // The shape of a Burridge-Knopoff D(mu) (issue 19, item 10): an atom of one-block events and
 // a few uneven few-block bins at the bottom, a power law with b = 0.9 over six units, a
 // flat dip, then a bump of large events. The automatic window starts above the uneven bins,
-// ends below the bump, keeps the power law's events and recovers b. Before the rule of
-// README "How b is fitted" the window narrowed to a few units inside the power law.
+// ends below the bump, keeps the power law's events and recovers b. Before the rules of
+// docs/explanation/b-fit.md the window narrowed to a few units inside the power law.
 class WindowShape : public ::testing::TestWithParam<std::uint64_t> {};
 
 TEST_P(WindowShape, WindowCoversThePowerLawBetweenTheBottomStructureAndTheBump) {
