@@ -133,7 +133,7 @@ class ContinuousRun {
         dt_(settings.integrator.dt),
         duration_(settings.run.duration),
         every_(settings.output.every),
-        steps_(static_cast<std::int64_t>(std::llround(std::ceil(duration_ / dt_ - 1e-9)))) {
+        steps_(continuous_steps(settings)) {
     const Substrate substrate = substrate_of(settings.drive);
     if (resumed) {
       driver_ = std::make_unique<ContinuousDriver>(forces, stepper, substrate,
@@ -190,10 +190,14 @@ class ContinuousRun {
     }
     observers_.phase_end({driver_->state().t, episodes_});
     if (const int sig = signals.received()) return stop(sig);
+    // The final state, before the observers close their partial blocks (the last energy
+    // window, the last speed segment): a later `--resume --set run.duration=T2` continues
+    // from it as an interrupted run continues, those blocks still open. The periodic
+    // checkpoints go only once summary.json says the run finished.
+    save(true);
     accuracy_->set_run_energy_residual(driver_->energy_balance().residual(driver_->energy()));
     observers_.end(run_end(0));
-    // summary.json says the run finished; its checkpoints have served.
-    files_.remove();
+    files_.remove_interim();
     accuracy_->verdict();
     return 0;
   }
@@ -231,8 +235,8 @@ class ContinuousRun {
   }
 
   // Writes a checkpoint of the run as it stands, between two steps; the observers add
-  // their state and sync their files.
-  void save() {
+  // their state and sync their files. `final`: the finished run's final state.
+  void save(bool final = false) {
     prog_.wall_total = prog_.wall_events = wall0_ + seconds_since(session_t0_);
     prog_.events_done = episodes_;
     prog_.transient_done = 0;
@@ -249,7 +253,10 @@ class ContinuousRun {
     c.put(kStateName, encode_state(d, next_out_));
     c.engine.state = std::move(d.state);
     observers_.checkpoint(c);
-    files_.write(c);
+    if (final)
+      files_.write_final(c);
+    else
+      files_.write(c);
   }
 
   RunEnd run_end(int signal) const {
@@ -322,6 +329,11 @@ void cut_back(const std::string& path, std::uint64_t bytes) {
 
 }  // namespace
 
+std::int64_t continuous_steps(const Settings& settings) {
+  return static_cast<std::int64_t>(
+      std::llround(std::ceil(settings.run.duration / settings.integrator.dt - 1e-9)));
+}
+
 int run_continuous(const RunRequest& req, const Settings& settings, const OutputFolder& out,
                    const ChainForces& forces, Stepper& stepper) {
   return ContinuousRun(req, settings, out, forces, stepper, nullptr).run();
@@ -329,7 +341,7 @@ int run_continuous(const RunRequest& req, const Settings& settings, const Output
 
 int resume_continuous(const RunRequest& req, const Settings& settings, const OutputFolder& out,
                       const ChainForces& forces, Stepper& stepper, const Checkpoint& saved,
-                      const std::string& from) {
+                      const std::string& from, const std::function<void()>& adopt) {
   // Everything is checked before anything is changed (the catalog was checked by the
   // caller): the run reads every state from the checkpoint without touching a file, then
   // each sampled file is checked against its extent.
@@ -354,6 +366,7 @@ int resume_continuous(const RunRequest& req, const Settings& settings, const Out
                                        std::pair{"energy.csv", energy_schema()}})
       files.push_back({out.path(name), header_of(schema), find_csv_extent(saved, name)});
   for (const File& f : files) check_csv_prefix(f.path, f.header, f.extent.rows, f.extent.bytes);
+  if (adopt) adopt();
   for (const File& f : files) cut_back(f.path, f.extent.bytes);
   if (settings.output.catalog == CatalogFormat::Csv)  // catalog.h5: cut back when opened
     cut_back(out.path("catalog.csv"), saved.progress.catalog_bytes);

@@ -8,6 +8,8 @@
 // writes the files of a run that never stopped, byte for byte.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <string>
 
 #include "app/run.hpp"
@@ -20,6 +22,10 @@ namespace bkq {
 class OutputFolder;
 struct Checkpoint;
 
+// The time steps a continuous run of these settings takes: ceil(run.duration /
+// integrator.dt), fixed up front so the end does not depend on the rounding of t += dt.
+std::int64_t continuous_steps(const Settings& settings);
+
 // Returns the exit status: 0 when finished, 128 + signal when stopped by one; throws
 // bkq::Error when the integration turns non-finite.
 int run_continuous(const RunRequest& req, const Settings& settings, const OutputFolder& out,
@@ -27,8 +33,10 @@ int run_continuous(const RunRequest& req, const Settings& settings, const Output
 // Continues the run of checkpoint `saved` (read from the file `from`, already checked
 // against the scene, and the catalog against it): checks the sampled files, cuts every
 // file back to the checkpoint (nothing is changed when a check fails) and runs on.
+// `adopt`, when given, is called once every check has passed and before any file is cut
+// back (an extension makes the finished run an interrupted run of the longer scene there).
 int resume_continuous(const RunRequest& req, const Settings& settings, const OutputFolder& out,
                       const ChainForces& forces, Stepper& stepper, const Checkpoint& saved,
-                      const std::string& from);
+                      const std::string& from, const std::function<void()>& adopt = {});
 
 }  // namespace bkq

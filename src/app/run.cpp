@@ -4,18 +4,22 @@
 // drive mode's run (app/event_run, app/continuous_run), whose observers write the rest;
 // summary.json comes last and says whether the run finished or was interrupted (its
 // "status", io/run_folder.hpp): --resume continues an interrupted run, and extends a
-// finished event run to a larger run.events from its final state (checkpoint.final.bin).
+// finished run to a larger run.events or run.duration from its final state
+// (checkpoint.final.bin).
 #include "app/run.hpp"
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
 
 #include "app/continuous_run.hpp"
 #include "app/event_run.hpp"
 #include "app/observers/catalog.hpp"
+#include "app/observers/segments.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "engine/event_engine.hpp"
 #include "engine/ofc.hpp"
 #include "io/catalog.hpp"
@@ -31,33 +35,45 @@ namespace bkq {
 
 namespace {
 
-// The final state of the finished event run in `dir`, checked for an extension to the
-// scene's run.events: only run.events may differ from the finished run's scene, and it
-// must be larger. Throws bkq::Error (the folder untouched) otherwise.
+// The final state of the finished run in `dir`, checked for an extension: to a larger
+// run.events (event runs) or a longer run.duration (continuous runs). Only that key may
+// differ from the finished run's scene, and it must be larger; a continuous run's segment
+// statistics are adapted to the longer schedule. Throws bkq::Error (the folder untouched)
+// otherwise.
 Checkpoint finished_state(const std::string& dir, const CheckpointFiles& checkpoints,
                           const Scene& scene, const Settings& settings, bool events) {
   const std::string finished =
       "--resume: output folder '" + dir + "' holds a finished run (summary.json)";
-  if (!events)
-    throw Error(finished +
-                ": a continuous run cannot be extended yet (run.duration); use --force to run "
-                "it again");
   if (!checkpoints.final_exists())
     throw Error(finished +
                 " without its final state (checkpoint.final.bin): nothing to continue; use "
                 "--force to run it again");
   Checkpoint saved = checkpoints.read_final();
   const Scene before = Scene::from_text(saved.scene_ini, checkpoints.final_state());
-  const std::int64_t n1 = before.integer("run.events");
-  const std::int64_t n2 = settings.run.events;
-  if (n2 <= n1)
-    throw Error(finished + " of " + std::to_string(n1) + " events: run.events = " +
-                std::to_string(n2) + " would not extend it (allowed: more than " +
-                std::to_string(n1) + "); nothing to continue");
-  // Every other key must match, as for an interrupted run.
+  const char* key = events ? "run.events" : "run.duration";
   Scene same = scene;
-  same.set("run.events", std::to_string(n1), "the finished run");
+  same.set(key, before.text(key), "the finished run");
+  if (events) {
+    const std::int64_t n1 = before.integer("run.events");
+    const std::int64_t n2 = settings.run.events;
+    if (n2 <= n1)
+      throw Error(finished + " of " + std::to_string(n1) + " events: run.events = " +
+                  std::to_string(n2) + " would not extend it (allowed: more than " +
+                  std::to_string(n1) + "); nothing to continue");
+    // Every other key must match, as for an interrupted run.
+    check_checkpoint_matches(saved, same, checkpoints.final_state());
+    return saved;
+  }
+  const double t1 = before.real("run.duration");
+  const double t2 = settings.run.duration;
+  // Equal step counts are no extension (the run ends after ceil(duration / dt) steps).
+  const Settings old = settings_from_scene(same);
+  if (t2 <= t1 || saved.engine.counters.steps >= continuous_steps(settings))
+    throw Error(finished + " of duration " + format_real(t1) + ": run.duration = " +
+                format_real(t2) + " would not extend it (allowed: more than " + format_real(t1) +
+                " by at least one integrator.dt); nothing to continue");
   check_checkpoint_matches(saved, same, checkpoints.final_state());
+  extend_segment_state(saved, old, settings);
   return saved;
 }
 
@@ -112,11 +128,11 @@ int run_scene(const RunRequest& req) {
                    "the continuation "
                    "is exact only if the engine did not change in between\n",
                    saved.git_revision.c_str(), kGitRevision);
-    if (!events) return resume_continuous(req, settings, out, forces, *stepper, saved, from);
-    if (extend) {
-      // The finished run becomes an interrupted run of the longer scene: its final state is
-      // the checkpoint (now of this scene), scene.ini says run.events = N2 and summary.json
-      // goes until the run ends again. A crash from here on resumes like any interruption.
+    // An extension makes the finished run an interrupted run of the longer scene: its
+    // final state becomes the checkpoint (now of this scene), scene.ini says the new
+    // run.events or run.duration and summary.json goes until the run ends again. A crash
+    // from here on resumes like any interruption.
+    const auto adopt = [&] {
       saved.scene_hash = scene.hash();
       saved.scene_ini = scene.to_ini();
       checkpoints.write(saved);
@@ -124,7 +140,11 @@ int run_scene(const RunRequest& req) {
       std::filesystem::remove(out.path("summary.json"));
       std::filesystem::remove(checkpoints.final_state());
       from = checkpoints.current();
-    }
+    };
+    if (!events)
+      return resume_continuous(req, settings, out, forces, *stepper, saved, from,
+                               extend ? std::function<void()>(adopt) : std::function<void()>());
+    if (extend) adopt();
     // Rows written after the checkpoint are computed again, so they go.
     std::error_code ec;
     if (format == CatalogFormat::Csv)

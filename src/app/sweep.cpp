@@ -28,6 +28,7 @@
 #include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
+#include "io/settings.hpp"
 #include "stats/gutenberg_richter.hpp"
 
 namespace bkq {
@@ -163,10 +164,11 @@ class Sweep {
                     "' holds a sweep (sweep.ini); use --resume to finish it, --force to run it "
                     "again from the start, or another --out");
       const std::string old = read_text_file(ini.string(), "sweep file");
-      if (plan_of(old) != plan_of(plan))
+      if (plan_of(old) != plan_of(plan) && !extends(old))
         throw Error("--resume: '" + ini.string() +
                     "' describes another sweep (other points, scenes or replicas); resume with "
-                    "the same sweep file and --set options");
+                    "the same sweep file and --set options, or with a larger run.events or "
+                    "run.duration alone to extend it");
     } else if (req_.resume) {
       throw Error("--resume: output folder '" + out_.string() +
                   "' holds no sweep (no sweep.ini): nothing to continue");
@@ -176,9 +178,14 @@ class Sweep {
 
     std::vector<int> order;
     for (std::size_t p = 0; p < points_; ++p) {
-      if (req_.resume && load_point(p)) continue;
+      // A point with a replica shorter than the point now asks, or one whose extension was
+      // interrupted (a checkpoint), is merged again once the replica is done.
+      bool grown = false;
+      for (int r = 0; req_.resume && r < spec_.replicas; ++r)
+        grown = grown || shorter(p, r) || CheckpointFiles(replica_dir(p, r).string()).exist();
+      if (req_.resume && !grown && load_point(p)) continue;
       for (int r = 0; r < spec_.replicas; ++r) {
-        if (req_.resume && finished_run(replica_dir(p, r))) {
+        if (req_.resume && finished_run(replica_dir(p, r)) && !shorter(p, r)) {
           note_replica(p, TaskResult{task_of(p, r), 0, replica_seconds(p, r, 0), ""});
           continue;
         }
@@ -218,8 +225,11 @@ class Sweep {
       run.scene = scene;
       run.out_dir = replica_dir(p, r).string();
       run.quiet = true;
-      if (CheckpointFiles(run.out_dir).exist())
-        run.resume = true;  // an interrupted replica continues from its checkpoint
+      const CheckpointFiles files(run.out_dir);
+      // An interrupted replica continues from its checkpoint; a finished one is handed out
+      // only to be extended (shorter than its point now asks), from its final state.
+      if (files.exist() || (finished_run(run.out_dir) && files.final_exists()))
+        run.resume = true;
       else
         run.force = true;  // nothing to continue: start the replica over
       const int rc = run_scene(run);
@@ -477,13 +487,74 @@ class Sweep {
     if (!s.empty() && s.back() != '\n') s += '\n';
     s += "# points: " + std::to_string(points_) + " x " + std::to_string(spec_.replicas) +
          " replicas\n";
-    for (std::size_t p = 0; p < points_; ++p) {
-      char hash[32];
-      std::snprintf(hash, sizeof hash, "%016llx",
-                    static_cast<unsigned long long>(spec_.point(p).scene.hash()));
-      s += "# point " + std::to_string(p) + ": " + point_label(p) + " (scene hash " + hash + ")\n";
-    }
+    for (std::size_t p = 0; p < points_; ++p) s += point_line(p, spec_.point(p).scene);
     return s;
+  }
+  std::string point_line(std::size_t p, const Scene& scene) const {
+    char hash[32];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(scene.hash()));
+    return "# point " + std::to_string(p) + ": " + point_label(p) + " (scene hash " + hash + ")\n";
+  }
+
+  // The key that says how long a point's runs are.
+  static const char* length_key(const Scene& scene) {
+    return settings_from_scene(scene).drive.mode == DriveMode::Events ? "run.events"
+                                                                      : "run.duration";
+  }
+  // The run length a replica was made for (its scene.ini), none when it has no readable one.
+  std::optional<std::string> replica_length(std::size_t p, int r) const {
+    const fs::path ini = replica_dir(p, r) / "scene.ini";
+    try {
+      if (!fs::exists(ini)) return std::nullopt;
+      const Scene s = Scene::from_text(read_text_file(ini.string(), "scene file"), ini.string());
+      return s.text(length_key(s));
+    } catch (const Error&) {
+      return std::nullopt;
+    }
+  }
+  // Was replica r of point p made shorter than the point now asks (to be extended)?
+  bool shorter(std::size_t p, int r) const {
+    const Scene scene = spec_.point(p).scene;
+    const auto length = replica_length(p, r);
+    return length && *length != scene.text(length_key(scene));
+  }
+  // --resume with a plan that differs from `old` only in the points' run.events or
+  // run.duration: true when every point's scene, with its replicas' length put back, is
+  // the one `old` planned. A length that shrank, or replicas whose catalogues were not
+  // collected (their runs cannot continue), is refused in one line.
+  bool extends(const std::string& old) const {
+    std::istringstream in(plan_of(old));
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);) lines.push_back(line + "\n");
+    std::istringstream now(plan_of(plan_text()));
+    std::string head;
+    std::getline(now, head);  // "# points: P x R replicas"
+    if (lines.size() != points_ + 1 || lines[0] != head + "\n") return false;
+    bool grows = false;
+    for (std::size_t p = 0; p < points_; ++p) {
+      const Scene scene = spec_.point(p).scene;
+      const char* key = length_key(scene);
+      std::optional<std::string> length;
+      for (int r = 0; !length && r < spec_.replicas; ++r) length = replica_length(p, r);
+      Scene before = scene;
+      if (length) before.set(key, *length, "the sweep as run before");
+      if (lines[p + 1] != point_line(p, before)) return false;
+      if (!length || *length == scene.text(key)) continue;
+      const bool events = std::string(key) == "run.events";
+      const bool longer =
+          events ? scene.integer(key) > before.integer(key) : scene.real(key) > before.real(key);
+      if (!longer)
+        throw Error("--resume: point " + std::to_string(p) + " (" + point_label(p) + "): " + key +
+                    " = " + scene.text(key) + " would not extend its replicas' " + *length +
+                    " (allowed: more than " + *length + ")");
+      if (!spec_.keep_catalog && settings_from_scene(scene).output.catalog == CatalogFormat::Csv)
+        throw Error("--resume: " + std::string(key) + " = " + scene.text(key) +
+                    ": the replicas' catalogues were not collected (sweep.collect), so their "
+                    "runs cannot be extended; allowed: the sweep's own " +
+                    key + " = " + *length + ", or --force to run it again");
+      grows = true;
+    }
+    return grows;
   }
   // The lines of a plan that must match for --resume: the point lines.
   static std::string plan_of(const std::string& text) {

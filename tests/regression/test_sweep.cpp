@@ -54,15 +54,16 @@ std::string find_mpirun() {
   return "";
 }
 
-// Lines of a file without the ones naming a time, a wall-clock duration or a path.
-std::string without_timings(const std::string& text) {
+// Lines of a file without the ones naming a time, a wall-clock duration or a path (and
+// those holding `also`, when given).
+std::string without_timings(const std::string& text, const char* also = nullptr) {
   static const char* kDrop[] = {"written",      "wall_seconds", "events_per_second",
                                 "run_seconds",  "merged_from",  "steps_per_second",
                                 "git_revision", "# bkquake 0.", "# sweep file "};
   std::istringstream in(text);
   std::string out;
   for (std::string line; std::getline(in, line);) {
-    bool drop = false;
+    bool drop = also && line.find(also) != std::string::npos;
     for (const char* d : kDrop) drop = drop || line.find(d) != std::string::npos;
     if (!drop) out += line + "\n";
   }
@@ -97,8 +98,9 @@ std::map<std::string, std::string> tree(const fs::path& dir) {
   return files;
 }
 
-// The two sweep folders hold the same files with the same bytes, timings aside.
-void expect_same_outputs(const fs::path& a, const fs::path& b) {
+// The two sweep folders hold the same files with the same bytes, timings aside (and the
+// replicas' session counts, with `extended`: an extended replica counts one more).
+void expect_same_outputs(const fs::path& a, const fs::path& b, bool extended = false) {
   const auto ta = tree(a), tb = tree(b);
   std::vector<std::string> na, nb;
   for (const auto& [k, v] : ta) na.push_back(k);
@@ -114,7 +116,9 @@ void expect_same_outputs(const fs::path& a, const fs::path& b) {
       EXPECT_EQ(without_run_seconds(text), without_run_seconds(other)) << name;
     else if (file == "summary.json" || file == "point.json" || file == "scene.ini" ||
              file == "sweep.ini")
-      EXPECT_EQ(without_timings(text), without_timings(other)) << name;
+      EXPECT_EQ(without_timings(text, extended ? "\"resumes\"" : nullptr),
+                without_timings(other, extended ? "\"resumes\"" : nullptr))
+          << name;
     else
       EXPECT_EQ(text, other) << name;  // catalog.csv, histogram.csv: every byte
     ++compared;
@@ -302,6 +306,53 @@ run.checkpoint_events = 5000
     EXPECT_EQ(without_timings(read_file((out / "points/p0000" / f).string())),
               without_timings(read_file((straight / f).string())))
         << f;
+}
+
+// A finished sweep resumed with a larger run.events extends every replica from its final
+// state and merges every point again: the outputs are those of a sweep made at the larger
+// run.events. A smaller one is refused in one line and changes nothing.
+TEST(Sweep, ResumeWithMoreEventsExtendsEveryPoint) {
+  TempDir dir;
+  const std::string sweep = dir.write("s.ini", R"([sweep]
+replicas = 2
+[vary]
+friction.alpha = 1, 2.5
+[set]
+model.blocks = 30
+run.transient_events = 100
+)");
+  const auto full =
+      run_bkquake({"sweep", sweep, "--out", dir.file("full"), "--set", "run.events=3000"});
+  ASSERT_EQ(full.status, 0) << full.err;
+  const fs::path out = dir.path() / "ext";
+  const auto first =
+      run_bkquake({"sweep", sweep, "--out", out.string(), "--set", "run.events=1200"});
+  ASSERT_EQ(first.status, 0) << first.err;
+  const auto before = tree(out);
+  const auto smaller =
+      run_bkquake({"sweep", sweep, "--out", out.string(), "--set", "run.events=1000", "--resume"});
+  EXPECT_EQ(smaller.status, 2);
+  EXPECT_NE(smaller.err.find("run.events = 1000 would not extend its replicas' 1200"),
+            std::string::npos)
+      << smaller.err;
+  EXPECT_TRUE(tree(out) == before) << "a refused extension changed the folder";
+
+  const auto ext =
+      run_bkquake({"sweep", sweep, "--out", out.string(), "--set", "run.events=3000", "--resume"});
+  ASSERT_EQ(ext.status, 0) << ext.err;
+  EXPECT_NE(ext.err.find("4 tasks to run"), std::string::npos) << ext.err;
+  expect_same_outputs(dir.path() / "full", out, true);
+  // Continued from the final states, not run again from the start.
+  for (const char* replica : {"p0000/r00", "p0000/r01", "p0001/r00", "p0001/r01"})
+    EXPECT_NE(
+        read_file((out / "points" / replica / "summary.json").string()).find("\"resumes\": 1"),
+        std::string::npos)
+        << replica;
+  // Nothing left to extend: a second resume runs nothing.
+  const auto again =
+      run_bkquake({"sweep", sweep, "--out", out.string(), "--set", "run.events=3000", "--resume"});
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_NE(again.err.find("0 tasks to run"), std::string::npos) << again.err;
 }
 
 TEST(Sweep, TwoSweepsOnOneFolderAreRefused) {

@@ -5,6 +5,7 @@
 
 #include "app/observers/timeseries.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "engine/continuous.hpp"
 #include "io/checkpoint.hpp"
 #include "io/json.hpp"
@@ -135,6 +136,44 @@ void SegmentStats::add_to_summary(Json& summary) const {
 
 bool writes_segments(const Settings& settings) {
   return !segment_spans(settings.drive, settings.run.duration).empty();
+}
+
+void extend_segment_state(Checkpoint& c, const Settings& before, const Settings& after) {
+  if (!writes_segments(after)) return;
+  const std::vector<SegmentSpan> old_spans = segment_spans(before.drive, before.run.duration);
+  const std::vector<SegmentSpan> spans = segment_spans(after.drive, after.run.duration);
+  const std::string* bytes = c.find(kSegmentsState);
+  if (!bytes) throw Error("--resume: the finished run's final state holds no segment statistics");
+  StateReader r(*bytes, kSegmentsState);
+  const std::int64_t k = r.i64();
+  const std::uint64_t signals = r.u64();
+  if (k < 0 || k >= static_cast<std::int64_t>(spans.size())) return;  // nothing open
+  const auto open = static_cast<std::size_t>(k);
+  // Ended where the longer schedule ends it too: its moments go on as they are.
+  if (open < old_spans.size() && old_spans[open].t_end == spans[open].t_end) return;
+  // Ended early by the shorter run: its input is the last half of the longer segment, which
+  // must not have begun yet (the steps before the end were not kept).
+  const SegmentSpan& span = spans[open];
+  const StepRange range = input_steps(span.t_start, span.t_end, after.integrator.dt);
+  const double t1 = before.run.duration;
+  if (range.first <= c.engine.counters.steps) {
+    const double need = 2 * t1 - span.t_start;  // the input's start (its midpoint) after t1
+    const bool reachable =
+        after.drive.schedule != Schedule::Steps || need < span.t_start + after.drive.step_interval;
+    throw Error("--resume: run.duration = " + format_real(after.run.duration) +
+                " would average speed segment " + std::to_string(k) +
+                " (from t = " + format_real(span.t_start) +
+                ") over its last half, which begins before the finished " +
+                "run's end (t = " + format_real(t1) + ") whose steps were not kept; allowed: " +
+                (reachable ? "more than " + format_real(need) : std::string("none")) +
+                " (or start over with --force)");
+  }
+  StateWriter w;
+  w.i64(k);
+  w.u64(signals);
+  for (std::uint64_t s = 0; s < signals; ++s)
+    w.f64s(BlockedMoments(range.count(), after.output.segment_blocks).state());
+  c.put(kSegmentsState, std::move(w.bytes()));
 }
 
 void attach_segment_stats(Observers& obs, const Settings& settings, const OutputFolder& out,

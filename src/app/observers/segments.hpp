@@ -64,6 +64,13 @@ class SegmentStats : public RunObserver {
 
 // Does this run write segments.csv (not for a ramp)?
 bool writes_segments(const Settings& settings);
+// A finished continuous run of `before.run.duration` extended to `after.run.duration`
+// (longer, every other setting the same): adapts the segment statistics of its final state
+// `c` to the longer schedule. A segment both schedules end at the same time keeps its
+// state; one the longer schedule ends later starts afresh, which is exact only when its
+// input (its last half) begins after the steps already done; otherwise throws bkq::Error
+// naming run.duration and the smallest extension allowed, `c` unchanged.
+void extend_segment_state(Checkpoint& c, const Settings& before, const Settings& after);
 // Attaches SegmentStats writing out/segments.csv (`resumed`: appending to it).
 void attach_segment_stats(Observers& obs, const Settings& settings, const OutputFolder& out,
                           bool resumed = false);
