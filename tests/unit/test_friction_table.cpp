@@ -5,8 +5,12 @@
 // naming the file and the line, exit 2.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
+#include <random>
 #include <regex>
 #include <string>
 #include <vector>
@@ -87,6 +91,77 @@ TEST(TableLaw, IsContinuousWhereTheScaledThesisLawTakesOver) {
   for (double y : {1.5, 3.0, 100.0})
     EXPECT_NEAR(law.magnitude(y), thesis.magnitude(y) * 0.5 / thesis.magnitude(1.0), 1e-15) << y;
   EXPECT_NEAR(law.magnitude(-3.0), law.magnitude(3.0), 0.0);
+}
+
+// The lookup of the row below a speed goes through an index of uniform buckets (so its cost
+// does not grow with the rows); it must find the same row, and so the same bits, as a
+// binary search over all rows, the lookup it replaced. Tables evenly, unevenly and
+// log-spaced, with rows that crowd into one bucket, of 2 to 10^5 rows; speeds at every
+// row, one ulp either side, at the bucket edges and at random.
+double reference_magnitude(const ModelParams& p, const law::Table& law, double y) {
+  const std::vector<double>& s = p.table.speed;
+  const std::vector<double>& f = p.table.friction;
+  const double a = std::abs(y);
+  if (!(a <= s.back())) return law.magnitude(y);  // beyond the table: no row lookup
+  if (a <= s.front()) return f.front();
+  const auto hi = std::upper_bound(s.begin(), s.end(), a);
+  const std::size_t i = static_cast<std::size_t>(hi - s.begin()) - 1;
+  if (i + 1 == s.size()) return f.back();
+  const double t = (a - s[i]) / (s[i + 1] - s[i]);
+  return f[i] + t * (f[i + 1] - f[i]);
+}
+
+TEST(TableLaw, ItsIndexedLookupGivesTheBinarySearchsBitsExactly) {
+  std::mt19937_64 rng(20261126);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<std::vector<double>> tables;
+  for (std::size_t n : {2, 7, 8, 9, 10, 100, 1000, 100000}) {
+    std::vector<double> even, log_spaced, random_gaps, crowded;
+    double x = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      even.push_back(static_cast<double>(i) / static_cast<double>(n - 1));
+      log_spaced.push_back(1e-6 *
+                           std::pow(1e7, static_cast<double>(i) / static_cast<double>(n - 1)));
+      x += 1e-3 + unit(rng) * unit(rng) * unit(rng);
+      random_gaps.push_back(x);
+      // All rows but the last within 1e-9 of 0.3: they fall into one or two buckets.
+      crowded.push_back(i + 1 == n ? 5.0
+                                   : 0.3 + 1e-9 * static_cast<double>(i) / static_cast<double>(n));
+    }
+    for (auto* t : {&even, &log_spaced, &random_gaps, &crowded}) tables.push_back(*t);
+  }
+  std::size_t compared = 0;
+  for (const std::vector<double>& speed : tables) {
+    std::vector<double> friction;
+    for (std::size_t i = 0; i < speed.size(); ++i) friction.push_back(0.5 + 0.4 * unit(rng));
+    friction.front() = 0.9;
+    const ModelParams p = table_params(speed, friction);
+    const law::Table law(p);
+    std::vector<double> ys;
+    const std::size_t step = std::max<std::size_t>(1, speed.size() / 2000);
+    for (std::size_t i = 0; i < speed.size(); i += step)
+      for (double y : {speed[i], std::nextafter(speed[i], 0.0), std::nextafter(speed[i], 10.0)})
+        ys.push_back(y);
+    ys.push_back(speed.back());
+    const double lo = speed.front(), span = speed.back() - speed.front();
+    const double buckets = static_cast<double>(speed.size());
+    for (int b = 0; b <= 4000; ++b) {  // near the bucket edges (when the index has n buckets)
+      const double edge = lo + span * (static_cast<double>(b) / 4000.0);
+      const double at = lo + static_cast<double>(b % static_cast<int>(buckets)) * span / buckets;
+      for (double y : {edge, at, std::nextafter(at, 0.0), std::nextafter(at, 10.0)})
+        ys.push_back(y);
+    }
+    for (int k = 0; k < 20000; ++k) ys.push_back(lo + span * unit(rng));
+    for (double y : ys) {
+      const double want = reference_magnitude(p, law, y);
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(law.magnitude(y)), std::bit_cast<std::uint64_t>(want))
+          << "rows " << speed.size() << ", y = " << y;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(law.magnitude(-y)),
+                std::bit_cast<std::uint64_t>(want));
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 500000u);
 }
 
 TEST(TableLaw, RefusesEventsWhenItsFirstValueIsNotBelowTheThreshold) {

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -45,6 +47,7 @@ struct Table {
     r.speed = t.speed;
     r.friction = t.friction;
     r.beyond = Rational::weakening(p);
+    r.index_rows();
     const double at_end = r.beyond.at(r.speed.back());
     r.scale = at_end > 0 ? r.friction.back() / at_end : 0.0;
     rows_ = std::move(rows);
@@ -66,8 +69,7 @@ struct Table {
     if (!(a <= r.speed.back())) return r.beyond.at(a) * r.scale;  // beyond the table (or NaN)
     if (a <= r.speed.front()) return r.friction.front();
     // The row at or below a (a lies above the first row and at most at the last).
-    const auto hi = std::upper_bound(r.speed.begin(), r.speed.end(), a);
-    const std::size_t i = static_cast<std::size_t>(hi - r.speed.begin()) - 1;
+    const std::size_t i = r.row_below(a);
     if (i + 1 == r.speed.size()) return r.friction.back();
     const double t = (a - r.speed[i]) / (r.speed[i + 1] - r.speed[i]);
     return r.friction[i] + t * (r.friction[i + 1] - r.friction[i]);
@@ -79,6 +81,47 @@ struct Table {
     std::vector<double> speed, friction;
     Rational beyond;   // the thesis law past the last row
     double scale = 0;  // f_n / phi_thesis(y_n)
+    // A uniform grid of buckets over [speed.front(), speed.back()]: bucket b starts at the
+    // last row at or below its left edge, so a lookup searches only the rows of one bucket
+    // (about one for an evenly spaced table) instead of all of them: the cost of a
+    // lookup does not grow with the table.
+    std::vector<std::uint32_t> bucket_first;  // size buckets + 1
+    double inv_width = 0;                     // buckets per unit speed
+
+    void index_rows() {
+      const std::size_t n = speed.size();
+      const double span = speed.back() - speed.front();
+      if (n < 8 || !(span > 0) || n > (std::size_t{1} << 31)) return;  // search all rows
+      const std::size_t buckets = n;
+      inv_width = static_cast<double>(buckets) / span;
+      bucket_first.resize(buckets + 1);
+      std::size_t i = 0;
+      for (std::size_t b = 0; b <= buckets; ++b) {
+        const double edge = speed.front() + static_cast<double>(b) / inv_width;
+        while (i + 1 < n && speed[i + 1] <= edge) ++i;
+        bucket_first[b] = static_cast<std::uint32_t>(i);
+      }
+    }
+
+    // The last row i with speed[i] <= a, for speed.front() < a <= speed.back(): the rows of
+    // a's bucket (and one either side, for rounding at its edges) are searched; should that
+    // not bracket a, all rows are, so the row is always upper_bound's.
+    std::size_t row_below(double a) const {
+      if (!bucket_first.empty()) {
+        const auto last = static_cast<double>(bucket_first.size() - 2);
+        const auto b = static_cast<std::size_t>(
+            std::clamp(std::floor((a - speed.front()) * inv_width), 0.0, last));
+        const std::size_t lo = bucket_first[b] > 0 ? bucket_first[b] - 1 : 0;
+        const std::size_t hi = std::min<std::size_t>(bucket_first[b + 1] + 2, speed.size());
+        if (speed[lo] <= a && (hi == speed.size() || a < speed[hi - 1])) {
+          const auto it = std::upper_bound(speed.begin() + static_cast<std::ptrdiff_t>(lo),
+                                           speed.begin() + static_cast<std::ptrdiff_t>(hi), a);
+          return static_cast<std::size_t>(it - speed.begin()) - 1;
+        }
+      }
+      const auto it = std::upper_bound(speed.begin(), speed.end(), a);
+      return static_cast<std::size_t>(it - speed.begin()) - 1;
+    }
   };
   std::shared_ptr<const Rows> rows_;
 };
