@@ -25,7 +25,9 @@ int cmd_run(const std::vector<std::string>& args) {
   po::options_description opts("bkquake run [SCENE] [options]");
   add_scene_options(opts);
   opts.add_options()("out", po::value<std::string>()->default_value("out"), "output folder")(
-      "resume", "continue the run in the output folder from its checkpoint")(
+      "resume",
+      "continue the run in the output folder from its checkpoint, or extend a finished run "
+      "to a larger run.events or run.duration")(
       "force", "overwrite a finished run in the output folder")("quiet", "no progress output")(
       "dump-defaults",
       "print a commented scene with every key (at its default, or as SCENE and --set make "

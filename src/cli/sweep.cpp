@@ -21,7 +21,9 @@ int cmd_sweep(const std::vector<std::string>& args) {
       "Runs every point of a sweep file (also as 'mpirun -n K bkquake sweep ...')");
   add_scene_options(opts);
   opts.add_options()("out", po::value<std::string>(), "output folder (required)")(
-      "resume", "finish the sweep in the output folder: only points not done run")(
+      "resume",
+      "finish the sweep in the output folder: only points not done run (with a larger "
+      "run.events or run.duration: every point is extended)")(
       "force", "write over the output folder (an earlier sweep's points and files go)")(
       "help,h", "this help");
   const po::variables_map vm = parse_command_line("sweep", args, opts, "sweep", 1);
