@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <ostream>
+#include <system_error>
 #include <vector>
 
 #include "app/gr_report.hpp"
@@ -39,11 +40,16 @@ struct Resolved {
   fs::path folder;  // where b_scan.csv goes by default
 };
 
+// Only the first few bytes of a regular file are looked at: a device or a pipe (/dev/zero)
+// is left to the catalogue reader, which refuses it, instead of being read without end.
 bool starts_with_histogram_header(const fs::path& file) {
-  std::ifstream in(file);
-  std::string first;
-  if (!in || !std::getline(in, first)) return false;
-  return first.rfind(histogram_schema().front().name, 0) == 0;
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return false;
+  std::ifstream in(file, std::ios::binary);
+  const std::string& name = histogram_schema().front().name;
+  std::string first(name.size(), '\0');
+  if (!in || !in.read(first.data(), static_cast<std::streamsize>(first.size()))) return false;
+  return first == name;
 }
 
 Resolved resolve(const fs::path& input) {
