@@ -113,7 +113,7 @@ int run_scene(const RunRequest& req) {
       saved = checkpoints.read(&from);
       check_checkpoint_matches(saved, scene, from);
     }
-    validate_checkpoint(saved, p.n, scene.real("stats.bin_width"), from);
+    validate_checkpoint(saved, settings.ofc.on ? 0 : p.n, scene.real("stats.bin_width"), from);
     const CatalogFormat format = settings.output.catalog;
     const std::string catalog =
         format == CatalogFormat::None ? "" : out.path(catalog_file_name(format));

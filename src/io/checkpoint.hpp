@@ -235,6 +235,7 @@ inline constexpr double kCheckpointMaxMagnitudeMu = 1000;
 // and the scene's `bin_width`): bkq::Error naming the field, its value and what is
 // allowed. A resume calls it after check_checkpoint_matches and before it changes anything,
 // so an edited checkpoint (with a valid checksum) is refused with the folder as it was.
+// `blocks` 0: the run's engine keeps no chain (OFC), whose state is then not checked here.
 void validate_checkpoint(const Checkpoint& c, int blocks, double bin_width,
                          const std::string& origin);
 
