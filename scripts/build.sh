@@ -23,17 +23,7 @@ case $what in
   all) packages=("${programs[@]}" "${extras[@]}") target=() ;;
   *) echo "scripts/build.sh: expected 'programs' or 'all', got '$what'" >&2; exit 2 ;;
 esac
-missing=()
-for p in "${packages[@]}"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "bkquake: installing missing packages: ${missing[*]}" >&2
-  sudo=""
-  [[ $(id -u) -ne 0 ]] && sudo="sudo"
-  $sudo apt-get update
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
-fi
+scripts/ensure_packages.sh --no-install-recommends "${packages[@]}"
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)" "${target[@]}"

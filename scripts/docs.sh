@@ -6,17 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(mkdocs mkdocs-material)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "bkquake: installing missing packages: ${missing[*]}" >&2
-  sudo=""
-  [[ $(id -u) -ne 0 ]] && sudo="sudo"
-  $sudo apt-get update
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y "${missing[@]}"
-fi
+scripts/ensure_packages.sh "${packages[@]}"
 
 mkdocs build --strict --clean --config-file mkdocs.yml --site-dir build/docs "$@"
 echo "bkquake: documentation built into build/docs/ (open build/docs/index.html)"
