@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "integrate/transit.hpp"
 
 namespace bkq {
 
@@ -381,39 +382,8 @@ double Adaptive::polish(const ChainForces& forces, const Substrate& sub, const C
 
 void Adaptive::transit(const ChainForces& forces, const Substrate& sub, ChainState& st, int who,
                        Ranges ranges) {
-  const bool pad = forces.params().pad_moves();
-  const Friction& fr = forces.friction();
-  const double t = st.t;
-
-  // Every block whose event has fired by t changes state; the located one always does
-  // (its event may be at a rounding level's distance short of firing).
-  const double anchor = sub.at(t).s + (pad ? st.x : 0.0);
-  for (const Range& r : ranges)
-    for (int j = r.lo; j < r.hi; ++j) {
-      const double f = forces.spring_force(st.w.data(), j, anchor);
-      if (st.mobile[j] != 0.0) {
-        if (j != who && !(st.dir[j] * st.wd[j] <= 0.0)) continue;
-        st.wd[j] = 0.0;
-        if (fr.holds(f)) {
-          st.mobile[j] = 0.0;
-          last_stick_time_ = t;
-        } else {
-          // Friction cannot hold it: it slides on the way its spring pulls (backslip laws:
-          // back the way it came; clst91: forwards, since f > threshold > 0).
-          st.dir[j] = std::copysign(1.0, f);
-        }
-      } else {
-        if (j != who && !fr.breaks(f)) continue;
-        st.mobile[j] = 1.0;
-        st.wd[j] = 0.0;
-        st.dir[j] = std::copysign(1.0, f);
-        if (released_mark_[j] != stamp_) {
-          released_mark_[j] = stamp_;
-          releases_.push_back({j, st.w[j]});
-        }
-      }
-      ++transitions_;
-    }
+  transitions_ += apply_transitions(forces, sub, st, who, ranges, released_mark_, stamp_, releases_,
+                                    last_stick_time_);
 }
 
 void Adaptive::step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,

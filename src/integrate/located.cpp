@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "integrate/transit.hpp"
 
 namespace bkq {
 
@@ -123,32 +124,8 @@ double LocatedTransitions::locate(const ChainForces& forces, const Substrate& su
 
 void LocatedTransitions::transit(const ChainForces& forces, const Substrate& sub, ChainState& st,
                                  int who, Ranges ranges) {
-  const Friction& fr = forces.friction();
-  const double anchor = sub.at(st.t).s + (forces.params().pad_moves() ? st.x : 0.0);
-  for (const Range& r : ranges)
-    for (int j = r.lo; j < r.hi; ++j) {
-      const double f = forces.spring_force(st.w.data(), j, anchor);
-      if (st.mobile[j] != 0.0) {
-        if (j != who && !(st.dir[j] * st.wd[j] <= 0.0)) continue;
-        st.wd[j] = 0.0;
-        if (fr.holds(f)) {
-          st.mobile[j] = 0.0;
-          last_stick_time_ = st.t;
-        } else {
-          st.dir[j] = std::copysign(1.0, f);
-        }
-      } else {
-        if (j != who && !fr.breaks(f)) continue;
-        st.mobile[j] = 1.0;
-        st.wd[j] = 0.0;
-        st.dir[j] = std::copysign(1.0, f);
-        if (released_mark_[j] != stamp_) {
-          released_mark_[j] = stamp_;
-          releases_.push_back({j, st.w[j]});
-        }
-      }
-      ++located_;
-    }
+  located_ += apply_transitions(forces, sub, st, who, ranges, released_mark_, stamp_, releases_,
+                                last_stick_time_);
 }
 
 double LocatedTransitions::newton_ratio(const ChainForces& forces, const Substrate& sub,
