@@ -80,7 +80,9 @@ ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const dou
   };
   const int n = forces.n();
   for (const Range& r : ranges) {
-    if (r.hi - r.lo < kMinInteriorRun) {
+    // The vectorised pass writes the nearest-neighbour force out; a longer coupling goes
+    // block by block through spring_force.
+    if (r.hi - r.lo < kMinInteriorRun || forces.long_range()) {
       for (int j = r.lo; j < r.hi; ++j) block(j);
       continue;
     }

@@ -17,6 +17,12 @@
 // a switch (ForceTerms::rayleigh) of the continuous runs' kernels only: the event engine's
 // held-range and cluster paths never instantiate it (event runs refuse the damping).
 //
+// Coupling beyond the nearest neighbours (model.coupling = range | power, model/coupling.hpp):
+// k_c (w_{j-1} - 2 w_j + w_{j+1}) becomes sum_r k_r (w_{j-r} - 2 w_j + w_{j+r}) over the
+// stencil. Its kernel (kernel_long) forms every block's force with the stencil; the
+// nearest-neighbour kernels and everything below that reads only j +- 1 are untouched, so
+// a nearest-neighbour scene (and range or power at R = 1) keeps its bits.
+//
 // Only the terms a scene switches on are compiled into the kernel that runs (templates
 // on the friction law's policy type, model/friction_laws.hpp; on the optional terms,
 // ForceTerms; and on the substrate acceleration).
@@ -28,6 +34,7 @@
 #include <span>
 #include <vector>
 
+#include "model/coupling.hpp"
 #include "model/friction.hpp"
 #include "model/friction_laws.hpp"
 #include "model/parameters.hpp"
@@ -97,6 +104,11 @@ class ChainForces {
   // The static side of the law (threshold, backslip), for the stick rule and the loader.
   const Friction& friction() const { return friction_; }
   int n() const { return p_.n; }
+  // The coupling's springs (model/coupling.hpp), and whether they reach beyond j +- 1.
+  const CouplingStencil& stencil() const { return stencil_; }
+  bool long_range() const { return long_range_; }
+  // Blocks on each side of a block that its coupling reaches.
+  int reach() const { return long_range_ ? p_.range : 1; }
 
   // Spring force on block j (neighbours and pulling spring), the force friction must hold.
   double spring_force(const double* w, int j, double anchor) const {
@@ -106,6 +118,7 @@ class ChainForces {
   double neighbour_force(const double* w, int j) const {
     const int n = p_.n;
     if (n < 2 || p_.k_c == 0) return 0.0;
+    if (long_range_) return stencil_force(w, j);
     if (p_.boundary == Boundary::Periodic) {
       const double left = w[j == 0 ? n - 1 : j - 1];
       const double right = w[j == n - 1 ? 0 : j + 1];
@@ -116,6 +129,28 @@ class ChainForces {
     if (j > 0) f += w[j - 1] - w[j];
     if (j < n - 1) f += w[j + 1] - w[j];
     return p_.k_c * f;
+  }
+  // sum_r k_r ((w_{j-r} - w_j) + (w_{j+r} - w_j)) over the stencil, with the scene's
+  // boundary (free ends: the springs reaching past the chain are missing).
+  double stencil_force(const double* w, int j) const {
+    const int n = p_.n;
+    const double wj = w[j];
+    double f = 0;
+    if (p_.boundary == Boundary::Periodic) {
+      for (const CouplingSpring& s : stencil_) {
+        const int l = j - s.offset < 0 ? j - s.offset + n : j - s.offset;
+        const int r = j + s.offset >= n ? j + s.offset - n : j + s.offset;
+        f += s.k * ((w[l] - wj) + (w[r] - wj));
+      }
+      return f;
+    }
+    for (const CouplingSpring& s : stencil_) {
+      double d = 0;
+      if (j - s.offset >= 0) d += w[j - s.offset] - wj;
+      if (j + s.offset < n) d += w[j + s.offset] - wj;
+      f += s.k * d;
+    }
+    return f;
   }
   // The part of the spring force that does not depend on the anchor:
   // g_j = neighbour_force - k_p w_j, so that f_j = g_j + k_p anchor.
@@ -210,6 +245,11 @@ class ChainForces {
   static void kernel(const ChainForces& self, const double* w, const double* wd,
                      const double* mobile, const double* dir, double anchor, double anchor_rate,
                      const SubstrateState& sub, int lo, int hi, double* a);
+  // The same with the coupling's stencil (long_range()): every block's force by spring_force.
+  template <class Law, class Terms, bool Inertial>
+  static void kernel_long(const ChainForces& self, const double* w, const double* wd,
+                          const double* mobile, const double* dir, double anchor,
+                          double anchor_rate, const SubstrateState& sub, int lo, int hi, double* a);
   Kernel select_kernel(bool inertial) const;
   // 1/2 u^T K u for positions w with the anchor at `anchor` and the pad at x.
   double stiffness_energy(const double* w, double anchor, double x) const;
@@ -217,6 +257,8 @@ class ChainForces {
   ModelParams p_;
   LawVariant law_;
   Friction friction_;
+  CouplingStencil stencil_;
+  bool long_range_ = false;
   double inv_m_ = 1;
   bool rayleigh_ = false;
   double beta_m_ = 0;  // beta_K / m_u

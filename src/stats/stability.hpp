@@ -46,7 +46,10 @@ struct Eigenmode {
 // so that the largest is 1 (real).
 using ModeShape = std::vector<std::complex<double>>;
 
-// Eigenvalue mu_q of the chain's graph Laplacian (0 without neighbour springs).
+// Eigenvalue mu_q of the chain's graph Laplacian (0 without neighbour springs); with range
+// coupling (model/coupling.hpp) that of the stencil's stiffness over k_c, sum_r (k_r/k_c) 4
+// sin^2(pi q r/N), exact on a ring only: a free chain with range coupling has no cosine modes
+// (its cut springs), and the modal solver must not be used there (dense_eigenmodes is exact).
 double laplacian_eigenvalue(const ModelParams& p, int q);
 // Block j's amplitude in chain mode q: cos(pi q (j + 1/2)/N) for free ends; for a ring
 // cos(2 pi q j/N) for q <= N/2 and sin(2 pi q j/N) above (q and N - q span one pair).

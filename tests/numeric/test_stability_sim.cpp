@@ -150,6 +150,46 @@ TEST(AnalysisAgreesWithSimulation, DampedChainModeDecaysAtReLambdaWithEverySchem
   }
 }
 
+// A ring coupled to the blocks within R = 3 (model/coupling.hpp): the modal reduction's
+// k_q = k_p + sum_r k_r 4 sin^2(pi q r/N) and the stencil's force kernel (with its Rayleigh
+// term) give the same decay rate and frequency.
+TEST(AnalysisAgreesWithSimulation, DampedChainModeOfARangeCoupledRing) {
+  const Measured m = run_mode({{"model.kind", "bkp"},
+                               {"model.parameterisation", "thesis"},
+                               {"friction.law", "thesis"},
+                               {"model.blocks", "12"},
+                               {"model.boundary", "periodic"},
+                               {"model.coupling", "range"},
+                               {"model.range", "3"},
+                               {"drive.speed", "0.1"},
+                               {"model.rayleigh_alpha", "0.85"},
+                               {"model.rayleigh_beta", "0.05"},
+                               {"run.start_mode", "chain"},
+                               {"run.start_mode_index", "2"},
+                               {"run.start_amplitude", "1e-4"},
+                               {"integrator.scheme", "rk4"},
+                               {"integrator.dt", "0.01"},
+                               {"run.duration", "60"}},
+                              60);
+  ASSERT_FALSE(m.mode.unstable());
+  EXPECT_GE(m.fit.extrema, 10);
+  EXPECT_NEAR(m.fit.growth, m.mode.growth(), 0.05 * std::abs(m.mode.growth()));
+  EXPECT_NEAR(m.fit.frequency, m.mode.frequency(), 0.02 * m.mode.frequency());
+  // The stencil moved the mode: mu_2 is 1 for the nearest-neighbour ring, 8/3 at R = 3.
+  auto ring = [](bool range) {
+    Scene s;
+    s.set("model.blocks", "12");
+    s.set("model.boundary", "periodic");
+    if (range) {
+      s.set("model.coupling", "range");
+      s.set("model.range", "3");
+    }
+    return model_from_scene(s);
+  };
+  EXPECT_NEAR(laplacian_eigenvalue(ring(false), 2), 1.0, 1e-12);
+  EXPECT_NEAR(laplacian_eigenvalue(ring(true), 2), 8.0 / 3.0, 1e-12);
+}
+
 // Below the threshold the damped chain mode still grows, at its (smaller) Re lambda; and
 // the bkp chain:0 root, which moves the pad (the pad row of beta_K K), decays at its rate.
 TEST(AnalysisAgreesWithSimulation, DampedModesBelowAndAboveThresholdAndThePadRow) {
