@@ -85,7 +85,9 @@ SpectrumReport spectrum_of_run(const SpectrumRequest& req) {
     NoEquilibrium why = NoEquilibrium::None;
     const KineticBranch branch = kinetic_branch(settings.model, r.speed, &why);
     // The modal reduction is not exact for a free chain with range coupling: no lines then.
-    const bool modal = !(settings.model.long_range() && settings.model.boundary == Boundary::Free);
+    const ModelParams& m = settings.model;
+    const bool modal =
+        !(m.reach() > 1 && (m.long_range() || m.viscous()) && m.boundary == Boundary::Free);
     if (why == NoEquilibrium::None && modal) {
       r.linear = modal_eigenmodes(settings.model, branch.slope);
       std::erase_if(r.linear, [](const Eigenmode& m) { return !(m.frequency() > 0); });

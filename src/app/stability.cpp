@@ -126,7 +126,7 @@ std::string no_equilibrium_message(const ModelParams& p, NoEquilibrium why, doub
 }
 
 void check_modal_reduction(const ModelParams& p) {
-  if (!p.long_range() || p.boundary != Boundary::Free) return;
+  if (p.reach() == 1 || !(p.long_range() || p.viscous()) || p.boundary != Boundary::Free) return;
   throw Error(std::string("model.coupling = ") +
               (p.coupling == Coupling::Power ? "power" : "range") +
               " with model.boundary = free: the cosine modes are not this chain's modes (its "

@@ -153,7 +153,7 @@ void EventEngine::release(int j) {
   ++counters_.releases;
   st_.mobile[j] = 1.0;
   st_.wd[j] = 0.0;
-  st_.dir[j] = std::copysign(1.0, forces_.spring_force(st_.w.data(), j, anchor()));
+  st_.dir[j] = std::copysign(1.0, forces_.holding_force(st_.w.data(), st_.wd.data(), j, anchor()));
   note_slipped(j, st_.w[j]);
   cover(j);
 }
@@ -358,8 +358,8 @@ double EventEngine::stored_energy_change(double x0) const {
 
 bool EventEngine::held_ranges() const {
   // The fused held-range pass, the cluster kernels and the lone slip's record read only
-  // j +- 1: a coupling of longer range takes the general step.
-  if (!held_ranges_path || forces_.long_range()) return false;
+  // j +- 1 and have no dashpots: a coupling of longer range or viscous takes the general step.
+  if (!held_ranges_path || forces_.general_kernel()) return false;
   for (const Range& r : ranges_)
     if (st_.mobile[r.lo] != 0.0 || st_.mobile[r.hi - 1] != 0.0) return false;
   return true;
@@ -370,7 +370,7 @@ bool EventEngine::cluster_ready(ClusterRelaxation& r) const {
   // blocks between its ends, which are stuck blocks or free chain ends (the stepper
   // refuses the shapes it has no code for: run_cluster).
   if (!cluster_path || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1 ||
-      forces_.long_range())
+      forces_.general_kernel())
     return false;
   const Range& range = ranges_.front();
   const bool free_ends = forces_.params().boundary == Boundary::Free && n_ >= 2;
@@ -416,7 +416,7 @@ bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   const ModelParams& p = forces_.params();
   const bool periodic = p.boundary == Boundary::Periodic;
   if (!lone_slip_path || pad_ || stepper_.stick_rule() != StickRule::Crossing ||
-      (periodic && n_ == 2) || forces_.long_range())
+      (periodic && n_ == 2) || forces_.general_kernel())
     return false;
   // The neighbours whose spring force the block's slide changes, in block order (the
   // order in which the general path would release them).
@@ -569,6 +569,8 @@ EventRecord EventEngine::next_event() {
           }
         }
         const double xd_old = st_.xd;
+        // The dashpots' power at the start of the step (trapezoidal rule with the end's).
+        const double damper_old = forces_.damper_power(st_.wd.data(), ranges_);
         if (held_ranges()) {
           stepper_.step_held(forces_, frozen, st_, dt_, ranges_);
           if (pad_) ++pad_held_steps_;
@@ -576,6 +578,8 @@ EventRecord EventEngine::next_event() {
           stepper_.step(forces_, frozen, st_, dt_, ranges_);
         }
         ++steps;
+        if (forces_.viscous())
+          dissipated_ += 0.5 * dt_ * (damper_old + forces_.damper_power(st_.wd.data(), ranges_));
         for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
         if (!crossing) note_released_in_step();
         released_now_.clear();

@@ -131,6 +131,10 @@ std::vector<ParamSpec> make_table() {
       real("model.coupling_exponent", "3", '[', 0, 100, ']', "",
            "p of the power kernel's springs r^-p (model.coupling = power; 3 is the elastic "
            "kernel's 1/r^3)"),
+      real("model.viscosity", "0", '[', 0, kHuge, ']', "force time/length",
+           "viscous coupling eta (Myers & Langer 1993): dashpots beside the coupling's springs, "
+           "eta (w'_{j-1} - 2 w'_j + w'_{j+1}) for nearest neighbours, shaped as the stencil "
+           "with sum eta for range and power; event and continuous runs (rk2, rk4, verlet)"),
       real("model.l", "10", '[', 0, 1e4, ']', "",
            "stiffness ratio l, neighbour spring k_c = l^2 (carlson-langer only)"),
       real("model.pad_mass", "100", '(', 0, kHuge, ']', "mass", "pad mass m_x (thesis only)"),
@@ -432,6 +436,7 @@ const std::vector<KeyDependency>& dependencies() {
         "model.coupling",
         "model.range",
         "model.coupling_exponent",
+        "model.viscosity",
         "model.l",
         "model.pad_mass",
         "model.caliper_stiffness",

@@ -61,6 +61,7 @@ ModelParams model_from_scene(const Scene& scene) {
                                      : Coupling::Nearest;
   p.range = static_cast<int>(scene.integer("model.range"));
   p.coupling_exponent = scene.real("model.coupling_exponent");
+  p.viscosity = scene.real("model.viscosity");
   p.rayleigh_alpha = scene.real("model.rayleigh_alpha");
   p.rayleigh_beta = scene.real("model.rayleigh_beta");
   if (p.kind == ModelKind::BKP) {
@@ -126,14 +127,17 @@ Settings settings_from_scene(const Scene& scene) {
   s.integrator.located_transitions = scene.applies("integrator.transitions") &&
                                      scene.choice("integrator.transitions") == "located";
   // The theta-method's implicit solve, the adaptive scheme's and the located transitions'
-  // event functions are written for nearest neighbours (they read j +- 1 only).
+  // event functions are written for nearest-neighbour springs without dashpots.
   const std::string& scheme = s.integrator.scheme;
   const bool crossing = scheme == "rk2" || scheme == "rk4" || scheme == "verlet";
-  if (s.model.long_range() && (!crossing || s.integrator.located_transitions))
+  const bool general = s.model.long_range() || s.model.viscous();
+  if (general && (!crossing || s.integrator.located_transitions))
     throw Error((crossing ? "integrator.transitions = located" : "integrator.scheme = " + scheme) +
-                " with model.coupling = " + scene.choice("model.coupling") +
-                " and model.range = " + scene.text("model.range") +
-                ": written for nearest neighbours only; allowed with range coupling: "
+                " with " +
+                (s.model.long_range() ? "model.coupling = " + scene.choice("model.coupling") +
+                                            " and model.range = " + scene.text("model.range")
+                                      : "model.viscosity = " + scene.text("model.viscosity")) +
+                ": written for nearest-neighbour springs without dashpots; allowed here: "
                 "integrator.scheme = rk2, rk4 or verlet with integrator.transitions = step");
 
   s.output.every = scene.real("output.every");

@@ -18,10 +18,14 @@ ChainForces::ChainForces(const ModelParams& p)
       law_(make_law(p)),
       friction_(friction_of(p)),
       stencil_(coupling_stencil(p)),
+      dampers_(damper_stencil(p)),
       long_range_(p.long_range()),
+      viscous_(p.viscous()),
       inv_m_(1.0 / p.m_u),
       rayleigh_(p.rayleigh_alpha != 0 || p.rayleigh_beta != 0),
       beta_m_(p.rayleigh_beta / p.m_u) {
+  for (const CouplingStencil* st : {&stencil_, &dampers_})
+    for (const CouplingSpring& c : *st) reach_ = std::max(reach_, c.offset);
   kernel_ = select_kernel(false);
   kernel_inertial_ = select_kernel(true);
 }
@@ -64,8 +68,9 @@ void ChainForces::kernel_long(const ChainForces& self, const double* __restrict 
                               const SubstrateState& sub, int lo, int hi, double* __restrict a) {
   const Law& law = self.law<Law>();
   for (int j = lo; j < hi; ++j) {
-    double acc = self.acceleration<Law, Terms, Inertial>(law, self.spring_force(w, j, anchor),
-                                                         wd[j], dir[j], sub);
+    const double f = self.spring_force(w, j, anchor);
+    double acc = self.acceleration<Law, Terms, Inertial>(
+        law, self.viscous_ ? f + self.damper_force(wd, j) : f, wd[j], dir[j], sub);
     if constexpr (Terms::rayleigh)
       acc += self.rayleigh_acceleration(self.spring_force(wd, j, anchor_rate), wd[j], sub.v);
     a[j] = mobile[j] * acc;
@@ -77,7 +82,7 @@ ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
     // The Rayleigh switch is picked here, not in with_switches: only the continuous runs'
     // kernels take it (the event engine's paths refuse the damping).
     using Damped = ForceTerms<Terms::neighbours, Terms::damper, true>;
-    if (long_range_) {
+    if (long_range_ || viscous_) {
       if (rayleigh_)
         return inertial ? &kernel_long<L, Damped, true> : &kernel_long<L, Damped, false>;
       return inertial ? &kernel_long<L, Terms, true> : &kernel_long<L, Terms, false>;
@@ -149,6 +154,25 @@ double ChainForces::rayleigh_power(const double* wd, double xd, double v) const 
   for (int j = 0; j < p_.n; ++j) mass += (wd[j] - v) * (wd[j] - v);
   mass = p_.m_u * mass + (p_.pad_moves() ? p_.m_x * xd * xd : 0.0);
   return p_.rayleigh_alpha * mass + 2.0 * p_.rayleigh_beta * stiffness_energy(wd, v + xd, xd);
+}
+
+double ChainForces::damper_power(const double* wd, Ranges ranges) const {
+  if (!viscous_) return 0.0;
+  const int n = p_.n;
+  const bool ring = p_.boundary == Boundary::Periodic;
+  double power = 0;
+  for (const Range& r : ranges)
+    for (int j = r.lo; j < r.hi; ++j)
+      for (const CouplingSpring& c : dampers_) {
+        int k = j + c.offset;
+        if (k >= n) {
+          if (!ring) continue;
+          k -= n;
+        }
+        const double d = wd[k] - wd[j];
+        power += c.k * d * d;
+      }
+  return power;
 }
 
 double ChainForces::kinetic_energy(const ChainState& st, double v) const {

@@ -5,10 +5,12 @@
 
 namespace bkq {
 
-CouplingStencil coupling_stencil(const ModelParams& p) {
-  if (!p.has_neighbours()) return {};
+namespace {
+
+// The stencil's shape (range or power, reach R) with the elements summing to `total`.
+CouplingStencil stencil_of(const ModelParams& p, double total) {
   const int R = p.reach();
-  if (R == 1) return {{1, p.k_c}};
+  if (R == 1) return {{1, total}};
   CouplingStencil s;
   s.reserve(R);
   double norm = 0;
@@ -16,9 +18,21 @@ CouplingStencil coupling_stencil(const ModelParams& p) {
     norm += p.coupling == Coupling::Power ? std::pow(r, -p.coupling_exponent) : 1.0;
   for (int r = 1; r <= R; ++r) {
     const double weight = p.coupling == Coupling::Power ? std::pow(r, -p.coupling_exponent) : 1.0;
-    s.push_back({r, p.k_c * weight / norm});
+    s.push_back({r, total * weight / norm});
   }
   return s;
+}
+
+}  // namespace
+
+CouplingStencil coupling_stencil(const ModelParams& p) {
+  if (!p.has_neighbours()) return {};
+  return stencil_of(p, p.k_c);
+}
+
+CouplingStencil damper_stencil(const ModelParams& p) {
+  if (!p.viscous()) return {};
+  return stencil_of(p, p.viscosity);
 }
 
 }  // namespace bkq

@@ -10,7 +10,8 @@
 // every R (the uniform mode's and the fastest mode's bounds do not move with R). Free ends
 // drop the springs that would reach past the chain; a periodic chain needs 2R < N so that no
 // two offsets reach the same block. A lattice would list offsets in the plane (one of each
-// pair +-d) with the same meaning.
+// pair +-d) with the same meaning. The viscous coupling (model.viscosity = eta) puts a
+// dashpot beside every spring, with the same shape and their sum eta.
 #pragma once
 
 #include <vector>
@@ -27,5 +28,8 @@ using CouplingStencil = std::vector<CouplingSpring>;
 
 // The scene's stencil: empty without neighbour springs, {(1, k_c)} for nearest neighbours.
 CouplingStencil coupling_stencil(const ModelParams& p);
+// The dashpots of model.viscosity = eta on the same stencil (Myers & Langer 1993): eta_r =
+// eta k_r / k_c in the stencil's shape, {(1, eta)} for nearest neighbours; empty when off.
+CouplingStencil damper_stencil(const ModelParams& p);
 
 }  // namespace bkq

@@ -34,7 +34,10 @@ struct ModelParams {
   Coupling coupling = Coupling::Nearest;
   int range = 1;                 // R: coupled to the blocks within R on each side
   double coupling_exponent = 3;  // p of the power kernel's 1/r^p
-  double c_u = 0;                // block damper (1DOF model only, Ferre 2018 eq. 2.11)
+  // Viscous coupling eta (Myers & Langer 1993): dashpots between the blocks the springs couple,
+  // shaped as the coupling's stencil with their sum eta (model/coupling.hpp).
+  double viscosity = 0;
+  double c_u = 0;  // block damper (1DOF model only, Ferre 2018 eq. 2.11)
 
   double m_x = 0;   // pad mass (BKP)
   double k_p0 = 0;  // caliper-pad spring (BKP)
@@ -60,6 +63,8 @@ struct ModelParams {
   int reach() const { return coupling == Coupling::Nearest ? 1 : range; }
   // Coupling beyond the nearest neighbours: the kernels that read only j +- 1 do not apply.
   bool long_range() const { return has_neighbours() && reach() > 1; }
+  // Dashpots between blocks (model.viscosity).
+  bool viscous() const { return viscosity != 0 && n > 1; }
   // Static threshold on the spring force of one block.
   double threshold() const { return F0 * m_u; }
   // Largest angular frequency of the linear part (Ferre 2018 eq. 3.2, and the pad's), or the

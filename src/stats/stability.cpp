@@ -129,9 +129,26 @@ double chain_shape(const ModelParams& p, int q, int j) {
   return std::cos(kPi * q * (j + 0.5) / p.n);
 }
 
+double damper_eigenvalue(const ModelParams& p, int q) {
+  if (!p.viscous() || p.kind == ModelKind::OneDof) return 0.0;
+  const CouplingStencil dampers = damper_stencil(p);
+  if (dampers.size() == 1) {
+    const double s = p.boundary == Boundary::Periodic ? std::sin(kPi * q / p.n)
+                                                      : std::sin(kPi * q / (2.0 * p.n));
+    return p.viscosity * 4.0 * s * s;
+  }
+  double mu = 0;
+  for (const CouplingSpring& c : dampers) {
+    const double x = std::sin(kPi * q * c.offset / p.n);
+    mu += c.k * 4.0 * x * x;
+  }
+  return mu;
+}
+
 double chain_mode_damping(const ModelParams& p, int q) {
   const double k = p.k_p + p.k_c * laplacian_eigenvalue(p, q);
-  return p.c_u / p.m_u + p.rayleigh_alpha + p.rayleigh_beta * k / p.m_u;
+  const double d = p.c_u / p.m_u + p.rayleigh_alpha + p.rayleigh_beta * k / p.m_u;
+  return p.viscous() ? d + damper_eigenvalue(p, q) / p.m_u : d;
 }
 
 std::vector<Eigenmode> modal_eigenmodes(const ModelParams& p, double slope) {
@@ -200,6 +217,8 @@ std::vector<Eigenmode> dense_eigenmodes(const ModelParams& p, double slope,
   auto at = [d](std::vector<double>& a, int i, int j) -> double& { return a[i * d + j]; };
   const double kc = coupled(p) ? p.k_c : 0.0;
   const CouplingStencil stencil = coupling_stencil(p);
+  const CouplingStencil dampers =
+      p.kind == ModelKind::OneDof ? CouplingStencil{} : damper_stencil(p);
   const bool ring = p.boundary == Boundary::Periodic && n > 2;
   for (int j = 0; j < n; ++j) {
     at(K, j, j) += p.k_p;
@@ -225,6 +244,15 @@ std::vector<Eigenmode> dense_eigenmodes(const ModelParams& p, double slope,
           spring(j, partner - n, c.k);
       }
     at(C, j, j) += p.m_u * slope + p.c_u;
+    // The dashpots (model.viscosity) on the same stencil, into C.
+    for (const CouplingSpring& c : dampers) {
+      const int partner = j + c.offset < n ? j + c.offset : (ring ? j + c.offset - n : -1);
+      if (partner < 0) continue;
+      at(C, j, j) += c.k;
+      at(C, partner, partner) += c.k;
+      at(C, j, partner) -= c.k;
+      at(C, partner, j) -= c.k;
+    }
   }
   if (pad) {
     M[n] = p.m_x;

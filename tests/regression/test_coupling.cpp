@@ -5,13 +5,17 @@
 // byte; the event engine, which integrates only the blocks within R of a sliding block,
 // against the straightforward whole-chain engine bit for bit; R = 3 and the power kernel
 // changing the catalogue; the energy balance; a ring's invariance under a rotation of the
-// block indices; and the refusals of the schemes written for nearest neighbours.
+// block indices; and the refusals of the schemes written for nearest neighbours. Viscous
+// coupling (model.viscosity, Myers & Langer 1993): eta = beta_K k_c against the Rayleigh
+// form without a pulling spring; a stuck block breaking under its sliding neighbour's
+// dashpot; the engine against the whole chain; the energy books with the dashpots' work.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +24,8 @@
 #include "../refusal.hpp"
 #include "../scene_sim.hpp"
 #include "core/error.hpp"
+#include "engine/contacts.hpp"
+#include "engine/continuous.hpp"
 #include "engine/reference_events.hpp"
 #include "model/coupling.hpp"
 #include "stats/stability.hpp"
@@ -245,6 +251,14 @@ TEST_P(CouplingAgainstReference, SameEventsBitForBitAsTheWholeChainIntegration) 
 }
 
 const Case kCases[] = {
+    {"viscous_nearest_rk4", {{"model.blocks", "60"}, {"model.viscosity", "2"}}, 15},
+    {"viscous_range3_periodic_rk4",
+     {{"model.blocks", "60"},
+      {"model.viscosity", "2"},
+      {"model.coupling", "range"},
+      {"model.range", "3"},
+      {"model.boundary", "periodic"}},
+     15},
     {"range3_free_rk4",
      {{"model.blocks", "60"}, {"model.coupling", "range"}, {"model.range", "3"}},
      15},
@@ -359,6 +373,129 @@ TEST(CouplingRing, EventsAreInvariantUnderARotationOfTheBlockIndices) {
   EXPECT_GT(multi, 50);
 }
 
+// eta (w'_{j-1} - 2 w'_j + w'_{j+1}) is the neighbour dashpot that beta_K K holds: with no
+// pulling spring (k_p = 0, no pad) eta = beta_K k_c gives the Rayleigh form's forces and
+// modal damping, for nearest neighbours and for a range-coupled stencil.
+TEST(ViscousCoupling, EtaEqualToBetaKcMatchesTheRayleighFormWithoutPullingSpring) {
+  for (Coupling c : {Coupling::Nearest, Coupling::Range})
+    for (Boundary b : {Boundary::Free, Boundary::Periodic}) {
+      ModelParams base = chain(15, c, 3, b);
+      base.k_p = 0;
+      base.law = law_id<law::None>;
+      const double beta = 0.07;
+      ModelParams viscous = base, rayleigh = base;
+      viscous.viscosity = beta * base.k_c;
+      rayleigh.rayleigh_beta = beta;
+      const ChainForces fv(viscous), fr(rayleigh);
+      std::vector<double> w(15), wd(15), mobile(15, 1.0), dir(15, 1.0), av(15), ar(15);
+      for (int j = 0; j < 15; ++j) {
+        w[j] = 0.01 * std::sin(1.3 * j);
+        wd[j] = 0.2 * std::cos(0.7 * j * j);
+      }
+      const Range all{0, 15};
+      const SubstrateState sub{0.0, 0.0, 0.0};
+      fv.block_accelerations(w.data(), wd.data(), mobile.data(), dir.data(), 0.3, 0.0, sub,
+                             Ranges(&all, 1), av.data());
+      fr.block_accelerations(w.data(), wd.data(), mobile.data(), dir.data(), 0.3, 0.0, sub,
+                             Ranges(&all, 1), ar.data());
+      for (int j = 0; j < 15; ++j) EXPECT_NEAR(av[j], ar[j], 1e-12) << "block " << j;
+      double moved = 0;
+      for (int j = 0; j < 15; ++j) moved = std::max(moved, std::abs(fv.damper_force(wd.data(), j)));
+      EXPECT_GT(moved, 0.1);  // the dashpots do act
+      for (int q = 0; q < 15; ++q)
+        EXPECT_NEAR(chain_mode_damping(viscous, q), chain_mode_damping(rayleigh, q), 1e-12);
+    }
+}
+
+// Blocks 0 and 2 stuck at 0.9 of the threshold beside block 1 sliding at 0.05: their
+// neighbour's dashpot (eta 0.05 = 0.25 at eta = 5) breaks them; without it they hold.
+TEST(ViscousCoupling, AStuckBlockFeelsItsSlidingNeighboursDamper) {
+  for (double eta : {0.0, 5.0}) {
+    ModelParams p = chain(3, Coupling::Nearest, 1, Boundary::Free);
+    p.k_c = 1;
+    p.viscosity = eta;
+    const ChainForces f(p);
+    ChainState st;
+    st.resize(3);
+    st.mobile[1] = 1.0;
+    st.wd[1] = 0.05;
+    const std::vector<double> wd_old = st.wd;
+    const Range all{0, 3};
+    std::vector<int> released;
+    const ContactScan scan = settle_contacts(f, st, wd_old.data(), 0.9, Ranges(&all, 1), true,
+                                             [&](int j) { released.push_back(j); });
+    if (eta == 0) {
+      EXPECT_TRUE(released.empty());
+      EXPECT_EQ(scan.sliding, 1);
+    } else {
+      EXPECT_EQ(released, (std::vector<int>{0, 2}));
+      EXPECT_EQ(scan.sliding, 3);
+    }
+  }
+}
+
+// The dashpots' work enters the books: the residual stays below the limit a run warns at
+// and halves with the step, as without them; and they change the events.
+TEST(ViscousCoupling, EnergyBalanceClosesAndTheEventsChange) {
+  auto run = [](Settings s, const char* dt, double& worst) {
+    s.emplace_back("integrator.dt", dt);
+    Sim sim(s);
+    sim.run(300);
+    worst = 0;
+    std::vector<EventRecord> out;
+    for (int i = 0; i < 1500; ++i) {
+      out.push_back(sim.engine.next_event());
+      worst = std::max(worst, std::abs(out.back().energy_residual));
+    }
+    return out;
+  };
+  double plain = 0;
+  const auto without = run({{"model.blocks", "80"}}, "0.01", plain);
+  for (const char* coupling : {"nearest", "range"}) {
+    Settings s = {{"model.blocks", "80"}, {"model.viscosity", "3"}, {"model.coupling", coupling}};
+    if (std::string(coupling) == "range") s.emplace_back("model.range", "3");
+    double coarse = 0, fine = 0;
+    const auto with = run(s, "0.01", coarse);
+    run(s, "0.005", fine);
+    std::printf("energy residual: no dashpots %.3g; eta = 3, %s: %.3g, at dt/2 %.3g\n", plain,
+                coupling, coarse, fine);
+    EXPECT_LT(coarse, 0.05) << coupling;
+    if (coarse > 2 * plain) {
+      EXPECT_LT(fine, 0.65 * coarse) << coupling;
+    }
+    int differ = 0;
+    for (std::size_t i = 0; i < with.size(); ++i) differ += with[i].moment != without[i].moment;
+    EXPECT_GT(differ, 100) << coupling;
+  }
+}
+
+// A continuous run of a frictionless chain released from a random displacement: the
+// dashpots (and the stencil's springs) take most of the energy, and the run's balance
+// (work - dissipated) books their work.
+TEST(ViscousCoupling, ContinuousEnergyBalanceBooksTheDashpotWork) {
+  for (Coupling c : {Coupling::Nearest, Coupling::Power}) {
+    ModelParams p = chain(20, c, 4, Boundary::Free);
+    p.law = law_id<law::None>;
+    p.viscosity = 3;
+    const ChainForces forces(p);
+    for (const char* scheme : {"rk2", "rk4", "verlet"}) {
+      const auto stepper = make_stepper(scheme, p.n);
+      const double dt = std::min(0.002, 0.2 * stability_limit(*stepper, p));
+      ChainState st;
+      st.resize(p.n);
+      std::mt19937 rng(3);
+      std::uniform_real_distribution<double> U(-1.0, 1.0);
+      for (int j = 0; j < p.n; ++j) st.w[j] = 0.05 * U(rng);
+      ContinuousDriver driver(forces, *stepper, Substrate::constant(0.0), st, dt);
+      const double e0 = driver.energy();
+      for (int i = 0; i < static_cast<int>(20.0 / dt); ++i) driver.step();
+      const EnergyBalance& b = driver.energy_balance();
+      EXPECT_GT(b.dissipated, 0.5 * e0) << scheme;
+      EXPECT_LT(std::abs(b.residual(driver.energy())), 2e-3) << scheme;
+    }
+  }
+}
+
 TEST(CouplingRefusals, RangeTooLongAndSchemesWrittenForNearestNeighbours) {
   auto refused = [](const std::vector<std::string>& sets, const std::vector<std::string>& parts) {
     test::TempDir tmp;
@@ -377,6 +514,8 @@ TEST(CouplingRefusals, RangeTooLongAndSchemesWrittenForNearestNeighbours) {
     refused(
         {"model.coupling=range", "model.range=3", std::string("integrator.scheme=") + scheme},
         {std::string("integrator.scheme = ") + scheme, "model.range = 3", "rk2, rk4 or verlet"});
+  refused({"model.viscosity=1", "integrator.scheme=theta"},
+          {"integrator.scheme = theta", "model.viscosity = 1"});
   refused({"model.coupling=range", "model.range=3", "integrator.transitions=located"},
           {"integrator.transitions = located", "model.coupling = range"});
   // model.range where the coupling is nearest does not apply.
