@@ -68,6 +68,12 @@ void ChainForces::kernel_long(const ChainForces& self, const double* __restrict 
                               const SubstrateState& sub, int lo, int hi, double* __restrict a) {
   const Law& law = self.law<Law>();
   for (int j = lo; j < hi; ++j) {
+    // A stuck block's acceleration is 0 whatever its force: with a stencil of R springs the
+    // event's 2R stuck blocks around each sliding one would otherwise cost R each.
+    if (mobile[j] == 0.0) {
+      a[j] = 0.0;
+      continue;
+    }
     const double f = self.spring_force(w, j, anchor);
     double acc = self.acceleration<Law, Terms, Inertial>(
         law, self.viscous_ ? f + self.damper_force(wd, j) : f, wd[j], dir[j], sub);
