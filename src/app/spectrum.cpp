@@ -84,7 +84,11 @@ SpectrumReport spectrum_of_run(const SpectrumRequest& req) {
   if (r.speed > 0) {
     NoEquilibrium why = NoEquilibrium::None;
     const KineticBranch branch = kinetic_branch(settings.model, r.speed, &why);
-    if (why == NoEquilibrium::None) {
+    // The modal reduction is not exact for a free chain with range coupling: no lines then.
+    const ModelParams& m = settings.model;
+    const bool modal =
+        !(m.reach() > 1 && (m.long_range() || m.viscous()) && m.boundary == Boundary::Free);
+    if (why == NoEquilibrium::None && modal) {
       r.linear = modal_eigenmodes(settings.model, branch.slope);
       std::erase_if(r.linear, [](const Eigenmode& m) { return !(m.frequency() > 0); });
       std::stable_sort(

@@ -46,6 +46,7 @@ StabilityPoint analyse(const Scene& scene, double value, const StabilityOptions&
     throw Error("stability: --dense: model.blocks = " + std::to_string(p.n) +
                 " is above the dense solver's limit " + std::to_string(kDenseLimit) +
                 " (O(N^3)); the modal reduction is exact for every N");
+  if (!opt.dense) check_modal_reduction(p);
   pt.modes = opt.dense ? dense_eigenmodes(p, slope) : modal_eigenmodes(p, slope);
   for (const ModeSelect& sel : opt.shapes) pt.shapes.push_back(find_mode(p, slope, sel));
   return pt;
@@ -124,7 +125,17 @@ std::string no_equilibrium_message(const ModelParams& p, NoEquilibrium why, doub
   return "";
 }
 
+void check_modal_reduction(const ModelParams& p) {
+  if (p.reach() == 1 || !(p.long_range() || p.viscous()) || p.boundary != Boundary::Free) return;
+  throw Error(std::string("model.coupling = ") +
+              (p.coupling == Coupling::Power ? "power" : "range") +
+              " with model.boundary = free: the cosine modes are not this chain's modes (its "
+              "springs are cut at the ends), so the modal reduction does not apply; allowed: "
+              "model.boundary = periodic, or --dense (bkquake stability)");
+}
+
 std::pair<Eigenmode, ModeShape> find_mode(const ModelParams& p, double slope, ModeSelect sel) {
+  check_modal_reduction(p);
   const std::vector<Eigenmode> modes = modal_eigenmodes(p, slope);
   const Eigenmode* best = nullptr;
   for (const Eigenmode& m : modes)

@@ -65,6 +65,9 @@ std::string mode_name(const Eigenmode& m);
 
 // The mode `sel` of the scene's linearisation at speed v (the one with Im lambda >= 0 and,
 // for an overdamped mode, the larger real root); throws bkq::Error when it has none.
+// Throws bkq::Error where the modal reduction (stats/stability.hpp) is not exact: range
+// coupling with free ends.
+void check_modal_reduction(const ModelParams& p);
 std::pair<Eigenmode, ModeShape> find_mode(const ModelParams& p, double slope, ModeSelect sel);
 
 // Why there is no sliding equilibrium, as one line naming the settings responsible.

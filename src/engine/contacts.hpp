@@ -47,7 +47,7 @@ void settle_block(const ChainForces& forces, ChainState& st, const double* wd_ol
   const Friction& fr = forces.friction();
   const stick::Outcome o =
       stick::settle_one(fr, crossing_rule, st.mobile[j], st.dir[j], wd_old[j], st.wd[j],
-                        [&] { return forces.spring_force(st.w.data(), j, anchor); });
+                        [&] { return forces.holding_force(st.w.data(), st.wd.data(), j, anchor); });
   st.wd[j] = o.y;
   st.mobile[j] = o.mobile;
   st.dir[j] = o.dir;
@@ -80,7 +80,10 @@ ContactScan settle_contacts(const ChainForces& forces, ChainState& st, const dou
   };
   const int n = forces.n();
   for (const Range& r : ranges) {
-    if (r.hi - r.lo < kMinInteriorRun) {
+    // The vectorised pass writes the nearest-neighbour spring force out; a longer coupling
+    // or dashpots go block by block through holding_force (with dashpots a block's force
+    // reads its neighbours' velocities, which the pass settles in block order).
+    if (r.hi - r.lo < kMinInteriorRun || forces.general_kernel()) {
       for (int j = r.lo; j < r.hi; ++j) block(j);
       continue;
     }

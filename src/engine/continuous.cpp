@@ -113,6 +113,12 @@ ContinuousDriver::Power ContinuousDriver::power() const {
   w.force = p.k_p * (sum_w - p.n * sub.s - p.n * x) + p.c_u * sum_u1;
   w.dissipation =
       p.m_u * friction + p.c_u * sum_u2 + (p.pad_moves() ? p.c_p * st_.xd * st_.xd : 0.0);
+  if (forces_.viscous()) {
+    // The dashpots between blocks (model.viscosity): internal forces, which cancel in the sum,
+    // and the power they dissipate.
+    const Range all{0, p.n};
+    w.dissipation += forces_.damper_power(st_.wd.data(), Ranges(&all, 1));
+  }
   if (forces_.rayleigh()) {
     // Rayleigh damping: its force on the blocks, -alpha_M m_u sum u' - beta_K k_p sum (u' - x')
     // (the neighbour springs' parts cancel), and the power u'^T C u' it dissipates.

@@ -22,6 +22,13 @@ namespace {
 constexpr int kShrinkEvery = 16;
 // The pad's sum of block positions is re-summed from scratch every this many events.
 constexpr int kResumEvery = 1024;
+
+// Stuck blocks integrated on each side of a sliding block: those its springs reach (one, or
+// R with range coupling), twice that for a stepper that locates releases inside its step
+// (a block released mid-step reaches as far again).
+int margin_for(const ChainForces& forces, const Stepper& stepper) {
+  return (stepper.stick_rule() == StickRule::Located ? 2 : 1) * forces.reach();
+}
 }  // namespace
 
 EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt, ChainState state)
@@ -31,7 +38,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
       st_(std::move(state)),
       pad_(forces.params().pad_moves()),
       n_(forces.n()),
-      margin_(stepper.stick_rule() == StickRule::Located ? 2 : 1) {
+      margin_(margin_for(forces, stepper)) {
   check_model(forces.params());
   allocate_bookkeeping();
   std::fill(st_.mobile.begin(), st_.mobile.end(), 0.0);
@@ -50,7 +57,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
       st_(saved.state),
       pad_(forces.params().pad_moves()),
       n_(forces.n()),
-      margin_(stepper.stick_rule() == StickRule::Located ? 2 : 1),
+      margin_(margin_for(forces, stepper)),
       counters_(saved.counters) {
   check_model(forces.params());
   if (st_.n() != n_)
@@ -146,7 +153,7 @@ void EventEngine::release(int j) {
   ++counters_.releases;
   st_.mobile[j] = 1.0;
   st_.wd[j] = 0.0;
-  st_.dir[j] = std::copysign(1.0, forces_.spring_force(st_.w.data(), j, anchor()));
+  st_.dir[j] = std::copysign(1.0, forces_.holding_force(st_.w.data(), st_.wd.data(), j, anchor()));
   note_slipped(j, st_.w[j]);
   cover(j);
 }
@@ -292,25 +299,53 @@ double EventEngine::stored_energy_change(double x0) const {
   double e_pull = 0, e_bond = 0, sum_slipped = 0;
   const bool periodic = p.boundary == Boundary::Periodic && n_ > 2;
   const bool bonds = p.has_neighbours();
-  for (int j : slipped_list_) {
-    const double d1 = w[j] - s - x1, d0 = before(j) - s - x0;
-    e_pull += d1 * d1 - d0 * d0;
-    sum_slipped += w[j];
-    if (!bonds) continue;
-    // Each bond once: the one to the right always, the one to the left only when that
-    // neighbour did not slip (else it is counted as that neighbour's right bond).
-    const int right = j + 1 < n_ ? j + 1 : (periodic ? 0 : -1);
-    const int left = j > 0 ? j - 1 : (periodic ? n_ - 1 : -1);
-    if (right >= 0) {
-      const double d1b = w[right] - w[j], d0b = before(right) - before(j);
-      e_bond += d1b * d1b - d0b * d0b;
+  if (forces_.long_range()) {
+    // Each spring of the stencil once, as below: to the right always, to the left only
+    // when the block there did not slip.
+    for (int j : slipped_list_) {
+      const double d1 = w[j] - s - x1, d0 = before(j) - s - x0;
+      e_pull += d1 * d1 - d0 * d0;
+      sum_slipped += w[j];
+      for (const CouplingSpring& c : forces_.stencil()) {
+        int right = j + c.offset, left = j - c.offset;
+        if (periodic) {
+          right = right >= n_ ? right - n_ : right;
+          left = left < 0 ? left + n_ : left;
+        }
+        double e = 0;
+        if (right < n_) {
+          const double d1b = w[right] - w[j], d0b = before(right) - before(j);
+          e += d1b * d1b - d0b * d0b;
+        }
+        if (left >= 0 && !slipped_[left]) {
+          const double d1b = w[j] - w[left], d0b = before(j) - before(left);
+          e += d1b * d1b - d0b * d0b;
+        }
+        e_bond += c.k * e;
+      }
     }
-    if (left >= 0 && !slipped_[left]) {
-      const double d1b = w[j] - w[left], d0b = before(j) - before(left);
-      e_bond += d1b * d1b - d0b * d0b;
+  } else {
+    for (int j : slipped_list_) {
+      const double d1 = w[j] - s - x1, d0 = before(j) - s - x0;
+      e_pull += d1 * d1 - d0 * d0;
+      sum_slipped += w[j];
+      if (!bonds) continue;
+      // Each bond once: the one to the right always, the one to the left only when that
+      // neighbour did not slip (else it is counted as that neighbour's right bond).
+      const int right = j + 1 < n_ ? j + 1 : (periodic ? 0 : -1);
+      const int left = j > 0 ? j - 1 : (periodic ? n_ - 1 : -1);
+      if (right >= 0) {
+        const double d1b = w[right] - w[j], d0b = before(right) - before(j);
+        e_bond += d1b * d1b - d0b * d0b;
+      }
+      if (left >= 0 && !slipped_[left]) {
+        const double d1b = w[j] - w[left], d0b = before(j) - before(left);
+        e_bond += d1b * d1b - d0b * d0b;
+      }
     }
   }
-  double de = 0.5 * p.k_p * e_pull + 0.5 * p.k_c * e_bond;
+  // With range coupling e_bond already holds each spring's stiffness.
+  double de = 0.5 * p.k_p * e_pull + (forces_.long_range() ? 0.5 : 0.5 * p.k_c) * e_bond;
   if (pad_) {
     // Blocks that did not slip only see the anchor move from s + x0 to s + x1.
     const double others = static_cast<double>(n_ - static_cast<int>(slipped_list_.size()));
@@ -322,7 +357,9 @@ double EventEngine::stored_energy_change(double x0) const {
 }
 
 bool EventEngine::held_ranges() const {
-  if (!held_ranges_path) return false;
+  // The fused held-range pass, the cluster kernels and the lone slip's record read only
+  // j +- 1 and have no dashpots: a coupling of longer range or viscous takes the general step.
+  if (!held_ranges_path || forces_.general_kernel()) return false;
   for (const Range& r : ranges_)
     if (st_.mobile[r.lo] != 0.0 || st_.mobile[r.hi - 1] != 0.0) return false;
   return true;
@@ -332,7 +369,8 @@ bool EventEngine::cluster_ready(ClusterRelaxation& r) const {
   // One covered range (so every sliding block is inside it) and at most kMaxCluster
   // blocks between its ends, which are stuck blocks or free chain ends (the stepper
   // refuses the shapes it has no code for: run_cluster).
-  if (!cluster_path || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1)
+  if (!cluster_path || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1 ||
+      forces_.general_kernel())
     return false;
   const Range& range = ranges_.front();
   const bool free_ends = forces_.params().boundary == Boundary::Free && n_ >= 2;
@@ -378,7 +416,7 @@ bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   const ModelParams& p = forces_.params();
   const bool periodic = p.boundary == Boundary::Periodic;
   if (!lone_slip_path || pad_ || stepper_.stick_rule() != StickRule::Crossing ||
-      (periodic && n_ == 2))
+      (periodic && n_ == 2) || forces_.general_kernel())
     return false;
   // The neighbours whose spring force the block's slide changes, in block order (the
   // order in which the general path would release them).
@@ -531,6 +569,8 @@ EventRecord EventEngine::next_event() {
           }
         }
         const double xd_old = st_.xd;
+        // The dashpots' power at the start of the step (trapezoidal rule with the end's).
+        const double damper_old = forces_.damper_power(st_.wd.data(), ranges_);
         if (held_ranges()) {
           stepper_.step_held(forces_, frozen, st_, dt_, ranges_);
           if (pad_) ++pad_held_steps_;
@@ -538,6 +578,8 @@ EventRecord EventEngine::next_event() {
           stepper_.step(forces_, frozen, st_, dt_, ranges_);
         }
         ++steps;
+        if (forces_.viscous())
+          dissipated_ += 0.5 * dt_ * (damper_old + forces_.damper_power(st_.wd.data(), ranges_));
         for (const Range& r : ranges_) counters_.block_steps += r.hi - r.lo;
         if (!crossing) note_released_in_step();
         released_now_.clear();

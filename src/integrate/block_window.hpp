@@ -5,8 +5,9 @@
 // So what a stepper or the event engine keeps besides the chain state grows with the
 // blocks a step touches, not with the chain (docs/validation/performance.md: bytes per block).
 //
-// fit(ranges) before a step: the window then holds every block of the ranges and one more
-// on each side (the neighbours the force kernels read; with periodic ends a range at either
+// fit(ranges) before a step: the window then holds every block of the ranges and `reach`
+// more on each side (the neighbours the force kernels read: one for nearest neighbours, R
+// for a coupling of range R; with periodic ends a range at either
 // end of the chain also reads the other end, so the window becomes the whole chain). What
 // the entries hold is left over from earlier steps, anywhere in the chain: the steps write
 // every entry of their ranges before they read it, and the neighbours outside the ranges
@@ -30,10 +31,10 @@ class BlockWindow {
   explicit BlockWindow(int arrays = 0) : arrays_(arrays) {}
 
   // The ranges of a step over a chain of n blocks.
-  void fit(Ranges ranges, int n, bool periodic) {
+  void fit(Ranges ranges, int n, bool periodic, int reach = 1) {
     if (ranges.empty()) return;
-    int lo = ranges.front().lo - 1, hi = ranges.front().hi + 1;
-    for (const Range& r : ranges) lo = std::min(lo, r.lo - 1), hi = std::max(hi, r.hi + 1);
+    int lo = ranges.front().lo - reach, hi = ranges.front().hi + reach;
+    for (const Range& r : ranges) lo = std::min(lo, r.lo - reach), hi = std::max(hi, r.hi + reach);
     if (periodic && (lo < 0 || hi > n)) lo = 0, hi = n;
     place(std::max(lo, 0), std::min(hi, n));
   }

@@ -45,7 +45,7 @@ struct ExplicitScratch {
   ExplicitScratch(const ExplicitScratch&) = delete;
   ExplicitScratch& operator=(const ExplicitScratch&) = delete;
   void fit(const ChainForces& forces, Ranges ranges) {
-    window.fit(ranges, forces.n(), forces.params().boundary == Boundary::Periodic);
+    window.fit(ranges, forces.n(), forces.params().boundary == Boundary::Periodic, forces.reach());
   }
 
   BlockWindow window{8};

@@ -120,6 +120,21 @@ std::vector<ParamSpec> make_table() {
       choice("model.boundary_y", "free", {"free", "periodic"},
              "lattice edges across strike (ofc): free is OFC's open edge (stress pushed over "
              "it is lost), periodic wraps row model.rows - 1 to row 0"),
+      choice("model.coupling", "nearest", {"nearest", "range", "power"},
+             "block-to-block springs: nearest (k_c to each neighbour), range (k_c/R to every "
+             "block within R = model.range on each side; Xia, Gould, Klein & Rundle 2005) or "
+             "power (k_c r^-p / sum_{s<=R} s^-p at distance r <= R, p = "
+             "model.coupling_exponent); every choice sums to k_c per side"),
+      integer("model.range", "1", 1, 1e6, "",
+              "R: blocks coupled on each side (model.coupling = range or power); R = 1 is the "
+              "nearest-neighbour chain; a free chain needs R < N, a periodic one 2R < N"),
+      real("model.coupling_exponent", "3", '[', 0, 100, ']', "",
+           "p of the power kernel's springs r^-p (model.coupling = power; 3 is the elastic "
+           "kernel's 1/r^3)"),
+      real("model.viscosity", "0", '[', 0, kHuge, ']', "force time/length",
+           "viscous coupling eta (Myers & Langer 1993): dashpots beside the coupling's springs, "
+           "eta (w'_{j-1} - 2 w'_j + w'_{j+1}) for nearest neighbours, shaped as the stencil "
+           "with sum eta for range and power; event and continuous runs (rk2, rk4, verlet)"),
       real("model.l", "10", '[', 0, 1e4, ']', "",
            "stiffness ratio l, neighbour spring k_c = l^2 (carlson-langer only)"),
       real("model.pad_mass", "100", '(', 0, kHuge, ']', "mass", "pad mass m_x (thesis only)"),
@@ -393,6 +408,8 @@ const std::vector<KeyDependency>& dependencies() {
       {{"model.pad_mass", "model.caliper_stiffness", "model.s_c", "friction.F0", "friction.vc"},
        {{"model.parameterisation", {"thesis"}}}},
       {{"model.l", "friction.alpha"}, {{"model.parameterisation", {"carlson-langer"}}}},
+      {{"model.range"}, {{"model.coupling", {"range", "power"}}}},
+      {{"model.coupling_exponent"}, {{"model.coupling", {"power"}}}},
       // The pad (bkp) and the single block (1dof) have dampers; the plain chain has none.
       {{"model.damping_ratio"}, {{"model.kind", {"bkp", "1dof"}}}},
       // Block scalings of Table 3.1; in carlson-langer units they only scale the pad.
@@ -416,6 +433,10 @@ const std::vector<KeyDependency>& dependencies() {
       // The automaton has a threshold and a share alpha, no masses, friction or time steps.
       {{"model.boundary_y", "ofc.alpha"}, {{"model.kind", {"ofc"}}}},
       {{"model.parameterisation",
+        "model.coupling",
+        "model.range",
+        "model.coupling_exponent",
+        "model.viscosity",
         "model.l",
         "model.pad_mass",
         "model.caliper_stiffness",
@@ -632,6 +653,7 @@ void Scene::validate() const {
     throw Error("model.boundary = periodic needs model.blocks >= 3, got model.blocks = " +
                 text("model.blocks") + where);
   if (choice("model.kind") == "ofc") check_ofc(where);
+  if (applies("model.range")) check_range(where);
   if (choice("run.start") == "equilibrium" && choice("drive.mode") != "continuous")
     throw Error("run.start = equilibrium needs drive.mode = continuous, but drive.mode = " +
                 choice("drive.mode") + where);
@@ -641,6 +663,18 @@ void Scene::validate() const {
     throw Error("stats.mu_min = " + text("stats.mu_min") +
                 " must be below stats.mu_max = " + text("stats.mu_max") + where);
   if (choice("drive.mode") == "continuous") check_continuous_run(where);
+}
+
+void Scene::check_range(const std::string& where) const {
+  // A spring reaching past a free chain's far end, or two offsets of a ring reaching the
+  // same block, would not be the coupling the key describes.
+  const std::int64_t r = integer("model.range"), n = integer("model.blocks");
+  const bool ring = choice("model.boundary") == "periodic";
+  if (ring ? 2 * r < n : r < n) return;
+  throw Error(
+      "model.range = " + text("model.range") + " with model.blocks = " + text("model.blocks") +
+      " and model.boundary = " + choice("model.boundary") + ": allowed " +
+      (ring ? "2 model.range < model.blocks (a ring)" : "model.range < model.blocks") + where);
 }
 
 void Scene::check_ofc(const std::string& where) const {

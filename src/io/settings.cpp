@@ -55,6 +55,13 @@ ModelParams model_from_scene(const Scene& scene) {
     k_p0 = p.n * p.k_p / s_p;
   }
   if (p.n == 1) p.k_c = 0;
+  const std::string& coupling = scene.choice("model.coupling");
+  p.coupling = coupling == "range"   ? Coupling::Range
+               : coupling == "power" ? Coupling::Power
+                                     : Coupling::Nearest;
+  p.range = static_cast<int>(scene.integer("model.range"));
+  p.coupling_exponent = scene.real("model.coupling_exponent");
+  p.viscosity = scene.real("model.viscosity");
   p.rayleigh_alpha = scene.real("model.rayleigh_alpha");
   p.rayleigh_beta = scene.real("model.rayleigh_beta");
   if (p.kind == ModelKind::BKP) {
@@ -119,6 +126,19 @@ Settings settings_from_scene(const Scene& scene) {
   s.integrator.theta = scene.real("integrator.theta");
   s.integrator.located_transitions = scene.applies("integrator.transitions") &&
                                      scene.choice("integrator.transitions") == "located";
+  // The theta-method's implicit solve, the adaptive scheme's and the located transitions'
+  // event functions are written for nearest-neighbour springs without dashpots.
+  const std::string& scheme = s.integrator.scheme;
+  const bool crossing = scheme == "rk2" || scheme == "rk4" || scheme == "verlet";
+  const bool general = s.model.long_range() || s.model.viscous();
+  if (general && (!crossing || s.integrator.located_transitions))
+    throw Error((crossing ? "integrator.transitions = located" : "integrator.scheme = " + scheme) +
+                " with " +
+                (s.model.long_range() ? "model.coupling = " + scene.choice("model.coupling") +
+                                            " and model.range = " + scene.text("model.range")
+                                      : "model.viscosity = " + scene.text("model.viscosity")) +
+                ": written for nearest-neighbour springs without dashpots; allowed here: "
+                "integrator.scheme = rk2, rk4 or verlet with integrator.transitions = step");
 
   s.output.every = scene.real("output.every");
   s.output.blocks = scene.flag("output.blocks");

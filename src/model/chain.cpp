@@ -17,9 +17,15 @@ ChainForces::ChainForces(const ModelParams& p)
     : p_(p),
       law_(make_law(p)),
       friction_(friction_of(p)),
+      stencil_(coupling_stencil(p)),
+      dampers_(damper_stencil(p)),
+      long_range_(p.long_range()),
+      viscous_(p.viscous()),
       inv_m_(1.0 / p.m_u),
       rayleigh_(p.rayleigh_alpha != 0 || p.rayleigh_beta != 0),
       beta_m_(p.rayleigh_beta / p.m_u) {
+  for (const CouplingStencil* st : {&stencil_, &dampers_})
+    for (const CouplingSpring& c : *st) reach_ = std::max(reach_, c.offset);
   kernel_ = select_kernel(false);
   kernel_inertial_ = select_kernel(true);
 }
@@ -55,11 +61,38 @@ void ChainForces::kernel(const ChainForces& self, const double* __restrict w,
        [&] { return self.interior_force<Terms>(wd[j - 1], wd[j], wd[j + 1], anchor_rate); });
 }
 
+template <class Law, class Terms, bool Inertial>
+void ChainForces::kernel_long(const ChainForces& self, const double* __restrict w,
+                              const double* __restrict wd, const double* __restrict mobile,
+                              const double* __restrict dir, double anchor, double anchor_rate,
+                              const SubstrateState& sub, int lo, int hi, double* __restrict a) {
+  const Law& law = self.law<Law>();
+  for (int j = lo; j < hi; ++j) {
+    // A stuck block's acceleration is 0 whatever its force: with a stencil of R springs the
+    // event's 2R stuck blocks around each sliding one would otherwise cost R each.
+    if (mobile[j] == 0.0) {
+      a[j] = 0.0;
+      continue;
+    }
+    const double f = self.spring_force(w, j, anchor);
+    double acc = self.acceleration<Law, Terms, Inertial>(
+        law, self.viscous_ ? f + self.damper_force(wd, j) : f, wd[j], dir[j], sub);
+    if constexpr (Terms::rayleigh)
+      acc += self.rayleigh_acceleration(self.spring_force(wd, j, anchor_rate), wd[j], sub.v);
+    a[j] = mobile[j] * acc;
+  }
+}
+
 ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
   return with_switches([&]<class L, class Terms>(const L&) -> Kernel {
     // The Rayleigh switch is picked here, not in with_switches: only the continuous runs'
     // kernels take it (the event engine's paths refuse the damping).
     using Damped = ForceTerms<Terms::neighbours, Terms::damper, true>;
+    if (long_range_ || viscous_) {
+      if (rayleigh_)
+        return inertial ? &kernel_long<L, Damped, true> : &kernel_long<L, Damped, false>;
+      return inertial ? &kernel_long<L, Terms, true> : &kernel_long<L, Terms, false>;
+    }
     if (rayleigh_) return inertial ? &kernel<L, Damped, true> : &kernel<L, Damped, false>;
     return inertial ? &kernel<L, Terms, true> : &kernel<L, Terms, false>;
   });
@@ -79,6 +112,28 @@ double ChainForces::stiffness_energy(const double* w, double anchor, double x) c
   for (int j = 0; j < n; ++j) {
     const double d = w[j] - anchor;
     e_p += d * d;
+  }
+  if (long_range_) {
+    // Each spring once: from every block to the block `offset` to its right (a periodic
+    // chain's wrap included; 2R < N keeps the springs distinct).
+    const bool ring = p_.boundary == Boundary::Periodic;
+    double e = 0;
+    for (const CouplingSpring& s : stencil_) {
+      double sum = 0;
+      for (int j = 0; j < n; ++j) {
+        int r = j + s.offset;
+        if (r >= n) {
+          if (!ring) break;
+          r -= n;
+        }
+        const double d = w[r] - w[j];
+        sum += d * d;
+      }
+      e += s.k * sum;
+    }
+    double total = 0.5 * e + 0.5 * p_.k_p * e_p;
+    if (p_.pad_moves()) total += 0.5 * p_.k_p0 * x * x;
+    return total;
   }
   if (p_.has_neighbours()) {
     for (int j = 0; j + 1 < n; ++j) {
@@ -105,6 +160,25 @@ double ChainForces::rayleigh_power(const double* wd, double xd, double v) const 
   for (int j = 0; j < p_.n; ++j) mass += (wd[j] - v) * (wd[j] - v);
   mass = p_.m_u * mass + (p_.pad_moves() ? p_.m_x * xd * xd : 0.0);
   return p_.rayleigh_alpha * mass + 2.0 * p_.rayleigh_beta * stiffness_energy(wd, v + xd, xd);
+}
+
+double ChainForces::damper_power(const double* wd, Ranges ranges) const {
+  if (!viscous_) return 0.0;
+  const int n = p_.n;
+  const bool ring = p_.boundary == Boundary::Periodic;
+  double power = 0;
+  for (const Range& r : ranges)
+    for (int j = r.lo; j < r.hi; ++j)
+      for (const CouplingSpring& c : dampers_) {
+        int k = j + c.offset;
+        if (k >= n) {
+          if (!ring) continue;
+          k -= n;
+        }
+        const double d = wd[k] - wd[j];
+        power += c.k * d * d;
+      }
+  return power;
 }
 
 double ChainForces::kinetic_energy(const ChainState& st, double v) const {

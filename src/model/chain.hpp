@@ -17,6 +17,18 @@
 // a switch (ForceTerms::rayleigh) of the continuous runs' kernels only: the event engine's
 // held-range and cluster paths never instantiate it (event runs refuse the damping).
 //
+// Viscous coupling (model.viscosity = eta, Myers & Langer 1993): a dashpot beside each spring
+// of the stencil, + sum_r eta_r (w'_{j-r} - 2 w'_j + w'_{j+r}) on block j (velocity
+// differences are frame-free). beta_K K of the Rayleigh damping holds the neighbour dashpot
+// beta_K k_c of nearest neighbours too, and also damps the pulling springs and the pad: the
+// two compose (they add). The dashpots go through kernel_long.
+//
+// Coupling beyond the nearest neighbours (model.coupling = range | power, model/coupling.hpp):
+// k_c (w_{j-1} - 2 w_j + w_{j+1}) becomes sum_r k_r (w_{j-r} - 2 w_j + w_{j+r}) over the
+// stencil. Its kernel (kernel_long) forms every block's force with the stencil; the
+// nearest-neighbour kernels and everything below that reads only j +- 1 are untouched, so
+// a nearest-neighbour scene (and range or power at R = 1) keeps its bits.
+//
 // Only the terms a scene switches on are compiled into the kernel that runs (templates
 // on the friction law's policy type, model/friction_laws.hpp; on the optional terms,
 // ForceTerms; and on the substrate acceleration).
@@ -28,6 +40,7 @@
 #include <span>
 #include <vector>
 
+#include "model/coupling.hpp"
 #include "model/friction.hpp"
 #include "model/friction_laws.hpp"
 #include "model/parameters.hpp"
@@ -97,6 +110,18 @@ class ChainForces {
   // The static side of the law (threshold, backslip), for the stick rule and the loader.
   const Friction& friction() const { return friction_; }
   int n() const { return p_.n; }
+  // The coupling's springs and dashpots (model/coupling.hpp), and whether the springs reach
+  // beyond j +- 1.
+  const CouplingStencil& stencil() const { return stencil_; }
+  const CouplingStencil& dampers() const { return dampers_; }
+  bool long_range() const { return long_range_; }
+  bool viscous() const { return viscous_; }
+  // Whether the forces need the general kernel (kernel_long): springs beyond j +- 1 or
+  // dashpots. The nearest-neighbour fast paths (cluster, held ranges, lone slip, the
+  // vectorised contact pass) apply only where this is false.
+  bool general_kernel() const { return long_range_ || viscous_; }
+  // Blocks on each side of a block that its springs and dashpots reach.
+  int reach() const { return reach_; }
 
   // Spring force on block j (neighbours and pulling spring), the force friction must hold.
   double spring_force(const double* w, int j, double anchor) const {
@@ -106,6 +131,7 @@ class ChainForces {
   double neighbour_force(const double* w, int j) const {
     const int n = p_.n;
     if (n < 2 || p_.k_c == 0) return 0.0;
+    if (long_range_) return stencil_force(w, j);
     if (p_.boundary == Boundary::Periodic) {
       const double left = w[j == 0 ? n - 1 : j - 1];
       const double right = w[j == n - 1 ? 0 : j + 1];
@@ -117,6 +143,61 @@ class ChainForces {
     if (j < n - 1) f += w[j + 1] - w[j];
     return p_.k_c * f;
   }
+  // sum_r k_r ((w_{j-r} - w_j) + (w_{j+r} - w_j)) over the stencil, with the scene's
+  // boundary (free ends: the springs reaching past the chain are missing).
+  double stencil_force(const double* w, int j) const { return stencil_sum(stencil_, w, j); }
+  double stencil_sum(const CouplingStencil& stencil, const double* w, int j) const {
+    const int n = p_.n;
+    const double wj = w[j];
+    double f = 0;
+    if (p_.boundary == Boundary::Periodic) {
+      for (const CouplingSpring& s : stencil) {
+        const int l = j - s.offset < 0 ? j - s.offset + n : j - s.offset;
+        const int r = j + s.offset >= n ? j + s.offset - n : j + s.offset;
+        f += s.k * ((w[l] - wj) + (w[r] - wj));
+      }
+      return f;
+    }
+    for (const CouplingSpring& s : stencil) {
+      double d = 0;
+      if (j - s.offset >= 0) d += w[j - s.offset] - wj;
+      if (j + s.offset < n) d += w[j + s.offset] - wj;
+      f += s.k * d;
+    }
+    return f;
+  }
+  // The dashpots' force on block j at velocities wd: sum_r eta_r ((wd_{j-r} - wd_j) +
+  // (wd_{j+r} - wd_j)) (0 without viscosity).
+  double damper_force(const double* wd, int j) const {
+    return viscous_ ? stencil_sum(dampers_, wd, j) : 0.0;
+  }
+  // The force friction must hold on block j if it is (or becomes) stuck: the springs' and
+  // the dashpots' from its neighbours' velocities, its own taken as 0 (a stuck block moves
+  // with the substrate). Without viscosity spring_force itself, bit for bit.
+  double holding_force(const double* w, const double* wd, int j, double anchor) const {
+    const double f = spring_force(w, j, anchor);
+    if (!viscous_) return f;
+    const int n = p_.n;
+    double d = 0;
+    const bool ring = p_.boundary == Boundary::Periodic;
+    for (const CouplingSpring& c : dampers_) {
+      double v = 0;
+      if (j - c.offset >= 0)
+        v += wd[j - c.offset];
+      else if (ring)
+        v += wd[j - c.offset + n];
+      if (j + c.offset < n)
+        v += wd[j + c.offset];
+      else if (ring)
+        v += wd[j + c.offset - n];
+      d += c.k * v;
+    }
+    return f + d;
+  }
+  // Power the dashpots dissipate, sum over their bonds of eta_r (wd_k - wd_j)^2, counting
+  // the bonds from the blocks of `ranges` to the right (the event engine's ranges hold
+  // every moving block with R stuck ones each side; pass {0, N} for the whole chain).
+  double damper_power(const double* wd, Ranges ranges) const;
   // The part of the spring force that does not depend on the anchor:
   // g_j = neighbour_force - k_p w_j, so that f_j = g_j + k_p anchor.
   double local_force(const double* w, int j) const { return neighbour_force(w, j) - p_.k_p * w[j]; }
@@ -210,6 +291,11 @@ class ChainForces {
   static void kernel(const ChainForces& self, const double* w, const double* wd,
                      const double* mobile, const double* dir, double anchor, double anchor_rate,
                      const SubstrateState& sub, int lo, int hi, double* a);
+  // The same with the coupling's stencil (long_range()): every block's force by spring_force.
+  template <class Law, class Terms, bool Inertial>
+  static void kernel_long(const ChainForces& self, const double* w, const double* wd,
+                          const double* mobile, const double* dir, double anchor,
+                          double anchor_rate, const SubstrateState& sub, int lo, int hi, double* a);
   Kernel select_kernel(bool inertial) const;
   // 1/2 u^T K u for positions w with the anchor at `anchor` and the pad at x.
   double stiffness_energy(const double* w, double anchor, double x) const;
@@ -217,6 +303,10 @@ class ChainForces {
   ModelParams p_;
   LawVariant law_;
   Friction friction_;
+  CouplingStencil stencil_, dampers_;
+  bool long_range_ = false;
+  bool viscous_ = false;
+  int reach_ = 1;
   double inv_m_ = 1;
   bool rayleigh_ = false;
   double beta_m_ = 0;  // beta_K / m_u

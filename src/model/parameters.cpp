@@ -17,6 +17,8 @@ double ModelParams::max_angular_frequency() const {
   double w = std::sqrt(((has_neighbours() ? 4.0 * k_c : 0.0) + k_p) / m_u);
   // A damper is a real eigenvalue of size c/m; explicit steppers must resolve it too.
   w = std::max(w, c_u / m_u);
+  // The dashpots' fastest mode (neighbours in antiphase) decays at 4 eta / m_u at most.
+  if (viscous()) w = std::max(w, (c_u + 4.0 * viscosity) / m_u);
   if (pad_moves()) {
     const double K = k_p0 + n * k_p;
     w = std::max({w, std::sqrt(K / m_x), c_p / m_x});
@@ -25,7 +27,8 @@ double ModelParams::max_angular_frequency() const {
     // Rayleigh damping alpha_M M + beta_K K adds alpha_M + beta_K omega^2 to a mode of
     // angular frequency omega: the fastest block and pad modes' damping rates, as the dampers'.
     const double wb2 = ((has_neighbours() ? 4.0 * k_c : 0.0) + k_p) / m_u;
-    w = std::max(w, c_u / m_u + rayleigh_alpha + rayleigh_beta * wb2);
+    const double eta = viscous() ? 4.0 * viscosity / m_u : 0.0;
+    w = std::max(w, c_u / m_u + rayleigh_alpha + rayleigh_beta * wb2 + eta);
     if (pad_moves())
       w = std::max(w, c_p / m_x + rayleigh_alpha + rayleigh_beta * (k_p0 + n * k_p) / m_x);
   }

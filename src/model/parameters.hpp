@@ -12,6 +12,10 @@ namespace bkq {
 
 enum class ModelKind { BK, BKP, OneDof };
 enum class Boundary { Free, Periodic };
+// How the blocks are coupled to each other (model/coupling.hpp): nearest neighbours only, or
+// every block within model.range on either side, by equal springs (Range) or by springs
+// decaying as 1/r^p (Power).
+enum class Coupling { Nearest, Range, Power };
 
 // The rows of a tabulated friction law (friction.law = table, model/laws/table.hpp):
 // |phi| per unit block mass at increasing relative speeds >= 0.
@@ -26,7 +30,13 @@ struct ModelParams {
 
   double m_u = 1;  // block mass
   double k_p = 1;  // pulling spring (block to pad)
-  double k_c = 0;  // neighbour spring
+  double k_c = 0;  // neighbour spring (with range coupling: the springs' total, model/coupling.hpp)
+  Coupling coupling = Coupling::Nearest;
+  int range = 1;                 // R: coupled to the blocks within R on each side
+  double coupling_exponent = 3;  // p of the power kernel's 1/r^p
+  // Viscous coupling eta (Myers & Langer 1993): dashpots between the blocks the springs couple,
+  // shaped as the coupling's stencil with their sum eta (model/coupling.hpp).
+  double viscosity = 0;
   double c_u = 0;  // block damper (1DOF model only, Ferre 2018 eq. 2.11)
 
   double m_x = 0;   // pad mass (BKP)
@@ -48,6 +58,13 @@ struct ModelParams {
 
   bool pad_moves() const { return kind == ModelKind::BKP; }
   bool has_neighbours() const { return k_c != 0 && n > 1; }
+  // How far the coupling reaches on each side: 1 for nearest neighbours (and for range or
+  // power at R = 1, which are the nearest-neighbour chain), R otherwise.
+  int reach() const { return coupling == Coupling::Nearest ? 1 : range; }
+  // Coupling beyond the nearest neighbours: the kernels that read only j +- 1 do not apply.
+  bool long_range() const { return has_neighbours() && reach() > 1; }
+  // Dashpots between blocks (model.viscosity).
+  bool viscous() const { return viscosity != 0 && n > 1; }
   // Static threshold on the spring force of one block.
   double threshold() const { return F0 * m_u; }
   // Largest angular frequency of the linear part (Ferre 2018 eq. 3.2, and the pad's), or the

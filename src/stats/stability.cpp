@@ -9,6 +9,8 @@
 #include <limits>
 #include <numbers>
 
+#include "model/coupling.hpp"
+
 namespace bkq {
 
 namespace {
@@ -103,6 +105,17 @@ double Eigenmode::frequency() const {
 
 double laplacian_eigenvalue(const ModelParams& p, int q) {
   if (!coupled(p)) return 0.0;
+  if (p.long_range()) {
+    // A ring's stiffness is circulant for any stencil: the Fourier modes stay its modes, each
+    // spring k_r adding k_r 4 sin^2(pi q r / N). (A free chain's cut springs break this; the
+    // callers refuse the reduction there.)
+    double mu = 0;
+    for (const CouplingSpring& c : coupling_stencil(p)) {
+      const double x = std::sin(kPi * q * c.offset / p.n);
+      mu += c.k / p.k_c * 4.0 * x * x;
+    }
+    return mu;
+  }
   const double s =
       p.boundary == Boundary::Periodic ? std::sin(kPi * q / p.n) : std::sin(kPi * q / (2.0 * p.n));
   return 4.0 * s * s;
@@ -116,9 +129,26 @@ double chain_shape(const ModelParams& p, int q, int j) {
   return std::cos(kPi * q * (j + 0.5) / p.n);
 }
 
+double damper_eigenvalue(const ModelParams& p, int q) {
+  if (!p.viscous() || p.kind == ModelKind::OneDof) return 0.0;
+  const CouplingStencil dampers = damper_stencil(p);
+  if (dampers.size() == 1) {
+    const double s = p.boundary == Boundary::Periodic ? std::sin(kPi * q / p.n)
+                                                      : std::sin(kPi * q / (2.0 * p.n));
+    return p.viscosity * 4.0 * s * s;
+  }
+  double mu = 0;
+  for (const CouplingSpring& c : dampers) {
+    const double x = std::sin(kPi * q * c.offset / p.n);
+    mu += c.k * 4.0 * x * x;
+  }
+  return mu;
+}
+
 double chain_mode_damping(const ModelParams& p, int q) {
   const double k = p.k_p + p.k_c * laplacian_eigenvalue(p, q);
-  return p.c_u / p.m_u + p.rayleigh_alpha + p.rayleigh_beta * k / p.m_u;
+  const double d = p.c_u / p.m_u + p.rayleigh_alpha + p.rayleigh_beta * k / p.m_u;
+  return p.viscous() ? d + damper_eigenvalue(p, q) / p.m_u : d;
 }
 
 std::vector<Eigenmode> modal_eigenmodes(const ModelParams& p, double slope) {
@@ -186,6 +216,9 @@ std::vector<Eigenmode> dense_eigenmodes(const ModelParams& p, double slope,
   std::vector<double> K(d * d, 0.0), C(d * d, 0.0), M(d, p.m_u);
   auto at = [d](std::vector<double>& a, int i, int j) -> double& { return a[i * d + j]; };
   const double kc = coupled(p) ? p.k_c : 0.0;
+  const CouplingStencil stencil = coupling_stencil(p);
+  const CouplingStencil dampers =
+      p.kind == ModelKind::OneDof ? CouplingStencil{} : damper_stencil(p);
   const bool ring = p.boundary == Boundary::Periodic && n > 2;
   for (int j = 0; j < n; ++j) {
     at(K, j, j) += p.k_p;
@@ -194,15 +227,32 @@ std::vector<Eigenmode> dense_eigenmodes(const ModelParams& p, double slope,
       at(K, n, j) -= p.k_p;
       at(K, n, n) += p.k_p;
     }
-    auto spring = [&](int a, int b) {
-      at(K, a, a) += kc;
-      at(K, b, b) += kc;
-      at(K, a, b) -= kc;
-      at(K, b, a) -= kc;
+    auto spring = [&](int a, int b, double k) {
+      at(K, a, a) += k;
+      at(K, b, b) += k;
+      at(K, a, b) -= k;
+      at(K, b, a) -= k;
     };
-    if (kc != 0 && j + 1 < n) spring(j, j + 1);
-    if (kc != 0 && ring && j == n - 1) spring(n - 1, 0);
+    // The coupling's stencil (model/coupling.hpp): each spring once, to the block `offset`
+    // to the right (wrapped on a ring).
+    if (kc != 0)
+      for (const CouplingSpring& c : stencil) {
+        const int partner = j + c.offset;
+        if (partner < n)
+          spring(j, partner, c.k);
+        else if (ring)
+          spring(j, partner - n, c.k);
+      }
     at(C, j, j) += p.m_u * slope + p.c_u;
+    // The dashpots (model.viscosity) on the same stencil, into C.
+    for (const CouplingSpring& c : dampers) {
+      const int partner = j + c.offset < n ? j + c.offset : (ring ? j + c.offset - n : -1);
+      if (partner < 0) continue;
+      at(C, j, j) += c.k;
+      at(C, partner, partner) += c.k;
+      at(C, j, partner) -= c.k;
+      at(C, partner, j) -= c.k;
+    }
   }
   if (pad) {
     M[n] = p.m_x;

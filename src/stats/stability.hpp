@@ -12,7 +12,8 @@
 //          cosine modes (free ends) or Fourier modes (ring) with eigenvalues mu_q, and every
 //          mode q but the uniform one (q = 0) leaves the pad alone, so it is one quadratic
 //          m_u lambda^2 + c_q lambda + k_q = 0, k_q = k_p + k_c mu_q,
-//          c_q = m_u phi' + c_u + alpha_M m_u + beta_K k_q. The uniform mode of bkp is
+//          c_q = m_u phi' + c_u + alpha_M m_u + beta_K k_q + eta_q (the dashpots of
+//          model.viscosity). The uniform mode of bkp is
 //          coupled to the pad: a quartic. O(N): N = 10^5 takes milliseconds.
 //   dense  the first-order state matrix [[0, I], [-M^-1 K, -M^-1 C]] (2N + 2 for bkp, 2N
 //          for bk, 2 for 1dof) with GSL's gsl_eigen_nonsymmv; O(N^3), for N up to a few
@@ -46,15 +47,21 @@ struct Eigenmode {
 // so that the largest is 1 (real).
 using ModeShape = std::vector<std::complex<double>>;
 
-// Eigenvalue mu_q of the chain's graph Laplacian (0 without neighbour springs).
+// Eigenvalue mu_q of the chain's graph Laplacian (0 without neighbour springs); with range
+// coupling (model/coupling.hpp) that of the stencil's stiffness over k_c, sum_r (k_r/k_c) 4
+// sin^2(pi q r/N), exact on a ring only: a free chain with range coupling has no cosine modes
+// (its cut springs), and the modal solver must not be used there (dense_eigenmodes is exact).
 double laplacian_eigenvalue(const ModelParams& p, int q);
 // Block j's amplitude in chain mode q: cos(pi q (j + 1/2)/N) for free ends; for a ring
 // cos(2 pi q j/N) for q <= N/2 and sin(2 pi q j/N) above (q and N - q span one pair).
 double chain_shape(const ModelParams& p, int q, int j);
 
+// Eigenvalue of chain mode q for the dashpots of model.viscosity (their stencil's
+// Laplacian, times eta; 0 without viscosity): eta 4 sin^2(...) for nearest neighbours.
+double damper_eigenvalue(const ModelParams& p, int q);
 // The modal damping of chain mode q (per unit block mass, the "c_q / m_u" above without
-// friction): c_u/m_u + alpha_M + beta_K k_q/m_u. Chain mode q (q >= 1 for bkp) is unstable
-// iff -phi'(v) exceeds it.
+// friction): c_u/m_u + alpha_M + beta_K k_q/m_u + eta_q/m_u (eta_q: damper_eigenvalue). Chain mode
+// q (q >= 1 for bkp) is unstable iff -phi'(v) exceeds it.
 double chain_mode_damping(const ModelParams& p, int q);
 
 // (a) The exact modal reduction; `slope` is phi'(v) per unit block mass.
