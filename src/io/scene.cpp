@@ -817,18 +817,29 @@ std::string Scene::to_ini(const std::vector<std::string>& header) const {
   return out.str();
 }
 
+namespace {
+// Keys added after scenes, checkpoints and summaries were first hashed. At their default
+// they mean what a scene without them meant, so the hash leaves them out and runs made
+// before the key existed still resume and merge.
+bool added_later(const std::string& key) {
+  static const std::set<std::string> keys{
+      "model.rows",  "model.boundary_y",        "ofc.alpha",      "model.coupling",
+      "model.range", "model.coupling_exponent", "model.viscosity"};
+  return keys.count(key) != 0;
+}
+}  // namespace
+
 std::uint64_t Scene::hash() const {
   std::uint64_t h = kFnv1a64Basis;
   for (const auto& p : parameter_table()) {
     // An unset file key leaves the hash of the scenes that do not use it as it was; so do
-    // the lattice's and the automaton's keys at their defaults (added after scenes, their
-    // checkpoints and summaries were hashed without them).
+    // the keys added after scenes, their checkpoints and summaries were first hashed, at
+    // their defaults (see added_later).
     if (p.type == ParamType::Path && values_.at(p.key).empty()) continue;
     // Likewise integrator.transitions at step, its meaning before the key existed, so that
     // checkpoints and results of those scenes keep their hash.
     if (p.key == "integrator.transitions" && values_.at(p.key) == "step") continue;
-    if ((p.key == "model.rows" || p.key == "model.boundary_y" || p.key == "ofc.alpha") &&
-        values_.at(p.key) == normalise(p, p.default_value, "default"))
+    if (added_later(p.key) && values_.at(p.key) == normalise(p, p.default_value, "default"))
       continue;
     h = fnv1a64(p.key + "=" + values_.at(p.key) + "\n", h);
   }
