@@ -354,6 +354,31 @@ TEST(Reliability, NoCommandWritesOverItsInputsOrARunsFiles) {
   ASSERT_EQ(run_bkquake({"sweep", sweep, "--out", sw}).status, 0);
   expect_refused(run_bkquake({"sweep", sweep, "--out", sw}), {"holds a sweep", "--force"});
   EXPECT_EQ(run_bkquake({"sweep", sweep, "--out", sw, "--force"}).status, 0);
+
+  // friction-study writes a folder too: not over a run's (refused before any run starts),
+  // and not over its own earlier study without --force.
+  const std::vector<std::string> study = {"friction-study",
+                                          "--configs",
+                                          "1dof",
+                                          "--segment",
+                                          "1",
+                                          "--quiet",
+                                          "--scenes",
+                                          std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/brake"};
+  auto with_out = [&](const std::string& out, bool force) {
+    std::vector<std::string> a = study;
+    a.insert(a.end(), {"--out", out});
+    if (force) a.push_back("--force");
+    return a;
+  };
+  expect_refused(run_bkquake(with_out(r, false)), {"already holds a finished run"});
+  EXPECT_EQ(tree_bytes(r), run_files);
+  const std::string fs_out = tmp.file("study");
+  ASSERT_EQ(run_bkquake(with_out(fs_out, false)).status, 0);
+  ASSERT_TRUE(fs::exists(fs_out + "/friction_study.csv"));
+  EXPECT_FALSE(fs::exists(fs_out + "/bkquake.lock"));
+  expect_refused(run_bkquake(with_out(fs_out, false)), {"already holds files", "--force"});
+  EXPECT_EQ(run_bkquake(with_out(fs_out, true)).status, 0);
 }
 
 // Samples on the stated grid: with output.every = 0.5 and dt = 0.005 every time in
