@@ -432,6 +432,35 @@ TEST(Reliability, MessagesSayWhatIsTrue) {
   EXPECT_NE(help.out.find("analysis/plot_brake.py"), std::string::npos) << help.out;
   EXPECT_NE(run_bkquake({"run", "--dump-defaults"}).out.find("event runs refuse it"),
             std::string::npos);
+  // An error about a built-in default scene that --set made continuous does not call it
+  // event-driven.
+  const auto cont =
+      run_bkquake({"run", "--quiet", "--set", "drive.mode=continuous", "--set",
+                   "integrator.dt=0.01", "--set", "run.duration=1e14", "--out", tmp.file("c")});
+  expect_refused(cont, {"run.duration = 1e+14", "(built-in default scene with --set overrides)"});
+  EXPECT_EQ(cont.err.find("event-driven"), std::string::npos) << cont.err;
+  // stability analyses an event-driven scene continuously driven: --set drive.speed is
+  // accepted and used (it was refused, and the default speed used in silence).
+  const std::string st = tmp.file("st");
+  const auto stab = run_bkquake(
+      {"stability", "--set", "model.blocks=5", "--set", "drive.speed=0.25", "--out", st});
+  ASSERT_EQ(stab.status, 0) << stab.err;
+  EXPECT_EQ(stab.out.find("\n0.01 "), std::string::npos) << stab.out;
+  EXPECT_NE(stab.out.find("\n0.25 "), std::string::npos) << stab.out;
+  EXPECT_NE(read_file(st + "/scene.ini").find("speed = 0.25"), std::string::npos);
+  // A brake run (a pad, continuously driven) says where its figures are, not a b line.
+  const std::string brake = tmp.file("brake");
+  const auto br =
+      run_bkquake({"run", std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/brake/bkp.ini", "--set",
+                   "model.blocks=5", "--set", "run.duration=20", "--set", "drive.step_interval=10",
+                   "--out", brake});
+  ASSERT_EQ(br.status, 0) << br.err;
+  EXPECT_EQ(br.out.find("  b"), std::string::npos) << br.out;
+  EXPECT_NE(br.out.find("2 speed segments: the pad's mean and amplitude in segments.csv"),
+            std::string::npos)
+      << br.out;
+  // Its summary's reason for no b names the test that failed, not a KS tolerance.
+  EXPECT_EQ(read_file(brake + "/summary.json").find("KS tolerance"), std::string::npos);
   // A catalogue whose run was killed (checkpoints, no summary) is fitted with a note.
   const std::string k = tmp.file("k");
   interrupted_run(k);
