@@ -32,9 +32,8 @@ done
 # "name rate" lines of one run of both programs of build folder $1: events/s of the event
 # benchmarks, block-steps/s of the stepper benchmarks.
 rates() {
-  local counter='"events"'
   {
-    "$1/bench_events" --benchmark_filter='BM_Events/(bk/(100|1000)|bkp/100)$' \
+    "$1/bench_events" --benchmark_filter='BM_Events/(bk/(100|1000)|bkp/100)/' \
       --benchmark_format=csv 2>/dev/null
     "$1/bench_steppers" --benchmark_filter='BM_Continuous/.*/1000$' --benchmark_min_time=0.5 \
       --benchmark_format=csv 2>/dev/null
@@ -43,7 +42,7 @@ rates() {
       /^"BM_/ {
         want = $1 ~ /BM_Events/ ? "\"events\"" : "\"block_steps\""
         for (i = 1; i <= NF; ++i) if (head[i] == want) {
-          name = $1; gsub(/"/, "", name)
+          name = $1; gsub(/"/, "", name); sub(/\/min_time:.*/, "", name)
           print name, $i
         }
       }'

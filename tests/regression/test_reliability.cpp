@@ -402,6 +402,20 @@ TEST(Reliability, SampleTimesLieOnTheStatedGrid) {
   EXPECT_EQ(k, 801);
 }
 
+// A binary says which instruction set it was built for, so that a result can name the build
+// it came from: the portable default x86-64-v3, native (-DBKQUAKE_NATIVE=ON) or default
+// (the compiler's own baseline).
+TEST(Reliability, VersionNamesTheBuildTarget) {
+  const auto r = run_bkquake({"--version"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto at = r.out.find(", built for ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string target = r.out.substr(at + 12, r.out.find(')', at) - at - 12);
+  EXPECT_TRUE(target == "x86-64-v3" || target == "native" || target == "default" ||
+              target.rfind("x86-64", 0) == 0)
+      << target;
+}
+
 // Messages that said something untrue or cut themselves short.
 TEST(Reliability, MessagesSayWhatIsTrue) {
   test::TempDir tmp;
