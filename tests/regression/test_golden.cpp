@@ -6,7 +6,7 @@
 // a fit and a small accuracy study.
 //
 // Re-record (only when a change of numbers is intended and stated in the commit):
-//   BKQUAKE_GOLDEN_RECORD=1 build/bkquake_tests --gtest_filter='Golden*'
+//   BKQUAKE_GOLDEN_RECORD=1 build/bkquake_tests --gtest_filter='Cases/Golden.*'
 #include <gtest/gtest.h>
 #include <signal.h>
 
