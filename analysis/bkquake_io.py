@@ -176,8 +176,9 @@ def label(run_dir, scene=None):
 # The files a run writes into its folder (io/run_folder.cpp, run_own_files): no plot writes
 # over them.
 RUN_OWN_FILES = ("scene.ini", "catalog.csv", "catalog.h5", "histogram.csv", "summary.json",
-                 "timeseries.csv", "segments.csv", "energy.csv", "blocks.csv", "checkpoint.bin",
-                 "checkpoint.prev.bin", "bkquake.lock")
+                 "timeseries.csv", "segments.csv", "energy.csv", "energy_samples.csv",
+                 "blocks.csv", "event_slip.csv", "checkpoint.bin", "checkpoint.prev.bin",
+                 "checkpoint.final.bin", "bkquake.lock")
 IMAGE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
 
 

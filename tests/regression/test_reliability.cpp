@@ -316,6 +316,16 @@ TEST(Reliability, NoCommandWritesOverItsInputsOrARunsFiles) {
   expect_refused(run_bkquake({"fit", catalog, "--json", r + "/summary.json"}),
                  {"is the file summary.json of the run in"});
   EXPECT_EQ(tree_bytes(tmp.path()), before);
+  // Every file a run writes is its own: the slips of output.event_slip, the energy samples
+  // of output.energy and the final state were missing from the list and could be replaced.
+  const std::string e = tmp.file("e");
+  small_run(e, {"--set", "output.event_slip=-2"});
+  ASSERT_TRUE(fs::exists(e + "/event_slip.csv"));
+  const auto e_files = tree_bytes(e);
+  for (const char* own : {"event_slip.csv", "checkpoint.final.bin", "energy_samples.csv"})
+    expect_refused(run_bkquake({"fit", e + "/catalog.csv", "--json", e + "/" + own}),
+                   {std::string("is the file ") + own + " of the run in"});
+  EXPECT_EQ(tree_bytes(e), e_files);
   // A derived output into the run folder is fine, and takes (and returns) its lock.
   EXPECT_EQ(run_bkquake({"fit", r + "/catalog.csv", "--json", r + "/fit.json"}).status, 0);
   EXPECT_TRUE(fs::exists(r + "/fit.json"));
