@@ -48,6 +48,15 @@ int cmd_stability(const std::vector<std::string>& args) {
   // continuously, so drive.speed applies (and --set drive.speed is accepted) whatever the
   // scene's drive.mode; event-only keys of a scene file are dropped with a warning.
   Scene scene = scene_from_command_line("stability", vm, {{"drive.mode", "continuous"}});
+  if (scene.choice("model.kind") == "ofc")
+    throw Error(
+        "stability: model.kind = ofc: the automaton has no steady sliding to "
+        "linearise; allowed: model.kind = bk, bkp or 1dof");
+  if (scene.choice("drive.mode") != "continuous")
+    throw Error("stability: drive.mode = " + scene.choice("drive.mode") +
+                ": steady sliding at drive.speed is a continuously driven state, and stability "
+                "analyses every scene so; remove --set drive.mode=" +
+                scene.choice("drive.mode"));
   scene.validate();
   StabilityOptions opt;
   if (vm.count("sweep")) opt.sweep = parse_sweep(vm["sweep"].as<std::string>(), vm.count("log"));

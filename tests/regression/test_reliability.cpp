@@ -472,6 +472,16 @@ TEST(Reliability, MessagesSayWhatIsTrue) {
   EXPECT_EQ(stab.out.find("\n0.01 "), std::string::npos) << stab.out;
   EXPECT_NE(stab.out.find("\n0.25 "), std::string::npos) << stab.out;
   EXPECT_NE(read_file(st + "/scene.ini").find("speed = 0.25"), std::string::npos);
+  // ... and refuses what it cannot analyse instead of analysing another model: the OFC
+  // automaton (it analysed a chain), an explicit event drive (the default speed again).
+  expect_refused(run_bkquake({"stability", "--set", "model.kind=ofc", "--out", tmp.file("so")}),
+                 {"stability: model.kind = ofc", "no steady sliding"});
+  expect_refused(run_bkquake({"stability", "--set", "drive.mode=events", "--set",
+                              "drive.speed=0.25", "--out", tmp.file("se")}),
+                 {"drive.speed"});
+  expect_refused(run_bkquake({"stability", "--set", "drive.mode=events", "--out", tmp.file("se2")}),
+                 {"stability: drive.mode = events", "remove --set drive.mode=events"});
+  EXPECT_FALSE(fs::exists(tmp.file("so")));
   // A brake run (a pad, continuously driven) says where its figures are, not a b line.
   const std::string brake = tmp.file("brake");
   const auto br =
