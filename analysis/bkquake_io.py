@@ -169,3 +169,172 @@ def label(run_dir, scene=None):
         parts.append(f"N = {blocks}")
     name = os.path.basename(os.path.normpath(run_dir))
     return f"{name}: " + ", ".join(parts) if parts else name
+
+
+# --- Writing a figure: the folder rule of bkquake's derived outputs (io/run_folder.hpp) ---
+
+# The files a run writes into its folder (io/run_folder.cpp, run_own_files): no plot writes
+# over them.
+RUN_OWN_FILES = ("scene.ini", "catalog.csv", "catalog.h5", "histogram.csv", "summary.json",
+                 "timeseries.csv", "segments.csv", "energy.csv", "energy_samples.csv",
+                 "blocks.csv", "event_slip.csv", "checkpoint.bin", "checkpoint.prev.bin",
+                 "checkpoint.final.bin", "bkquake.lock")
+IMAGE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
+
+
+def is_run_folder(folder):
+    """scene.ini with summary.json or a checkpoint beside it (io/run_folder.cpp)."""
+    return os.path.isfile(_path(folder, "scene.ini")) and any(
+        os.path.exists(_path(folder, n))
+        for n in ("summary.json", "checkpoint.bin", "checkpoint.prev.bin"))
+
+
+def is_bkquake_folder(folder):
+    """A folder a bkquake command wrote and locks while it writes: a run, sweep, stability
+    or accuracy folder (scene.ini or sweep.ini in it)."""
+    return any(os.path.isfile(_path(folder, n)) for n in ("scene.ini", "sweep.ini"))
+
+
+class Refused(Exception):
+    """An output a script will not write; the message is one line for the user."""
+
+
+class FolderLock:
+    """The lock of a bkquake folder (io/folder_lock.hpp): the file bkquake.lock (host, pid,
+    command, start), published with link() so that it exists only when complete, and flock()ed
+    while held. A lock whose holder lives is refused naming it; a stale lock of this host (its
+    flock gone with its process) is taken over with a warning; one of another host is refused."""
+
+    def __init__(self, folder, command):
+        self.folder = folder
+        self.path = _path(folder, "bkquake.lock")
+        self.command = command
+        self.fd = None
+
+    def __enter__(self):
+        import datetime
+        import fcntl
+        import socket
+        import sys
+        import tempfile
+        host = socket.gethostname()
+        since = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+        text = (f"bkquake folder lock\nhost {host}\npid {os.getpid()}\n"
+                f"command {self.command}\nsince {since}\n").encode()
+        for _ in range(5):
+            try:
+                fd, tmp = tempfile.mkstemp(prefix=".bkquake.lock.tmp-", dir=self.folder)
+            except OSError as e:
+                raise Refused(f"cannot write to folder '{self.folder}': {e.strerror}")
+            os.write(fd, text)
+            os.fchmod(fd, 0o644)
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            try:
+                os.link(tmp, self.path)
+                os.unlink(tmp)
+                self.fd = fd
+                return self
+            except FileExistsError:
+                os.unlink(tmp)
+                os.close(fd)
+            try:
+                old = os.open(self.path, os.O_RDWR)
+            except FileNotFoundError:
+                continue  # released meanwhile
+            fields = dict(line.split(" ", 1) for line in
+                          os.read(old, 4096).decode(errors="replace").splitlines() if " " in line)
+            holder = (f"bkquake {fields.get('command', '?')} (pid {fields.get('pid', '?')} on "
+                      f"host {fields.get('host', '?')})")
+            try:
+                fcntl.flock(old, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                os.close(old)
+                raise Refused(f"folder '{self.folder}' is in use by {holder}; try again when it "
+                              "is done")
+            if fields.get("host", host) != host:
+                os.close(old)
+                raise Refused(f"folder '{self.folder}' is locked by {holder}; a lock of another "
+                              f"host is never taken over: if that command is gone, delete "
+                              f"'{self.path}' by hand")
+            if os.fstat(old).st_ino != os.stat(self.path).st_ino:
+                os.close(old)
+                continue  # released and replaced meanwhile
+            os.ftruncate(old, 0)
+            os.pwrite(old, text, 0)
+            print(f"{self.command}: warning: taking over the stale lock of '{self.folder}' left "
+                  f"by {holder}, which is gone", file=sys.stderr)
+            self.fd = old
+            return self
+        raise Refused(f"cannot take the lock '{self.path}': it keeps changing")
+
+    def __exit__(self, *exc):
+        try:
+            if os.fstat(self.fd).st_ino == os.stat(self.path).st_ino:
+                os.unlink(self.path)
+        except FileNotFoundError:
+            pass
+        os.close(self.fd)
+
+
+def check_output(out, inputs, command):
+    """Raises Refused unless `out` may take a figure: an image file name, none of `inputs`
+    (the files and folders the script read), not a folder, not one of a run's own files."""
+    if not out.lower().endswith(IMAGE_SUFFIXES):
+        raise Refused(f"output '{out}' is not an image file name; expected one ending in "
+                      + ", ".join(IMAGE_SUFFIXES))
+    if os.path.isdir(out):
+        raise Refused(f"output '{out}' is a folder, expected a file name")
+    real = os.path.realpath(out)
+    for path in inputs:
+        if os.path.realpath(path) == real:
+            raise Refused(f"output '{out}' is its input '{path}'; {command} writes nothing over "
+                          "its inputs: choose another output")
+    folder = os.path.dirname(real)
+    if is_run_folder(folder) and os.path.basename(real) in RUN_OWN_FILES:
+        raise Refused(f"output '{out}' is the file {os.path.basename(real)} of the run in "
+                      f"'{folder}'; {command} writes nothing over a run's own files")
+
+
+def check_output_or_exit(out, inputs, command):
+    """check_output, a refusal printed as one line on stderr with exit status 2: for a script
+    to call before it draws."""
+    import sys
+    try:
+        check_output(out, inputs, command)
+    except Refused as e:
+        print(f"{command}: {e}", file=sys.stderr)
+        sys.exit(2)
+
+
+def save_figure(fig, out, inputs, command, **savefig_args):
+    """Writes `fig` to `out` under the rule of every derived output (io/run_folder.hpp,
+    DerivedOutput): never over an input or a run's own file (check_output); in a bkquake
+    folder (or a subfolder of one, such as a run's seismicity/) under that folder's lock, so never beside a live run; through a temporary file
+    renamed over `out`, so only the figure's own earlier version is replaced, whole.
+    A refusal is one line on stderr and exit status 2."""
+    import sys
+    try:
+        check_output(out, inputs, command)
+        folder = os.path.dirname(os.path.abspath(out))
+        base, ext = os.path.splitext(out)
+        tmp = f"{base}.tmp-{os.getpid()}{ext}"
+        # A derived subfolder (a run's seismicity/) is written under the run folder's lock.
+        held = next((f for f in (folder, os.path.dirname(folder)) if is_bkquake_folder(f)), None)
+        lock = FolderLock(held, command) if held else None
+        if lock:
+            lock.__enter__()
+        try:
+            try:
+                fig.savefig(tmp, **savefig_args)
+                os.replace(tmp, out)
+            except OSError as e:
+                raise Refused(f"cannot write '{out}': {e.strerror}")
+            finally:
+                if os.path.exists(tmp):
+                    os.unlink(tmp)
+        finally:
+            if lock:
+                lock.__exit__()
+    except Refused as e:
+        print(f"{command}: {e}", file=sys.stderr)
+        sys.exit(2)

@@ -23,6 +23,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import bkquake_io  # noqa: E402
+
 COLUMNS = ["mu_min", "mu_max", "events", "b", "b_err", "ks_distance", "accepted"]
 
 
@@ -49,6 +51,8 @@ def main(argv=None):
     except (OSError, ValueError) as e:
         print(f"plot_b_scan.py: {e}", file=sys.stderr)
         return 2
+    out = args.out or os.path.join(os.path.dirname(os.path.abspath(path)), "b_scan.png")
+    bkquake_io.check_output_or_exit(out, [path], "plot_b_scan.py")
     acc = s["accepted"] > 0
     fig, (ax, ax_map) = plt.subplots(1, 2, figsize=(13, 5))
     tops = np.unique(s["mu_max"])
@@ -89,8 +93,7 @@ def main(argv=None):
     ax_map.set(xlabel="mu_min", ylabel="mu_max", title="b over the windows (rings: accepted)")
     ax_map.grid(True, alpha=0.3)
     fig.tight_layout()
-    out = args.out or os.path.join(os.path.dirname(os.path.abspath(path)), "b_scan.png")
-    fig.savefig(out, dpi=120)
+    bkquake_io.save_figure(fig, out, [path], "plot_b_scan.py", dpi=120)
     print(out)
     return 0
 

@@ -31,7 +31,12 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import bkquake_io  # noqa: E402
+
 V_SPECIAL = 0.2785  # bkquake special-speed data/scenes/brake/bkp.ini (thesis: 0.28)
+
+
+READ = []  # the files this invocation read: a figure is never written over one of them
 
 
 def fail(msg):
@@ -43,6 +48,7 @@ def scene_of(run_dir):
     path = os.path.join(run_dir, "scene.ini")
     if not os.path.exists(path):
         fail(f"{run_dir} is not a run folder (no scene.ini)")
+    READ.append(path)
     cp = configparser.ConfigParser(comment_prefixes=("#",), inline_comment_prefixes=None)
     with open(path) as f:
         cp.read_file(f)
@@ -61,6 +67,7 @@ def read_table(path):
     """Headed CSV ('#' lines skipped) -> dict name -> numpy array (text columns as str)."""
     if not os.path.exists(path):
         fail(f"{path} is missing")
+    READ.append(path)
     with open(path) as f:
         rows = list(csv.reader(line for line in f if not line.startswith("#")))
     header, body = rows[0], rows[1:]
@@ -75,8 +82,10 @@ def read_table(path):
 
 
 def save(fig, path):
+    """Into the folder read (under its lock when bkquake wrote it) or --png, never over an
+    input or a run's own file (bkquake_io.save_figure)."""
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    bkquake_io.save_figure(fig, path, READ, "plot_brake.py", dpi=120)
     print(path)
 
 
@@ -294,6 +303,8 @@ def main():
     a = p.parse_args()
     if not os.path.isdir(a.dir):
         fail(f"{a.dir} is not a folder")
+    if a.png:
+        bkquake_io.check_output_or_exit(a.png, [a.dir], "plot_brake.py")
     a.fn(a)
 
 

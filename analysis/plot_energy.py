@@ -24,6 +24,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import bkquake_io  # noqa: E402
+
 
 def columns(path):
     with open(path) as f:
@@ -40,6 +42,9 @@ def main():
                     help="fraction of the run at its end drawn as the limit cycle")
     args = ap.parse_args()
     out = args.out or os.path.join(args.run, "energy.png")
+    inputs = [os.path.join(args.run, n)
+              for n in ("energy_samples.csv", "energy.csv", "timeseries.csv", "summary.json")]
+    bkquake_io.check_output_or_exit(out, inputs, "plot_energy.py")
     s = columns(os.path.join(args.run, "energy_samples.csv"))
     w = columns(os.path.join(args.run, "energy.csv"))
     ts = columns(os.path.join(args.run, "timeseries.csv"))
@@ -105,7 +110,7 @@ def main():
     a.set_ylabel("blocks")
     a.set_title("(f) node status", fontsize=10)
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    bkquake_io.save_figure(fig, out, inputs, "plot_energy.py", dpi=110)
     print(f"wrote {out}")
 
 

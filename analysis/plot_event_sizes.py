@@ -14,6 +14,7 @@ python3-matplotlib); the python3 first on PATH may lack them.
 """
 
 import argparse
+import os
 import re
 
 import matplotlib
@@ -21,6 +22,8 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+import bkquake_io  # noqa: E402
 
 
 def read_sizes(path):
@@ -62,10 +65,13 @@ def binned(blocks, count, time_us, per_decade=5):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("csv", nargs="+", help="CSV files written by build/event_sizes --csv")
-    ap.add_argument("--out", default="event_sizes.png")
+    ap.add_argument("--out", help="PNG file (default: event_sizes.png beside the first CSV)")
     ap.add_argument("--min-count", type=int, default=3,
                     help="leave out sizes seen fewer times than this (default 3)")
     args = ap.parse_args()
+    out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv[0])),
+                                   "event_sizes.png")
+    bkquake_io.check_output_or_exit(out, args.csv, "plot_event_sizes.py")
 
     fig, ax = plt.subplots(figsize=(5.6, 4.0), dpi=100)
     colours = ["tab:blue", "tab:orange", "tab:green", "tab:red"]
@@ -90,7 +96,7 @@ def main():
     ax.grid(True, which="both", alpha=0.25)
     ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
-    fig.savefig(args.out)
+    bkquake_io.save_figure(fig, out, args.csv, "plot_event_sizes.py")
 
 
 if __name__ == "__main__":

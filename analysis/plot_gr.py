@@ -176,7 +176,8 @@ def plot_run(run, i, args, ax_d, ax_r, dcol, rcol):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("runs", nargs="+", metavar="RUN_DIR")
-    ap.add_argument("--out", help="PNG file (default RUN_DIR/gr.png for one run, else gr.png)")
+    ap.add_argument("--out", help="PNG file (default RUN_DIR/gr.png for one run, else "
+                    "gr_runs.png in the first RUN_DIR)")
     ap.add_argument("--rates", action="store_true", help="plot D_rate and R_rate")
     ap.add_argument("--mu-min", type=float, help="refit every run on [MU_MIN, MU_MAX)")
     ap.add_argument("--mu-max", type=float, help="upper end of the refit window")
@@ -187,6 +188,9 @@ def main(argv=None):
               file=sys.stderr)
         return 2
 
+    out = args.out or os.path.join(args.runs[0], "gr.png" if len(args.runs) == 1 else "gr_runs.png")
+    inputs = list(args.runs)
+    bkquake_io.check_output_or_exit(out, inputs, "plot_gr.py")
     fig, (ax_d, ax_r) = plt.subplots(1, 2, figsize=(12, 5))
     dcol, rcol = ("D_rate", "R_rate") if args.rates else ("D", "R")
     try:
@@ -208,8 +212,7 @@ def main(argv=None):
     # One legend, where R(mu) leaves room: above the curves on the right.
     ax_r.legend(fontsize=7, loc="upper right")
     fig.tight_layout()
-    out = args.out or (os.path.join(args.runs[0], "gr.png") if len(args.runs) == 1 else "gr.png")
-    fig.savefig(out, dpi=120)
+    bkquake_io.save_figure(fig, out, inputs, "plot_gr.py", dpi=120)
     print(out)
     return 0
 

@@ -11,11 +11,14 @@ python3-matplotlib); the python3 first on PATH may lack them.
 
 import argparse
 import csv
+import os
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+import bkquake_io  # noqa: E402
 
 
 def read(path):
@@ -36,8 +39,11 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("csv")
     ap.add_argument("--before", help="a CSV of the same kind, drawn dashed")
-    ap.add_argument("--out", default="scaling.png")
+    ap.add_argument("--out", help="PNG file (default: scaling.png beside the CSV)")
     args = ap.parse_args()
+    out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "scaling.png")
+    inputs = [args.csv] + ([args.before] if args.before else [])
+    bkquake_io.check_output_or_exit(out, inputs, "plot_scaling.py")
     runs = [(read(args.csv), "-", "")]
     if args.before:
         runs.insert(0, (read(args.before), "--", " (before)"))
@@ -59,7 +65,7 @@ def main():
         ax.legend(fontsize=7)
     fig.suptitle("carlson-langer l = 10, alpha = 2.5, rk4 dt = 0.01, one core", fontsize=9)
     fig.tight_layout()
-    fig.savefig(args.out, dpi=110)
+    bkquake_io.save_figure(fig, out, inputs, "plot_scaling.py", dpi=110)
 
 
 if __name__ == "__main__":

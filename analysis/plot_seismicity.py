@@ -22,6 +22,8 @@ import sys
 import matplotlib
 import numpy as np
 
+import bkquake_io
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -70,44 +72,7 @@ def fmt(x, err=None, digits=3):
     return f"{x:.{digits}f}" + (f" ± {err:.{digits}f}" if err is not None else "")
 
 
-class FolderLock:
-    """The run folder's lock (io/folder_lock.hpp): the file bkquake.lock, published with
-    link() so it exists only when complete, and flock()ed while held; a folder another
-    bkquake command holds is refused with one line."""
-
-    def __init__(self, folder):
-        self.path = os.path.join(folder, "bkquake.lock")
-        self.folder = folder
-
-    def __enter__(self):
-        import datetime
-        import fcntl
-        import socket
-        import tempfile
-        since = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
-        fd, tmp = tempfile.mkstemp(prefix=".bkquake.lock.tmp-", dir=self.folder)
-        os.write(fd, (f"bkquake folder lock\nhost {socket.gethostname()}\npid {os.getpid()}\n"
-                      f"command plot_seismicity\nsince {since}\n").encode())
-        os.fchmod(fd, 0o644)
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        try:
-            os.link(tmp, self.path)
-        except FileExistsError:
-            holder = open(self.path).read().replace("\n", " ").strip()
-            os.close(fd)
-            os.unlink(tmp)
-            sys.exit(f"plot_seismicity: {self.folder} is in use ({holder}); try again when it "
-                     "is done")
-        os.unlink(tmp)
-        self.fd = fd
-        return self
-
-    def __exit__(self, *exc):
-        os.unlink(self.path)
-        os.close(self.fd)
-
-
-def draw(d, out):
+def draw(d):
     j = json.load(open(os.path.join(d, "seismicity.json")))
     fig, ax = plt.subplots(2, 3, figsize=(16, 9.5))
 
@@ -230,8 +195,7 @@ def draw(d, out):
                  f"(ΔMw = {fmt(bath['delta_mw'])}); moment budget "
                  f"{fmt(j['moment_budget'], digits=4)}", fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.96))
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    return fig
 
 
 def main():
@@ -240,19 +204,12 @@ def main():
     p.add_argument("--out", help="image file (default RUN_DIR/seismicity/seismicity.png)")
     args = p.parse_args()
     d = folder_of(args.run_dir)
-    if args.out:
-        draw(d, args.out)
-        print(f"written {args.out}")
-        return
-    # Into the run folder's seismicity/: under the run folder's lock, replacing only the
-    # plot's own earlier version.
-    parent = os.path.dirname(os.path.abspath(d)) if os.path.basename(
-        os.path.normpath(d)) == "seismicity" else d
-    with FolderLock(parent):
-        out = os.path.join(d, "seismicity.png")
-        tmp = out + f".tmp-{os.getpid()}.png"
-        draw(d, tmp)
-        os.replace(tmp, out)
+    inputs = [os.path.join(d, f) for f in FILES]
+    # By default into the run folder's seismicity/, under the run folder's lock; never over
+    # an input or a run's own file (bkquake_io.save_figure).
+    out = args.out or os.path.join(d, "seismicity.png")
+    bkquake_io.check_output_or_exit(out, inputs, "plot_seismicity")
+    bkquake_io.save_figure(draw(d), out, inputs, "plot_seismicity", dpi=110)
     print(f"written {out}")
 
 

@@ -20,7 +20,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_seismicity import FolderLock  # noqa: E402
+import bkquake_io  # noqa: E402
 
 
 def largest_profiles(path, k):
@@ -43,7 +43,7 @@ def largest_profiles(path, k):
     return out
 
 
-def draw(run_dir, k, out):
+def draw(run_dir, k):
     path = os.path.join(run_dir, "event_slip.csv")
     if not os.path.isfile(path):
         sys.exit(f"plot_slip_profiles: {run_dir} has no event_slip.csv (run with "
@@ -59,8 +59,7 @@ def draw(run_dir, k, out):
     ax.set_title(f"slip profiles of the {len(profiles)} largest events ({run_dir})", fontsize=10)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    return fig
 
 
 def main():
@@ -69,15 +68,12 @@ def main():
     p.add_argument("--largest", type=int, default=8)
     p.add_argument("--out")
     args = p.parse_args()
-    if args.out:
-        draw(args.run_dir, args.largest, args.out)
-        out = args.out
-    else:
-        out = os.path.join(args.run_dir, "slip_profiles.png")
-        with FolderLock(args.run_dir):
-            tmp = out + f".tmp-{os.getpid()}.png"
-            draw(args.run_dir, args.largest, tmp)
-            os.replace(tmp, out)
+    # By default into the run folder, under its lock; never over an input or a run's own file.
+    out = args.out or os.path.join(args.run_dir, "slip_profiles.png")
+    inputs = [os.path.join(args.run_dir, "event_slip.csv")]
+    bkquake_io.check_output_or_exit(out, inputs, "plot_slip_profiles")
+    bkquake_io.save_figure(draw(args.run_dir, args.largest), out, inputs, "plot_slip_profiles",
+                           dpi=110)
     print(f"written {out}")
 
 

@@ -9,6 +9,9 @@
                         (bottom) of every mode against the swept value, unstable points in red,
                         the pad mode and chain:0 highlighted; name the swept key with --xlabel.
 
+Each figure goes into the (first) folder it reads, under that folder's lock (stability_eigen.png,
+stability_sweep.png), or to --out; never over an input.
+
 Usage:
   /usr/bin/python3 analysis/plot_stability.py eigen runs/st/v0.1 runs/st/v0.1-damped=damped --out eig.png
   /usr/bin/python3 analysis/plot_stability.py sweep runs/st/speed --xlabel "disc speed v" --out sweep.png
@@ -28,11 +31,18 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import bkquake_io  # noqa: E402
+
 
 def read_modes(folder):
     """stability.csv -> list of dicts (value, mode, re, im, frequency, unstable)."""
     rows = []
-    with open(os.path.join(folder, "stability.csv")) as f:
+    path = os.path.join(folder, "stability.csv")
+    if not os.path.isfile(path):
+        print(f"plot_stability.py: {folder} holds no stability.csv (not an output folder of "
+              "bkquake stability)", file=sys.stderr)
+        sys.exit(2)
+    with open(path) as f:
         for r in csv.DictReader(f):
             rows.append({
                 "value": float(r["value"]),
@@ -42,7 +52,8 @@ def read_modes(folder):
                 "unstable": r["unstable"] == "1",
             })
     if not rows:
-        sys.exit(f"{folder}/stability.csv: no eigenvalues")
+        print(f"plot_stability.py: {path}: no eigenvalues", file=sys.stderr)
+        sys.exit(2)
     return rows
 
 
@@ -56,6 +67,10 @@ def style(mode):
 
 def eigen(args):
     folders = [a.split("=", 1) for a in args.folders]
+    # By default into the first folder (under its lock), never over an input.
+    out = args.out or os.path.join(folders[0][0], "stability_eigen.png")
+    inputs = [os.path.join(item[0], "stability.csv") for item in folders]
+    bkquake_io.check_output_or_exit(out, inputs, "plot_stability.py")
     fig, axes = plt.subplots(1, len(folders), figsize=(5.2 * len(folders), 4.4), squeeze=False,
                              sharey=True)
     for ax, item in zip(axes[0], folders):
@@ -80,11 +95,14 @@ def eigen(args):
     axes[0][0].set_ylabel("frequency Im λ / 2π")
     axes[0][0].set_ylim(bottom=0, top=args.fmax)
     fig.tight_layout()
-    fig.savefig(args.out, dpi=130)
-    print(f"wrote {args.out}")
+    bkquake_io.save_figure(fig, out, inputs, "plot_stability.py", dpi=130)
+    print(f"wrote {out}")
 
 
 def sweep(args):
+    out = args.out or os.path.join(args.folder, "stability_sweep.png")
+    inputs = [os.path.join(args.folder, "stability.csv")]
+    bkquake_io.check_output_or_exit(out, inputs, "plot_stability.py")
     rows = read_modes(args.folder)
     by_mode = defaultdict(list)
     for r in rows:
@@ -125,8 +143,8 @@ def sweep(args):
     if args.title:
         top.set_title(args.title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(args.out, dpi=130)
-    print(f"wrote {args.out}")
+    bkquake_io.save_figure(fig, out, inputs, "plot_stability.py", dpi=130)
+    print(f"wrote {out}")
 
 
 def main():
@@ -134,11 +152,11 @@ def main():
     sub = ap.add_subparsers(dest="what", required=True)
     e = sub.add_parser("eigen")
     e.add_argument("folders", nargs="+")
-    e.add_argument("--out", default="stability_eigen.png")
+    e.add_argument("--out", help="PNG file (default: stability_eigen.png in the first folder)")
     e.add_argument("--fmax", type=float, default=None, help="top of the frequency axis")
     s = sub.add_parser("sweep")
     s.add_argument("folder")
-    s.add_argument("--out", default="stability_sweep.png")
+    s.add_argument("--out", help="PNG file (default: stability_sweep.png in the folder)")
     s.add_argument("--xlabel", default="swept value")
     s.add_argument("--title", default="")
     s.add_argument("--log", action="store_true", help="logarithmic x axis")

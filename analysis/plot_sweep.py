@@ -26,6 +26,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import bkquake_io  # noqa: E402
+
 
 def read_sweep(sweep_dir):
     """(swept keys, rows as dicts) of SWEEP_DIR/sweep.csv; exits 2 when it is not a sweep."""
@@ -55,6 +57,9 @@ def main():
     ap.add_argument("--out", help="PNG to write (default SWEEP_DIR/sweep_b.png)")
     args = ap.parse_args()
     keys, rows = read_sweep(args.sweep_dir)
+    out = args.out or os.path.join(args.sweep_dir, "sweep_b.png")
+    inputs = [os.path.join(args.sweep_dir, "sweep.csv")]
+    bkquake_io.check_output_or_exit(out, inputs, "plot_sweep.py")
     fitted = [r for r in rows if r["status"] == "ok" and r["b"] not in ("", "nan")]
     if not fitted:
         sys.exit(
@@ -95,8 +100,7 @@ def main():
         title += f" ({left_out} point(s) without b left out)"
     fig.suptitle(title)
     fig.tight_layout()
-    out = args.out or os.path.join(args.sweep_dir, "sweep_b.png")
-    fig.savefig(out, dpi=110)
+    bkquake_io.save_figure(fig, out, inputs, "plot_sweep.py", dpi=110)
     print(f"plot_sweep.py: wrote {out}")
 
 

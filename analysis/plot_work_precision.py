@@ -26,6 +26,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import bkquake_io  # noqa: E402
+
 STYLE = {
     "rk2": ("tab:red", "o"),
     "rk4": ("tab:blue", "s"),
@@ -108,6 +110,7 @@ def main():
         out = args.out or os.path.splitext(csv_path)[0] + "_work_precision.png"
     else:
         fail(f"{args.folder}: no such folder or file")
+    bkquake_io.check_output_or_exit(out, [csv_path], "plot_work_precision.py")
     rows = read_rows(csv_path)
     # Rows of located transitions are their own curve (a CSV without the column has none).
     for r in rows:
@@ -164,7 +167,7 @@ def main():
         fig.suptitle(args.title)
     fig.tight_layout()
     place_labels(ax_e, labels)
-    fig.savefig(out, dpi=120)
+    bkquake_io.save_figure(fig, out, [csv_path], "plot_work_precision.py", dpi=120)
     print(f"wrote {out}")
 
 

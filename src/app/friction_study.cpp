@@ -101,7 +101,6 @@ void run_all(std::vector<Job>& jobs, int threads, bool quiet,
 std::string run_friction_study(const StudyRequest& req) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!(req.segment > 0)) throw Error("friction-study: --segment must be > 0");
-  fs::create_directories(req.out);
   const auto& grid = study_grid();
   auto scene_file = [&](const std::string& c) {
     return (fs::path(req.scenes_dir) / (c + ".ini")).string();
@@ -137,6 +136,10 @@ std::string run_friction_study(const StudyRequest& req) {
                  "friction-study: special-1dof skipped: it needs the bk configuration, %s and "
                  "friction.law = table\n",
                  scene_file("special-1dof").c_str());
+  // The scenes are read and checked above, before the folder is made. The folder rule of
+  // every command that writes a folder: a new or empty folder (the runs' subfolders do not
+  // count), or force; its lock while the study runs.
+  const OutputFolder folder(req.out, req.force, false, "friction-study");
   const int total = static_cast<int>(first.size()) +
                     (want_special && special_possible ? static_cast<int>(grid.size()) : 0);
   int done = 0;

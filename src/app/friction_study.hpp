@@ -4,7 +4,9 @@
 // (segments.csv) are gathered into friction_study.csv. The special 1DOF, whose law is the
 // friction the held pad feels in the BK runs (special-law), runs after them when the scene
 // and the tabulated law (friction.law = table) exist. Runs go to DIR/<config>/seed<S>/run<R>,
-// in parallel on `jobs` threads, with a progress line per finished run.
+// in parallel on `jobs` threads, with a progress line per finished run. DIR follows the
+// folder rule of every command that writes a folder (io/output.hpp): new or empty, or
+// force; locked while the study runs.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +32,7 @@ struct StudyRequest {
   int jobs = 2;
   double segment = 2000;  // time units per speed segment
   bool quiet = false;
+  bool force = false;  // write into an output folder that already holds files
 };
 
 // Returns the path of friction_study.csv. Throws bkq::Error on a missing scene or failed run.

@@ -19,7 +19,8 @@ int cmd_friction_study(const std::vector<std::string>& args) {
   // clang-format off
   opts.add_options()
     ("help,h", "show this help")
-    ("out", po::value<std::string>()->default_value("friction_study"), "output folder")
+    ("out", po::value<std::string>()->default_value("friction_study"), "output folder (new or empty)")
+    ("force", "write over the files of an existing output folder")
     ("scenes", po::value<std::string>()->default_value("data/scenes/brake"),
                "folder of the configurations' scenes")
     ("configs", po::value<std::string>()->default_value("bkp,bk,1dof,special-1dof"),
@@ -53,6 +54,7 @@ int cmd_friction_study(const std::vector<std::string>& args) {
   req.segment = vm["segment"].as<double>();
   if (!(req.segment > 0)) throw Error("friction-study: --segment must be > 0");
   req.quiet = vm.count("quiet") > 0;
+  req.force = vm.count("force") > 0;
   std::cout << run_friction_study(req) << "\n";
   return 0;
 }

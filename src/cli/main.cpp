@@ -7,6 +7,7 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bkquake_version.hpp"
@@ -20,13 +21,28 @@ namespace {
 // A binary built for x86-64-v3 (or native) on a CPU without AVX2 or FMA would die with
 // SIGILL somewhere in the first event; this runs before main and any static initialiser of
 // this file, compiled for the plain x86-64 instruction set, and says why instead.
+// A native build on an AVX-512 machine is checked for AVX-512F as well.
 __attribute__((constructor(101), target("arch=x86-64"))) void require_build_cpu() {
   __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return;
-  static const char msg[] =
-      "bkquake: error: this bkquake was built for CPUs with AVX2 and FMA (x86-64-v3), which this "
-      "CPU lacks; rebuild it on this machine\n";
-  [[maybe_unused]] const ssize_t n = ::write(2, msg, sizeof msg - 1);
+  bool ok = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#if defined(__AVX512F__)
+  ok = ok && __builtin_cpu_supports("avx512f");
+  static const char needs[] = "AVX2, FMA and AVX-512F";
+#else
+  static const char needs[] = "AVX2 and FMA";
+#endif
+  if (ok) return;
+  const auto say = [](const char* s) {
+    std::size_t len = 0;
+    while (s[len]) ++len;
+    [[maybe_unused]] const ssize_t n = ::write(2, s, len);
+  };
+  constexpr bool native = std::string_view(bkq::kBuildArch) == "native";
+  say("bkquake: error: this bkquake was built for ");
+  say(native ? "the CPU of the machine that built it" : bkq::kBuildArch);
+  say(native ? ", with " : " CPUs, with ");
+  say(needs);
+  say(", which this CPU lacks; rebuild it here (the default build targets x86-64-v3)\n");
   ::_exit(bkq::kExitBadInput);
 }
 #endif
@@ -47,7 +63,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (command == "--version") {
-      std::cout << "bkquake " << bkq::kVersion << " (git " << bkq::kGitRevision << ")\n";
+      std::cout << "bkquake " << bkq::kVersion << " (git " << bkq::kGitRevision << ", built for "
+                << bkq::kBuildArch << ")\n";
       return 0;
     }
     if (command == "run") return bkq::cmd_run(args);

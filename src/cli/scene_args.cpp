@@ -53,13 +53,15 @@ po::variables_map parse_scene_command_line(const std::string& command,
   return parse_command_line(command, args, opts, "scene", -1);
 }
 
-Scene scene_from_command_line(const std::string& command, const po::variables_map& vm) {
+Scene scene_from_command_line(const std::string& command, const po::variables_map& vm,
+                              const std::vector<std::pair<std::string, std::string>>& presets) {
   std::vector<std::string> scenes;
   if (vm.count("scene")) scenes = vm["scene"].as<std::vector<std::string>>();
   if (scenes.size() > 1)
     throw Error(command + ": expected at most one scene file, got " +
                 std::to_string(scenes.size()) + " ('" + scenes[0] + "', '" + scenes[1] + "', ...)");
   Scene scene = scenes.empty() ? Scene() : Scene::from_file(scenes.front());
+  for (const auto& [key, value] : presets) scene.set(key, value, command);
   if (vm.count("set"))
     for (const auto& assignment : vm["set"].as<std::vector<std::string>>())
       scene.apply_override(assignment);

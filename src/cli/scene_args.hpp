@@ -7,6 +7,7 @@
 #include <boost/program_options.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/scene.hpp"
@@ -42,9 +43,11 @@ boost::program_options::variables_map parse_scene_command_line(
 
 // The scene file (or the built-in default) with the --set overrides applied and the keys
 // that do not apply dropped (drop_inapplicable_keys); the caller validates it (after
-// settings of its own, if any).
+// settings of its own, if any). `presets` (key, value) are set after the file and before
+// the overrides, as the command's own (stability analyses every scene continuously driven).
 Scene scene_from_command_line(const std::string& command,
-                              const boost::program_options::variables_map& vm);
+                              const boost::program_options::variables_map& vm,
+                              const std::vector<std::pair<std::string, std::string>>& presets = {});
 
 // Scene::drop_inapplicable, its warnings printed to stderr; call again after a command
 // changes the scene itself (accuracy sets drive.mode = events).

@@ -24,7 +24,9 @@ constexpr const char* kUsage =
     "[--sweep KEY=FROM:TO:COUNT] [--out DIR] [--force]\n"
     "Steady sliding at the disc speed drive.speed and the complex eigenvalues of its\n"
     "linearisation: each mode's growth rate Re lambda, frequency Im lambda / 2 pi and\n"
-    "whether it is unstable (docs/tutorials/stability.md, docs/validation/stability.md).\n\n";
+    "whether it is unstable (docs/tutorials/stability.md, docs/validation/stability.md).\n"
+    "Every scene is analysed as continuously driven (drive.mode = continuous), so\n"
+    "drive.speed applies to an event-driven scene too.\n\n";
 
 int cmd_stability(const std::vector<std::string>& args) {
   po::options_description opts("bkquake stability [SCENE] [options]");
@@ -42,7 +44,19 @@ int cmd_stability(const std::vector<std::string>& args) {
   // clang-format on
   const po::variables_map vm = parse_scene_command_line("stability", args, opts);
   if (printed_help(vm, opts, kUsage)) return 0;
-  Scene scene = scene_from_command_line("stability", vm);
+  // Steady sliding is a continuously driven state: every scene is analysed as driven
+  // continuously, so drive.speed applies (and --set drive.speed is accepted) whatever the
+  // scene's drive.mode; event-only keys of a scene file are dropped with a warning.
+  Scene scene = scene_from_command_line("stability", vm, {{"drive.mode", "continuous"}});
+  if (scene.choice("model.kind") == "ofc")
+    throw Error(
+        "stability: model.kind = ofc: the automaton has no steady sliding to "
+        "linearise; allowed: model.kind = bk, bkp or 1dof");
+  if (scene.choice("drive.mode") != "continuous")
+    throw Error("stability: drive.mode = " + scene.choice("drive.mode") +
+                ": steady sliding at drive.speed is a continuously driven state, and stability "
+                "analyses every scene so; remove --set drive.mode=" +
+                scene.choice("drive.mode"));
   scene.validate();
   StabilityOptions opt;
   if (vm.count("sweep")) opt.sweep = parse_sweep(vm["sweep"].as<std::string>(), vm.count("log"));

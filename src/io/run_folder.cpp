@@ -76,9 +76,10 @@ std::optional<double> read_json_number(const std::filesystem::path& json, const 
 
 const std::vector<std::string>& run_own_files() {
   static const std::vector<std::string> names = {
-      "scene.ini",    "catalog.csv",    "catalog.h5",          "histogram.csv",
-      "summary.json", "timeseries.csv", "segments.csv",        "energy.csv",
-      "blocks.csv",   "checkpoint.bin", "checkpoint.prev.bin", FolderLock::kFileName};
+      "scene.ini",           "catalog.csv",          "catalog.h5",         "histogram.csv",
+      "summary.json",        "timeseries.csv",       "segments.csv",       "energy.csv",
+      "energy_samples.csv",  "blocks.csv",           "event_slip.csv",     "checkpoint.bin",
+      "checkpoint.prev.bin", "checkpoint.final.bin", FolderLock::kFileName};
   return names;
 }
 

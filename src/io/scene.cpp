@@ -548,7 +548,7 @@ std::string option_value(const std::string& option, const std::string& key,
   }
 }
 
-Scene::Scene() : origin("built-in default (carlson-langer, event-driven)") {
+Scene::Scene() : origin(kBuiltInOrigin) {
   for (const auto& p : parameter_table()) {
     values_[p.key] = normalise(p, p.default_value, "default");
     given_[p.key] = false;
@@ -625,8 +625,19 @@ std::vector<std::string> Scene::drop_inapplicable() {
   return warnings;
 }
 
+std::string Scene::where() const {
+  bool overridden = false;
+  for (const auto& [key, from] : set_by_) overridden = overridden || from == "--set";
+  // The built-in default's origin describes the scene it starts as (event-driven); once
+  // --set has changed it, that description may no longer hold (drive.mode = continuous).
+  if (origin == kBuiltInOrigin)
+    return overridden ? " (built-in default scene with --set overrides)"
+                      : " (built-in default scene)";
+  return suffix("scene " + origin + (overridden ? " with --set overrides" : ""));
+}
+
 void Scene::validate() const {
-  const std::string where = suffix("scene " + origin);
+  const std::string where = this->where();
   for (const auto& p : parameter_table()) {
     if (!is_set(p.key) || applies(p.key)) continue;
     if (p.key == "model.rows") {

@@ -93,7 +93,12 @@ class Scene {
   // given explicitly do not count): from_text(s.to_ini(), ...) == s.
   bool operator==(const Scene& other) const { return values_ == other.values_; }
 
-  std::string origin;  // the file it came from, or "built-in default"
+  std::string origin;  // the file it came from, or kBuiltInOrigin
+  // The origin of a default-constructed scene (the provenance line of its outputs).
+  static constexpr const char* kBuiltInOrigin = "built-in default (carlson-langer, event-driven)";
+  // Where the scene came from, for the end of an error message: " (scene FILE)",
+  // " (built-in default scene)", each "with --set overrides" when --set changed it.
+  std::string where() const;
 
  private:
   // validate()'s checks of a continuous run: its step count, its speed schedule.

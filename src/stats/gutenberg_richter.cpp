@@ -276,17 +276,23 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
   // a note.
   const std::int64_t L = bins_of(opt.stability_width);
   std::string fallback_note;  // set by the last lower_cut that found no stable edge
+  // How far the last lower_cut got, for the reason when it found no edge: a candidate window
+  // large enough, one of those with a finite b > 0.
+  bool any_sized = false, any_positive = false;
   const auto lower_cut = [&](std::int64_t hi_cap) -> std::optional<std::int64_t> {
     if (lo_given) return lo_given;
     std::optional<std::int64_t> best;
     double best_ratio = kInf;
+    any_sized = any_positive = false;
     for (std::int64_t lo = first; lo + L <= hi_cap; ++lo) {
       if (h.count(lo) == 0) continue;
       poll();
       const std::int64_t hi = std::min(hi_cap, ceiling(lo));
       if (hi < lo + L || !big_enough(lo, hi)) continue;
+      any_sized = true;
       const BEstimate b0 = mle_or_nan(h, lo, hi, truncated(hi));
       if (!(b0.b > 0) || !std::isfinite(b0.err)) continue;
+      any_positive = true;
       // worst: the largest step of b as a share of its tolerance max(db, k sigma_b).
       double worst = 0, prev = b0.b;
       for (std::int64_t j = 1; j <= L && std::isfinite(worst); ++j) {
@@ -336,10 +342,24 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
 
   std::optional<std::int64_t> lo = lower_cut(hi_given.value_or(last));
   if (!lo) {
-    r.reason = "no window with >= " + std::to_string(opt.min_tail) +
-               " events and >= " + std::to_string(opt.min_window_bins) +
-               " bins below a rise of the distribution has b > 0 and is fitted by one power law "
-               "to within the KS tolerance";
+    // Which of the lower cut's tests no candidate passed, in the order they are applied.
+    const std::string window = "no window with >= " + std::to_string(opt.min_tail) +
+                               " events and >= " + std::to_string(opt.min_window_bins) +
+                               " bins (and >= " + format_real(opt.stability_width) +
+                               " in mu, the span of the stability test) below a rise of the "
+                               "distribution";
+    if (!any_sized)
+      r.reason = window;
+    else if (!any_positive)
+      r.reason = window + " has a finite b > 0";
+    else
+      r.reason = "no lower cut keeps b stable to within max(" + format_real(opt.stability_db) +
+                 ", " + format_real(opt.stability_sigma) + " sigma_b) over the " +
+                 format_real(opt.stability_width) +
+                 " in mu above it, and no window with b > 0 is fitted by one power law to "
+                 "within the KS distance " +
+                 format_real(opt.ks_systematic) + " + " + format_real(opt.ks_tolerance) +
+                 "/sqrt(n)";
     return r;
   }
   // When the events above depart from every top, the shortest window (and a note).

@@ -4,11 +4,13 @@
 // counts adding up to the window's events) and writes its PNG; every script answers a
 // folder of the wrong kind with one line and exit 2, not a traceback.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
 
 #include "../cli_helpers.hpp"
+#include "io/folder_lock.hpp"
 
 namespace bkq {
 namespace {
@@ -130,6 +132,58 @@ TEST_F(Plots, AFolderOfTheWrongKindIsOneLine) {
   expect_one_line_refusal(test::run_process(kPython, {script("compare_modes.py"), "--events-run",
                                                       cont, "--out-dir", dir_.file("modes")}),
                           "has no catalog.csv");
+}
+
+// The folder rule of derived outputs holds for the plots: by default a figure goes into the
+// folder it was drawn from (plot_stability.py wrote into the working folder), under that
+// folder's lock (a live holder refuses, a stale lock of this host is taken over, none is left
+// behind), and never over an input or a run's own file.
+TEST_F(Plots, FiguresGoIntoTheFolderReadUnderItsLockAndNeverOverAnInput) {
+  const std::string st = dir_.file("st");
+  ASSERT_EQ(test::run_bkquake({"stability", "--set", "drive.mode=continuous", "--set",
+                               "model.blocks=5", "--sweep", "drive.speed=0.05:0.2:3", "--out", st})
+                .status,
+            0);
+  const std::string cwd = dir_.file("cwd");
+  fs::create_directories(cwd);
+  auto p = test::run_process(kPython, {script("plot_stability.py"), "sweep", st}, cwd);
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_TRUE(fs::exists(st + "/stability_sweep.png"));
+  p = test::run_process(kPython, {script("plot_stability.py"), "eigen", st}, cwd);
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_TRUE(fs::exists(st + "/stability_eigen.png"));
+  EXPECT_TRUE(fs::is_empty(cwd)) << "a plot wrote into the working folder";
+  EXPECT_FALSE(fs::exists(st + "/bkquake.lock"));
+
+  const std::string run = dir_.file("run");
+  ASSERT_EQ(test::run_bkquake({"run", "--set", "run.events=3000", "--set",
+                               "run.transient_events=100", "--out", run, "--quiet"})
+                .status,
+            0);
+  const std::string histogram = test::read_file(run + "/histogram.csv");
+  expect_one_line_refusal(
+      test::run_process(kPython, {script("plot_gr.py"), run, "--out", run + "/histogram.csv"}),
+      "is not an image file name");
+  expect_one_line_refusal(
+      test::run_process(kPython, {script("plot_stability.py"), "sweep", st, "--out", st}),
+      "is not an image file name");
+  EXPECT_EQ(test::read_file(run + "/histogram.csv"), histogram);
+  {
+    const FolderLock held(run, "test", StaleLock::Refuse);
+    expect_one_line_refusal(test::run_process(kPython, {script("plot_gr.py"), run}),
+                            "is in use by bkquake test");
+    EXPECT_FALSE(fs::exists(run + "/gr.png"));
+  }
+  char host[256] = {};
+  ASSERT_EQ(::gethostname(host, sizeof host - 1), 0);
+  // A lock left by a killed process: its flock went with it.
+  dir_.write("run/bkquake.lock", std::string("bkquake folder lock\nhost ") + host +
+                                     "\npid 999999999\ncommand run\nsince 2026-01-01T00:00:00Z\n");
+  p = test::run_process(kPython, {script("plot_gr.py"), run});
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_NE(p.err.find("taking over the stale lock"), std::string::npos) << p.err;
+  EXPECT_TRUE(fs::exists(run + "/gr.png"));
+  EXPECT_FALSE(fs::exists(run + "/bkquake.lock"));
 }
 
 TEST_F(Plots, WorkPrecisionOfTheReferenceStudy) {

@@ -316,6 +316,16 @@ TEST(Reliability, NoCommandWritesOverItsInputsOrARunsFiles) {
   expect_refused(run_bkquake({"fit", catalog, "--json", r + "/summary.json"}),
                  {"is the file summary.json of the run in"});
   EXPECT_EQ(tree_bytes(tmp.path()), before);
+  // Every file a run writes is its own: the slips of output.event_slip, the energy samples
+  // of output.energy and the final state were missing from the list and could be replaced.
+  const std::string e = tmp.file("e");
+  small_run(e, {"--set", "output.event_slip=-2"});
+  ASSERT_TRUE(fs::exists(e + "/event_slip.csv"));
+  const auto e_files = tree_bytes(e);
+  for (const char* own : {"event_slip.csv", "checkpoint.final.bin", "energy_samples.csv"})
+    expect_refused(run_bkquake({"fit", e + "/catalog.csv", "--json", e + "/" + own}),
+                   {std::string("is the file ") + own + " of the run in"});
+  EXPECT_EQ(tree_bytes(e), e_files);
   // A derived output into the run folder is fine, and takes (and returns) its lock.
   EXPECT_EQ(run_bkquake({"fit", r + "/catalog.csv", "--json", r + "/fit.json"}).status, 0);
   EXPECT_TRUE(fs::exists(r + "/fit.json"));
@@ -354,6 +364,31 @@ TEST(Reliability, NoCommandWritesOverItsInputsOrARunsFiles) {
   ASSERT_EQ(run_bkquake({"sweep", sweep, "--out", sw}).status, 0);
   expect_refused(run_bkquake({"sweep", sweep, "--out", sw}), {"holds a sweep", "--force"});
   EXPECT_EQ(run_bkquake({"sweep", sweep, "--out", sw, "--force"}).status, 0);
+
+  // friction-study writes a folder too: not over a run's (refused before any run starts),
+  // and not over its own earlier study without --force.
+  const std::vector<std::string> study = {"friction-study",
+                                          "--configs",
+                                          "1dof",
+                                          "--segment",
+                                          "1",
+                                          "--quiet",
+                                          "--scenes",
+                                          std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/brake"};
+  auto with_out = [&](const std::string& out, bool force) {
+    std::vector<std::string> a = study;
+    a.insert(a.end(), {"--out", out});
+    if (force) a.push_back("--force");
+    return a;
+  };
+  expect_refused(run_bkquake(with_out(r, false)), {"already holds a finished run"});
+  EXPECT_EQ(tree_bytes(r), run_files);
+  const std::string fs_out = tmp.file("study");
+  ASSERT_EQ(run_bkquake(with_out(fs_out, false)).status, 0);
+  ASSERT_TRUE(fs::exists(fs_out + "/friction_study.csv"));
+  EXPECT_FALSE(fs::exists(fs_out + "/bkquake.lock"));
+  expect_refused(run_bkquake(with_out(fs_out, false)), {"already holds files", "--force"});
+  EXPECT_EQ(run_bkquake(with_out(fs_out, true)).status, 0);
 }
 
 // Samples on the stated grid: with output.every = 0.5 and dt = 0.005 every time in
@@ -375,6 +410,20 @@ TEST(Reliability, SampleTimesLieOnTheStatedGrid) {
     ASSERT_EQ(std::stod(line.substr(0, line.find(','))), 0.5 * static_cast<double>(k))
         << "sample " << k << ": " << line;
   EXPECT_EQ(k, 801);
+}
+
+// A binary says which instruction set it was built for, so that a result can name the build
+// it came from: the portable default x86-64-v3, native (-DBKQUAKE_NATIVE=ON) or default
+// (the compiler's own baseline).
+TEST(Reliability, VersionNamesTheBuildTarget) {
+  const auto r = run_bkquake({"--version"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto at = r.out.find(", built for ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string target = r.out.substr(at + 12, r.out.find(')', at) - at - 12);
+  EXPECT_TRUE(target == "x86-64-v3" || target == "native" || target == "default" ||
+              target.rfind("x86-64", 0) == 0)
+      << target;
 }
 
 // Messages that said something untrue or cut themselves short.
@@ -407,6 +456,45 @@ TEST(Reliability, MessagesSayWhatIsTrue) {
   EXPECT_NE(help.out.find("analysis/plot_brake.py"), std::string::npos) << help.out;
   EXPECT_NE(run_bkquake({"run", "--dump-defaults"}).out.find("event runs refuse it"),
             std::string::npos);
+  // An error about a built-in default scene that --set made continuous does not call it
+  // event-driven.
+  const auto cont =
+      run_bkquake({"run", "--quiet", "--set", "drive.mode=continuous", "--set",
+                   "integrator.dt=0.01", "--set", "run.duration=1e14", "--out", tmp.file("c")});
+  expect_refused(cont, {"run.duration = 1e+14", "(built-in default scene with --set overrides)"});
+  EXPECT_EQ(cont.err.find("event-driven"), std::string::npos) << cont.err;
+  // stability analyses an event-driven scene continuously driven: --set drive.speed is
+  // accepted and used (it was refused, and the default speed used in silence).
+  const std::string st = tmp.file("st");
+  const auto stab = run_bkquake(
+      {"stability", "--set", "model.blocks=5", "--set", "drive.speed=0.25", "--out", st});
+  ASSERT_EQ(stab.status, 0) << stab.err;
+  EXPECT_EQ(stab.out.find("\n0.01 "), std::string::npos) << stab.out;
+  EXPECT_NE(stab.out.find("\n0.25 "), std::string::npos) << stab.out;
+  EXPECT_NE(read_file(st + "/scene.ini").find("speed = 0.25"), std::string::npos);
+  // ... and refuses what it cannot analyse instead of analysing another model: the OFC
+  // automaton (it analysed a chain), an explicit event drive (the default speed again).
+  expect_refused(run_bkquake({"stability", "--set", "model.kind=ofc", "--out", tmp.file("so")}),
+                 {"stability: model.kind = ofc", "no steady sliding"});
+  expect_refused(run_bkquake({"stability", "--set", "drive.mode=events", "--set",
+                              "drive.speed=0.25", "--out", tmp.file("se")}),
+                 {"drive.speed"});
+  expect_refused(run_bkquake({"stability", "--set", "drive.mode=events", "--out", tmp.file("se2")}),
+                 {"stability: drive.mode = events", "remove --set drive.mode=events"});
+  EXPECT_FALSE(fs::exists(tmp.file("so")));
+  // A brake run (a pad, continuously driven) says where its figures are, not a b line.
+  const std::string brake = tmp.file("brake");
+  const auto br =
+      run_bkquake({"run", std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/brake/bkp.ini", "--set",
+                   "model.blocks=5", "--set", "run.duration=20", "--set", "drive.step_interval=10",
+                   "--out", brake});
+  ASSERT_EQ(br.status, 0) << br.err;
+  EXPECT_EQ(br.out.find("  b"), std::string::npos) << br.out;
+  EXPECT_NE(br.out.find("2 speed segments: the pad's mean and amplitude in segments.csv"),
+            std::string::npos)
+      << br.out;
+  // Its summary's reason for no b names the test that failed, not a KS tolerance.
+  EXPECT_EQ(read_file(brake + "/summary.json").find("KS tolerance"), std::string::npos);
   // A catalogue whose run was killed (checkpoints, no summary) is fitted with a note.
   const std::string k = tmp.file("k");
   interrupted_run(k);

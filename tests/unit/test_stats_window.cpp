@@ -138,6 +138,32 @@ TEST(Window, RisingDistributionGivesNoB) {
   EXPECT_NE(g.no_b_reason.find("do not decrease"), std::string::npos) << g.no_b_reason;
 }
 
+// The reason for no automatic window names the test that no candidate passed: too few
+// events for any window, or (on a distribution that rises with magnitude, where only a few
+// noisy windows have b > 0) no stable lower cut and no fallback window that fits. It spoke
+// of a KS tolerance in every case, although the lower cut is chosen by the stability of b
+// and the KS distance only admits a fallback.
+TEST(Window, NoWindowReasonNamesTheTestThatFailed) {
+  std::mt19937_64 rng(11);
+  std::vector<double> few;
+  for (int i = 0; i < 30; ++i) few.push_back(-std::log1p(-uniform(rng)));
+  const GrFit f = fit_magnitudes(few, 0.2, std::nullopt, std::nullopt);
+  ASSERT_FALSE(f.b_ok);
+  EXPECT_NE(f.no_b_reason.find("no window with >= 50 events and >= 10 bins"), std::string::npos)
+      << f.no_b_reason;
+  EXPECT_EQ(f.no_b_reason.find("KS"), std::string::npos) << f.no_b_reason;
+  std::vector<double> rising;
+  for (int i = 0; i < 5000; ++i) rising.push_back(4.0 * std::sqrt(uniform(rng)));
+  const GrFit g = fit_magnitudes(rising, 0.2, std::nullopt, std::nullopt);
+  ASSERT_FALSE(g.b_ok);
+  EXPECT_NE(g.no_b_reason.find("no lower cut keeps b stable to within max(0.03, 2 sigma_b) over "
+                               "the 1.6 in mu above it"),
+            std::string::npos)
+      << g.no_b_reason;
+  EXPECT_NE(g.no_b_reason.find("KS distance 0.03 + 0.5/sqrt(n)"), std::string::npos)
+      << g.no_b_reason;
+}
+
 // Done criterion (a) of the automatic window: a catalogue with a known b, a discrete lower
 // end (one-block atom, two- and three-block events at fixed moments, alternating bins) and
 // a bump of large events above a dip. The automatic b is within two statistical errors of

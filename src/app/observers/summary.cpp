@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "app/gr_report.hpp"
+#include "app/observers/segments.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -220,7 +221,19 @@ void ContinuousSummary::on_end(const RunEnd& end) {
   std::printf("bkquake %s: continuous run to t = %.6g (%lld steps) in %.3g s; %lld slip episodes\n",
               kVersion, end.duration, static_cast<long long>(end.steps), wall,
               static_cast<long long>(end.events));
-  std::printf("  %s\n  outputs in %s/\n", fit_line.c_str(), out_.dir().c_str());
+  // A run with a pad (bkp, 1dof: the brake side, Ferre 2018 ch. 4) is read through the pad's
+  // segment statistics and time series; its slip episodes' b (in summary.json) is not what
+  // such a run is for, so the line says where its figures are instead.
+  std::string what = fit_line;
+  if (settings_.model.kind != ModelKind::BK) {
+    const std::size_t n = segment_spans(settings_.drive, settings_.run.duration).size();
+    what = n == 0 ? std::string(
+                        "the pad's motion and friction in timeseries.csv (a ramp has no "
+                        "speed segments)")
+                  : std::to_string(n) + (n == 1 ? " speed segment" : " speed segments") +
+                        ": the pad's mean and amplitude in segments.csv";
+  }
+  std::printf("  %s\n  outputs in %s/\n", what.c_str(), out_.dir().c_str());
 }
 
 }  // namespace bkq
