@@ -8,6 +8,8 @@
 //    2^(order - 1/2);
 //  - the same stick under velocity-weakening friction against the adaptive reference
 //    (rk4 keeps order 4 in the stick time: the instant is polished on real steps);
+//  - the same stick in the event engine's lone-slip record integrated with located
+//    transitions (engine/lone_slip.hpp), whose stick instant becomes an event's duration;
 //  - a located failure: two blocks coupled by k_c = 1, block 0 released at the threshold
 //    pulls block 1 (0.005 below it) over the threshold inside a step, then both stick; the
 //    state at t = 10 against the adaptive stepper at tolerance 1e-12 keeps the same order;
@@ -32,6 +34,7 @@
 #include "engine/contacts.hpp"
 #include "engine/continuous.hpp"
 #include "engine/initial_state.hpp"
+#include "engine/lone_slip.hpp"
 #include "integrate/adaptive.hpp"
 #include "integrate/located.hpp"
 #include "model/chain.hpp"
@@ -141,6 +144,35 @@ TEST(LocatedOrder, StickOfALoneBlockKeepsTheSchemesOrder) {
         EXPECT_NEAR(step_time_err[k], hs[k] / 2, 1e-9) << tag;
       }
       EXPECT_LT(time_err.back(), 0.1 * step_time_err.back()) << tag;
+    }
+  }
+}
+
+// The lone-slip record with located transitions: the recorded stick instant and final
+// displacement of the block released at the threshold (stiffness 1: stick at t = pi after a
+// slip of 2 sigma) keep each scheme's order; at the step the record's stick is the first
+// step end after pi.
+TEST(LocatedOrder, LoneSlipRecordKeepsTheSchemesOrder) {
+  const std::vector<double> hs = {M_PI / 10.5, M_PI / 20.5, M_PI / 40.5};
+  const ModelParams p = single_block(law_id<law::Clst91>);
+  for (const char* scheme : {"rk2", "rk4", "verlet"}) {
+    std::vector<double> time_err, slip_err;
+    const int order = make_stepper(scheme, 1)->order();
+    for (double h : hs) {
+      const LoneSlip rec = integrate_lone_slip(p, 1.0, scheme, h, 1000, true);
+      ASSERT_TRUE(rec.usable) << scheme << ": " << rec.why_not;
+      ASSERT_EQ(rec.steps.back().sliding, 0) << scheme;
+      time_err.push_back(std::abs(rec.stick_time - M_PI));
+      slip_err.push_back(std::abs(rec.steps.back().d - 2.0 * kSigma));
+      const LoneSlip at_step = integrate_lone_slip(p, 1.0, scheme, h, 1000, false);
+      EXPECT_TRUE(std::isnan(at_step.stick_time)) << scheme;
+      EXPECT_NEAR(at_step.steps.back().t - M_PI, h / 2, 1e-9) << scheme;
+    }
+    for (size_t k = 0; k + 1 < hs.size(); ++k) {
+      EXPECT_GE(observed_order(time_err[k], time_err[k + 1], hs[k], hs[k + 1]), order - 0.5)
+          << scheme << " stick time, errors " << time_err[k] << ", " << time_err[k + 1];
+      EXPECT_GE(observed_order(slip_err[k], slip_err[k + 1], hs[k], hs[k + 1]), order - 0.5)
+          << scheme << " slip, errors " << slip_err[k] << ", " << slip_err[k + 1];
     }
   }
 }
