@@ -202,8 +202,8 @@ double LocatedTransitions::sub_step_work(const ChainForces& forces, const ChainS
   });
 }
 
-void LocatedTransitions::include(int k, const ChainState& st) {
-  if (in_ranges(k)) return;
+bool LocatedTransitions::include(int k, const ChainState& st) {
+  if (in_ranges(k)) return false;
   mark_[k] = stamp_;
   own_.push_back(Range{k, k + 1});
   std::sort(own_.begin(), own_.end(), [](const Range& a, const Range& b) { return a.lo < b.lo; });
@@ -216,6 +216,7 @@ void LocatedTransitions::include(int k, const ChainState& st) {
   }
   own_.resize(out + 1);
   halo(st);
+  return true;
 }
 
 void LocatedTransitions::halo(const ChainState& st) {
@@ -245,9 +246,12 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
     }
   halo(st);
   work_ = 0;
-  // Every block can stick and break loose a few times in one step at most; more cuts
-  // than this mean the step cannot resolve the transitions.
-  const int max_cuts = 8 * blocks + 16;
+  // Every block of the step's ranges can stick and break loose a few times in one step at
+  // most; more cuts than this mean the step cannot resolve the transitions. The blocks that
+  // join the ranges inside the step count too: a rupture front that runs through several
+  // blocks at the threshold within one step cuts it once per block (the thesis scene at
+  // dt = 0.03).
+  int max_cuts = 8 * blocks + 16;
   for (int cuts = 0;; ++cuts) {
     const double h = t_end - st.t;
     if (!(h > 0.0)) break;
@@ -320,7 +324,7 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
           if (!periodic || n_ < 2) continue;
           k = (k + n_) % n_;
         }
-        include(k, st);
+        if (include(k, st)) max_cuts += 8;
       }
     }
   }

@@ -107,8 +107,9 @@ class LocatedTransitions final : public Stepper {
   void transit(const ChainForces& forces, const Substrate& sub, ChainState& st, int who,
                Ranges ranges);
   bool in_ranges(int j) const { return mark_[j] == stamp_; }
-  // Adds block k to this step's ranges (own_), and sets the dense output's held blocks.
-  void include(int k, const ChainState& st);
+  // Adds block k to this step's ranges (own_), and sets the dense output's held blocks;
+  // false if it was in them already.
+  bool include(int k, const ChainState& st);
   void halo(const ChainState& st);
   // Block j's event function over its time derivative at the current state (the Newton
   // correction of the located instant, on a real step).

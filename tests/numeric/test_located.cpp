@@ -20,6 +20,8 @@
 //  - continuous driving: a block moves only while it slides, so between two instants with
 //    every block stuck the blocks' displacements add up to the moments of the slip episodes
 //    in between, in both modes (located, the blocks released inside a step count too);
+//  - a rupture front through blocks at the threshold, cut once per block inside one step,
+//    is not refused for the number of its cuts (the thesis scene at dt = 0.03);
 //  - the scene key: located for a scheme that resolves its transitions itself is refused.
 #include <gtest/gtest.h>
 
@@ -351,6 +353,32 @@ TEST(LocatedContinuous, EpisodeMomentsAddUpToTheBlocksSlip) {
       EXPECT_NEAR(moments, slip, 1e-9 * slip) << tag << ": " << episodes << " episodes";
     }
   }
+}
+
+// The thesis scene (BK-Pad, thesis units and friction) event by event at rk4, dt = 0.03: in
+// its first events a rupture runs through a row of blocks at the threshold within one step,
+// each release a cut. The bound on cuts once counted only the blocks the step began with
+// (3 here: 40 cuts) and refused the event; the blocks that join the step count now.
+TEST(LocatedCuts, ARuptureFrontInsideOneStepIsNotRefused) {
+  test::Sim sim({{"model.kind", "bkp"},
+                 {"model.parameterisation", "thesis"},
+                 {"model.pad_mass", "100"},
+                 {"model.caliper_stiffness", "100"},
+                 {"model.damping_ratio", "0.0833333333333333"},
+                 {"model.s_m", "1"},
+                 {"model.s_p", "1"},
+                 {"model.s_c", "0.01"},
+                 {"friction.law", "thesis"},
+                 {"friction.sigma", "0.01"},
+                 {"friction.vc", "1"},
+                 {"integrator.scheme", "rk4"},
+                 {"integrator.dt", "0.03"},
+                 {"integrator.transitions", "located"},
+                 {"run.initial_disorder", "0.75"}});
+  int largest = 0;
+  for (int i = 0; i < 20; ++i) largest = std::max(largest, sim.engine.next_event().blocks);
+  EXPECT_GT(largest, 10);  // the front ran through many blocks
+  EXPECT_GT(dynamic_cast<const LocatedTransitions&>(*sim.stepper).located_transitions(), 40);
 }
 
 TEST(LocatedKey, RefusedForSchemesThatResolveTransitionsThemselves) {
