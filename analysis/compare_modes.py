@@ -1,7 +1,7 @@
 #!/usr/bin/env -S /usr/bin/python3
 """Event-driven against continuous driving: magnitude distributions of the same chain.
 
-    analysis/compare_modes.py [--bkquake BIN] [--out-dir DIR] [--speeds NU...]
+    analysis/compare_modes.py [--bkquake BIN] [--out-dir DIR] [--speeds NU...] [--set KEY=VALUE]...
                               [--events-run DIR] [--transient-load X] [--png PNG]
 
 The chain is the Carlson-Langer reference (data/scenes/cl-l10-a2.5-n100.ini: N = 100,
@@ -105,7 +105,11 @@ def main(argv=None):
     ap.add_argument("--mu-cut", type=float, default=-7.6)
     ap.add_argument("--bin-width", type=float, default=0.2)
     ap.add_argument("--png")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="scene key for every run made here, after the script's own (repeatable; "
+                         "e.g. integrator.transitions=located)")
     args = ap.parse_args(argv)
+    extra = [a for kv in args.set for a in ("--set", kv)]
 
     if args.events_run and not os.path.isfile(os.path.join(args.events_run, "catalog.csv")):
         print(f"compare_modes.py: {args.events_run} has no catalog.csv: --events-run needs the "
@@ -116,7 +120,7 @@ def main(argv=None):
         ev_dir = args.events_run
     else:
         ev_dir = os.path.join(args.out_dir, "events")
-        run([args.bkquake, "run", SCENE, "--set", f"run.events={args.events}",
+        run([args.bkquake, "run", SCENE, "--set", f"run.events={args.events}", *extra,
              "--out", ev_dir, "--force", "--quiet"])
     mu_ev = read_magnitudes(os.path.join(ev_dir, "catalog.csv"))
 
@@ -128,7 +132,7 @@ def main(argv=None):
         d = os.path.join(args.out_dir, f"continuous-nu{nu:g}")
         run([args.bkquake, "run", SCENE, "--set", "drive.mode=continuous",
              "--set", f"drive.speed={nu:g}", "--set", f"run.duration={T:g}",
-             "--set", "integrator.scheme=rk4", "--set", "integrator.dt=0.01",
+             "--set", "integrator.scheme=rk4", "--set", "integrator.dt=0.01", *extra,
              "--out", d, "--force", "--quiet"])
         mu_all = read_magnitudes(os.path.join(d, "catalog.csv"))
         mu_c = read_magnitudes(os.path.join(d, "catalog.csv"), min_load=args.transient_load)

@@ -3,17 +3,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 
 #include "core/error.hpp"
 #include "engine/contacts.hpp"
+#include "integrate/located.hpp"
 #include "model/friction_laws.hpp"
 
 namespace bkq {
 
 ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
                                    const Substrate& substrate, ChainState state, double dt)
-    : forces_(forces), stepper_(stepper), substrate_(substrate), st_(std::move(state)), dt_(dt) {
+    : forces_(forces),
+      stepper_(stepper),
+      substrate_(substrate),
+      st_(std::move(state)),
+      dt_(dt),
+      located_releases_(dynamic_cast<const LocatedTransitions*>(&stepper) != nullptr) {
   const int n = forces.n();
   all_ = Range{0, n};
   wd_old_.assign(n, 0.0);
@@ -34,7 +41,12 @@ ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
 ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
                                    const Substrate& substrate, const ContinuousSnapshot& saved,
                                    double dt)
-    : forces_(forces), stepper_(stepper), substrate_(substrate), st_(saved.state), dt_(dt) {
+    : forces_(forces),
+      stepper_(stepper),
+      substrate_(substrate),
+      st_(saved.state),
+      dt_(dt),
+      located_releases_(dynamic_cast<const LocatedTransitions*>(&stepper) != nullptr) {
   const int n = forces.n();
   const auto size = static_cast<std::size_t>(n);
   if (st_.w.size() != size || st_.wd.size() != size || st_.mobile.size() != size ||
@@ -180,6 +192,13 @@ void ContinuousDriver::step() {
                         if (first_release < 0) first_release = j;
                         if (in_episode_) slid_[j] = 1;
                       });
+  // Located transitions: the blocks that broke loose inside the step (the contact pass sees
+  // none of them: they are sliding, or stuck again, at its end). Without them an episode
+  // left out every block it reached inside a step, with its slip, and a slip that began and
+  // ended inside one step was no episode.
+  std::span<const Stepper::Release> inside;
+  if (located_releases_) inside = stepper_.releases_in_step();
+  if (first_release < 0 && !inside.empty()) first_release = inside.front().block;
   const bool was_sliding = sliding_ > 0;
   sliding_ = scan.sliding;
   // The balance over the step: the substrate's work -v * (friction impulse on the chain),
@@ -191,10 +210,14 @@ void ContinuousDriver::step() {
       power_.momentum - before.momentum + 0.5 * dt_ * (before.force + power_.force);
   energy_.work -= v_mid * impulse;
   energy_.dissipated += 0.5 * dt_ * (before.dissipation + power_.dissipation);
-  if (!was_sliding && sliding_ > 0) {
+  if (!was_sliding && (sliding_ > 0 || !inside.empty())) {
     start_episode(first_release);
-    // w_start_ was taken after the step; the released blocks had not moved yet.
+    // w_start_ was taken after the step; the blocks the contact pass released had not moved
+    // yet, those released inside it had, from where they broke loose.
+    for (const Stepper::Release& r : inside) w_start_[r.block] = r.w;
   }
+  if (in_episode_)
+    for (const Stepper::Release& r : inside) slid_[r.block] = 1;
   if (in_episode_) {
     episode_.max_speed = std::max(episode_.max_speed, scan.max_speed);
     if (sliding_ == 0) {

@@ -93,6 +93,10 @@ class ContinuousDriver {
   Range all_;
   std::vector<double> wd_old_;
   int sliding_ = 0;
+  // Located transitions (integrate/located.hpp): blocks released inside a step are taken
+  // from the stepper's list (their slip counted from where they broke loose, also when they
+  // stuck again before the step ended); see step().
+  bool located_releases_ = false;
 
   // Episode bookkeeping: w at the episode start for each block, which blocks slid.
   bool in_episode_ = false;

@@ -22,12 +22,14 @@ namespace {
 constexpr int kShrinkEvery = 16;
 // The pad's sum of block positions is re-summed from scratch every this many events.
 constexpr int kResumEvery = 1024;
-
-// Stuck blocks integrated on each side of a sliding block: those its springs reach (one, or
-// R with range coupling), twice that for a stepper that locates releases inside its step
-// (a block released mid-step reaches as far again).
+// Stuck blocks covered on each side of a sliding block: those its springs reach (one, or R
+// with range coupling); twice that for the adaptive stepper, which locates releases inside
+// its step (a block released mid-step reaches as far again). The located wrapper of a
+// fixed-step scheme adds the neighbours of a block it releases to its step itself
+// (located.hpp).
 int margin_for(const ChainForces& forces, const Stepper& stepper) {
-  return (stepper.stick_rule() == StickRule::Located ? 2 : 1) * forces.reach();
+  const bool adds_own = dynamic_cast<const LocatedTransitions*>(&stepper) != nullptr;
+  return (stepper.stick_rule() == StickRule::Located && !adds_own ? 2 : 1) * forces.reach();
 }
 }  // namespace
 
@@ -369,7 +371,7 @@ bool EventEngine::cluster_ready(ClusterRelaxation& r) const {
   // One covered range (so every sliding block is inside it) and at most kMaxCluster
   // blocks between its ends, which are stuck blocks or free chain ends (the stepper
   // refuses the shapes it has no code for: run_cluster).
-  if (!cluster_path || stepper_.stick_rule() != StickRule::Crossing || ranges_.size() != 1 ||
+  if (!cluster_path || stepper_.stick_rule() == StickRule::Projection || ranges_.size() != 1 ||
       forces_.general_kernel())
     return false;
   const Range& range = ranges_.front();
@@ -397,6 +399,8 @@ bool EventEngine::relax_cluster(ClusterRelaxation& r, std::int64_t& steps, Conta
   r.state = &st_;
   r.dissipated = &dissipated_;
   if (!(pad_ ? relax_pad_cluster(r) : stepper_.relax_cluster(forces_, r))) return false;
+  // Located: the first step had a transition and was undone; the general path takes it.
+  if (r.steps == 0) return false;
   // A shrink due inside a lone block's run changed nothing; the one due after the last
   // step, if any, the caller does.
   steps += r.steps;
@@ -415,7 +419,10 @@ bool EventEngine::relax_cluster(ClusterRelaxation& r, std::int64_t& steps, Conta
 bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   const ModelParams& p = forces_.params();
   const bool periodic = p.boundary == Boundary::Periodic;
-  if (!lone_slip_path || pad_ || stepper_.stick_rule() != StickRule::Crossing ||
+  // Located transitions (the wrapper of a fixed-step scheme): the record is the located
+  // stepper's, and a neighbour's failure is left to the general path (lone_slip.hpp).
+  const bool located = dynamic_cast<const LocatedTransitions*>(&stepper_) != nullptr;
+  if (!lone_slip_path || pad_ || (stepper_.stick_rule() != StickRule::Crossing && !located) ||
       (periodic && n_ == 2) || forces_.general_kernel())
     return false;
   // The neighbours whose spring force the block's slide changes, in block order (the
@@ -436,7 +443,7 @@ bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   LoneSlip& table = lone_[at_end];
   if (!lone_built_[at_end]) {
     const double stiffness = p.k_p + (p.has_neighbours() ? (at_end ? 1.0 : 2.0) * p.k_c : 0.0);
-    table = integrate_lone_slip(p, stiffness, stepper_.name(), dt_, max_steps_per_event);
+    table = integrate_lone_slip(p, stiffness, stepper_.name(), dt_, max_steps_per_event, located);
     lone_built_[at_end] = true;
   }
   const auto last = static_cast<std::int64_t>(table.steps.size());
@@ -476,7 +483,13 @@ bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
     return false;
   }
 
-  const std::int64_t stop = std::min(last, std::min(breaks_at[0], breaks_at[1]));
+  const std::int64_t first_break = std::min(breaks_at[0], breaks_at[1]);
+  // Located: up to the step before the first failure, which the general path locates.
+  const std::int64_t stop = std::min(last, located ? first_break - 1 : first_break);
+  if (stop == 0) {
+    ++lone_starts_.immediate;
+    return false;
+  }
   const LoneSlip::Step& s = table.steps[stop - 1];
   st_.w[j] += s.d;
   st_.wd[j] = s.v;
@@ -486,7 +499,8 @@ bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   dissipated_ += s.work;
   released_now_.clear();
   for (int k = 0; k < count; ++k)
-    if (breaks_at[k] == stop) released_now_.push_back(nb[k]);
+    if (breaks_at[k] == stop && !located) released_now_.push_back(nb[k]);
+  if (located && s.sliding == 0) replayed_stick_time_ = table.stick_time;
   const int released = static_cast<int>(released_now_.size());
   steps = stop;
   for (const Range& r : ranges_) counters_.block_steps += (r.hi - r.lo) * stop;
@@ -533,6 +547,7 @@ EventRecord EventEngine::next_event() {
   st_.t = 0;
   max_speed_ = 0;
   last_stick_time_ = 0;
+  replayed_stick_time_ = std::nan("");
   sliding_ = 1;
   release(trigger);
 
@@ -616,7 +631,8 @@ EventRecord EventEngine::next_event() {
       }
       if (sliding_ == 0) {
         // A stepper that located the last re-stick inside the step knows when it was.
-        const double located = stepper_.located_stick_time();
+        const double located =
+            std::isnan(replayed_stick_time_) ? stepper_.located_stick_time() : replayed_stick_time_;
         last_stick_time_ = located > st_.t - dt_ && located <= st_.t ? located : st_.t;
       }
       if (steps % kShrinkEvery == 0) shrink_ranges();

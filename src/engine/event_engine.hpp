@@ -80,9 +80,10 @@ class EventEngine {
   // Give up on an event after this many steps (a runaway means dt or the scene is wrong).
   std::int64_t max_steps_per_event = 200'000'000;
   // While the sliding blocks lie within one range of at most kMaxCluster interior blocks
-  // (a Crossing stepper; the pad held or moving), step it with the stepper's fixed-size form
-  // (integrate/cluster.hpp): the same events bit for bit, in less time. Off only to test
-  // exactly that.
+  // (a Crossing stepper or located transitions; the pad held or moving), step it with the
+  // stepper's fixed-size form (integrate/cluster.hpp; located: up to the step before a
+  // transition, which the general path takes): the same events bit for bit, in less time.
+  // Off only to test exactly that.
   bool cluster_path = true;
   // With every covered range ending in stuck blocks (the pad held or moving), use the stepper's
   // step_held() (again the same events bit for bit).
@@ -102,9 +103,10 @@ class EventEngine {
   // Events this engine started from the record (not part of snapshots): all of them, those
   // it finished there (no neighbour broke loose), the steps it took from it, and the
   // events it could have started there but integrated directly because a decision lay
-  // within the rounding bound.
+  // within the rounding bound; located, also those where a neighbour fails in the first step
+  // (nothing to replay: the general path locates the failure).
   struct LoneSlipStarts {
-    std::int64_t replayed = 0, finished = 0, steps = 0, declined = 0;
+    std::int64_t replayed = 0, finished = 0, steps = 0, declined = 0, immediate = 0;
   };
   const LoneSlipStarts& lone_slip_starts() const { return lone_starts_; }
 
@@ -163,6 +165,8 @@ class EventEngine {
   bool keep_slips_ = false;
   std::vector<std::pair<int, double>> slips_;
   double max_speed_ = 0, last_stick_time_ = 0;
+  // The located stick of an event the lone slip's record finished (NaN otherwise).
+  double replayed_stick_time_ = 0;
   double dissipated_ = 0;  // work done against friction and dampers during the event
   int sliding_ = 0;
 

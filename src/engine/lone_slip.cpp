@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "engine/contacts.hpp"
+#include "integrate/located.hpp"
 #include "integrate/stepper.hpp"
 #include "model/chain.hpp"
 #include "model/stick.hpp"
@@ -14,7 +16,7 @@
 namespace bkq {
 
 LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string_view scheme,
-                             double dt, std::int64_t max_steps) {
+                             double dt, std::int64_t max_steps, bool located) {
   LoneSlip out;
   out.stiffness = stiffness;
   // One block on a pulling spring of the lone block's stiffness: its spring force is
@@ -34,10 +36,19 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
     out.why_not = "the stepper is not one of the registry's";
     return out;
   }
-  const auto stepper = make_stepper(std::string(scheme), 1);
+  auto stepper = make_stepper(std::string(scheme), 1);
   if (stepper->stick_rule() != StickRule::Crossing) {
     out.why_not = "the stepper resolves transitions itself";
     return out;
+  }
+  // Located: the wrapper steps; the plain scheme repeats each attempted step on a copy, so
+  // that the margin of the velocity's sign at its end is measured where it is decided.
+  std::unique_ptr<Stepper> plain;
+  const LocatedTransitions* wrapper = nullptr;
+  if (located) {
+    plain = make_stepper(std::string(scheme), 1);
+    stepper = with_located_transitions(std::move(stepper), 1);
+    wrapper = static_cast<const LocatedTransitions*>(stepper.get());
   }
   ChainState st;
   st.resize(1);
@@ -57,18 +68,31 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
       return out;
     }
     wd_old = st.wd[0];
-    stepper->step(forces, frozen, st, dt, all);
-    work += half_dt_m * dissipated_power(forces, st, &wd_old, all);
-    // The decisions the rule takes below, and how far each is from going the other way.
-    const double y0 = wd_old, y1 = st.wd[0];
-    out.velocity_margin = std::min(out.velocity_margin, std::abs(y1));
-    if (stick::crossed(fr.backslip, y0, y1)) {
-      const double f = forces.spring_force(st.w.data(), 0, st.s);
-      out.force_margin =
-          std::min(out.force_margin, std::abs((fr.backslip ? std::abs(f) : f) - fr.threshold));
+    if (located) {
+      ChainState attempt = st;
+      plain->step(forces, frozen, attempt, dt, all);
+      out.velocity_margin = std::min(out.velocity_margin, std::abs(attempt.wd[0]));
+      stepper->step(forces, frozen, st, dt, all);
+      work += wrapper->step_work();
+      if (st.mobile[0] == 0.0) {  // stuck at the located instant, where friction held f
+        const double f = forces.spring_force(st.w.data(), 0, st.s);
+        out.force_margin =
+            std::min(out.force_margin, std::abs((fr.backslip ? std::abs(f) : f) - fr.threshold));
+      }
+    } else {
+      stepper->step(forces, frozen, st, dt, all);
+      work += half_dt_m * dissipated_power(forces, st, &wd_old, all);
+      // The decisions the rule takes below, and how far each is from going the other way.
+      const double y0 = wd_old, y1 = st.wd[0];
+      out.velocity_margin = std::min(out.velocity_margin, std::abs(y1));
+      if (stick::crossed(fr.backslip, y0, y1)) {
+        const double f = forces.spring_force(st.w.data(), 0, st.s);
+        out.force_margin =
+            std::min(out.force_margin, std::abs((fr.backslip ? std::abs(f) : f) - fr.threshold));
+      }
     }
     const ContactScan scan =
-        settle_contacts(forces, st, &wd_old, st.s, all, true, [&](int) { released = true; });
+        settle_contacts(forces, st, &wd_old, st.s, all, !located, [&](int) { released = true; });
     if (released || !std::isfinite(st.w[0]) || !std::isfinite(st.wd[0])) {
       out.why_not = "the lone block's integration did not stay finite";
       return out;
@@ -94,6 +118,7 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
     out.why_not = "the lone block does not move";
     return out;
   }
+  if (located) out.stick_time = stepper->located_stick_time();
   out.usable = true;
   return out;
 }

@@ -33,12 +33,22 @@
 // tests/regression/test_lone_slip.cpp runs events both ways from the same states, at
 // small and at large loads.
 //
+// With located transitions (integrator.transitions = located) the record is integrated by
+// the located stepper (integrate/located.hpp): the block's stick is located inside its
+// last step, and the record keeps that instant (stick_time). A neighbour's failure is then
+// located inside the step where it happens, which the record does not do: the engine
+// replays the record up to the step before it and takes that step on its general path.
+// The decisions the record takes are the located stepper's (the sign of the velocity at
+// the end of each attempted step, friction holding the force at the stick), and their
+// margins are measured on them.
+//
 // The slide ends at the block's first turning point: there its spring force is
 // F0 - K d with K d at most twice F0 - phi (the kinetic friction), so friction holds it
 // and it sticks. So d never decreases (d_min stays 0); the record keeps the running
 // extremes all the same, so that the neighbours' tests do not rest on that argument.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -64,6 +74,9 @@ struct LoneSlip {
   };
   double stiffness = 0;
   std::vector<Step> steps;  // the block sticks at the end of the last one
+  // Located transitions: the instant of the stick, inside the last step (time since the
+  // start); NaN at the step.
+  double stick_time = std::nan("");
   // How far the table's own decisions are from going the other way: the smallest
   // |velocity| at the end of a step (the crossing test looks at its sign), and the smallest
   // distance of the spring force from the threshold where a crossing was tested.
@@ -75,9 +88,9 @@ struct LoneSlip {
 
 // Integrates the lone block of stiffness `stiffness` with the model's friction, mass and
 // damper, by `scheme` at step dt, until it sticks (unusable if it has not after max_steps
-// steps, or if it never leaves the start).
+// steps, or if it never leaves the start); `located`: with located transitions.
 LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string_view scheme,
-                             double dt, std::int64_t max_steps);
+                             double dt, std::int64_t max_steps, bool located = false);
 
 // Bounds on the differences of rounding size between the table and a direct integration
 // of `steps` steps at step dt with positions of size `position_scale` (see above).

@@ -7,18 +7,18 @@
 // sliding (dir w' <= 0) or a stuck block's spring force has passed the threshold, the
 // instant of the earliest such transition is located on the cubic Hermite interpolant of
 // the step (positions from w, w' at both ends; velocities from w', w'' at both ends, the
-// accelerations at the ends evaluated with the frozen flags), bisected to 1e-13 of the
-// step. The step is then taken again, by the same scheme, from its start to that instant,
-// and the instant polished by at most three Newton steps on such real steps (the attempted
-// step ran past the transition, where friction has a kink at zero velocity, which limits
-// the interpolant there; the real steps end before it); there the located block (and every other
-// block whose transition has happened by then) changes state by the stick rule below, and the rest
-// of the step proceeds the same way. The work against friction and the block dampers is summed
-// piece by piece (step_work()). This is a whole-cluster cut: every block of the ranges is stepped
-// to the transition instant. A per-block cut (only the blocks a transition concerns stepped to it)
-// is not possible within one explicit step, whose stages couple each block to its neighbours at the
-// intermediate times: a block stepped alone to the instant would see its neighbours at the step's
-// end, which is first order again.
+// accelerations at the ends evaluated with the frozen flags), bracketed to 1e-13 of the
+// step (Illinois regula falsi, bisecting where a step does not halve the bracket). The step is then
+// taken again, by the same scheme, from its start to that instant, and the instant polished by at
+// most three Newton steps on such real steps (the attempted step ran past the transition, where
+// friction has a kink at zero velocity, which limits the interpolant there; the real steps end
+// before it); there the located block (and every other block whose transition has happened by then)
+// changes state by the stick rule below, and the rest of the step proceeds the same way. The work
+// against friction and the block dampers is summed piece by piece (step_work()). This is a
+// whole-cluster cut: every block of the ranges is stepped to the transition instant. A per-block
+// cut (only the blocks a transition concerns stepped to it) is not possible within one explicit
+// step, whose stages couple each block to its neighbours at the intermediate times: a block stepped
+// alone to the instant would see its neighbours at the step's end, which is first order again.
 //
 // Order. Between transitions the scheme's own (order p; rk2 2, rk4 4, verlet 2). The
 // cubic Hermite interpolant is exact to O(h^4) locally and passes through the scheme's
@@ -69,6 +69,10 @@ class LocatedTransitions final : public Stepper {
   double located_stick_time() const override { return last_stick_time_; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override;
+  // The scheme's cluster form with located transitions (integrate/cluster.hpp): it stops
+  // before a step with a transition, which the caller then takes with step().
+  bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
+  bool relax_pad_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
   std::vector<double> carried_state() const override { return {last_stick_time_}; }
   void restore_carried_state(std::span<const double> s) override;
 
@@ -89,17 +93,23 @@ class LocatedTransitions final : public Stepper {
   // Blocks whose transition has happened by the end of the attempted step (in fired_).
   bool fired_at_end(const ChainForces& forces, const Substrate& sub, const ChainState& st,
                     Ranges ranges);
-  // Whether block j's transition has happened by t0 + theta h on the dense output.
-  bool fired_at(const ChainForces& forces, const Substrate& sub, const ChainState& st, int j,
-                double theta);
+  // Block j's event function at t0 + theta h on the dense output: for a sliding block its
+  // velocity along its direction, for a stuck one the threshold less its spring force (its
+  // magnitude with backslip); the transition has happened where fired() says so.
+  double event_value(const ChainForces& forces, const Substrate& sub, const ChainState& st, int j,
+                     double theta);
+  static bool fired(const ChainState& st, int j, double g) {
+    return st.mobile[j] != 0.0 ? g <= 0.0 : g < 0.0;
+  }
   // The earliest located transition among fired_, as a fraction of the step; `who` its block.
   double locate(const ChainForces& forces, const Substrate& sub, const ChainState& st, int& who);
   // The transitions at the current instant: `who`'s, and every other that has happened.
   void transit(const ChainForces& forces, const Substrate& sub, ChainState& st, int who,
                Ranges ranges);
   bool in_ranges(int j) const { return mark_[j] == stamp_; }
-  // Adds block k to this step's ranges (own_), and sets the dense output's held blocks.
-  void include(int k, const ChainState& st);
+  // Adds block k to this step's ranges (own_), and sets the dense output's held blocks;
+  // false if it was in them already.
+  bool include(int k, const ChainState& st);
   void halo(const ChainState& st);
   // Block j's event function over its time derivative at the current state (the Newton
   // correction of the located instant, on a real step).

@@ -8,6 +8,8 @@
 //    2^(order - 1/2);
 //  - the same stick under velocity-weakening friction against the adaptive reference
 //    (rk4 keeps order 4 in the stick time: the instant is polished on real steps);
+//  - the same stick in the event engine's lone-slip record integrated with located
+//    transitions (engine/lone_slip.hpp), whose stick instant becomes an event's duration;
 //  - a located failure: two blocks coupled by k_c = 1, block 0 released at the threshold
 //    pulls block 1 (0.005 below it) over the threshold inside a step, then both stick; the
 //    state at t = 10 against the adaptive stepper at tolerance 1e-12 keeps the same order;
@@ -15,6 +17,11 @@
 //    against its direction of sliding and no stuck block holds a force above the threshold;
 //  - the energy balance of the event engine closes at least as well located as at the step
 //    (median |energy residual| over events of a small chain);
+//  - continuous driving: a block moves only while it slides, so between two instants with
+//    every block stuck the blocks' displacements add up to the moments of the slip episodes
+//    in between, in both modes (located, the blocks released inside a step count too);
+//  - a rupture front through blocks at the threshold, cut once per block inside one step,
+//    is not refused for the number of its cuts (the thesis scene at dt = 0.03);
 //  - the scene key: located for a scheme that resolves its transitions itself is refused.
 #include <gtest/gtest.h>
 
@@ -27,6 +34,9 @@
 #include "../scene_sim.hpp"
 #include "core/error.hpp"
 #include "engine/contacts.hpp"
+#include "engine/continuous.hpp"
+#include "engine/initial_state.hpp"
+#include "engine/lone_slip.hpp"
 #include "integrate/adaptive.hpp"
 #include "integrate/located.hpp"
 #include "model/chain.hpp"
@@ -136,6 +146,35 @@ TEST(LocatedOrder, StickOfALoneBlockKeepsTheSchemesOrder) {
         EXPECT_NEAR(step_time_err[k], hs[k] / 2, 1e-9) << tag;
       }
       EXPECT_LT(time_err.back(), 0.1 * step_time_err.back()) << tag;
+    }
+  }
+}
+
+// The lone-slip record with located transitions: the recorded stick instant and final
+// displacement of the block released at the threshold (stiffness 1: stick at t = pi after a
+// slip of 2 sigma) keep each scheme's order; at the step the record's stick is the first
+// step end after pi.
+TEST(LocatedOrder, LoneSlipRecordKeepsTheSchemesOrder) {
+  const std::vector<double> hs = {M_PI / 10.5, M_PI / 20.5, M_PI / 40.5};
+  const ModelParams p = single_block(law_id<law::Clst91>);
+  for (const char* scheme : {"rk2", "rk4", "verlet"}) {
+    std::vector<double> time_err, slip_err;
+    const int order = make_stepper(scheme, 1)->order();
+    for (double h : hs) {
+      const LoneSlip rec = integrate_lone_slip(p, 1.0, scheme, h, 1000, true);
+      ASSERT_TRUE(rec.usable) << scheme << ": " << rec.why_not;
+      ASSERT_EQ(rec.steps.back().sliding, 0) << scheme;
+      time_err.push_back(std::abs(rec.stick_time - M_PI));
+      slip_err.push_back(std::abs(rec.steps.back().d - 2.0 * kSigma));
+      const LoneSlip at_step = integrate_lone_slip(p, 1.0, scheme, h, 1000, false);
+      EXPECT_TRUE(std::isnan(at_step.stick_time)) << scheme;
+      EXPECT_NEAR(at_step.steps.back().t - M_PI, h / 2, 1e-9) << scheme;
+    }
+    for (size_t k = 0; k + 1 < hs.size(); ++k) {
+      EXPECT_GE(observed_order(time_err[k], time_err[k + 1], hs[k], hs[k + 1]), order - 0.5)
+          << scheme << " stick time, errors " << time_err[k] << ", " << time_err[k + 1];
+      EXPECT_GE(observed_order(slip_err[k], slip_err[k + 1], hs[k], hs[k + 1]), order - 0.5)
+          << scheme << " slip, errors " << slip_err[k] << ", " << slip_err[k + 1];
     }
   }
 }
@@ -278,6 +317,68 @@ TEST(LocatedEnergy, BalanceClosesAtLeastAsWellAsAtTheStep) {
     const double loc = median_abs_residual(scheme, "located");
     EXPECT_LE(loc, step) << scheme << ": located " << loc << ", step " << step;
   }
+}
+
+// A continuous run of a 20-block chain (speed 0.01): the sum of the episodes' moments
+// against the blocks' displacement from the start to the end of the last episode. Located,
+// before the driver took the stepper's releases, the episodes left out every block a slip
+// reached inside a step (here about half of the slip: 44.7 of 93).
+TEST(LocatedContinuous, EpisodeMomentsAddUpToTheBlocksSlip) {
+  const Scene scene = test::make_scene({{"model.blocks", "20"}, {"drive.mode", "continuous"}});
+  const ModelParams p = model_from_scene(scene);
+  const ChainForces forces(p);
+  for (bool loc : {false, true}) {
+    for (const char* scheme : {"rk2", "rk4", "verlet"}) {
+      const std::string tag = std::string(scheme) + (loc ? " located" : " step");
+      auto stepper = loc ? located(scheme, p.n) : make_stepper(scheme, p.n);
+      ContinuousDriver driver(forces, *stepper, Substrate::constant(0.01),
+                              initial_state(forces, 7, 0.5, false), 0.01);
+      const std::vector<double> w0 = driver.state().w;
+      std::vector<double> w_end = w0;
+      double moments = 0;
+      int episodes = 0, blocks = 0;
+      while (driver.state().t < 300.0) {
+        driver.step();
+        if (const auto e = driver.finished_episode()) {
+          moments += e->moment;
+          blocks += e->blocks;
+          ++episodes;
+          w_end = driver.state().w;
+        }
+      }
+      double slip = 0;
+      for (int j = 0; j < p.n; ++j) slip += w_end[j] - w0[j];
+      ASSERT_GT(episodes, 20) << tag;
+      EXPECT_GT(blocks, episodes) << tag;  // some episodes reach several blocks
+      EXPECT_NEAR(moments, slip, 1e-9 * slip) << tag << ": " << episodes << " episodes";
+    }
+  }
+}
+
+// The thesis scene (BK-Pad, thesis units and friction) event by event at rk4, dt = 0.03: in
+// its first events a rupture runs through a row of blocks at the threshold within one step,
+// each release a cut. The bound on cuts once counted only the blocks the step began with
+// (3 here: 40 cuts) and refused the event; the blocks that join the step count now.
+TEST(LocatedCuts, ARuptureFrontInsideOneStepIsNotRefused) {
+  test::Sim sim({{"model.kind", "bkp"},
+                 {"model.parameterisation", "thesis"},
+                 {"model.pad_mass", "100"},
+                 {"model.caliper_stiffness", "100"},
+                 {"model.damping_ratio", "0.0833333333333333"},
+                 {"model.s_m", "1"},
+                 {"model.s_p", "1"},
+                 {"model.s_c", "0.01"},
+                 {"friction.law", "thesis"},
+                 {"friction.sigma", "0.01"},
+                 {"friction.vc", "1"},
+                 {"integrator.scheme", "rk4"},
+                 {"integrator.dt", "0.03"},
+                 {"integrator.transitions", "located"},
+                 {"run.initial_disorder", "0.75"}});
+  int largest = 0;
+  for (int i = 0; i < 20; ++i) largest = std::max(largest, sim.engine.next_event().blocks);
+  EXPECT_GT(largest, 10);  // the front ran through many blocks
+  EXPECT_GT(dynamic_cast<const LocatedTransitions&>(*sim.stepper).located_transitions(), 40);
 }
 
 TEST(LocatedKey, RefusedForSchemesThatResolveTransitionsThemselves) {

@@ -8,7 +8,8 @@
 // steps, that clusters of more than one block were among them and, with free ends, that
 // clusters at both ends were, so the comparison is not vacuous. (The short chain is the
 // case that caught a phantom put in the wrong slot at the right end: a last-bit
-// difference in a few per cent of steps there.)
+// difference in a few per cent of steps there.) The same holds with located transitions,
+// where the cluster loop stops before a step with a transition.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -37,8 +38,9 @@ struct Case {
 
 class ClusterPath : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(ClusterPath, SameEventsBitForBitAsTheGeneralPath) {
-  const std::string scheme = GetParam();
+// `transitions`: integrator.transitions (located: the cluster loop stops before each step
+// with a transition and the general path takes it).
+void expect_same_events(const std::string& scheme, const std::string& transitions) {
   const std::vector<Case> cases = {
       {"carlson-langer, clst91", {{"model.blocks", "40"}}, 0.3, 0.05},
       {"periodic", {{"model.blocks", "40"}, {"model.boundary", "periodic"}}, 0.3, 0.05, false},
@@ -55,6 +57,7 @@ TEST_P(ClusterPath, SameEventsBitForBitAsTheGeneralPath) {
     Settings settings = c.settings;
     settings.push_back({"integrator.scheme", scheme});
     settings.push_back({"integrator.dt", "0.005"});
+    settings.push_back({"integrator.transitions", transitions});
     Sim fast(settings), general(settings);
     // Event starts are integrated too, so that the one-block clusters they begin with run here.
     fast.engine.lone_slip_path = general.engine.lone_slip_path = false;
@@ -83,6 +86,15 @@ TEST_P(ClusterPath, SameEventsBitForBitAsTheGeneralPath) {
       EXPECT_GT(cs.right_end, 0);
     }
   }
+}
+
+TEST_P(ClusterPath, SameEventsBitForBitAsTheGeneralPath) {
+  expect_same_events(GetParam(), "step");
+}
+
+// Located transitions: the same events bit for bit, and the transitions really located.
+TEST_P(ClusterPath, LocatedSameEventsBitForBitAsTheGeneralPath) {
+  expect_same_events(GetParam(), "located");
 }
 
 INSTANTIATE_TEST_SUITE_P(Schemes, ClusterPath, ::testing::Values("rk2", "rk4", "verlet"));
