@@ -44,8 +44,7 @@ OfcEngine::OfcEngine(const OfcParams& p, const std::vector<double>& initial) : p
                 std::to_string(p.sites()) + " sites");
   build_tree();  // sizes g_
   std::copy(initial.begin(), initial.end(), g_.begin());
-  for (int b = 0; b < buckets_; ++b) scan(b);
-  for (int i = buckets_ - 1; i >= 1; --i) pull(i);
+  rebuild_tree();
 }
 
 OfcEngine::OfcEngine(const OfcParams& p, const OfcSnapshot& saved)
@@ -56,8 +55,7 @@ OfcEngine::OfcEngine(const OfcParams& p, const OfcSnapshot& saved)
     throw Error("ofc: the saved field has " + std::to_string(saved.g.size()) +
                 " values, this lattice " + std::to_string(g_.size()));
   g_ = saved.g;
-  for (int b = 0; b < buckets_; ++b) scan(b);
-  for (int i = buckets_ - 1; i >= 1; --i) pull(i);
+  rebuild_tree();
 }
 
 void OfcEngine::build_tree() {
@@ -66,54 +64,64 @@ void OfcEngine::build_tree() {
   buckets_ = 1;
   while (buckets_ < needed) buckets_ *= 2;
   g_.assign(static_cast<std::size_t>(buckets_) * kBucket, -HUGE_VAL);
-  tree_.assign(2 * static_cast<std::size_t>(buckets_), Node{-HUGE_VAL, 0});
+  tree_.assign(2 * static_cast<std::size_t>(buckets_), Node{-HUGE_VAL, 0, false});
   bucket_marked_.assign(buckets_, 0);
   touched_buckets_.clear();
-  release_.assign(n, 0.0);
-  released_at_.assign(n, 0);
-  queued_at_.assign(n, 0);
+  site_.assign(n, Site{0, 0, 0});
+  stamp_ = 0;
   receivers_.reserve(n);
-  toppled_at_.assign(n, 0);
   now_.reserve(n);
   next_.reserve(n);
-  nbr_.assign(4 * static_cast<std::size_t>(n), -1);
   const int nx = p_.nx, ny = p_.ny;
+  edge_.assign(n, 0);
   for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x) {
-      int* nb = &nbr_[4 * static_cast<std::size_t>(x + nx * y)];
-      if (x > 0)
-        nb[0] = x - 1 + nx * y;
-      else if (p_.periodic_x)
-        nb[0] = nx - 1 + nx * y;
-      if (x < nx - 1)
-        nb[1] = x + 1 + nx * y;
-      else if (p_.periodic_x)
-        nb[1] = nx * y;
-      if (y > 0)
-        nb[2] = x + nx * (y - 1);
-      else if (p_.periodic_y)
-        nb[2] = x + nx * (ny - 1);
-      if (y < ny - 1)
-        nb[3] = x + nx * (y + 1);
-      else if (p_.periodic_y)
-        nb[3] = x;
-    }
+    for (int x = 0; x < nx; ++x)
+      edge_[x + nx * y] = static_cast<unsigned char>((x == 0 ? 1 : 0) | (x == nx - 1 ? 2 : 0) |
+                                                     (y == 0 ? 4 : 0) | (y == ny - 1 ? 8 : 0));
+  // Across a wrapped side the neighbour is j + wrap_[d]; across a free one there is none.
+  wrap_[0] = p_.periodic_x ? nx - 1 : 0;
+  wrap_[1] = p_.periodic_x ? -(nx - 1) : 0;
+  wrap_[2] = p_.periodic_y ? nx * (ny - 1) : 0;
+  wrap_[3] = p_.periodic_y ? -nx * (ny - 1) : 0;
 }
 
-// The bucket's largest value and the first site holding it.
+inline void OfcEngine::neighbours(int j, int nb[4]) const {
+  nb[0] = j - 1;
+  nb[1] = j + 1;
+  nb[2] = j - p_.nx;
+  nb[3] = j + p_.nx;
+  const unsigned e = edge_[j];
+  if (e == 0) return;  // an interior site
+  const bool periodic[4] = {p_.periodic_x, p_.periodic_x, p_.periodic_y, p_.periodic_y};
+  for (int d = 0; d < 4; ++d)
+    if (e & (1u << d)) nb[d] = periodic[d] ? j + wrap_[d] : -1;
+}
+
+// The bucket's largest value, the first site holding it, and whether another holds it.
 void OfcEngine::scan(int b) {
   const int first = b * kBucket;
   const double* g = g_.data() + first;
-  Node hi{g[0], first};
+  Node hi{g[0], first, false};
   for (int k = 1; k < kBucket; ++k)
-    if (g[k] > hi.g) hi = Node{g[k], first + k};
+    if (g[k] > hi.g)
+      hi = Node{g[k], first + k, false};
+    else if (g[k] == hi.g)
+      hi.tied = true;
   tree_[buckets_ + b] = hi;
 }
 
 // Ties to the left child, which holds the lower sites.
 void OfcEngine::pull(int i) {
   const Node &a = tree_[2 * i], &b = tree_[2 * i + 1];
-  tree_[i] = a.g >= b.g ? a : b;
+  if (a.g == b.g)
+    tree_[i] = Node{a.g, a.j, true};
+  else
+    tree_[i] = a.g > b.g ? a : b;
+}
+
+void OfcEngine::rebuild_tree() {
+  for (int b = 0; b < buckets_; ++b) scan(b);
+  for (int i = buckets_ - 1; i >= 1; --i) pull(i);
 }
 
 inline void OfcEngine::touch(int j) {
@@ -135,8 +143,7 @@ std::vector<double> OfcEngine::field() const {
 void OfcEngine::renormalise() {
   for (int j = 0; j < p_.sites(); ++j) g_[j] += offset_;
   offset_ = 0;
-  for (int b = 0; b < buckets_; ++b) scan(b);
-  for (int i = buckets_ - 1; i >= 1; --i) pull(i);
+  rebuild_tree();
 }
 
 // Every site whose stored value equals `value`, the subtree's maximum, in index order.
@@ -171,56 +178,71 @@ EventRecord OfcEngine::next_event() {
   e.trigger = top.j;
   e.first_block = top.j;
   e.last_block = top.j;
-  const std::int64_t event_stamp = ++counters_.events;
+  ++counters_.events;
+  // 32-bit stamps keep the per-site bookkeeping small; they are cleared long before they
+  // could wrap (an event would need 2^31 generations to reach the end).
+  if (stamp_ > 0x7fffffffu) {
+    for (Site& s : site_) s.queued_at = s.toppled_at = 0;
+    stamp_ = 0;
+  }
+  const std::uint32_t first_generation = stamp_ + 1;
   const double alpha = p_.alpha;
-  const int* nbr = nbr_.data();
   double* g = g_.data();
   double moment = 0, lost = 0;
   std::int64_t topplings = 0, generations = 0;
   int distinct = 0;
   now_.clear();
-  collect_ties(1, top.g);
+  if (top.tied)
+    collect_ties(1, top.g);
+  else
+    now_.push_back(top.j);
   while (!now_.empty()) {
     ++generations;
-    const std::int64_t gen_stamp = ++stamp_;
-    // Every site of the generation releases what it holds at the generation's start.
+    if (stamp_ == 0xffffffffu) throw Error("ofc: an avalanche of more than 2^31 generations");
+    const std::uint32_t gen = ++stamp_;
+    // Every site of the generation releases what it holds at the generation's start and
+    // hands alpha of it to each neighbour, in the neighbour's slot for the side it comes
+    // from; the share pushed over a free edge is lost. The slots are summed below, after
+    // every release of the generation.
+    receivers_.clear();
     for (const int j : now_) {
       const double r = g[j] + offset_;
-      release_[j] = alpha * r;
-      released_at_[j] = gen_stamp;
+      const double s = alpha * r;
       g[j] = -offset_;
       moment += r;
       touch(j);
-      if (toppled_at_[j] != event_stamp) {
-        toppled_at_[j] = event_stamp;
+      Site& sj = site_[j];
+      if (sj.toppled_at < first_generation) {
+        sj.toppled_at = gen;
         ++distinct;
         e.first_block = std::min(e.first_block, j);
         e.last_block = std::max(e.last_block, j);
       }
-    }
-    topplings += static_cast<std::int64_t>(now_.size());
-    // The sites that receive, each once; the share pushed over a free edge is lost.
-    receivers_.clear();
-    for (const int j : now_) {
-      const int* nb = nbr + 4 * static_cast<std::size_t>(j);
+      int nb[4];
+      neighbours(j, nb);
       for (int d = 0; d < 4; ++d) {
         const int n = nb[d];
         if (n < 0) {
-          lost += release_[j];
-        } else if (queued_at_[n] != gen_stamp) {
-          queued_at_[n] = gen_stamp;
-          receivers_.push_back(n);
+          lost += s;
+          continue;
         }
+        Site& sn = site_[n];
+        if (sn.queued_at != gen) {
+          sn.queued_at = gen;
+          sn.slot = static_cast<std::int32_t>(receivers_.size());
+          receivers_.push_back(Receiver{n, {0.0, 0.0, 0.0, 0.0}});
+        }
+        receivers_[sn.slot].in[d ^ 1] = s;  // j is n's neighbour on the opposite side
       }
     }
+    topplings += static_cast<std::int64_t>(now_.size());
     // Each receiver adds (left + right) + (down + up): a sum whose rounding does not depend
     // on the order of the lists, and is the same under shifts, reflections and transposition
     // of the lattice (floating-point addition commutes), so those symmetries hold bit for bit.
-    auto share = [&](int n) { return n >= 0 && released_at_[n] == gen_stamp ? release_[n] : 0.0; };
     next_.clear();
-    for (const int n : receivers_) {
-      const int* nb = nbr + 4 * static_cast<std::size_t>(n);
-      g[n] += (share(nb[0]) + share(nb[1])) + (share(nb[2]) + share(nb[3]));
+    for (const Receiver& rc : receivers_) {
+      const int n = rc.n;
+      g[n] += (rc.in[0] + rc.in[1]) + (rc.in[2] + rc.in[3]);
       touch(n);
       if (g[n] + offset_ >= 1.0) next_.push_back(n);
     }
@@ -233,7 +255,10 @@ EventRecord OfcEngine::next_event() {
   // The max tree, once per event over the buckets the avalanche touched. A node that comes
   // out as it was leaves its ancestors as they were: the walk up stops there (most changes
   // stay below the top of the tree, so an event costs about its touched buckets).
-  for (int b : touched_buckets_) {
+  // The max tree, once per event over the buckets the avalanche touched. A node that comes
+  // out as it was leaves its ancestors as they were: the walk up stops there (most changes
+  // stay below the top of the tree, so an event costs about its touched buckets).
+  for (const int b : touched_buckets_) {
     bucket_marked_[b] = 0;
     const Node old = tree_[buckets_ + b];
     scan(b);

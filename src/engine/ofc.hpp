@@ -82,13 +82,20 @@ class OfcEngine {
   double lost() const { return lost_; }
 
  private:
+  // The loader's max tree over buckets of kBucket sites: a node holds its subtree's largest
+  // value, the lowest site holding it, and whether another site holds it too (so that an
+  // event without ties, the usual case, skips the search for them).
   struct Node {
     double g;
     int j;
+    bool tied;
   };
   static constexpr int kBucket = 8;
-  static bool same(const Node& a, const Node& b) { return a.j == b.j && a.g == b.g; }
+  static bool same(const Node& a, const Node& b) {
+    return a.j == b.j && a.g == b.g && a.tied == b.tied;
+  }
   void build_tree();
+  void rebuild_tree();
   void scan(int b);
   void pull(int i);
   void touch(int j);  // marks j's bucket for the end-of-event tree update
@@ -105,15 +112,29 @@ class OfcEngine {
   std::vector<int> touched_buckets_;
   std::vector<unsigned char> bucket_marked_;
   void collect_ties(int node, double value);
-  // Per avalanche: the generation lists and the receivers of a generation; per site, the
-  // share alpha F it gives each neighbour and the generation it gave it in, the generation
-  // it last received in, the event it last toppled in.
-  std::vector<int> now_, next_, receivers_;
-  std::vector<double> release_;
-  std::vector<std::int64_t> released_at_, queued_at_, toppled_at_;
-  std::int64_t stamp_ = 0;
-  // x + nx y neighbours in the order left, right, down, up; -1 for a free edge.
-  std::vector<int> nbr_;
+  // x + nx y neighbours of j in the order left, right, down, up; -1 for a free edge. An
+  // interior site's are j -+ 1 and j -+ nx; edge_ says which of a site's sides is an edge.
+  void neighbours(int j, int nb[4]) const;
+
+  // Per avalanche: the generation lists, and the receivers of a generation with the
+  // shares each got, by the side they came from (left, right, down, up).
+  std::vector<int> now_, next_;
+  struct Receiver {
+    int n;
+    double in[4];
+  };
+  std::vector<Receiver> receivers_;
+  // Per site, small so that the lattice's bookkeeping stays in cache: the generation stamp
+  // it last received in (and its entry in receivers_ then), and the one it last toppled in
+  // (it toppled in this event when that is at least the event's first generation).
+  struct Site {
+    std::uint32_t queued_at, toppled_at;
+    std::int32_t slot;
+  };
+  std::vector<Site> site_;
+  std::uint32_t stamp_ = 0;          // generations so far, since the stamps were last cleared
+  std::vector<unsigned char> edge_;  // bit d: side d (left, right, down, up) is an edge
+  int wrap_[4] = {0, 0, 0, 0};       // offset to the neighbour across side d on a wrapped axis
 };
 
 }  // namespace bkq
