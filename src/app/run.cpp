@@ -114,6 +114,7 @@ int run_scene(const RunRequest& req) {
       check_checkpoint_matches(saved, scene, from);
     }
     validate_checkpoint(saved, settings.ofc.on ? 0 : p.n, scene.real("stats.bin_width"), from);
+    if (settings.ofc.on) validate_ofc_state(saved, settings.ofc.lattice, from);
     const CatalogFormat format = settings.output.catalog;
     const std::string catalog =
         format == CatalogFormat::None ? "" : out.path(catalog_file_name(format));

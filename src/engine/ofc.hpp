@@ -28,8 +28,18 @@ namespace bkq {
 
 struct OfcParams {
   int nx = 1, ny = 1;  // sites along strike (model.blocks) and across (model.rows)
-  double alpha = 0.2;  // share of a toppling site's stress given to each neighbour
+  double alpha = 0.2;  // share of a toppling site's stress given to each neighbour at once
   bool periodic_x = false, periodic_y = false;
+  // Toppling order: false, parallel by generations; true, one site at a time (first in,
+  // first out).
+  bool sequential = false;
+  // Viscoelastic relaxation (after Hainzl, Zoller & Kurths 1999, J. Geophys. Res. 104,
+  // 7243): a toppling site also hands relaxation_alpha of its stress to each neighbour as
+  // pending stress, which flows into the neighbour as exp(-drive / relaxation_time) decays
+  // (the drive is the automaton's clock). relaxation_time = 0: off.
+  double relaxation_time = 0;
+  double relaxation_alpha = 0;
+  bool relaxes() const { return relaxation_time > 0; }
   int sites() const { return nx * ny; }
 };
 
@@ -45,6 +55,10 @@ struct OfcSnapshot {
   std::vector<double> g;
   double offset = 0, load = 0;
   OfcCounters counters;
+  // With relaxation: each site's pending stress, the load it was last brought up to, and
+  // the load at which it reaches the threshold as computed then (-1 for a site without
+  // pending stress); empty without relaxation.
+  std::vector<double> pending, pending_at, arrival;
 };
 
 // The starting field of a seed: each site's stress uniform in [0, 1) (std::mt19937_64 and
@@ -56,6 +70,9 @@ class OfcEngine {
   // Throws bkq::Error for a lattice or α that cannot run (no boundary dissipates and α = 1/4:
   // an avalanche would never end; an axis too short to wrap).
   static void check(const OfcParams& p);
+  // The length of the stored field (snapshot().g): the sites padded to whole buckets of a
+  // power-of-two count, the padding at -inf.
+  static std::size_t stored_size(const OfcParams& p);
 
   // A fresh start from the stresses `initial` (each in [0, 1), one per site).
   OfcEngine(const OfcParams& p, const std::vector<double>& initial);
@@ -68,11 +85,14 @@ class OfcEngine {
   // topplings = all topplings; max_speed, pad_displacement, energy_residual = 0.
   EventRecord next_event();
 
-  OfcSnapshot snapshot() const { return {g_, offset_, load_, counters_}; }
+  OfcSnapshot snapshot() const;
   const OfcCounters& counters() const { return counters_; }
   const OfcParams& params() const { return p_; }
   double load() const { return load_; }
-  double stress(int j) const { return g_[j] + offset_; }
+  // The stress now (with relaxation: what has flowed in of the pending stress so far).
+  double stress(int j) const;
+  // Pending stress not yet flowed in (0 without relaxation).
+  double pending(int j) const;
   std::vector<double> field() const;
   // The value the loader ranks, F_j - offset (the stored one).
   double ranked_value(int j) const { return g_[j]; }
@@ -100,6 +120,23 @@ class OfcEngine {
   void pull(int i);
   void touch(int j);  // marks j's bucket for the end-of-event tree update
   void renormalise();
+  template <bool kRelax>
+  void avalanche_generations(EventRecord& e, std::uint32_t first_generation, double& moment,
+                             double& lost, std::int64_t& topplings, std::int64_t& generations,
+                             int& distinct);
+  template <bool kRelax>
+  void avalanche_sequential(EventRecord& e, std::uint32_t first_generation, double& moment,
+                            double& lost, std::int64_t& topplings, std::int64_t& generations,
+                            int& distinct);
+  // Relaxation: brings site j's pending stress up to the current load (what has flowed in
+  // joins g_), its arrival time of the threshold, and the heap of those times.
+  void fold(int j);
+  double crossing(int j) const;
+  void mark_relaxing(int j);
+  void heap_set(int j, double key);
+  void heap_remove(int j);
+  void heap_up(int k);
+  void heap_down(int k);
 
   OfcParams p_;
   std::vector<double> g_;  // F_j - offset_, padded to whole buckets with -inf
@@ -132,7 +169,18 @@ class OfcEngine {
     std::int32_t slot;
   };
   std::vector<Site> site_;
-  std::uint32_t stamp_ = 0;          // generations so far, since the stamps were last cleared
+  std::uint32_t stamp_ = 0;  // generations so far, since the stamps were last cleared
+  // Sequential order: the queue (a ring of at most one entry per site), each entry's depth
+  // in the causal chain (the event's duration is the deepest), and who is queued.
+  std::vector<int> queue_, depth_;
+  std::vector<unsigned char> queued_;
+  // Relaxation: per site, the pending stress and the load it was brought up to; a min-heap
+  // of the loads at which relaxing sites reach the threshold (heap_pos_ -1: not in it);
+  // the sites whose pending stress or stress changed in this event.
+  std::vector<double> pend_, pend_at_;
+  std::vector<std::pair<double, int>> heap_;
+  std::vector<int> heap_pos_, relax_dirty_;
+  std::vector<unsigned char> relax_marked_;
   std::vector<unsigned char> edge_;  // bit d: side d (left, right, down, up) is an edge
   int wrap_[4] = {0, 0, 0, 0};       // offset to the neighbour across side d on a wrapped axis
 };

@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/fnv1a.hpp"
 #include "core/format.hpp"
+#include "engine/ofc.hpp"
 #include "integrate/stepper.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
@@ -142,6 +143,16 @@ std::vector<ParamSpec> make_table() {
       real("ofc.alpha", "0.2", '(', 0, 0.25, ']', "",
            "share alpha of a toppling site's stress given to each of its z = 4 neighbours "
            "(Olami, Feder & Christensen 1992); 0.25 conserves stress away from free edges"),
+      choice("ofc.order", "generations", {"generations", "sequential"},
+             "toppling order: generations (parallel update: every unstable site of a generation "
+             "releases what it held at the generation's start) or sequential (one site at a "
+             "time, first in first out)"),
+      real("ofc.relaxation_time", "0", '[', 0, 1e15, ']', "drive",
+           "viscoelastic relaxation (after Hainzl, Zoller & Kurths 1999): pending stress flows "
+           "into a site as exp(-drive / relaxation_time); 0: off"),
+      real("ofc.relaxation_alpha", "0", '[', 0, 0.25, ']', "",
+           "share of a toppling site's stress each neighbour receives as pending stress "
+           "(relaxation); ofc.alpha + ofc.relaxation_alpha <= 0.25"),
 
       // --- friction: the law phi(y) (Ferre 2018 eq. 3.5; Carlson et al. 1991 eq. 2.9) ---
       choice(
@@ -414,7 +425,9 @@ const std::vector<KeyDependency>& dependencies() {
        {{"run.start", {"equilibrium"}}}},
       {{"friction.table"}, {{"friction.law", {"table"}}}},
       // The automaton has a threshold and a share alpha, no masses, friction or time steps.
-      {{"model.boundary_y", "ofc.alpha"}, {{"model.kind", {"ofc"}}}},
+      {{"model.boundary_y", "ofc.alpha", "ofc.order", "ofc.relaxation_time",
+        "ofc.relaxation_alpha"},
+       {{"model.kind", {"ofc"}}}},
       {{"model.parameterisation",
         "model.l",
         "model.pad_mass",
@@ -668,6 +681,20 @@ void Scene::check_ofc(const std::string& where) const {
         "stress would never leave the lattice and an avalanche would never end; allowed: "
         "ofc.alpha < 0.25, or model.boundary or model.boundary_y = free" +
         where);
+  // The relaxation's own limits are the engine's (one place states them).
+  OfcParams p;
+  p.nx = static_cast<int>(integer("model.blocks"));
+  p.ny = static_cast<int>(integer("model.rows"));
+  p.alpha = real("ofc.alpha");
+  p.periodic_x = px;
+  p.periodic_y = py;
+  p.relaxation_time = real("ofc.relaxation_time");
+  p.relaxation_alpha = real("ofc.relaxation_alpha");
+  try {
+    OfcEngine::check(p);
+  } catch (const Error& e) {
+    throw Error(e.what() + where);
+  }
 }
 
 void Scene::check_continuous_run(const std::string& where) const {
@@ -793,7 +820,9 @@ std::uint64_t Scene::hash() const {
     // Likewise integrator.transitions at step, its meaning before the key existed, so that
     // checkpoints and results of those scenes keep their hash.
     if (p.key == "integrator.transitions" && values_.at(p.key) == "step") continue;
-    if ((p.key == "model.rows" || p.key == "model.boundary_y" || p.key == "ofc.alpha") &&
+    if ((p.key == "model.rows" || p.key == "model.boundary_y" || p.key == "ofc.alpha" ||
+         p.key == "ofc.order" || p.key == "ofc.relaxation_time" ||
+         p.key == "ofc.relaxation_alpha") &&
         values_.at(p.key) == normalise(p, p.default_value, "default"))
       continue;
     h = fnv1a64(p.key + "=" + values_.at(p.key) + "\n", h);
