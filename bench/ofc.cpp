@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <string>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "app/run.hpp"
@@ -61,6 +62,12 @@ int main(int argc, char** argv) {
       "  engine alone:               %.3e topplings/s wall, %.3e per CPU s; %.3e events/s\n",
       topplings / s, topplings / cpu, static_cast<double>(events) / s);
 
+  // The engine allocates everything when it starts: the peak memory must not grow with the
+  // number of events (compare two runs with different EVENTS).
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  std::printf("  peak resident memory:       %.1f MB\n",
+              static_cast<double>(usage.ru_maxrss) / 1024);
   if (!runs) return 0;
   // Whole runs: the transient is run but not timed by the summary; the bench times the run.
   const std::string dir =
