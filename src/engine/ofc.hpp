@@ -7,12 +7,17 @@
 // g_j = F_j − offset with one shared offset, so driving is O(1); a max tree over buckets of
 // sites (updated once per event, for the sites the avalanche touched) gives the largest.
 // Toppling (OFC eq. 2): a site with F_j >= 1 sets F_j = 0 and adds α F_j to each of its
-// z = 4 neighbours. Update order: parallel, by generations. Generation 1 is the trigger
-// (with any site holding exactly its stress); generation t + 1 is every site that reached
-// the threshold during generation t. All sites of a generation release the stress they held
-// at its start, then each receiver adds its neighbours' shares in a fixed pairing, so the
-// field does not depend on list order and the lattice's symmetries hold bit for bit; a site
-// may topple again in a later generation of the same avalanche.
+// z = 4 neighbours. Update order (OfcParams::sequential): by default parallel, by
+// generations. Generation 1 is the trigger (with any site holding exactly its stress);
+// generation t + 1 is every site that reached the threshold during generation t. All sites
+// of a generation release the stress they held at its start, then each receiver adds its
+// neighbours' shares in a fixed pairing, so the field does not depend on list order and the
+// lattice's symmetries hold bit for bit; a site may topple again in a later generation of
+// the same avalanche. Sequential: one site at a time, first in, first out.
+// Viscoelastic relaxation (after Hainzl, Zoller & Kurths 1999, J. Geophys. Res. 104, 7243):
+// a toppling also hands relaxation_alpha F_j to each neighbour's pending stress P, which
+// flows in as dF/dl = P / tau, dP/dl = -P / tau over the drive l; relaxing sites reach the
+// threshold at their own times, kept in a heap beside the max tree.
 // Boundaries, per axis: free is OFC's open boundary (the share α F_j pushed over the edge is
 // lost; an edge site keeps α, not 1/z_eff); periodic wraps. Stress is conserved in a
 // toppling exactly when α = 1/4 and no share crosses a free edge.
