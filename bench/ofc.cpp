@@ -1,8 +1,8 @@
 // Topplings per second of the OFC automaton (engine/ofc.hpp), printed: the engine alone,
-// then whole `bkquake run`s of the same scene with the catalogue off (output.catalog = none)
-// and with catalog.csv, all in this one process, so the ratios compare like with like.
-// The lattice starts from a random field and is run past a transient first (the timed
-// events are those of the stationary state, not of the start).
+// then whole `bkquake run`s of the same scene with the catalogue off (output.catalog = none),
+// with catalog.csv and with catalog.h5, all in this one process, so the ratios compare like with
+// like. The lattice starts from a random field and is run past a transient first (the timed events
+// are those of the stationary state, not of the start).
 //   build/ofc [L=256] [ALPHA=0.2] [EVENTS=2000000] [TRANSIENT=2000000] [WHAT=all|engine]
 // WHAT = engine times the engine alone (no runs).
 #include <chrono>
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   const std::string dir =
       (std::filesystem::temp_directory_path() / ("bkquake-bench-ofc-" + std::to_string(getpid())))
           .string();
-  for (const char* catalog : {"none", "csv"}) {
+  for (const char* catalog : {"none", "csv", "hdf5"}) {
     bkq::RunRequest req;
     req.scene.set("model.kind", "ofc");
     req.scene.set("model.blocks", std::to_string(L));

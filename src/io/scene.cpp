@@ -662,11 +662,6 @@ void Scene::check_ofc(const std::string& where) const {
                 " with model.kind = ofc: the automaton runs event by event only; allowed: "
                 "drive.mode = events" +
                 where);
-  if (choice("output.catalog") != "csv" && choice("output.catalog") != "none")
-    throw Error("output.catalog = " + choice("output.catalog") +
-                " with model.kind = ofc: the automaton's catalogue (with its topplings column) "
-                "is written as csv only; allowed: csv, none" +
-                where);
   if (integer("model.blocks") * integer("model.rows") > 100'000'000)
     throw Error("model.blocks x model.rows = " + text("model.blocks") + " x " + text("model.rows") +
                 ": allowed at most 1e8 sites for ofc" + where);

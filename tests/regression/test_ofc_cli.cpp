@@ -15,6 +15,7 @@
 
 #include "cli_helpers.hpp"
 #include "io/catalog.hpp"
+#include "io/catalog_h5.hpp"
 #include "io/checkpoint.hpp"
 #include "io/scene.hpp"
 #include "io/settings.hpp"
@@ -135,12 +136,50 @@ TEST(OfcCli, ScenesThatCannotRunAreRefusedInOneLine) {
   test::expect_refused(
       run_bkquake(run_args(ofc_with({"--set", "drive.mode=continuous"}), {"--out", out})),
       {"drive.mode = continuous", "model.kind = ofc", "event by event"});
-  test::expect_refused(
-      run_bkquake(run_args(ofc_with({"--set", "output.catalog=hdf5"}), {"--out", out})),
-      {"output.catalog = hdf5", "csv, none"});
   test::expect_refused(run_bkquake(run_args({"--set", "ofc.alpha=0.1", "--quiet"}, {"--out", out})),
                        {"ofc.alpha", "model.kind = ofc"});
   EXPECT_FALSE(fs::exists(out + "/catalog.csv"));
+}
+
+// The rows of a catalog.h5 as doubles: event, moment, topplings.
+std::vector<double> h5_rows(const std::string& path) {
+  CatalogH5Reader r(path, {"event", "moment", "topplings"});
+  EXPECT_TRUE(r.has(2)) << "no topplings column";
+  std::vector<double> all, block;
+  while (r.next_block(block) > 0) all.insert(all.end(), block.begin(), block.end());
+  return all;
+}
+
+// output.catalog = hdf5 writes the OFC catalogue with its topplings column: the same rows
+// as catalog.csv, and a run killed between checkpoints resumes to the straight run's rows.
+TEST(OfcCli, Hdf5CatalogueHoldsTheCsvRowsAndResumes) {
+  if (!hdf5_available()) GTEST_SKIP() << "built without HDF5";
+  test::TempDir tmp;
+  const std::string csv = tmp.file("csv"), h5 = tmp.file("h5"), out = tmp.file("out");
+  const auto scene = ofc_with({"--set", "run.events=20000", "--set", "run.checkpoint_events=200"});
+  ASSERT_EQ(run_bkquake(run_args(scene, {"--out", csv})).status, 0);
+  auto with_h5 = scene;
+  with_h5.insert(with_h5.end(), {"--set", "output.catalog=hdf5"});
+  ASSERT_EQ(run_bkquake(run_args(with_h5, {"--out", h5})).status, 0);
+  const std::vector<double> rows = h5_rows(h5 + "/catalog.h5");
+  const auto lines = lines_of(read_file(csv + "/catalog.csv"));
+  ASSERT_EQ(rows.size(), 3 * (lines.size() - 1));
+  for (std::size_t k = 1; k < lines.size(); k += 997) {
+    std::vector<std::string> cells;
+    std::istringstream in(lines[k]);
+    for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
+    EXPECT_EQ(rows[3 * (k - 1)], std::stod(cells[0]));
+    EXPECT_EQ(rows[3 * (k - 1) + 1], std::stod(cells[4]));
+    EXPECT_EQ(rows[3 * (k - 1) + 2], std::stod(cells.back()));
+  }
+  const int status = test::run_and_signal_when(
+      run_args(with_h5, {"--out", out}), [&] { return fs::exists(out + "/checkpoint.prev.bin"); },
+      SIGKILL);
+  ASSERT_EQ(status, 128 + SIGKILL);
+  const auto r = run_bkquake({"run", out + "/scene.ini", "--out", out, "--resume", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(h5_rows(out + "/catalog.h5") == rows);
+  EXPECT_EQ(read_file(out + "/histogram.csv"), read_file(csv + "/histogram.csv"));
 }
 
 TEST(OfcCli, RelaxationRefusalsNameTheKeys) {
