@@ -1,9 +1,10 @@
 // Topplings per second of the OFC automaton (engine/ofc.hpp), printed: the engine alone,
-// then whole `bkquake run`s of the same scene with the catalogue off (output.catalog = none)
-// and with catalog.csv, all in this one process, so the ratios compare like with like.
-// The lattice starts from a random field and is run past a transient first (the timed
-// events are those of the stationary state, not of the start).
-//   build/ofc [L=256] [ALPHA=0.2] [EVENTS=2000000] [TRANSIENT=2000000]
+// then whole `bkquake run`s of the same scene with the catalogue off (output.catalog = none),
+// with catalog.csv and with catalog.h5, all in this one process, so the ratios compare like with
+// like. The lattice starts from a random field and is run past a transient first (the timed events
+// are those of the stationary state, not of the start).
+//   build/ofc [L=256] [ALPHA=0.2] [EVENTS=2000000] [TRANSIENT=2000000] [WHAT=all|engine]
+// WHAT = engine times the engine alone (no runs).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <string>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "app/run.hpp"
@@ -35,6 +37,7 @@ int main(int argc, char** argv) {
   const double alpha = argc > 2 ? std::atof(argv[2]) : 0.2;
   const long events = argc > 3 ? std::atol(argv[3]) : 2000000;
   const long transient = argc > 4 ? std::atol(argv[4]) : 2000000;
+  const bool runs = !(argc > 5 && std::string(argv[5]) == "engine");
   if (L < 1 || !(alpha > 0 && alpha <= 0.25) || events < 1 || transient < 0) {
     std::fprintf(stderr,
                  "usage: ofc [L >= 1] [0 < ALPHA <= 0.25] [EVENTS >= 1] [TRANSIENT >= 0]\n");
@@ -59,11 +62,18 @@ int main(int argc, char** argv) {
       "  engine alone:               %.3e topplings/s wall, %.3e per CPU s; %.3e events/s\n",
       topplings / s, topplings / cpu, static_cast<double>(events) / s);
 
+  // The engine allocates everything when it starts: the peak memory must not grow with the
+  // number of events (compare two runs with different EVENTS).
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  std::printf("  peak resident memory:       %.1f MB\n",
+              static_cast<double>(usage.ru_maxrss) / 1024);
+  if (!runs) return 0;
   // Whole runs: the transient is run but not timed by the summary; the bench times the run.
   const std::string dir =
       (std::filesystem::temp_directory_path() / ("bkquake-bench-ofc-" + std::to_string(getpid())))
           .string();
-  for (const char* catalog : {"none", "csv"}) {
+  for (const char* catalog : {"none", "csv", "hdf5"}) {
     bkq::RunRequest req;
     req.scene.set("model.kind", "ofc");
     req.scene.set("model.blocks", std::to_string(L));

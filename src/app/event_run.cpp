@@ -90,15 +90,11 @@ class ChainLoopEngine : public LoopEngine {
   EventEngine engine_;
 };
 
-// The OFC automaton's state travels as a named state of the checkpoint ("ofc.engine"); the
-// chain snapshot stays empty.
-constexpr const char* kOfcState = "ofc.engine";
-
 class OfcLoopEngine : public LoopEngine {
  public:
   OfcLoopEngine(const Settings& settings, const Checkpoint* from)
       : settings_(settings),
-        engine_(from ? OfcEngine(settings.ofc.lattice, saved(*from))
+        engine_(from ? OfcEngine(settings.ofc.lattice, saved(settings, *from))
                      : OfcEngine(settings.ofc.lattice,
                                  ofc_initial_field(settings.ofc.lattice, settings.run.seed))) {}
   EventRecord next_event() override { return engine_.next_event(); }
@@ -111,23 +107,16 @@ class OfcLoopEngine : public LoopEngine {
   }
   double load() const override { return engine_.load(); }
   int sites() const override { return engine_.params().sites(); }
-  void lend(Checkpoint& c) override {
-    const OfcSnapshot s = engine_.snapshot();
-    put_state(c, kOfcState, s.g, s.offset, s.load, s.counters.events, s.counters.topplings,
-              s.counters.generations);
-  }
+  // The state travels as named states of the checkpoint (io/checkpoint.hpp).
+  void lend(Checkpoint& c) override { put_ofc_state(c, engine_.snapshot()); }
   void take_back(Checkpoint&) override {}
   std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const override {
     return std::make_unique<OfcLoopEngine>(settings_, from);
   }
 
  private:
-  static OfcSnapshot saved(const Checkpoint& c) {
-    OfcSnapshot s;
-    if (!find_state(c, kOfcState, s.g, s.offset, s.load, s.counters.events, s.counters.topplings,
-                    s.counters.generations))
-      throw Error("checkpoint: no OFC state (" + std::string(kOfcState) + ") in it");
-    return s;
+  static OfcSnapshot saved(const Settings& settings, const Checkpoint& c) {
+    return find_ofc_state(c, settings.ofc.lattice, "the checkpoint");
   }
   const Settings& settings_;
   OfcEngine engine_;

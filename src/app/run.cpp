@@ -114,6 +114,7 @@ int run_scene(const RunRequest& req) {
       check_checkpoint_matches(saved, scene, from);
     }
     validate_checkpoint(saved, settings.ofc.on ? 0 : p.n, scene.real("stats.bin_width"), from);
+    if (settings.ofc.on) validate_ofc_state(saved, settings.ofc.lattice, from);
     const CatalogFormat format = settings.output.catalog;
     const std::string catalog =
         format == CatalogFormat::None ? "" : out.path(catalog_file_name(format));
@@ -121,7 +122,7 @@ int run_scene(const RunRequest& req) {
       check_csv_prefix(catalog, catalog_header(ofc), saved.progress.events_done,
                        saved.progress.catalog_bytes, saved_catalog_checksum(saved));
     else if (format == CatalogFormat::Hdf5)  // cut back when the catalog observer opens it
-      check_catalog_h5(catalog, saved.progress.events_done, saved_catalog_checksum(saved));
+      check_catalog_h5(catalog, saved.progress.events_done, saved_catalog_checksum(saved), ofc);
     if (saved.git_revision != kGitRevision)
       std::fprintf(stderr,
                    "bkquake: warning: the checkpoint was written by git revision %s, this is %s; "

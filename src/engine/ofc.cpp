@@ -35,6 +35,33 @@ void OfcEngine::check(const OfcParams& p) {
         "ofc.alpha = 0.25 with model.boundary = periodic and model.boundary_y = periodic: stress "
         "is conserved and never leaves the lattice, so an avalanche would never end; allowed: "
         "ofc.alpha < 0.25, or a free boundary on one axis");
+  if (!(p.relaxation_time >= 0) || !std::isfinite(p.relaxation_time))
+    throw Error("ofc.relaxation_time = " + format_real(p.relaxation_time) +
+                ": allowed a finite value >= 0 (0: no relaxation)");
+  if (!(p.relaxation_alpha >= 0 && p.alpha + p.relaxation_alpha <= 0.25))
+    throw Error("ofc.relaxation_alpha = " + format_real(p.relaxation_alpha) +
+                " with ofc.alpha = " + format_real(p.alpha) +
+                ": allowed [0, 0.25 - ofc.alpha] (a toppling passes on at most its stress)");
+  if (p.relaxes() && p.relaxation_alpha == 0)
+    throw Error("ofc.relaxation_time = " + format_real(p.relaxation_time) +
+                " with ofc.relaxation_alpha = 0: nothing would relax; allowed: "
+                "ofc.relaxation_alpha in (0, 0.25 - ofc.alpha], or ofc.relaxation_time = 0");
+  if (!p.relaxes() && p.relaxation_alpha > 0)
+    throw Error("ofc.relaxation_alpha = " + format_real(p.relaxation_alpha) +
+                " with ofc.relaxation_time = 0: the delayed share needs a relaxation time; "
+                "allowed: ofc.relaxation_alpha = 0, or ofc.relaxation_time > 0");
+  if (p.relaxes() && p.periodic_x && p.periodic_y && p.alpha + p.relaxation_alpha == 0.25)
+    throw Error(
+        "ofc.alpha + ofc.relaxation_alpha = 0.25 with model.boundary = periodic and "
+        "model.boundary_y = periodic: stress would never leave the lattice; allowed: a "
+        "smaller sum, or a free boundary on one axis");
+}
+
+std::size_t OfcEngine::stored_size(const OfcParams& p) {
+  const int needed = (p.sites() + kBucket - 1) / kBucket;
+  std::size_t buckets = 1;
+  while (buckets < static_cast<std::size_t>(needed)) buckets *= 2;
+  return buckets * kBucket;
 }
 
 OfcEngine::OfcEngine(const OfcParams& p, const std::vector<double>& initial) : p_(p) {
@@ -44,8 +71,7 @@ OfcEngine::OfcEngine(const OfcParams& p, const std::vector<double>& initial) : p
                 std::to_string(p.sites()) + " sites");
   build_tree();  // sizes g_
   std::copy(initial.begin(), initial.end(), g_.begin());
-  for (int b = 0; b < buckets_; ++b) scan(b);
-  for (int i = buckets_ - 1; i >= 1; --i) pull(i);
+  rebuild_tree();
 }
 
 OfcEngine::OfcEngine(const OfcParams& p, const OfcSnapshot& saved)
@@ -56,8 +82,28 @@ OfcEngine::OfcEngine(const OfcParams& p, const OfcSnapshot& saved)
     throw Error("ofc: the saved field has " + std::to_string(saved.g.size()) +
                 " values, this lattice " + std::to_string(g_.size()));
   g_ = saved.g;
-  for (int b = 0; b < buckets_; ++b) scan(b);
-  for (int i = buckets_ - 1; i >= 1; --i) pull(i);
+  rebuild_tree();
+  if (p.relaxes()) {
+    if (saved.pending.size() != static_cast<std::size_t>(p.sites()) ||
+        saved.pending_at.size() != saved.pending.size() ||
+        saved.arrival.size() != saved.pending.size())
+      throw Error("ofc: the saved state has no pending stress for each of the " +
+                  std::to_string(p.sites()) + " sites (ofc.relaxation_time > 0)");
+    pend_ = saved.pending;
+    pend_at_ = saved.pending_at;
+    // The arrival times as they were computed (recomputing them now would round otherwise).
+    for (int j = 0; j < p.sites(); ++j)
+      if (pend_[j] != 0) heap_set(j, saved.arrival[j]);
+  }
+}
+
+OfcSnapshot OfcEngine::snapshot() const {
+  OfcSnapshot s{g_, offset_, load_, counters_, pend_, pend_at_, {}};
+  if (p_.relaxes()) {
+    s.arrival.assign(pend_.size(), -1.0);
+    for (const auto& [key, j] : heap_) s.arrival[j] = key;
+  }
+  return s;
 }
 
 void OfcEngine::build_tree() {
@@ -66,54 +112,76 @@ void OfcEngine::build_tree() {
   buckets_ = 1;
   while (buckets_ < needed) buckets_ *= 2;
   g_.assign(static_cast<std::size_t>(buckets_) * kBucket, -HUGE_VAL);
-  tree_.assign(2 * static_cast<std::size_t>(buckets_), Node{-HUGE_VAL, 0});
+  tree_.assign(2 * static_cast<std::size_t>(buckets_), Node{-HUGE_VAL, 0, false});
   bucket_marked_.assign(buckets_, 0);
   touched_buckets_.clear();
-  release_.assign(n, 0.0);
-  released_at_.assign(n, 0);
-  queued_at_.assign(n, 0);
+  site_.assign(n, Site{0, 0, 0});
+  if (p_.sequential) {
+    queue_.assign(n, 0);
+    depth_.assign(n, 0);
+    queued_.assign(n, 0);
+  }
+  if (p_.relaxes()) {
+    pend_.assign(n, 0.0);
+    pend_at_.assign(n, 0.0);
+    heap_pos_.assign(n, -1);
+    relax_marked_.assign(n, 0);
+    heap_.reserve(n);
+  }
+  stamp_ = 0;
   receivers_.reserve(n);
-  toppled_at_.assign(n, 0);
   now_.reserve(n);
   next_.reserve(n);
-  nbr_.assign(4 * static_cast<std::size_t>(n), -1);
   const int nx = p_.nx, ny = p_.ny;
+  edge_.assign(n, 0);
   for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x) {
-      int* nb = &nbr_[4 * static_cast<std::size_t>(x + nx * y)];
-      if (x > 0)
-        nb[0] = x - 1 + nx * y;
-      else if (p_.periodic_x)
-        nb[0] = nx - 1 + nx * y;
-      if (x < nx - 1)
-        nb[1] = x + 1 + nx * y;
-      else if (p_.periodic_x)
-        nb[1] = nx * y;
-      if (y > 0)
-        nb[2] = x + nx * (y - 1);
-      else if (p_.periodic_y)
-        nb[2] = x + nx * (ny - 1);
-      if (y < ny - 1)
-        nb[3] = x + nx * (y + 1);
-      else if (p_.periodic_y)
-        nb[3] = x;
-    }
+    for (int x = 0; x < nx; ++x)
+      edge_[x + nx * y] = static_cast<unsigned char>((x == 0 ? 1 : 0) | (x == nx - 1 ? 2 : 0) |
+                                                     (y == 0 ? 4 : 0) | (y == ny - 1 ? 8 : 0));
+  // Across a wrapped side the neighbour is j + wrap_[d]; across a free one there is none.
+  wrap_[0] = p_.periodic_x ? nx - 1 : 0;
+  wrap_[1] = p_.periodic_x ? -(nx - 1) : 0;
+  wrap_[2] = p_.periodic_y ? nx * (ny - 1) : 0;
+  wrap_[3] = p_.periodic_y ? -nx * (ny - 1) : 0;
 }
 
-// The bucket's largest value and the first site holding it.
+inline void OfcEngine::neighbours(int j, int nb[4]) const {
+  nb[0] = j - 1;
+  nb[1] = j + 1;
+  nb[2] = j - p_.nx;
+  nb[3] = j + p_.nx;
+  const unsigned e = edge_[j];
+  if (e == 0) return;  // an interior site
+  const bool periodic[4] = {p_.periodic_x, p_.periodic_x, p_.periodic_y, p_.periodic_y};
+  for (int d = 0; d < 4; ++d)
+    if (e & (1u << d)) nb[d] = periodic[d] ? j + wrap_[d] : -1;
+}
+
+// The bucket's largest value, the first site holding it, and whether another holds it.
 void OfcEngine::scan(int b) {
   const int first = b * kBucket;
   const double* g = g_.data() + first;
-  Node hi{g[0], first};
+  Node hi{g[0], first, false};
   for (int k = 1; k < kBucket; ++k)
-    if (g[k] > hi.g) hi = Node{g[k], first + k};
+    if (g[k] > hi.g)
+      hi = Node{g[k], first + k, false};
+    else if (g[k] == hi.g)
+      hi.tied = true;
   tree_[buckets_ + b] = hi;
 }
 
 // Ties to the left child, which holds the lower sites.
 void OfcEngine::pull(int i) {
   const Node &a = tree_[2 * i], &b = tree_[2 * i + 1];
-  tree_[i] = a.g >= b.g ? a : b;
+  if (a.g == b.g)
+    tree_[i] = Node{a.g, a.j, true};
+  else
+    tree_[i] = a.g > b.g ? a : b;
+}
+
+void OfcEngine::rebuild_tree() {
+  for (int b = 0; b < buckets_; ++b) scan(b);
+  for (int i = buckets_ - 1; i >= 1; --i) pull(i);
 }
 
 inline void OfcEngine::touch(int j) {
@@ -135,8 +203,7 @@ std::vector<double> OfcEngine::field() const {
 void OfcEngine::renormalise() {
   for (int j = 0; j < p_.sites(); ++j) g_[j] += offset_;
   offset_ = 0;
-  for (int b = 0; b < buckets_; ++b) scan(b);
-  for (int i = buckets_ - 1; i >= 1; --i) pull(i);
+  rebuild_tree();
 }
 
 // Every site whose stored value equals `value`, the subtree's maximum, in index order.
@@ -152,79 +219,175 @@ void OfcEngine::collect_ties(int i, double value) {
   collect_ties(2 * i + 1, value);
 }
 
+double OfcEngine::stress(int j) const {
+  double f = g_[j] + offset_;
+  if (p_.relaxes() && pend_[j] != 0)
+    f += pend_[j] * -std::expm1(-(load_ - pend_at_[j]) / p_.relaxation_time);
+  return f;
+}
+
+double OfcEngine::pending(int j) const {
+  if (!p_.relaxes() || pend_[j] == 0) return 0;
+  return pend_[j] * std::exp(-(load_ - pend_at_[j]) / p_.relaxation_time);
+}
+
+// What has flowed in since the site was last brought up to date joins g_ (pending stress P
+// at load l0 becomes P exp(-(l - l0)/tau) at load l: the rest has flowed in). A remainder
+// below 2^-60 flows in at once, so a site leaves the relaxing set (stress is kept whole).
+void OfcEngine::fold(int j) {
+  const double p = pend_[j];
+  if (p == 0 || pend_at_[j] == load_) return;
+  const double left = p * std::exp(-(load_ - pend_at_[j]) / p_.relaxation_time);
+  if (left < 0x1p-60) {
+    g_[j] += p;
+    pend_[j] = 0;
+  } else {
+    g_[j] += p - left;
+    pend_[j] = left;
+  }
+  pend_at_[j] = load_;
+}
+
+// The load at which site j reaches the threshold: F + t + P (1 - exp(-t/tau)) = 1, with F
+// and P brought up to the current load. The left side rises and is concave in t, so Newton's
+// method from a point below the root climbs to it without overshooting.
+double OfcEngine::crossing(int j) const {
+  const double tau = p_.relaxation_time;
+  const double f = stress(j), p = pending(j);
+  double t = std::max(0.0, 1.0 - f - p);
+  for (int k = 0; k < 100; ++k) {
+    const double e = std::exp(-t / tau);
+    const double h = f + t + p * (1 - e) - 1;
+    const double step = -h / (1 + p * e / tau);
+    t += std::max(step, 0.0);
+    if (!(step > 1e-16 * (1 + t))) break;
+  }
+  return load_ + t;
+}
+
+void OfcEngine::mark_relaxing(int j) {
+  if (!relax_marked_[j]) {
+    relax_marked_[j] = 1;
+    relax_dirty_.push_back(j);
+  }
+}
+
+void OfcEngine::heap_up(int k) {
+  while (k > 0) {
+    const int parent = (k - 1) / 2;
+    if (!(heap_[k] < heap_[parent])) break;
+    std::swap(heap_[k], heap_[parent]);
+    heap_pos_[heap_[k].second] = k;
+    heap_pos_[heap_[parent].second] = parent;
+    k = parent;
+  }
+}
+
+void OfcEngine::heap_down(int k) {
+  const int n = static_cast<int>(heap_.size());
+  for (;;) {
+    int least = k;
+    for (const int c : {2 * k + 1, 2 * k + 2})
+      if (c < n && heap_[c] < heap_[least]) least = c;
+    if (least == k) break;
+    std::swap(heap_[k], heap_[least]);
+    heap_pos_[heap_[k].second] = k;
+    heap_pos_[heap_[least].second] = least;
+    k = least;
+  }
+}
+
+void OfcEngine::heap_set(int j, double key) {
+  int k = heap_pos_[j];
+  if (k < 0) {
+    k = static_cast<int>(heap_.size());
+    heap_.emplace_back(key, j);
+    heap_pos_[j] = k;
+  } else {
+    heap_[k].first = key;
+  }
+  heap_up(k);
+  heap_down(heap_pos_[j]);
+}
+
+void OfcEngine::heap_remove(int j) {
+  const int k = heap_pos_[j];
+  if (k < 0) return;
+  heap_pos_[j] = -1;
+  const int last = static_cast<int>(heap_.size()) - 1;
+  if (k == last) {
+    heap_.pop_back();
+    return;
+  }
+  const int moved = heap_[last].second;
+  heap_[k] = heap_[last];
+  heap_pos_[moved] = k;
+  heap_.pop_back();
+  heap_up(k);
+  heap_down(heap_pos_[moved]);
+}
+
 EventRecord OfcEngine::next_event() {
   // Drive: the largest site to the threshold. The offset stops one rounding step short of
   // F = 1 if needed, so that no other site reaches the threshold by the drive alone; the
   // sites holding the largest value (exact ties are common: sites that toppled together
-  // and were fed alike) topple together as generation 1.
+  // and were fed alike) topple together as generation 1. With relaxation, a relaxing site
+  // may get there first (the heap's earliest arrival): it is then the trigger, alone.
   const Node top = tree_[1];
-  const double delta = 1.0 - (top.g + offset_);
-  offset_ += delta;
-  // Each step lowers the exact sum by at least one ulp of 1, so the loop ends in a step or
-  // two (a step of one ulp of a small offset could leave the rounded sum where it was).
-  while (top.g + offset_ >= 1.0)
-    offset_ -= std::max(offset_ - std::nextafter(offset_, -HUGE_VAL), 0x1p-52);
-  load_ += delta;
-
+  int relaxing_trigger = -1;
+  if (p_.relaxes() && !heap_.empty() && heap_[0].first <= load_ + (1.0 - (top.g + offset_)))
+    relaxing_trigger = heap_[0].second;
   EventRecord e;
+  if (relaxing_trigger < 0) {
+    const double delta = 1.0 - (top.g + offset_);
+    offset_ += delta;
+    // Each step lowers the exact sum by at least one ulp of 1, so the loop ends in a step or
+    // two (a step of one ulp of a small offset could leave the rounded sum where it was).
+    while (top.g + offset_ >= 1.0)
+      offset_ -= std::max(offset_ - std::nextafter(offset_, -HUGE_VAL), 0x1p-52);
+    load_ += delta;
+    e.trigger = top.j;
+  } else {
+    const double delta = std::max(heap_[0].first - load_, 0.0);
+    offset_ += delta;
+    load_ += delta;
+    e.trigger = relaxing_trigger;
+  }
   e.load = load_;
-  e.trigger = top.j;
-  e.first_block = top.j;
-  e.last_block = top.j;
-  const std::int64_t event_stamp = ++counters_.events;
-  const double alpha = p_.alpha;
-  const int* nbr = nbr_.data();
-  double* g = g_.data();
+  e.first_block = e.trigger;
+  e.last_block = e.trigger;
+  ++counters_.events;
+  // 32-bit stamps keep the per-site bookkeeping small; they are cleared long before they
+  // could wrap (an event would need 2^31 generations to reach the end).
+  if (stamp_ > 0x7fffffffu) {
+    for (Site& s : site_) s.queued_at = s.toppled_at = 0;
+    stamp_ = 0;
+  }
+  const std::uint32_t first_generation = stamp_ + 1;
   double moment = 0, lost = 0;
   std::int64_t topplings = 0, generations = 0;
   int distinct = 0;
   now_.clear();
-  collect_ties(1, top.g);
-  while (!now_.empty()) {
-    ++generations;
-    const std::int64_t gen_stamp = ++stamp_;
-    // Every site of the generation releases what it holds at the generation's start.
-    for (const int j : now_) {
-      const double r = g[j] + offset_;
-      release_[j] = alpha * r;
-      released_at_[j] = gen_stamp;
-      g[j] = -offset_;
-      moment += r;
-      touch(j);
-      if (toppled_at_[j] != event_stamp) {
-        toppled_at_[j] = event_stamp;
-        ++distinct;
-        e.first_block = std::min(e.first_block, j);
-        e.last_block = std::max(e.last_block, j);
-      }
-    }
-    topplings += static_cast<std::int64_t>(now_.size());
-    // The sites that receive, each once; the share pushed over a free edge is lost.
-    receivers_.clear();
-    for (const int j : now_) {
-      const int* nb = nbr + 4 * static_cast<std::size_t>(j);
-      for (int d = 0; d < 4; ++d) {
-        const int n = nb[d];
-        if (n < 0) {
-          lost += release_[j];
-        } else if (queued_at_[n] != gen_stamp) {
-          queued_at_[n] = gen_stamp;
-          receivers_.push_back(n);
-        }
-      }
-    }
-    // Each receiver adds (left + right) + (down + up): a sum whose rounding does not depend
-    // on the order of the lists, and is the same under shifts, reflections and transposition
-    // of the lattice (floating-point addition commutes), so those symmetries hold bit for bit.
-    auto share = [&](int n) { return n >= 0 && released_at_[n] == gen_stamp ? release_[n] : 0.0; };
-    next_.clear();
-    for (const int n : receivers_) {
-      const int* nb = nbr + 4 * static_cast<std::size_t>(n);
-      g[n] += (share(nb[0]) + share(nb[1])) + (share(nb[2]) + share(nb[3]));
-      touch(n);
-      if (g[n] + offset_ >= 1.0) next_.push_back(n);
-    }
-    now_.swap(next_);
+  if (relaxing_trigger >= 0)
+    now_.push_back(relaxing_trigger);
+  else if (top.tied)
+    collect_ties(1, top.g);
+  else
+    now_.push_back(top.j);
+  if (p_.sequential) {
+    if (p_.relaxes())
+      avalanche_sequential<true>(e, first_generation, moment, lost, topplings, generations,
+                                 distinct);
+    else
+      avalanche_sequential<false>(e, first_generation, moment, lost, topplings, generations,
+                                  distinct);
+  } else {
+    if (p_.relaxes())
+      avalanche_generations<true>(e, first_generation, moment, lost, topplings, generations,
+                                  distinct);
+    else
+      avalanche_generations<false>(e, first_generation, moment, lost, topplings, generations,
+                                   distinct);
   }
   lost_ += lost;
   counters_.topplings += topplings;
@@ -233,7 +396,7 @@ EventRecord OfcEngine::next_event() {
   // The max tree, once per event over the buckets the avalanche touched. A node that comes
   // out as it was leaves its ancestors as they were: the walk up stops there (most changes
   // stay below the top of the tree, so an event costs about its touched buckets).
-  for (int b : touched_buckets_) {
+  for (const int b : touched_buckets_) {
     bucket_marked_[b] = 0;
     const Node old = tree_[buckets_ + b];
     scan(b);
@@ -245,6 +408,15 @@ EventRecord OfcEngine::next_event() {
     }
   }
   touched_buckets_.clear();
+  // The relaxing sites this event changed: their new arrival times.
+  for (const int j : relax_dirty_) {
+    relax_marked_[j] = 0;
+    if (pend_[j] == 0)
+      heap_remove(j);
+    else
+      heap_set(j, crossing(j));
+  }
+  relax_dirty_.clear();
   if (offset_ > 4.0) renormalise();
 
   e.blocks = distinct;
@@ -253,6 +425,151 @@ EventRecord OfcEngine::next_event() {
   e.duration = static_cast<double>(generations);
   e.topplings = topplings;
   return e;
+}
+
+// Parallel update by generations: every site of a generation releases what it holds at the
+// generation's start and hands alpha of it to each neighbour, in the neighbour's slot for
+// the side it comes from; the share pushed over a free edge is lost. The slots are summed
+// after every release of the generation. With relaxation each site is brought up to date
+// before it is read, and relaxation_alpha of each release joins each neighbour's pending
+// stress (over a free edge it is lost).
+template <bool kRelax>
+void OfcEngine::avalanche_generations(EventRecord& e, std::uint32_t first_generation,
+                                      double& moment, double& lost, std::int64_t& topplings,
+                                      std::int64_t& generations, int& distinct) {
+  const double alpha = p_.alpha, beta = p_.relaxation_alpha;
+  double* g = g_.data();
+  while (!now_.empty()) {
+    ++generations;
+    if (stamp_ == 0xffffffffu) throw Error("ofc: an avalanche of more than 2^31 generations");
+    const std::uint32_t gen = ++stamp_;
+    receivers_.clear();
+    for (const int j : now_) {
+      if constexpr (kRelax) {
+        fold(j);
+        mark_relaxing(j);
+      }
+      const double r = g[j] + offset_;
+      const double s = alpha * r;
+      g[j] = -offset_;
+      moment += r;
+      touch(j);
+      Site& sj = site_[j];
+      if (sj.toppled_at < first_generation) {
+        sj.toppled_at = gen;
+        ++distinct;
+        e.first_block = std::min(e.first_block, j);
+        e.last_block = std::max(e.last_block, j);
+      }
+      int nb[4];
+      neighbours(j, nb);
+      for (int d = 0; d < 4; ++d) {
+        const int n = nb[d];
+        if (n < 0) {
+          lost += s;
+          if constexpr (kRelax) lost += beta * r;
+          continue;
+        }
+        Site& sn = site_[n];
+        if (sn.queued_at != gen) {
+          sn.queued_at = gen;
+          sn.slot = static_cast<std::int32_t>(receivers_.size());
+          receivers_.push_back(Receiver{n, {0.0, 0.0, 0.0, 0.0}});
+        }
+        receivers_[sn.slot].in[d ^ 1] = s;  // j is n's neighbour on the opposite side
+        if constexpr (kRelax) {
+          fold(n);
+          pend_[n] += beta * r;
+          pend_at_[n] = load_;
+          mark_relaxing(n);
+        }
+      }
+    }
+    topplings += static_cast<std::int64_t>(now_.size());
+    // Each receiver adds (left + right) + (down + up): a sum whose rounding does not depend
+    // on the order of the lists, and is the same under shifts, reflections and transposition
+    // of the lattice (floating-point addition commutes), so those symmetries hold bit for bit.
+    next_.clear();
+    for (const Receiver& rc : receivers_) {
+      const int n = rc.n;
+      if constexpr (kRelax) {
+        fold(n);
+        mark_relaxing(n);
+      }
+      g[n] += (rc.in[0] + rc.in[1]) + (rc.in[2] + rc.in[3]);
+      touch(n);
+      if (g[n] + offset_ >= 1.0) next_.push_back(n);
+    }
+    now_.swap(next_);
+  }
+}
+
+// Sequential order: one site at a time, first in, first out, starting from generation 1's
+// sites. A toppling hands alpha of its stress to each neighbour at once, so a neighbour
+// queued earlier releases what it holds when its turn comes. The event's duration is the
+// depth of its longest causal chain (1: the trigger alone).
+template <bool kRelax>
+void OfcEngine::avalanche_sequential(EventRecord& e, std::uint32_t first_generation, double& moment,
+                                     double& lost, std::int64_t& topplings,
+                                     std::int64_t& generations, int& distinct) {
+  const double alpha = p_.alpha, beta = p_.relaxation_alpha;
+  double* g = g_.data();
+  const std::size_t cap = queue_.size();
+  std::size_t head = 0, count = 0;
+  auto push = [&](int j, int depth) {
+    const std::size_t at = (head + count) % cap;
+    queue_[at] = j;
+    depth_[at] = depth;
+    ++count;
+    queued_[j] = 1;
+  };
+  for (const int j : now_) push(j, 1);
+  if (stamp_ == 0xffffffffu) throw Error("ofc: an avalanche of more than 2^31 generations");
+  const std::uint32_t stamp = ++stamp_;
+  int deepest = 0;
+  while (count > 0) {
+    const int j = queue_[head];
+    const int depth = depth_[head];
+    head = (head + 1) % cap;
+    --count;
+    queued_[j] = 0;
+    deepest = std::max(deepest, depth);
+    if constexpr (kRelax) fold(j);
+    const double r = g[j] + offset_;
+    const double s = alpha * r;
+    g[j] = -offset_;
+    moment += r;
+    ++topplings;
+    touch(j);
+    if constexpr (kRelax) mark_relaxing(j);
+    Site& sj = site_[j];
+    if (sj.toppled_at < first_generation) {
+      sj.toppled_at = stamp;
+      ++distinct;
+      e.first_block = std::min(e.first_block, j);
+      e.last_block = std::max(e.last_block, j);
+    }
+    int nb[4];
+    neighbours(j, nb);
+    for (int d = 0; d < 4; ++d) {
+      const int n = nb[d];
+      if (n < 0) {
+        lost += s;
+        if constexpr (kRelax) lost += beta * r;
+        continue;
+      }
+      if constexpr (kRelax) {
+        fold(n);
+        pend_[n] += beta * r;
+        pend_at_[n] = load_;
+        mark_relaxing(n);
+      }
+      g[n] += s;
+      touch(n);
+      if (!queued_[n] && g[n] + offset_ >= 1.0) push(n, depth + 1);
+    }
+  }
+  generations = deepest;
 }
 
 }  // namespace bkq

@@ -7,12 +7,17 @@
 // g_j = F_j − offset with one shared offset, so driving is O(1); a max tree over buckets of
 // sites (updated once per event, for the sites the avalanche touched) gives the largest.
 // Toppling (OFC eq. 2): a site with F_j >= 1 sets F_j = 0 and adds α F_j to each of its
-// z = 4 neighbours. Update order: parallel, by generations. Generation 1 is the trigger
-// (with any site holding exactly its stress); generation t + 1 is every site that reached
-// the threshold during generation t. All sites of a generation release the stress they held
-// at its start, then each receiver adds its neighbours' shares in a fixed pairing, so the
-// field does not depend on list order and the lattice's symmetries hold bit for bit; a site
-// may topple again in a later generation of the same avalanche.
+// z = 4 neighbours. Update order (OfcParams::sequential): by default parallel, by
+// generations. Generation 1 is the trigger (with any site holding exactly its stress);
+// generation t + 1 is every site that reached the threshold during generation t. All sites
+// of a generation release the stress they held at its start, then each receiver adds its
+// neighbours' shares in a fixed pairing, so the field does not depend on list order and the
+// lattice's symmetries hold bit for bit; a site may topple again in a later generation of
+// the same avalanche. Sequential: one site at a time, first in, first out.
+// Viscoelastic relaxation (after Hainzl, Zoller & Kurths 1999, J. Geophys. Res. 104, 7243):
+// a toppling also hands relaxation_alpha F_j to each neighbour's pending stress P, which
+// flows in as dF/dl = P / tau, dP/dl = -P / tau over the drive l; relaxing sites reach the
+// threshold at their own times, kept in a heap beside the max tree.
 // Boundaries, per axis: free is OFC's open boundary (the share α F_j pushed over the edge is
 // lost; an edge site keeps α, not 1/z_eff); periodic wraps. Stress is conserved in a
 // toppling exactly when α = 1/4 and no share crosses a free edge.
@@ -28,8 +33,18 @@ namespace bkq {
 
 struct OfcParams {
   int nx = 1, ny = 1;  // sites along strike (model.blocks) and across (model.rows)
-  double alpha = 0.2;  // share of a toppling site's stress given to each neighbour
+  double alpha = 0.2;  // share of a toppling site's stress given to each neighbour at once
   bool periodic_x = false, periodic_y = false;
+  // Toppling order: false, parallel by generations; true, one site at a time (first in,
+  // first out).
+  bool sequential = false;
+  // Viscoelastic relaxation (after Hainzl, Zoller & Kurths 1999, J. Geophys. Res. 104,
+  // 7243): a toppling site also hands relaxation_alpha of its stress to each neighbour as
+  // pending stress, which flows into the neighbour as exp(-drive / relaxation_time) decays
+  // (the drive is the automaton's clock). relaxation_time = 0: off.
+  double relaxation_time = 0;
+  double relaxation_alpha = 0;
+  bool relaxes() const { return relaxation_time > 0; }
   int sites() const { return nx * ny; }
 };
 
@@ -45,6 +60,10 @@ struct OfcSnapshot {
   std::vector<double> g;
   double offset = 0, load = 0;
   OfcCounters counters;
+  // With relaxation: each site's pending stress, the load it was last brought up to, and
+  // the load at which it reaches the threshold as computed then (-1 for a site without
+  // pending stress); empty without relaxation.
+  std::vector<double> pending, pending_at, arrival;
 };
 
 // The starting field of a seed: each site's stress uniform in [0, 1) (std::mt19937_64 and
@@ -56,6 +75,9 @@ class OfcEngine {
   // Throws bkq::Error for a lattice or α that cannot run (no boundary dissipates and α = 1/4:
   // an avalanche would never end; an axis too short to wrap).
   static void check(const OfcParams& p);
+  // The length of the stored field (snapshot().g): the sites padded to whole buckets of a
+  // power-of-two count, the padding at -inf.
+  static std::size_t stored_size(const OfcParams& p);
 
   // A fresh start from the stresses `initial` (each in [0, 1), one per site).
   OfcEngine(const OfcParams& p, const std::vector<double>& initial);
@@ -68,11 +90,14 @@ class OfcEngine {
   // topplings = all topplings; max_speed, pad_displacement, energy_residual = 0.
   EventRecord next_event();
 
-  OfcSnapshot snapshot() const { return {g_, offset_, load_, counters_}; }
+  OfcSnapshot snapshot() const;
   const OfcCounters& counters() const { return counters_; }
   const OfcParams& params() const { return p_; }
   double load() const { return load_; }
-  double stress(int j) const { return g_[j] + offset_; }
+  // The stress now (with relaxation: what has flowed in of the pending stress so far).
+  double stress(int j) const;
+  // Pending stress not yet flowed in (0 without relaxation).
+  double pending(int j) const;
   std::vector<double> field() const;
   // The value the loader ranks, F_j - offset (the stored one).
   double ranked_value(int j) const { return g_[j]; }
@@ -82,17 +107,41 @@ class OfcEngine {
   double lost() const { return lost_; }
 
  private:
+  // The loader's max tree over buckets of kBucket sites: a node holds its subtree's largest
+  // value, the lowest site holding it, and whether another site holds it too (so that an
+  // event without ties, the usual case, skips the search for them).
   struct Node {
     double g;
     int j;
+    bool tied;
   };
   static constexpr int kBucket = 8;
-  static bool same(const Node& a, const Node& b) { return a.j == b.j && a.g == b.g; }
+  static bool same(const Node& a, const Node& b) {
+    return a.j == b.j && a.g == b.g && a.tied == b.tied;
+  }
   void build_tree();
+  void rebuild_tree();
   void scan(int b);
   void pull(int i);
   void touch(int j);  // marks j's bucket for the end-of-event tree update
   void renormalise();
+  template <bool kRelax>
+  void avalanche_generations(EventRecord& e, std::uint32_t first_generation, double& moment,
+                             double& lost, std::int64_t& topplings, std::int64_t& generations,
+                             int& distinct);
+  template <bool kRelax>
+  void avalanche_sequential(EventRecord& e, std::uint32_t first_generation, double& moment,
+                            double& lost, std::int64_t& topplings, std::int64_t& generations,
+                            int& distinct);
+  // Relaxation: brings site j's pending stress up to the current load (what has flowed in
+  // joins g_), its arrival time of the threshold, and the heap of those times.
+  void fold(int j);
+  double crossing(int j) const;
+  void mark_relaxing(int j);
+  void heap_set(int j, double key);
+  void heap_remove(int j);
+  void heap_up(int k);
+  void heap_down(int k);
 
   OfcParams p_;
   std::vector<double> g_;  // F_j - offset_, padded to whole buckets with -inf
@@ -105,15 +154,40 @@ class OfcEngine {
   std::vector<int> touched_buckets_;
   std::vector<unsigned char> bucket_marked_;
   void collect_ties(int node, double value);
-  // Per avalanche: the generation lists and the receivers of a generation; per site, the
-  // share alpha F it gives each neighbour and the generation it gave it in, the generation
-  // it last received in, the event it last toppled in.
-  std::vector<int> now_, next_, receivers_;
-  std::vector<double> release_;
-  std::vector<std::int64_t> released_at_, queued_at_, toppled_at_;
-  std::int64_t stamp_ = 0;
-  // x + nx y neighbours in the order left, right, down, up; -1 for a free edge.
-  std::vector<int> nbr_;
+  // x + nx y neighbours of j in the order left, right, down, up; -1 for a free edge. An
+  // interior site's are j -+ 1 and j -+ nx; edge_ says which of a site's sides is an edge.
+  void neighbours(int j, int nb[4]) const;
+
+  // Per avalanche: the generation lists, and the receivers of a generation with the
+  // shares each got, by the side they came from (left, right, down, up).
+  std::vector<int> now_, next_;
+  struct Receiver {
+    int n;
+    double in[4];
+  };
+  std::vector<Receiver> receivers_;
+  // Per site, small so that the lattice's bookkeeping stays in cache: the generation stamp
+  // it last received in (and its entry in receivers_ then), and the one it last toppled in
+  // (it toppled in this event when that is at least the event's first generation).
+  struct Site {
+    std::uint32_t queued_at, toppled_at;
+    std::int32_t slot;
+  };
+  std::vector<Site> site_;
+  std::uint32_t stamp_ = 0;  // generations so far, since the stamps were last cleared
+  // Sequential order: the queue (a ring of at most one entry per site), each entry's depth
+  // in the causal chain (the event's duration is the deepest), and who is queued.
+  std::vector<int> queue_, depth_;
+  std::vector<unsigned char> queued_;
+  // Relaxation: per site, the pending stress and the load it was brought up to; a min-heap
+  // of the loads at which relaxing sites reach the threshold (heap_pos_ -1: not in it);
+  // the sites whose pending stress or stress changed in this event.
+  std::vector<double> pend_, pend_at_;
+  std::vector<std::pair<double, int>> heap_;
+  std::vector<int> heap_pos_, relax_dirty_;
+  std::vector<unsigned char> relax_marked_;
+  std::vector<unsigned char> edge_;  // bit d: side d (left, right, down, up) is an edge
+  int wrap_[4] = {0, 0, 0, 0};       // offset to the neighbour across side d on a wrapped axis
 };
 
 }  // namespace bkq

@@ -37,13 +37,17 @@ const Schema& ofc_catalog_schema() {
   static const Schema schema = [] {
     Schema s = {
         {c::event, "", "1-based event (avalanche) number, counted after the transient", kInteger},
-        {c::load, "stress", "cumulative uniform drive at the trigger (threshold F_th = 1)"},
+        {c::load, "stress",
+         "cumulative uniform drive at the trigger (threshold F_th = 1); the clock of the "
+         "relaxation"},
         {c::trigger, "", "site index x + model.blocks * y of the site driven to the threshold",
          kInteger},
         {c::blocks, "", "number of distinct sites that toppled", kInteger},
         {c::moment, "stress", "total stress released: sum over topplings of the site's stress"},
         {c::magnitude, "", "magnitude mu = ln(moment)"},
-        {c::duration, "", "generations of the parallel update (1: the trigger alone)"},
+        {c::duration, "",
+         "generations of the parallel update; with ofc.order = sequential, the depth of the "
+         "longest causal chain (1: the trigger alone)"},
         {c::max_speed, "", "0 (the automaton has no speeds)"},
         {c::pad_displacement, "", "0 (no pad)"},
         {c::first_block, "", "lowest site index x + model.blocks * y that toppled", kInteger},

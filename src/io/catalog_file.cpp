@@ -42,8 +42,8 @@ class H5Catalog : public CatalogFile {
  public:
   H5Catalog(const std::string& path,
             const std::vector<std::pair<std::string, std::string>>& attributes,
-            std::int64_t resumed_rows, bool deflate)
-      : h5_(path, attributes, resumed_rows, deflate ? 1 : 0) {}
+            std::int64_t resumed_rows, bool deflate, bool topplings)
+      : h5_(path, attributes, resumed_rows, deflate ? 1 : 0, topplings) {}
   std::optional<std::uint64_t> checksum() const override { return h5_.checksum(); }
   void set_checksum(std::uint64_t sum) override { h5_.set_checksum(sum); }
   void append(const EventRecord& e) override { h5_.append(e); }
@@ -80,8 +80,7 @@ std::unique_ptr<CatalogFile> open_catalog_file(
     case CatalogFormat::Csv:
       return std::make_unique<CsvCatalog>(path, resumed_rows >= 0, topplings);
     case CatalogFormat::Hdf5:
-      if (topplings) throw Error("output.catalog = hdf5: the OFC catalogue is written as csv only");
-      return std::make_unique<H5Catalog>(path, attributes, resumed_rows, deflate);
+      return std::make_unique<H5Catalog>(path, attributes, resumed_rows, deflate, topplings);
     case CatalogFormat::None:
       break;
   }

@@ -39,7 +39,7 @@ bool hdf5_available() {
 struct CatalogH5Writer::Impl {};
 CatalogH5Writer::CatalogH5Writer(const std::string&,
                                  const std::vector<std::pair<std::string, std::string>>&,
-                                 std::int64_t, int) {
+                                 std::int64_t, int, bool) {
   unavailable();
 }
 CatalogH5Writer::~CatalogH5Writer() = default;
@@ -52,7 +52,7 @@ std::int64_t CatalogH5Writer::sync() {
   return 0;
 }
 void CatalogH5Writer::close() {}
-void check_catalog_h5(const std::string&, std::int64_t, std::optional<std::uint64_t>) {
+void check_catalog_h5(const std::string&, std::int64_t, std::optional<std::uint64_t>, bool) {
   unavailable();
 }
 struct CatalogH5Reader::Impl {};
@@ -131,9 +131,10 @@ void check(herr_t rc, const std::string& path, const std::string& what) {
   if (rc < 0) fail(path, what);
 }
 
-// The row type: the schema's columns in order, 8 bytes each.
-Handle row_type(const std::string& path) {
-  const Schema& schema = catalog_schema();
+// The row type: the schema's columns in order, 8 bytes each (the OFC automaton's schema
+// adds topplings after the common columns).
+Handle row_type(const std::string& path, bool topplings) {
+  const Schema& schema = topplings ? ofc_catalog_schema() : catalog_schema();
   Handle t = checked(H5Tcreate(H5T_COMPOUND, 8 * schema.size()), H5Tclose, path,
                      "cannot build the row type");
   for (std::size_t k = 0; k < schema.size(); ++k)
@@ -220,6 +221,7 @@ struct CatalogH5Writer::Impl {
   std::size_t buffered = 0;
   bool closed = false;
   std::uint64_t checksum = kLineHashSeed;
+  std::size_t columns = kCatalogColumns;  // kCatalogColumns, + 1 for the OFC catalogue
 
   // Writes the buffered rows at the end of the table.
   void write_buffer() {
@@ -239,13 +241,14 @@ struct CatalogH5Writer::Impl {
 
 CatalogH5Writer::CatalogH5Writer(const std::string& path,
                                  const std::vector<std::pair<std::string, std::string>>& attributes,
-                                 std::int64_t append_after, int deflate_level)
+                                 std::int64_t append_after, int deflate_level, bool topplings)
     : impl_(std::make_unique<Impl>()) {
   quiet_hdf5();
   Impl& w = *impl_;
   w.path = path;
-  w.type = row_type(path);
-  w.buf.resize(kChunkRows * 8 * kCatalogColumns);
+  w.type = row_type(path, topplings);
+  w.columns = kCatalogColumns + (topplings ? 1 : 0);
+  w.buf.resize(kChunkRows * 8 * w.columns);
   if (append_after >= 0) {
     Opened o = open_table(path, true);
     if (o.rows < static_cast<hsize_t>(append_after))
@@ -289,15 +292,19 @@ void CatalogH5Writer::append(const EventRecord& e) {
   Impl& w = *impl_;
   if (w.closed) fail(w.path, "write after close");
   const CatalogCells cells = catalog_cells(e);
-  unsigned char* row = w.buf.data() + w.buffered * 8 * kCatalogColumns;
+  unsigned char* row = w.buf.data() + w.buffered * 8 * w.columns;
   for (std::size_t k = 0; k < kCatalogColumns; ++k) {
     if (cells[k].integer)
       std::memcpy(row + 8 * k, &cells[k].i, 8);
     else
       std::memcpy(row + 8 * k, &cells[k].x, 8);
   }
-  w.checksum = line_hash(std::string_view(reinterpret_cast<const char*>(row), 8 * kCatalogColumns),
-                         w.checksum);
+  if (w.columns > kCatalogColumns) {
+    const std::int64_t topplings = e.topplings;
+    std::memcpy(row + 8 * kCatalogColumns, &topplings, 8);
+  }
+  w.checksum =
+      line_hash(std::string_view(reinterpret_cast<const char*>(row), 8 * w.columns), w.checksum);
   if (++w.buffered == kChunkRows) w.write_buffer();
 }
 
@@ -327,15 +334,15 @@ void CatalogH5Writer::set_checksum(std::uint64_t sum) {
 }
 
 void check_catalog_h5(const std::string& path, std::int64_t rows,
-                      std::optional<std::uint64_t> checksum) {
+                      std::optional<std::uint64_t> checksum, bool topplings) {
   const Opened o = open_table(path, false);
   if (o.rows < static_cast<hsize_t>(rows))
     fail(path, "holds " + std::to_string(o.rows) + " rows, the checkpoint counts " +
                    std::to_string(rows));
   if (!checksum) return;
   // The rows as the writer laid them out (row_type), hashed a block at a time.
-  const Handle type = row_type(path);
-  const std::size_t row_bytes = 8 * catalog_schema().size();
+  const Handle type = row_type(path, topplings);
+  const std::size_t row_bytes = 8 * (kCatalogColumns + (topplings ? 1 : 0));
   std::vector<unsigned char> buf;
   std::uint64_t hash = kLineHashSeed;
   for (hsize_t start = 0; start < static_cast<hsize_t>(rows);) {
@@ -382,7 +389,7 @@ CatalogH5Reader::CatalogH5Reader(const std::string& path, const std::vector<std:
   r.type = checked(H5Tcreate(H5T_COMPOUND, 8 * names.size()), H5Tclose, path,
                    "cannot build the row type");
   for (std::size_t k = 0; k < names.size(); ++k) {
-    column(catalog_schema(), names[k]);  // a name outside the schema is a bug
+    column(ofc_catalog_schema(), names[k]);  // a name outside the schemas is a bug
     const bool in_file = H5Tget_member_index(file_type, names[k].c_str()) >= 0;
     r.present.push_back(in_file);
     if (in_file)

@@ -1,6 +1,7 @@
 // The event catalogue as HDF5 (output.catalog = hdf5 or hdf5-deflate): catalog.h5 holds
 // one table, the dataset "catalog", whose compound rows have the columns of
-// catalog_schema() in order (integer columns as 64-bit integers, the others as doubles), in
+// catalog_schema() in order (the OFC automaton's, ofc_catalog_schema(), adds topplings;
+// integer columns as 64-bit integers, the others as doubles), in
 // chunks of 8192 rows: stored as they are (hdf5, the cheap one) or shuffled and deflated
 // (hdf5-deflate: a quarter of the size at several times the cost; docs/validation/performance.md).
 // The provenance lines and the effective scene are attributes of the dataset
@@ -39,7 +40,7 @@ class CatalogH5Writer {
   // table and cuts it back to its first `append_after` rows.
   CatalogH5Writer(const std::string& path,
                   const std::vector<std::pair<std::string, std::string>>& attributes,
-                  std::int64_t append_after = -1, int deflate_level = 0);
+                  std::int64_t append_after = -1, int deflate_level = 0, bool topplings = false);
   ~CatalogH5Writer();
   CatalogH5Writer(const CatalogH5Writer&) = delete;
   CatalogH5Writer& operator=(const CatalogH5Writer&) = delete;
@@ -61,9 +62,10 @@ class CatalogH5Writer {
 
 // Checks that `path` is a catalogue table with at least `rows` rows and, with `checksum`,
 // that those rows hash to it (CatalogH5Writer::checksum: an edited row is found, as in
-// catalog.csv); a resume's check, before anything is changed. bkq::Error naming the file.
+// catalog.csv; `topplings`: the OFC catalogue's rows); a resume's check, before anything is
+// changed. bkq::Error naming the file.
 void check_catalog_h5(const std::string& path, std::int64_t rows,
-                      std::optional<std::uint64_t> checksum = std::nullopt);
+                      std::optional<std::uint64_t> checksum = std::nullopt, bool topplings = false);
 
 // Reads the columns `names` (each must be a column of the catalogue schema) of a catalog.h5
 // in blocks. A column the file lacks is reported by has(); reading it gives nothing.

@@ -263,6 +263,87 @@ void validate_checkpoint(const Checkpoint& c, int blocks, double bin_width,
     bad("histogram bin_width", format_real(h.bin_width), "the scene's stats.bin_width");
 }
 
+namespace {
+constexpr const char* kOfcState = "ofc.engine";
+constexpr const char* kOfcRelaxation = "ofc.relaxation";
+}  // namespace
+
+void put_ofc_state(Checkpoint& c, const OfcSnapshot& s) {
+  put_state(c, kOfcState, s.g, s.offset, s.load, s.counters.events, s.counters.topplings,
+            s.counters.generations);
+  if (!s.pending.empty()) put_state(c, kOfcRelaxation, s.pending, s.pending_at, s.arrival);
+}
+
+OfcSnapshot find_ofc_state(const Checkpoint& c, const OfcParams& p, const std::string& origin) {
+  OfcSnapshot s;
+  if (!find_state(c, kOfcState, s.g, s.offset, s.load, s.counters.events, s.counters.topplings,
+                  s.counters.generations))
+    throw Error("checkpoint '" + origin + "': no OFC state (" + kOfcState + ") in it");
+  if (p.relaxes() && !find_state(c, kOfcRelaxation, s.pending, s.pending_at, s.arrival))
+    throw Error("checkpoint '" + origin + "': no OFC relaxation state (" + kOfcRelaxation +
+                ") in it, and ofc.relaxation_time > 0");
+  return s;
+}
+
+void validate_ofc_state(const Checkpoint& c, const OfcParams& p, const std::string& origin) {
+  auto bad = [&](const std::string& field, const std::string& value, const std::string& allowed) {
+    throw Error("checkpoint '" + origin + "' is invalid: " + field + " = " + value + ", expected " +
+                allowed + " (damaged or edited); start over with --force");
+  };
+  const OfcSnapshot s = find_ofc_state(c, p, origin);
+  const std::size_t n = static_cast<std::size_t>(p.sites());
+  const std::size_t stored = OfcEngine::stored_size(p);
+  if (s.g.size() != stored)
+    bad("ofc field length", std::to_string(s.g.size()),
+        std::to_string(stored) + " (the lattice's " + std::to_string(n) + " sites, padded)");
+  if (!std::isfinite(s.offset) || s.offset < 0 || s.offset > 5)
+    bad("ofc offset", format_real(s.offset), "a value in [0, 5]");
+  if (!std::isfinite(s.load) || s.load < 0 || s.load > kCheckpointMaxMagnitude)
+    bad("ofc load", format_real(s.load), "a finite value in [0, 1e15]");
+  for (std::size_t j = 0; j < stored; ++j) {
+    std::string at = "[";  // (built in steps: GCC 12 warns falsely on "[" + to_string(j))
+    at += std::to_string(j);
+    at += ']';
+    if (j >= n) {
+      if (s.g[j] != -HUGE_VAL) bad("ofc padding" + at, format_real(s.g[j]), "-inf");
+      continue;
+    }
+    const double f = s.g[j] + s.offset;
+    if (!std::isfinite(s.g[j]) || !(f >= 0 && f < 1))
+      bad("ofc stress" + at, format_real(f), "a value in [0, 1) (every site below threshold)");
+  }
+  const OfcCounters& k = s.counters;
+  const std::int64_t events = c.progress.transient_done + c.progress.events_done;
+  if (k.events != events)
+    bad("ofc events", std::to_string(k.events),
+        std::to_string(events) + " (the run's transient and recorded events)");
+  if (k.generations < k.events)
+    bad("ofc generations", std::to_string(k.generations), "at least ofc events");
+  if (k.topplings < k.generations)
+    bad("ofc topplings", std::to_string(k.topplings), "at least ofc generations");
+  if (!p.relaxes()) return;
+  if (s.pending.size() != n || s.pending_at.size() != n || s.arrival.size() != n)
+    bad("ofc pending length", std::to_string(s.pending.size()),
+        std::to_string(n) + " (one per site)");
+  for (std::size_t j = 0; j < n; ++j) {
+    std::string at = "[";
+    at += std::to_string(j);
+    at += ']';
+    if (!std::isfinite(s.pending[j]) || s.pending[j] < 0 || s.pending[j] > kCheckpointMaxMagnitude)
+      bad("ofc pending" + at, format_real(s.pending[j]), "a finite value in [0, 1e15]");
+    if (!std::isfinite(s.pending_at[j]) || s.pending_at[j] < 0 || s.pending_at[j] > s.load)
+      bad("ofc pending_at" + at, format_real(s.pending_at[j]), "a load in [0, ofc load]");
+    // A site with pending stress has its arrival at the threshold ahead; one without, none.
+    const double a = s.arrival[j];
+    if (s.pending[j] > 0
+            ? !(std::isfinite(a) && a >= s.pending_at[j] && a <= kCheckpointMaxMagnitude)
+            : a != -1)
+      bad("ofc arrival" + at, format_real(a),
+          s.pending[j] > 0 ? "a load in [ofc pending_at, 1e15] (the site has pending stress)"
+                           : "-1 (the site has no pending stress)");
+  }
+}
+
 void check_checkpoint_matches(const Checkpoint& c, const Scene& scene, const std::string& origin) {
   if (c.version != kVersion)
     throw Error("checkpoint '" + origin + "' was written by bkquake " + c.version +

@@ -40,6 +40,7 @@
 
 #include "core/fnv1a.hpp"
 #include "engine/event_engine.hpp"
+#include "engine/ofc.hpp"
 #include "stats/histogram.hpp"
 
 namespace bkq {
@@ -238,6 +239,27 @@ inline constexpr double kCheckpointMaxMagnitudeMu = 1000;
 // `blocks` 0: the run's engine keeps no chain (OFC), whose state is then not checked here.
 void validate_checkpoint(const Checkpoint& c, int blocks, double bin_width,
                          const std::string& origin);
+
+// The OFC automaton's state travels as named states of the checkpoint: "ofc.engine" (the
+// field as stored, the offset, the load, the counters) and, with relaxation, also
+// "ofc.relaxation" (each site's pending stress, the load it was brought up to and its
+// arrival at the threshold). The
+// chain snapshot stays empty. find_ofc_state throws bkq::Error naming `origin` when a state
+// the lattice `p` needs is missing.
+void put_ofc_state(Checkpoint& c, const OfcSnapshot& s);
+OfcSnapshot find_ofc_state(const Checkpoint& c, const OfcParams& p, const std::string& origin);
+
+// Checks every field of the OFC state as a scene key is checked, against the lattice `p`
+// and the run's progress: the field's length (the lattice's sites, padded as the engine
+// stores them); each stress g + offset in [0, 1) (every site below threshold between
+// events) and the padding at -inf; offset in [0, 5] (the engine folds it back past 4);
+// load finite in [0, 1e15]; counters with 0 <= events <= generations <= topplings and
+// events = the run's transient and recorded events; with relaxation, each pending stress
+// finite in [0, 1e15] and brought up at a load in [0, load], and an arrival time exactly
+// for the sites with pending stress. bkq::Error naming the field,
+// its value and what is allowed; nothing is changed. A resume calls it with
+// validate_checkpoint, before it changes anything.
+void validate_ofc_state(const Checkpoint& c, const OfcParams& p, const std::string& origin);
 
 std::string encode_checkpoint(const Checkpoint& c);
 // Throws bkq::Error naming `origin` when `bytes` are not one complete, intact checkpoint

@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/fnv1a.hpp"
 #include "core/format.hpp"
+#include "engine/ofc.hpp"
 #include "integrate/stepper.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
@@ -157,6 +158,16 @@ std::vector<ParamSpec> make_table() {
       real("ofc.alpha", "0.2", '(', 0, 0.25, ']', "",
            "share alpha of a toppling site's stress given to each of its z = 4 neighbours "
            "(Olami, Feder & Christensen 1992); 0.25 conserves stress away from free edges"),
+      choice("ofc.order", "generations", {"generations", "sequential"},
+             "toppling order: generations (parallel update: every unstable site of a generation "
+             "releases what it held at the generation's start) or sequential (one site at a "
+             "time, first in first out)"),
+      real("ofc.relaxation_time", "0", '[', 0, 1e15, ']', "drive",
+           "viscoelastic relaxation (after Hainzl, Zoller & Kurths 1999): pending stress flows "
+           "into a site as exp(-drive / relaxation_time); 0: off"),
+      real("ofc.relaxation_alpha", "0", '[', 0, 0.25, ']', "",
+           "share of a toppling site's stress each neighbour receives as pending stress "
+           "(relaxation); ofc.alpha + ofc.relaxation_alpha <= 0.25"),
 
       // --- friction: the law phi(y) (Ferre 2018 eq. 3.5; Carlson et al. 1991 eq. 2.9) ---
       choice(
@@ -431,7 +442,9 @@ const std::vector<KeyDependency>& dependencies() {
        {{"run.start", {"equilibrium"}}}},
       {{"friction.table"}, {{"friction.law", {"table"}}}},
       // The automaton has a threshold and a share alpha, no masses, friction or time steps.
-      {{"model.boundary_y", "ofc.alpha"}, {{"model.kind", {"ofc"}}}},
+      {{"model.boundary_y", "ofc.alpha", "ofc.order", "ofc.relaxation_time",
+        "ofc.relaxation_alpha"},
+       {{"model.kind", {"ofc"}}}},
       {{"model.parameterisation",
         "model.coupling",
         "model.range",
@@ -694,11 +707,6 @@ void Scene::check_ofc(const std::string& where) const {
                 " with model.kind = ofc: the automaton runs event by event only; allowed: "
                 "drive.mode = events" +
                 where);
-  if (choice("output.catalog") != "csv" && choice("output.catalog") != "none")
-    throw Error("output.catalog = " + choice("output.catalog") +
-                " with model.kind = ofc: the automaton's catalogue (with its topplings column) "
-                "is written as csv only; allowed: csv, none" +
-                where);
   if (integer("model.blocks") * integer("model.rows") > 100'000'000)
     throw Error("model.blocks x model.rows = " + text("model.blocks") + " x " + text("model.rows") +
                 ": allowed at most 1e8 sites for ofc" + where);
@@ -713,6 +721,20 @@ void Scene::check_ofc(const std::string& where) const {
         "stress would never leave the lattice and an avalanche would never end; allowed: "
         "ofc.alpha < 0.25, or model.boundary or model.boundary_y = free" +
         where);
+  // The relaxation's own limits are the engine's (one place states them).
+  OfcParams p;
+  p.nx = static_cast<int>(integer("model.blocks"));
+  p.ny = static_cast<int>(integer("model.rows"));
+  p.alpha = real("ofc.alpha");
+  p.periodic_x = px;
+  p.periodic_y = py;
+  p.relaxation_time = real("ofc.relaxation_time");
+  p.relaxation_alpha = real("ofc.relaxation_alpha");
+  try {
+    OfcEngine::check(p);
+  } catch (const Error& e) {
+    throw Error(e.what() + where);
+  }
 }
 
 void Scene::check_continuous_run(const std::string& where) const {
@@ -834,8 +856,9 @@ namespace {
 // before the key existed still resume and merge.
 bool added_later(const std::string& key) {
   static const std::set<std::string> keys{
-      "model.rows",  "model.boundary_y",        "ofc.alpha",      "model.coupling",
-      "model.range", "model.coupling_exponent", "model.viscosity"};
+      "model.rows",          "model.boundary_y",        "ofc.alpha",       "model.coupling",
+      "model.range",         "model.coupling_exponent", "model.viscosity", "ofc.order",
+      "ofc.relaxation_time", "ofc.relaxation_alpha"};
   return keys.count(key) != 0;
 }
 }  // namespace

@@ -86,6 +86,9 @@ Settings settings_from_scene(const Scene& scene) {
     o.alpha = scene.real("ofc.alpha");
     o.periodic_x = scene.choice("model.boundary") == "periodic";
     o.periodic_y = scene.choice("model.boundary_y") == "periodic";
+    o.sequential = scene.choice("ofc.order") == "sequential";
+    o.relaxation_time = scene.real("ofc.relaxation_time");
+    o.relaxation_alpha = scene.real("ofc.relaxation_alpha");
   }
 
   DriveSettings& d = s.drive;
