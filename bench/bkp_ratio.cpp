@@ -6,7 +6,9 @@
 // engine runs for about SLICE seconds of this thread's CPU time, in turn, so that the
 // machine's load falls on all alike. Prints, per N, the rates (events per CPU-second over
 // all rounds), the medians of the per-round ratios BKP/BK with their ranges, and the
-// sliding block-steps per event of each model (how much work an event of each is).
+// sliding block-steps per event of each model (how much work an event of each is). Each
+// N is measured with the transitions at the step and located inside it
+// (integrator.transitions = step, located; rk4 at dt = 0.01 both), a row per mode.
 //   build/bkp_ratio [ROUNDS=7] [SLICE=0.3] [N...=100 1000]
 #include <time.h>
 
@@ -62,32 +64,36 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf(
-      "| N | BK events/s | BKP events/s | BKP/BK (median of %d, min-max) | BKP general path "
-      "only / BK | sliding block-steps per event BK, BKP |\n|---|---|---|---|---|---|\n",
+      "| N | transitions | BK events/s | BKP events/s | BKP/BK (median of %d, min-max) | BKP "
+      "general path only / BK | sliding block-steps per event BK, BKP |\n"
+      "|---|---|---|---|---|---|---|\n",
       rounds);
   for (int n : sizes) {
-    bkq::bench::CarlsonLangerEvents bk(n, "bk"), bkp(n, "bkp"), general(n, "bkp");
-    general.engine.cluster_path = false;
-    general.engine.held_ranges_path = false;
-    std::vector<double> ratios, before;
-    Tally tb, tp, tg;
-    for (int r = 0; r < rounds; ++r) {
-      const double a = run_slice(bk.engine, slice, tb);
-      const double b = run_slice(bkp.engine, slice, tp);
-      const double g = run_slice(general.engine, slice, tg);
-      ratios.push_back(b / a);
-      before.push_back(g / a);
+    for (const bool located : {false, true}) {
+      bkq::bench::CarlsonLangerEvents bk(n, "bk", true, located), bkp(n, "bkp", true, located),
+          general(n, "bkp", true, located);
+      general.engine.cluster_path = false;
+      general.engine.held_ranges_path = false;
+      std::vector<double> ratios, before;
+      Tally tb, tp, tg;
+      for (int r = 0; r < rounds; ++r) {
+        const double a = run_slice(bk.engine, slice, tb);
+        const double b = run_slice(bkp.engine, slice, tp);
+        const double g = run_slice(general.engine, slice, tg);
+        ratios.push_back(b / a);
+        before.push_back(g / a);
+      }
+      std::sort(ratios.begin(), ratios.end());
+      std::sort(before.begin(), before.end());
+      std::printf("| %d | %s | %.3g | %.3g | %.3f (%.3f-%.3f) | %.3f (%.3f-%.3f) | %.0f, %.0f |\n",
+                  n, located ? "located" : "step", static_cast<double>(tb.events) / tb.seconds,
+                  static_cast<double>(tp.events) / tp.seconds, ratios[ratios.size() / 2],
+                  ratios.front(), ratios.back(), before[before.size() / 2], before.front(),
+                  before.back(),
+                  static_cast<double>(tb.sliding_block_steps) / static_cast<double>(tb.events),
+                  static_cast<double>(tp.sliding_block_steps) / static_cast<double>(tp.events));
+      std::fflush(stdout);
     }
-    std::sort(ratios.begin(), ratios.end());
-    std::sort(before.begin(), before.end());
-    std::printf("| %d | %.3g | %.3g | %.3f (%.3f-%.3f) | %.3f (%.3f-%.3f) | %.0f, %.0f |\n", n,
-                static_cast<double>(tb.events) / tb.seconds,
-                static_cast<double>(tp.events) / tp.seconds, ratios[ratios.size() / 2],
-                ratios.front(), ratios.back(), before[before.size() / 2], before.front(),
-                before.back(),
-                static_cast<double>(tb.sliding_block_steps) / static_cast<double>(tb.events),
-                static_cast<double>(tp.sliding_block_steps) / static_cast<double>(tp.events));
-    std::fflush(stdout);
   }
   return 0;
 }
