@@ -191,7 +191,7 @@ class EventRun {
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
                                        resumed ? prog_.events_done : -1,
-                                       settings_.output.catalog_deflate, settings_.ofc.on);
+                                       settings_.output.catalog_deflate, catalog_layout(settings_));
     if (settings_.output.event_slip) {
       chain->keep_slips(true);
       observers_.attach<EventSlipWriter>(out_.path(EventSlipWriter::kFileName),

@@ -122,14 +122,19 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
   const fs::path& catalog = in.file;
   // Chain length and boundary for the event classes.
   std::optional<int> blocks;
+  int rows = 1;  // a lattice's rows (event classes by sites and bounding box when above 1)
   std::string boundary = "free";
   const auto scene = catalog.parent_path() / "scene.ini";
   if (fs::exists(scene)) {
     const SceneModelInfo info = read_scene_model(scene);
     blocks = info.blocks;
+    if (info.rows) rows = *info.rows;
     if (info.boundary) boundary = *info.boundary;
   }
-  if (request.blocks) blocks = request.blocks;
+  if (request.blocks) {
+    blocks = request.blocks;
+    rows = request.rows.value_or(1);
+  }
   if (request.boundary) boundary = *request.boundary;
   const Boundary bnd = parse_boundary(boundary);
 
@@ -167,12 +172,17 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
         "fit --json");
 
   CatalogReader reader(catalog);
-  const bool classes_on = blocks.has_value() && reader.has_extent();
+  const bool lattice = rows > 1;
+  const bool classes_on =
+      blocks.has_value() && reader.has_extent() && (!lattice || reader.has_rows());
   std::string class_note;
   if (!blocks)
     class_note = "event classes skipped: no --blocks and no scene.ini beside the catalogue";
   else if (!reader.has_extent())
     class_note = "event classes skipped: the catalogue lacks blocks/first_block/last_block";
+  else if (!classes_on)
+    class_note = "event classes skipped: a lattice of " + std::to_string(rows) +
+                 " rows, and the catalogue lacks trigger_row/first_row/last_row";
 
   MagnitudeHistogram hist(request.bin_width);
   std::vector<double> magnitudes;
@@ -182,7 +192,9 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
     hist.add(e.magnitude);
     magnitudes.push_back(e.magnitude);
     if (classes_on)
-      classes.add(classify_event(e.blocks, e.first_block, e.last_block, *blocks, bnd));
+      classes.add(lattice ? classify_lattice_event(e.blocks, e.first_block, e.last_block,
+                                                   e.first_row, e.last_row, *blocks, rows)
+                          : classify_event(e.blocks, e.first_block, e.last_block, *blocks, bnd));
   }
   // (Only a finished run's count is final: a resumed run cuts its catalogue back to the
   // checkpoint while the summary of its last stop still counts the events past it.)
@@ -208,7 +220,12 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
            "are its "
         << reader.events_read() << " events so far; --resume finishes it\n";
   out << gr_fit_table(fit);
-  if (classes_on)
+  if (classes_on && lattice)
+    out << "classes (a lattice of " << *blocks << " x " << rows << " = "
+        << static_cast<std::int64_t>(*blocks) * rows
+        << " sites; delocalised: at least half the sites, or edge to edge along an axis)\n"
+        << class_counts_table(classes);
+  else if (classes_on)
     out << "classes (N = " << *blocks << ", " << boundary << " ends)\n"
         << class_counts_table(classes);
   else
@@ -219,11 +236,12 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
     Json o = Json::object();
     o.set("catalog", catalog.string()).set("fit", gr_fit_json(fit));
     if (interrupted || killed) o.set("run_status", status_text(RunStatus::Interrupted));
-    if (classes_on)
+    if (classes_on) {
       o.set("blocks", static_cast<std::int64_t>(*blocks))
           .set("boundary", boundary)
           .set("classes", class_counts_json(classes));
-    else
+      if (lattice) o.set("rows", static_cast<std::int64_t>(rows));
+    } else
       o.set("classes_note", class_note);
     write_json(o, *request.json);
   }

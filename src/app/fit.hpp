@@ -29,6 +29,7 @@ struct FitRequest {
   bool bin_width_given = false;               // a histogram's own width must then agree
   std::optional<double> mu_min, mu_max;       // the fit window, else automatic
   std::optional<int> blocks;                  // N for the event classes
+  std::optional<int> rows;                    // a lattice's rows (with blocks: its shape)
   std::optional<std::string> boundary;        // "free" | "periodic"
   std::optional<std::filesystem::path> json;  // also write the result here
   bool scan = false;                          // write b_scan.csv

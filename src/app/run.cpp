@@ -119,10 +119,12 @@ int run_scene(const RunRequest& req) {
     const std::string catalog =
         format == CatalogFormat::None ? "" : out.path(catalog_file_name(format));
     if (format == CatalogFormat::Csv)
-      check_csv_prefix(catalog, catalog_header(ofc), saved.progress.events_done,
-                       saved.progress.catalog_bytes, saved_catalog_checksum(saved));
+      check_csv_prefix(catalog, catalog_header(catalog_layout(settings)),
+                       saved.progress.events_done, saved.progress.catalog_bytes,
+                       saved_catalog_checksum(saved));
     else if (format == CatalogFormat::Hdf5)  // cut back when the catalog observer opens it
-      check_catalog_h5(catalog, saved.progress.events_done, saved_catalog_checksum(saved), ofc);
+      check_catalog_h5(catalog, saved.progress.events_done, saved_catalog_checksum(saved),
+                       catalog_layout(settings));
     if (saved.git_revision != kGitRevision)
       std::fprintf(stderr,
                    "bkquake: warning: the checkpoint was written by git revision %s, this is %s; "

@@ -66,6 +66,7 @@ seis::Quake quake_of(const CatalogEvent& e, const CatalogReader& r) {
   q.mu = e.magnitude;
   q.duration = r.has_duration() ? e.duration : 0.0;
   q.trigger = e.trigger;
+  if (r.has_rows()) q.trigger_row = e.trigger_row;
   if (r.has_extent()) {
     q.first = e.first_block;
     q.last = e.last_block;
@@ -269,6 +270,25 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     throw Error("seismicity: N = " + std::to_string(blocks) + " (" + rep.blocks_from +
                 "): expected at least 1 block");
 
+  // A lattice (the catalogue has the row columns): its rows and boundaries from scene.ini,
+  // else its rows from the catalogue (max(last_row) + 1) and free boundaries. The
+  // hypocentres' distances are then Euclidean in the plane (stats/seismicity/geometry.hpp).
+  seis::Geometry geometry = seis::Geometry::chain(blocks);
+  std::string rows_from;
+  if (CatalogReader probe(rep.catalog); probe.has_rows()) {
+    geometry.nx = blocks;
+    if (scene) {
+      geometry.ny = static_cast<int>(scene->integer("model.rows"));
+      geometry.periodic_x = scene->choice("model.boundary") == "periodic";
+      geometry.periodic_y = scene->choice("model.boundary_y") == "periodic";
+      rows_from = "scene.ini";
+    } else {
+      for (CatalogEvent e; probe.next(e);) geometry.ny = std::max(geometry.ny, e.last_row + 1);
+      rows_from = "max(last_row) + 1 of the catalogue; boundaries taken as free";
+    }
+  }
+  const int sites = geometry.sites();
+
   CatalogReader reader(rep.catalog);
   if (!reader.has_load())
     throw Error("seismicity: " + rep.catalog + ": missing column 'load' (the events' time)");
@@ -279,6 +299,7 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
 
   seis::SeismicityOptions opt;
   opt.blocks = blocks;
+  if (geometry.lattice()) opt.geometry = geometry;
   opt.mainshock.blocks = blocks;
   opt.mainshock.mu = req.mainshock_mu;
   if (req.interevent_mu) opt.interevent_mu = *req.interevent_mu;
@@ -295,8 +316,12 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
       b_rule = "maximum curvature (the fullest 0.2 bin of mu; Wiemer & Wyss 2000)";
     }
   }
-  log << "seismicity of " << rep.catalog << " (N = " << blocks << ", from " << rep.blocks_from
-      << ")\n  time: " << rep.clock << "\n  mainshocks: " << opt.mainshock.describe() << "\n";
+  log << "seismicity of " << rep.catalog << " (N = " << blocks << ", from " << rep.blocks_from;
+  if (geometry.lattice())
+    log << "; a lattice of " << geometry.ny << " rows, from " << rows_from
+        << ": distances Euclidean between trigger sites"
+        << (geometry.periodic_x || geometry.periodic_y ? ", wrapped where periodic" : "");
+  log << ")\n  time: " << rep.clock << "\n  mainshocks: " << opt.mainshock.describe() << "\n";
 
   std::vector<std::string> comments;
   if (scene) {
@@ -342,6 +367,12 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   j.set("events", s.events());
   j.set("blocks", static_cast<std::int64_t>(blocks));
   j.set("blocks_from", rep.blocks_from);
+  if (geometry.lattice()) {
+    j.set("rows", static_cast<std::int64_t>(geometry.ny));
+    j.set("rows_from", rows_from);
+    j.set("periodic_x", geometry.periodic_x);
+    j.set("periodic_y", geometry.periodic_y);
+  }
   Json main = Json::object();
   main.set("rule", opt.mainshock.describe());
   main.set("count", s.mainshocks());
@@ -399,7 +430,7 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
           "delta_mw = 3.454 delta_mw");
     j.set("bath", std::move(o));
   }
-  j.set("moment_budget", num(s.moment_rate().budget(blocks)));
+  j.set("moment_budget", num(s.moment_rate().budget(sites)));
   {
     Json o = Json::object();
     const seis::LineFit L = s.scaling().length().binned_fit();
@@ -428,6 +459,10 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     o.set("b_all_err", num(b.err));
     o.set("b_all_note", "Aki's b of every event that is not a mainshock, mu >= b_mu_min");
     o.set("distance_band", static_cast<std::int64_t>(s.spacetime().band_width()));
+    if (geometry.lattice())
+      o.set("distance",
+            "Euclidean between trigger sites (x, y) in site spacings, the shorter "
+            "way round along a periodic axis");
     o.set("mainshocks", s.spacetime().mainshocks());
     j.set("spacetime", std::move(o));
   }
@@ -511,7 +546,7 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     log << line;
   }
   std::snprintf(line, sizeof line, "  moment budget %.5f (1 when the chain slips as loaded)\n",
-                s.moment_rate().budget(blocks));
+                s.moment_rate().budget(sites));
   log << line << "  written " << rep.out << " in " << format_real(rep.seconds) << " s\n";
   if (!req.export_file.empty()) log << "  exported " << req.export_file << "\n";
   return rep;

@@ -35,7 +35,8 @@ int cmd_fit(const std::vector<std::string>& args) {
     ("bin-width", po::value<std::string>()->default_value(
                       format_real(MagnitudeHistogram::kDefaultBinWidth)),
                   "magnitude bin width, in (0, 10]")
-    ("blocks", po::value<std::string>(), "chain length N for the event classes (default: "
+    ("blocks", po::value<std::string>(), "chain length N for the event classes, or a "
+                                         "lattice's shape NXxNY (columns x rows) (default: "
                                          "scene.ini beside the catalogue)")
     ("boundary", po::value<std::string>(), "free | periodic (default: scene.ini, else free)")
     ("json", po::value<std::string>(), "also write the result as JSON to this file")
@@ -67,9 +68,14 @@ int cmd_fit(const std::vector<std::string>& args) {
   request.bin_width_given = !vm["bin-width"].defaulted();
   request.mu_min = mu_min;
   request.mu_max = mu_max;
-  if (vm.count("blocks"))
-    request.blocks =
-        std::stoi(option_value("fit: --blocks", "model.blocks", vm["blocks"].as<std::string>()));
+  if (vm.count("blocks")) {
+    // N, or NXxNY: each part checked as the scene key it stands for.
+    const std::string text = vm["blocks"].as<std::string>();
+    const auto x = text.find('x');
+    request.blocks = std::stoi(option_value("fit: --blocks", "model.blocks", text.substr(0, x)));
+    if (x != std::string::npos)
+      request.rows = std::stoi(option_value("fit: --blocks", "model.rows", text.substr(x + 1)));
+  }
   if (vm.count("boundary")) request.boundary = vm["boundary"].as<std::string>();
   if (vm.count("json")) request.json = vm["json"].as<std::string>();
   request.scan = vm.count("scan") > 0;

@@ -20,6 +20,12 @@ struct EventRecord {
   int last_block = 0;           // highest index that slipped
   double energy_residual = 0;   // (dE_stored + W_dissipated)/W_dissipated; see event_engine.hpp
   std::int64_t topplings = 0;   // OFC (engine/ofc.hpp): topplings in the avalanche; 0 otherwise
+  // Lattices (engine/ofc.hpp): the row (across strike) of the trigger and the lowest and
+  // highest row that slipped; trigger, first_block and last_block are then read along
+  // strike. 0 on a chain or a single row.
+  int trigger_row = 0;
+  int first_row = 0;
+  int last_row = 0;
 };
 
 }  // namespace bkq

@@ -354,8 +354,10 @@ EventRecord OfcEngine::next_event() {
     e.trigger = relaxing_trigger;
   }
   e.load = load_;
-  e.first_block = e.trigger;
-  e.last_block = e.trigger;
+  // Until the avalanche ends, trigger and first/last_row hold site indices j = x + nx y and
+  // first/last_block columns x; the rows are the lowest and highest j's rows.
+  e.first_block = e.last_block = e.trigger % p_.nx;
+  e.first_row = e.last_row = e.trigger;
   ++counters_.events;
   // 32-bit stamps keep the per-site bookkeeping small; they are cleared long before they
   // could wrap (an event would need 2^31 generations to reach the end).
@@ -419,6 +421,10 @@ EventRecord OfcEngine::next_event() {
   relax_dirty_.clear();
   if (offset_ > 4.0) renormalise();
 
+  e.trigger_row = e.trigger / p_.nx;
+  e.trigger -= e.trigger_row * p_.nx;
+  e.first_row /= p_.nx;
+  e.last_row /= p_.nx;
   e.blocks = distinct;
   e.moment = moment;
   e.magnitude = std::log(moment);
@@ -458,8 +464,11 @@ void OfcEngine::avalanche_generations(EventRecord& e, std::uint32_t first_genera
       if (sj.toppled_at < first_generation) {
         sj.toppled_at = gen;
         ++distinct;
-        e.first_block = std::min(e.first_block, j);
-        e.last_block = std::max(e.last_block, j);
+        const int x = j % p_.nx;
+        e.first_block = std::min(e.first_block, x);
+        e.last_block = std::max(e.last_block, x);
+        e.first_row = std::min(e.first_row, j);
+        e.last_row = std::max(e.last_row, j);
       }
       int nb[4];
       neighbours(j, nb);
@@ -546,8 +555,11 @@ void OfcEngine::avalanche_sequential(EventRecord& e, std::uint32_t first_generat
     if (sj.toppled_at < first_generation) {
       sj.toppled_at = stamp;
       ++distinct;
-      e.first_block = std::min(e.first_block, j);
-      e.last_block = std::max(e.last_block, j);
+      const int x = j % p_.nx;
+      e.first_block = std::min(e.first_block, x);
+      e.last_block = std::max(e.last_block, x);
+      e.first_row = std::min(e.first_row, j);
+      e.last_row = std::max(e.last_row, j);
     }
     int nb[4];
     neighbours(j, nb);

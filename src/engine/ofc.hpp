@@ -83,10 +83,11 @@ class OfcEngine {
   OfcEngine(const OfcParams& p, const std::vector<double>& initial);
   OfcEngine(const OfcParams& p, const OfcSnapshot& saved);
 
-  // Drives to the next threshold and topples the avalanche. The record: trigger and
-  // first/last_block are site indices j = x + nx y (first/last: lowest and highest index
-  // toppled); blocks = distinct sites toppled; moment = total stress released (the sum of
-  // F_j over topplings); duration = generations; load = cumulative drive at the trigger;
+  // Drives to the next threshold and topples the avalanche. The record: the trigger at
+  // (trigger, trigger_row) = (x, y); the bounding box of the sites toppled, columns
+  // first_block..last_block and rows first_row..last_row (lowest and highest coordinates,
+  // also on a periodic axis); blocks = distinct sites toppled; moment = total stress released (the
+  // sum of F_j over topplings); duration = generations; load = cumulative drive at the trigger;
   // topplings = all topplings; max_speed, pad_displacement, energy_residual = 0.
   EventRecord next_event();
 

@@ -40,7 +40,9 @@ const Schema& ofc_catalog_schema() {
         {c::load, "stress",
          "cumulative uniform drive at the trigger (threshold F_th = 1); the clock of the "
          "relaxation"},
-        {c::trigger, "", "site index x + model.blocks * y of the site driven to the threshold",
+        {c::trigger, "",
+         "column x (0-based, along strike) of the site driven to the threshold; its row is "
+         "trigger_row",
          kInteger},
         {c::blocks, "", "number of distinct sites that toppled", kInteger},
         {c::moment, "stress", "total stress released: sum over topplings of the site's stress"},
@@ -50,8 +52,8 @@ const Schema& ofc_catalog_schema() {
          "longest causal chain (1: the trigger alone)"},
         {c::max_speed, "", "0 (the automaton has no speeds)"},
         {c::pad_displacement, "", "0 (no pad)"},
-        {c::first_block, "", "lowest site index x + model.blocks * y that toppled", kInteger},
-        {c::last_block, "", "highest site index x + model.blocks * y that toppled", kInteger},
+        {c::first_block, "", "lowest column x that toppled", kInteger},
+        {c::last_block, "", "highest column x that toppled", kInteger},
         {c::energy_residual, "", "0 (no energy ledger)"},
         {c::topplings, "", "topplings in the avalanche (a site may topple more than once)",
          kInteger},
@@ -61,8 +63,34 @@ const Schema& ofc_catalog_schema() {
   return schema;
 }
 
-std::string catalog_header(bool with_topplings) {
-  return header_of(with_topplings ? ofc_catalog_schema() : catalog_schema());
+const Schema& lattice_row_columns() {
+  namespace c = catalog_col;
+  // The event's bounding box is [first_block, last_block] x [first_row, last_row]: the
+  // lowest and highest coordinates, also on a periodic axis (an event across the seam
+  // spans the whole axis there).
+  static const Schema s = {
+      {c::trigger_row, "", "row y (0-based, across strike) of the trigger; model.rows > 1 only",
+       kInteger},
+      {c::first_row, "", "lowest row y that slipped; model.rows > 1 only", kInteger},
+      {c::last_row, "", "highest row y that slipped; model.rows > 1 only", kInteger},
+  };
+  return s;
+}
+
+const Schema& catalog_schema(CatalogLayout layout) {
+  const auto with_rows = [](const Schema& base) {
+    Schema s = base;
+    for (const auto& c : lattice_row_columns()) s.push_back(c);
+    return s;
+  };
+  static const Schema chain_rows = with_rows(catalog_schema());
+  static const Schema ofc_rows = with_rows(ofc_catalog_schema());
+  if (layout.topplings) return layout.rows ? ofc_rows : ofc_catalog_schema();
+  return layout.rows ? chain_rows : catalog_schema();
+}
+
+std::string catalog_header(CatalogLayout layout) {
+  return header_of(catalog_schema(layout));
 }
 
 namespace {
@@ -89,22 +117,36 @@ CatalogCells catalog_cells(const EventRecord& e) {
            {false, 0, e.energy_residual}}};
 }
 
-char* catalog_row_to(char* out, const EventRecord& e, bool with_topplings) {
+std::size_t catalog_extra_cells(const EventRecord& e, CatalogLayout layout, std::int64_t* out) {
+  // Same order as catalog_schema(layout) after the common columns.
+  std::size_t n = 0;
+  if (layout.topplings) out[n++] = e.topplings;
+  if (layout.rows) {
+    out[n++] = e.trigger_row;
+    out[n++] = e.first_row;
+    out[n++] = e.last_row;
+  }
+  return n;
+}
+
+char* catalog_row_to(char* out, const EventRecord& e, CatalogLayout layout) {
   const CatalogCells cells = catalog_cells(e);
   for (std::size_t k = 0; k < cells.size(); ++k) {
     if (k > 0) *out++ = ',';
     out = cells[k].integer ? integer_to(out, cells[k].i) : format_real_to(out, cells[k].x);
   }
-  if (with_topplings) {
+  std::int64_t extra[4];
+  const std::size_t n = catalog_extra_cells(e, layout, extra);
+  for (std::size_t k = 0; k < n; ++k) {
     *out++ = ',';
-    out = integer_to(out, e.topplings);
+    out = integer_to(out, extra[k]);
   }
   return out;
 }
 
-std::string catalog_row(const EventRecord& e, bool with_topplings) {
+std::string catalog_row(const EventRecord& e, CatalogLayout layout) {
   char buf[kMaxCatalogRow];
-  return std::string(buf, catalog_row_to(buf, e, with_topplings));
+  return std::string(buf, catalog_row_to(buf, e, layout));
 }
 
 }  // namespace bkq

@@ -29,15 +29,35 @@ inline constexpr const char* first_block = "first_block";
 inline constexpr const char* last_block = "last_block";
 inline constexpr const char* energy_residual = "energy_residual";
 inline constexpr const char* topplings = "topplings";  // OFC catalogues only
+// Lattices of more than one row only (model.rows > 1).
+inline constexpr const char* trigger_row = "trigger_row";
+inline constexpr const char* first_row = "first_row";
+inline constexpr const char* last_row = "last_row";
 }  // namespace catalog_col
+
+// Which columns a catalogue has beyond the common ones: `topplings` (the OFC automaton)
+// and the rows of a lattice with more than one row (trigger_row, first_row, last_row, in
+// that order, after topplings). A chain or a single row writes no row columns, so its
+// catalogue keeps the columns it always had.
+struct CatalogLayout {
+  bool topplings = false;
+  bool rows = false;
+  std::size_t extra_columns() const { return (topplings ? 1 : 0) + (rows ? 3 : 0); }
+  bool operator==(const CatalogLayout&) const = default;
+};
 
 // The catalogue schema: column order is the CSV column order.
 const Schema& catalog_schema();
 // The OFC automaton's catalogue (engine/ofc.hpp): the same columns, read as the schema's
 // docs say for a lattice of sites, then `topplings`.
 const Schema& ofc_catalog_schema();
-// "event,load,trigger,..." (no newline); with_topplings: the OFC catalogue's header.
-std::string catalog_header(bool with_topplings = false);
+// The schema of a layout: catalog_schema() or ofc_catalog_schema(), then the row columns
+// when layout.rows.
+const Schema& catalog_schema(CatalogLayout layout);
+// The three row columns, as every layout with rows declares them.
+const Schema& lattice_row_columns();
+// "event,load,trigger,..." (no newline) of a layout.
+std::string catalog_header(CatalogLayout layout = {});
 // The columns' count, and one row's values in schema order: integer columns in `i`, the
 // others in `x`. Every catalogue format writes these.
 inline constexpr std::size_t kCatalogColumns = 12;
@@ -49,13 +69,15 @@ struct CatalogCell {
 using CatalogCells = std::array<CatalogCell, kCatalogColumns>;
 CatalogCells catalog_cells(const EventRecord& e);
 
-// One CSV row (no newline): integers as integers, reals shortest round-trip; with_topplings
-// appends the OFC catalogue's topplings column.
-std::string catalog_row(const EventRecord& e, bool with_topplings = false);
+// One CSV row (no newline): integers as integers, reals shortest round-trip; the layout's
+// extra columns after the common ones.
+std::string catalog_row(const EventRecord& e, CatalogLayout layout = {});
 // The longest row catalog_row_to writes.
 inline constexpr std::size_t kMaxCatalogRow = 512;
 // catalog_row's text written at `out` (room for kMaxCatalogRow); returns the end. The
 // streamed catalog formats straight into its write buffer with this.
-char* catalog_row_to(char* out, const EventRecord& e, bool with_topplings = false);
+char* catalog_row_to(char* out, const EventRecord& e, CatalogLayout layout = {});
+// The layout's extra cells (all integers) in schema order; returns how many.
+std::size_t catalog_extra_cells(const EventRecord& e, CatalogLayout layout, std::int64_t* out);
 
 }  // namespace bkq

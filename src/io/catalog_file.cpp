@@ -15,15 +15,15 @@ namespace {
 
 class CsvCatalog : public CatalogFile {
  public:
-  CsvCatalog(const std::string& path, bool append, bool topplings)
-      : csv_(path, catalog_header(topplings), append, CsvStream::kWhenFull),
-        checksum_(line_hash(catalog_header(topplings) + "\n", kLineHashSeed)),
-        topplings_(topplings) {}
+  CsvCatalog(const std::string& path, bool append, CatalogLayout layout)
+      : csv_(path, catalog_header(layout), append, CsvStream::kWhenFull),
+        checksum_(line_hash(catalog_header(layout) + "\n", kLineHashSeed)),
+        layout_(layout) {}
   std::optional<std::uint64_t> checksum() const override { return checksum_; }
   void set_checksum(std::uint64_t sum) override { checksum_ = sum; }
   void append(const EventRecord& e) override {
     char* begin = csv_.begin_row(kMaxCatalogRow);
-    char* end = catalog_row_to(begin, e, topplings_);
+    char* end = catalog_row_to(begin, e, layout_);
     *end = '\n';  // end_row writes it there too; hashed with the row
     checksum_ = line_hash(std::string_view(begin, end + 1 - begin), checksum_);
     csv_.end_row(end);
@@ -35,15 +35,15 @@ class CsvCatalog : public CatalogFile {
  private:
   CsvStream csv_;
   std::uint64_t checksum_;  // line_hash of every line written to the file so far
-  bool topplings_;          // the OFC catalogue's extra column
+  CatalogLayout layout_;    // the columns beyond the common ones
 };
 
 class H5Catalog : public CatalogFile {
  public:
   H5Catalog(const std::string& path,
             const std::vector<std::pair<std::string, std::string>>& attributes,
-            std::int64_t resumed_rows, bool deflate, bool topplings)
-      : h5_(path, attributes, resumed_rows, deflate ? 1 : 0, topplings) {}
+            std::int64_t resumed_rows, bool deflate, CatalogLayout layout)
+      : h5_(path, attributes, resumed_rows, deflate ? 1 : 0, layout) {}
   std::optional<std::uint64_t> checksum() const override { return h5_.checksum(); }
   void set_checksum(std::uint64_t sum) override { h5_.set_checksum(sum); }
   void append(const EventRecord& e) override { h5_.append(e); }
@@ -75,12 +75,12 @@ const char* catalog_file_name(CatalogFormat format) {
 std::unique_ptr<CatalogFile> open_catalog_file(
     CatalogFormat format, const std::string& path,
     const std::vector<std::pair<std::string, std::string>>& attributes, std::int64_t resumed_rows,
-    bool deflate, bool topplings) {
+    bool deflate, CatalogLayout layout) {
   switch (format) {
     case CatalogFormat::Csv:
-      return std::make_unique<CsvCatalog>(path, resumed_rows >= 0, topplings);
+      return std::make_unique<CsvCatalog>(path, resumed_rows >= 0, layout);
     case CatalogFormat::Hdf5:
-      return std::make_unique<H5Catalog>(path, attributes, resumed_rows, deflate, topplings);
+      return std::make_unique<H5Catalog>(path, attributes, resumed_rows, deflate, layout);
     case CatalogFormat::None:
       break;
   }

@@ -12,9 +12,16 @@
 #include <vector>
 
 #include "engine/event_record.hpp"
+#include "io/catalog.hpp"
 #include "io/settings.hpp"
 
 namespace bkq {
+
+// The catalogue's columns for a run of these settings: the OFC automaton's topplings, and
+// the row columns of a lattice with more than one row.
+inline CatalogLayout catalog_layout(const Settings& s) {
+  return {.topplings = s.ofc.on, .rows = s.ofc.on && s.ofc.lattice.ny > 1};
+}
 
 // "catalog.csv", "catalog.h5"; nullptr for CatalogFormat::None.
 const char* catalog_file_name(CatalogFormat format);
@@ -40,11 +47,11 @@ class CatalogFile {
 // or the `attributes` (hdf5: provenance and effective scene); with `resumed_rows` >= 0 the
 // file of a resumed run is continued after its first `resumed_rows` rows (a csv file has
 // already been cut back to its checkpoint by then). `deflate`: a new catalog.h5 is
-// compressed (output.catalog = hdf5-deflate). `topplings`: the OFC catalogue (csv only),
-// with its topplings column.
+// compressed (output.catalog = hdf5-deflate). `layout`: the columns beyond the common ones
+// (the OFC catalogue's topplings, a lattice's rows).
 std::unique_ptr<CatalogFile> open_catalog_file(
     CatalogFormat format, const std::string& path,
     const std::vector<std::pair<std::string, std::string>>& attributes,
-    std::int64_t resumed_rows = -1, bool deflate = false, bool topplings = false);
+    std::int64_t resumed_rows = -1, bool deflate = false, CatalogLayout layout = {});
 
 }  // namespace bkq

@@ -39,7 +39,7 @@ bool hdf5_available() {
 struct CatalogH5Writer::Impl {};
 CatalogH5Writer::CatalogH5Writer(const std::string&,
                                  const std::vector<std::pair<std::string, std::string>>&,
-                                 std::int64_t, int, bool) {
+                                 std::int64_t, int, CatalogLayout) {
   unavailable();
 }
 CatalogH5Writer::~CatalogH5Writer() = default;
@@ -52,7 +52,8 @@ std::int64_t CatalogH5Writer::sync() {
   return 0;
 }
 void CatalogH5Writer::close() {}
-void check_catalog_h5(const std::string&, std::int64_t, std::optional<std::uint64_t>, bool) {
+void check_catalog_h5(const std::string&, std::int64_t, std::optional<std::uint64_t>,
+                      CatalogLayout) {
   unavailable();
 }
 struct CatalogH5Reader::Impl {};
@@ -132,9 +133,9 @@ void check(herr_t rc, const std::string& path, const std::string& what) {
 }
 
 // The row type: the schema's columns in order, 8 bytes each (the OFC automaton's schema
-// adds topplings after the common columns).
-Handle row_type(const std::string& path, bool topplings) {
-  const Schema& schema = topplings ? ofc_catalog_schema() : catalog_schema();
+// adds topplings after the common columns, a lattice of rows its row columns).
+Handle row_type(const std::string& path, CatalogLayout layout) {
+  const Schema& schema = catalog_schema(layout);
   Handle t = checked(H5Tcreate(H5T_COMPOUND, 8 * schema.size()), H5Tclose, path,
                      "cannot build the row type");
   for (std::size_t k = 0; k < schema.size(); ++k)
@@ -221,7 +222,8 @@ struct CatalogH5Writer::Impl {
   std::size_t buffered = 0;
   bool closed = false;
   std::uint64_t checksum = kLineHashSeed;
-  std::size_t columns = kCatalogColumns;  // kCatalogColumns, + 1 for the OFC catalogue
+  CatalogLayout layout;
+  std::size_t columns = kCatalogColumns;  // kCatalogColumns + layout.extra_columns()
 
   // Writes the buffered rows at the end of the table.
   void write_buffer() {
@@ -241,13 +243,14 @@ struct CatalogH5Writer::Impl {
 
 CatalogH5Writer::CatalogH5Writer(const std::string& path,
                                  const std::vector<std::pair<std::string, std::string>>& attributes,
-                                 std::int64_t append_after, int deflate_level, bool topplings)
+                                 std::int64_t append_after, int deflate_level, CatalogLayout layout)
     : impl_(std::make_unique<Impl>()) {
   quiet_hdf5();
   Impl& w = *impl_;
   w.path = path;
-  w.type = row_type(path, topplings);
-  w.columns = kCatalogColumns + (topplings ? 1 : 0);
+  w.layout = layout;
+  w.type = row_type(path, layout);
+  w.columns = kCatalogColumns + layout.extra_columns();
   w.buf.resize(kChunkRows * 8 * w.columns);
   if (append_after >= 0) {
     Opened o = open_table(path, true);
@@ -299,10 +302,9 @@ void CatalogH5Writer::append(const EventRecord& e) {
     else
       std::memcpy(row + 8 * k, &cells[k].x, 8);
   }
-  if (w.columns > kCatalogColumns) {
-    const std::int64_t topplings = e.topplings;
-    std::memcpy(row + 8 * kCatalogColumns, &topplings, 8);
-  }
+  std::int64_t extra[4];
+  const std::size_t n = catalog_extra_cells(e, w.layout, extra);
+  std::memcpy(row + 8 * kCatalogColumns, extra, 8 * n);
   w.checksum =
       line_hash(std::string_view(reinterpret_cast<const char*>(row), 8 * w.columns), w.checksum);
   if (++w.buffered == kChunkRows) w.write_buffer();
@@ -334,15 +336,26 @@ void CatalogH5Writer::set_checksum(std::uint64_t sum) {
 }
 
 void check_catalog_h5(const std::string& path, std::int64_t rows,
-                      std::optional<std::uint64_t> checksum, bool topplings) {
+                      std::optional<std::uint64_t> checksum, CatalogLayout layout) {
   const Opened o = open_table(path, false);
+  {
+    // A table of other columns (a lattice's rows where the run has none, or the other way
+    // round) is not the run's catalogue.
+    const Handle file_type =
+        checked(H5Dget_type(o.table), H5Tclose, path, "cannot read the table's row type");
+    const int members = H5Tget_nmembers(file_type);
+    if (members != static_cast<int>(kCatalogColumns + layout.extra_columns()))
+      fail(path, "has " + std::to_string(members) + " columns, the run writes " +
+                     std::to_string(kCatalogColumns + layout.extra_columns()) +
+                     "; start over with --force");
+  }
   if (o.rows < static_cast<hsize_t>(rows))
     fail(path, "holds " + std::to_string(o.rows) + " rows, the checkpoint counts " +
                    std::to_string(rows));
   if (!checksum) return;
   // The rows as the writer laid them out (row_type), hashed a block at a time.
-  const Handle type = row_type(path, topplings);
-  const std::size_t row_bytes = 8 * (kCatalogColumns + (topplings ? 1 : 0));
+  const Handle type = row_type(path, layout);
+  const std::size_t row_bytes = 8 * (kCatalogColumns + layout.extra_columns());
   std::vector<unsigned char> buf;
   std::uint64_t hash = kLineHashSeed;
   for (hsize_t start = 0; start < static_cast<hsize_t>(rows);) {
@@ -389,7 +402,8 @@ CatalogH5Reader::CatalogH5Reader(const std::string& path, const std::vector<std:
   r.type = checked(H5Tcreate(H5T_COMPOUND, 8 * names.size()), H5Tclose, path,
                    "cannot build the row type");
   for (std::size_t k = 0; k < names.size(); ++k) {
-    column(ofc_catalog_schema(), names[k]);  // a name outside the schemas is a bug
+    // A name outside the schemas is a bug.
+    column(catalog_schema(CatalogLayout{.topplings = true, .rows = true}), names[k]);
     const bool in_file = H5Tget_member_index(file_type, names[k].c_str()) >= 0;
     r.present.push_back(in_file);
     if (in_file)

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "engine/event_record.hpp"
+#include "io/catalog.hpp"
 
 namespace bkq {
 
@@ -40,7 +41,7 @@ class CatalogH5Writer {
   // table and cuts it back to its first `append_after` rows.
   CatalogH5Writer(const std::string& path,
                   const std::vector<std::pair<std::string, std::string>>& attributes,
-                  std::int64_t append_after = -1, int deflate_level = 0, bool topplings = false);
+                  std::int64_t append_after = -1, int deflate_level = 0, CatalogLayout layout = {});
   ~CatalogH5Writer();
   CatalogH5Writer(const CatalogH5Writer&) = delete;
   CatalogH5Writer& operator=(const CatalogH5Writer&) = delete;
@@ -62,10 +63,12 @@ class CatalogH5Writer {
 
 // Checks that `path` is a catalogue table with at least `rows` rows and, with `checksum`,
 // that those rows hash to it (CatalogH5Writer::checksum: an edited row is found, as in
-// catalog.csv; `topplings`: the OFC catalogue's rows); a resume's check, before anything is
+// catalog.csv; `layout`: the columns the rows have beyond the common ones; a table with
+// other columns is refused); a resume's check, before anything is
 // changed. bkq::Error naming the file.
 void check_catalog_h5(const std::string& path, std::int64_t rows,
-                      std::optional<std::uint64_t> checksum = std::nullopt, bool topplings = false);
+                      std::optional<std::uint64_t> checksum = std::nullopt,
+                      CatalogLayout layout = {});
 
 // Reads the columns `names` (each must be a column of the catalogue schema) of a catalog.h5
 // in blocks. A column the file lacks is reported by has(); reading it gives nothing.

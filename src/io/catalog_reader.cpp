@@ -17,9 +17,9 @@ namespace col = catalog_col;
 namespace {
 
 // The columns an HDF5 catalogue is read with, in the order of h5 below.
-const std::vector<std::string> kH5Columns = {col::event,       col::load,       col::blocks,
-                                             col::first_block, col::last_block, col::moment,
-                                             col::magnitude,   col::trigger,    col::duration};
+const std::vector<std::string> kH5Columns = {
+    col::event,     col::load,    col::blocks,   col::first_block, col::last_block, col::moment,
+    col::magnitude, col::trigger, col::duration, col::trigger_row, col::first_row,  col::last_row};
 
 }  // namespace
 
@@ -28,8 +28,9 @@ CatalogReader::~CatalogReader() = default;
 CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.string()) {
   if (is_hdf5_file(file_)) {
     h5_ = std::make_unique<CatalogH5Reader>(file_, kH5Columns);
-    int* c[] = {&c_event_,  &c_load_,      &c_blocks_,  &c_first_,   &c_last_,
-                &c_moment_, &c_magnitude_, &c_trigger_, &c_duration_};
+    int* c[] = {&c_event_,    &c_load_,        &c_blocks_,    &c_first_,
+                &c_last_,     &c_moment_,      &c_magnitude_, &c_trigger_,
+                &c_duration_, &c_trigger_row_, &c_first_row_, &c_last_row_};
     for (std::size_t k = 0; k < kH5Columns.size(); ++k)
       *c[k] = h5_->has(k) ? static_cast<int>(k) : -1;
     if (c_moment_ < 0 && c_magnitude_ < 0)
@@ -45,7 +46,7 @@ CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.str
   }
   const auto header = csv::split(header_line);
   n_fields_ = header.size();
-  const Schema& schema = catalog_schema();
+  const Schema& schema = catalog_schema(CatalogLayout{.topplings = true, .rows = true});
   c_event_ = csv::find_column(header, schema, col::event);
   c_load_ = csv::find_column(header, schema, col::load);
   c_blocks_ = csv::find_column(header, schema, col::blocks);
@@ -55,6 +56,9 @@ CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.str
   c_magnitude_ = csv::find_column(header, schema, col::magnitude);
   c_trigger_ = csv::find_column(header, schema, col::trigger);
   c_duration_ = csv::find_column(header, schema, col::duration);
+  c_trigger_row_ = csv::find_column(header, schema, col::trigger_row);
+  c_first_row_ = csv::find_column(header, schema, col::first_row);
+  c_last_row_ = csv::find_column(header, schema, col::last_row);
   if (c_moment_ < 0 && c_magnitude_ < 0)
     throw Error(file_ + ": missing column '" + col::moment + "' (header: " + header_line + ")");
 }
@@ -79,6 +83,9 @@ bool CatalogReader::next_h5(CatalogEvent& e) {
   if (c_first_ >= 0) e.first_block = as_int(c_first_, col::first_block);
   if (c_last_ >= 0) e.last_block = as_int(c_last_, col::last_block);
   if (c_trigger_ >= 0) e.trigger = as_int(c_trigger_, col::trigger);
+  if (c_trigger_row_ >= 0) e.trigger_row = as_int(c_trigger_row_, col::trigger_row);
+  if (c_first_row_ >= 0) e.first_row = as_int(c_first_row_, col::first_row);
+  if (c_last_row_ >= 0) e.last_row = as_int(c_last_row_, col::last_row);
   if (c_duration_ >= 0) e.duration = v[c_duration_];
   if (c_moment_ >= 0) {
     e.moment = v[c_moment_];
@@ -127,6 +134,9 @@ bool CatalogReader::next(CatalogEvent& e) {
     if (c_first_ >= 0) e.first_block = as_int(c_first_, col::first_block);
     if (c_last_ >= 0) e.last_block = as_int(c_last_, col::last_block);
     if (c_trigger_ >= 0) e.trigger = as_int(c_trigger_, col::trigger);
+    if (c_trigger_row_ >= 0) e.trigger_row = as_int(c_trigger_row_, col::trigger_row);
+    if (c_first_row_ >= 0) e.first_row = as_int(c_first_row_, col::first_row);
+    if (c_last_row_ >= 0) e.last_row = as_int(c_last_row_, col::last_row);
     if (c_duration_ >= 0)
       e.duration = csv::parse_double(field(c_duration_), file_, lineno_, col::duration);
     if (c_moment_ >= 0) {

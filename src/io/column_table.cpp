@@ -151,9 +151,15 @@ class CsvTableReader {
   std::int64_t lineno_ = 0;
 };
 
+// Every column any catalogue declares (the OFC automaton's topplings, a lattice's rows):
+// a file's own columns are those it has.
+const Schema& any_catalog_schema() {
+  return catalog_schema(CatalogLayout{.topplings = true, .rows = true});
+}
+
 ColumnTable read_h5_catalog(const std::filesystem::path& path) {
   std::vector<std::string> names;
-  for (const ColumnSpec& s : catalog_schema()) names.emplace_back(s.name);
+  for (const ColumnSpec& s : any_catalog_schema()) names.emplace_back(s.name);
   CatalogH5Reader reader(path.string(), names);
   ColumnTable t;
   t.file = path.string();
@@ -164,7 +170,7 @@ ColumnTable read_h5_catalog(const std::filesystem::path& path) {
     present.push_back(k);
     TableColumn c;
     c.name = names[k];
-    c.integer = std::string_view(catalog_schema()[k].format) == kInteger;
+    c.integer = std::string_view(any_catalog_schema()[k].format) == kInteger;
     if (c.integer)
       c.i.reserve(rows);
     else
@@ -197,7 +203,7 @@ ColumnTable read_csv_table(const std::filesystem::path& path, const Schema& sche
 
 ColumnTable read_catalog_table(const std::filesystem::path& path) {
   if (is_hdf5_file(path.string())) return read_h5_catalog(path);
-  return read_csv_table(path, catalog_schema());
+  return read_csv_table(path, any_catalog_schema());
 }
 
 }  // namespace bkq

@@ -66,7 +66,8 @@ std::vector<ReadmeTable> readme_tables() {
   return {
       {"scene-keys", scene_key_table()},
       {"catalog.csv", column_table(catalog_schema())},
-      {"ofc catalog.csv", column_table(ofc_catalog_schema())},
+      {"ofc catalog.csv",
+       column_table(catalog_schema(CatalogLayout{.topplings = true, .rows = true}))},
       {"histogram.csv", column_table(histogram_schema())},
       {"timeseries.csv", column_table(timeseries_schema())},
       {"timeseries.csv status", column_table(timeseries_status_schema())},

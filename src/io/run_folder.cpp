@@ -19,6 +19,9 @@ SceneModelInfo read_scene_model(const std::filesystem::path& scene_ini) {
     if (key == "model.blocks") {
       scene.set(key, value, where);
       info.blocks = static_cast<int>(scene.integer(key));
+    } else if (key == "model.rows") {
+      scene.set(key, value, where);
+      info.rows = static_cast<int>(scene.integer(key));
     } else if (key == "model.boundary") {
       scene.set(key, value, where);
       info.boundary = scene.choice(key);

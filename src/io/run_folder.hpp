@@ -19,6 +19,7 @@ namespace bkq {
 
 struct SceneModelInfo {
   std::optional<int> blocks;            // [model] blocks
+  std::optional<int> rows;              // [model] rows (a lattice's, when above 1)
   std::optional<std::string> boundary;  // [model] boundary ("free" | "periodic")
   std::optional<std::string> alpha;     // [friction] alpha, for labels
 };

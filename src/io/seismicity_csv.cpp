@@ -143,11 +143,12 @@ const Schema& spacetime_schema() {
       {"t_high", kTimeUnits, "upper edge"},
       {"d_low", "blocks",
        "density: lower edge of the distance between the event's and the mainshock's trigger "
-       "block (nan for b)"},
+       "block (a lattice's: Euclidean between trigger sites, in site spacings) (nan for b)"},
       {"d_high", "blocks", "density: upper edge (exclusive)"},
       {"events", "", "events in the cell (b: with mu >= mu_c)", kInteger},
       {"density", "1/(block clock)",
-       "events / (sum over mainshocks of the blocks at that distance * covered time)"},
+       "events / (sum over mainshocks of the blocks (a lattice's sites) at that distance * "
+       "covered time)"},
       {"b", "", "Aki's b of the events with mu >= mu_c (seismicity.json) (nan for density)"},
       {"b_err", "", "its standard error b / sqrt(events)"},
   };

@@ -23,6 +23,16 @@ EventClass classify_event(int blocks, int first_block, int last_block, int n, Bo
   return EventClass::localised;
 }
 
+EventClass classify_lattice_event(int blocks, int first_block, int last_block, int first_row,
+                                  int last_row, int nx, int ny) {
+  if (blocks <= 1) return EventClass::single_block;
+  const std::int64_t sites = static_cast<std::int64_t>(nx) * ny;
+  if (2 * static_cast<std::int64_t>(blocks) >= sites) return EventClass::delocalised;
+  if (last_block - first_block + 1 >= nx || last_row - first_row + 1 >= ny)
+    return EventClass::delocalised;
+  return EventClass::localised;
+}
+
 void EventClassCounts::add(EventClass c) {
   switch (c) {
     case EventClass::single_block:

@@ -8,6 +8,14 @@
 //   localised     everything else (2 <= blocks < N - 1, away from the free ends).
 // With a periodic boundary there are no ends, so only the span criterion applies. The
 // boundary is the model's (model/parameters.hpp), so there is one Boundary type.
+// On a lattice of nx columns by ny rows (N = nx ny sites; `blocks` counts the sites that
+// slipped or toppled) the classes are by sites relative to N and by the event's bounding
+// box, whatever the boundaries:
+//   single-block  one site;
+//   delocalised   at least half the sites (2 blocks >= N), or the bounding box spans the
+//                 lattice from edge to edge along strike (all nx columns) or across (all ny
+//                 rows): a rupture through the whole fault one way;
+//   localised     everything else.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +29,10 @@ const char* to_string(EventClass c);
 
 // blocks: number of blocks that slipped; first/last: 0-based lowest/highest index; n: N.
 EventClass classify_event(int blocks, int first_block, int last_block, int n, Boundary boundary);
+// A lattice of nx x ny sites (ny > 1): columns first_block..last_block and rows
+// first_row..last_row, the bounding box of the sites that slipped.
+EventClass classify_lattice_event(int blocks, int first_block, int last_block, int first_row,
+                                  int last_row, int nx, int ny);
 
 struct EventClassCounts {
   std::int64_t single_block = 0;

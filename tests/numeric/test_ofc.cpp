@@ -17,6 +17,11 @@
 namespace bkq {
 namespace {
 
+// The site index j = x + nx y of an event's trigger (x, y) = (trigger, trigger_row).
+int trigger_site(const EventRecord& r, int nx) {
+  return r.trigger + nx * r.trigger_row;
+}
+
 double total(const std::vector<double>& f) {
   return std::accumulate(f.begin(), f.end(), 0.0);
 }
@@ -72,7 +77,7 @@ TEST(Ofc, ConservativeTopplingLosesStressOnlyOverFreeEdges) {
   for (int k = 0; k < 2000 && interior < 20; ++k) {
     const double before = total(e.field()), load0 = e.load(), lost0 = e.lost();
     const EventRecord r = e.next_event();
-    const bool inside = r.first_block >= 2 * p.nx && r.last_block < (p.ny - 2) * p.nx;
+    const bool inside = r.first_row >= 2 && r.last_row < p.ny - 2;
     if (!inside) continue;
     ++interior;
     EXPECT_EQ(e.lost(), lost0);
@@ -112,6 +117,10 @@ TEST(Ofc, AfterAnAvalancheEverySiteIsBelowThreshold) {
       ASSERT_GE(r.duration, 1.0);
       ASSERT_LE(r.first_block, r.trigger);
       ASSERT_GE(r.last_block, r.trigger);
+      ASSERT_LT(r.last_block, p.nx);
+      ASSERT_LE(r.first_row, r.trigger_row);
+      ASSERT_GE(r.last_row, r.trigger_row);
+      ASSERT_LT(r.last_row, p.ny);
     }
     EXPECT_GT(big, 20);  // avalanches happened, not only single topplings
   }
@@ -129,7 +138,7 @@ TEST(Ofc, LoaderPicksTheSiteAFullScanPicks) {
     // And by stress: no site holds more than the one picked.
     const std::vector<double> f = e.field();
     ASSERT_EQ(f[scan], *std::max_element(f.begin(), f.end())) << "event " << k;
-    ASSERT_EQ(e.next_event().trigger, scan) << "event " << k;
+    ASSERT_EQ(trigger_site(e.next_event(), p.nx), scan) << "event " << k;
   }
 }
 
@@ -148,12 +157,19 @@ TEST(Ofc, TransposingTheLatticeTransposesTheEvents) {
     std::vector<double> fb(fa.size());
     for (int j = 0; j < a.sites(); ++j) fb[transposed(j, nx, ny)] = fa[j];
     OfcEngine ea(a, fa), eb(b, fb);
+    int spread = 0;  // events over more than one site
     for (int k = 0; k < 500; ++k) {
       const EventRecord ra = ea.next_event(), rb = eb.next_event();
       // The trigger is the lowest-index site of the largest stress: with a tie the two
       // lattices may name different ones of the same stress.
-      ASSERT_EQ(ea.stress(ra.trigger), eb.stress(rb.trigger)) << "event " << k;
+      ASSERT_EQ(ea.stress(trigger_site(ra, nx)), eb.stress(trigger_site(rb, ny))) << "event " << k;
       ASSERT_EQ(ra.blocks, rb.blocks) << "event " << k;
+      // The bounding box: a's columns are b's rows and a's rows b's columns.
+      ASSERT_EQ(ra.first_block, rb.first_row) << "event " << k;
+      ASSERT_EQ(ra.last_block, rb.last_row) << "event " << k;
+      ASSERT_EQ(ra.first_row, rb.first_block) << "event " << k;
+      ASSERT_EQ(ra.last_row, rb.last_block) << "event " << k;
+      if (ra.blocks > 1) ++spread;
       ASSERT_EQ(ra.topplings, rb.topplings) << "event " << k;
       ASSERT_EQ(ra.duration, rb.duration) << "event " << k;
       // The releases are summed in another order: equal to rounding.
@@ -162,6 +178,7 @@ TEST(Ofc, TransposingTheLatticeTransposesTheEvents) {
       for (int j = 0; j < a.sites(); ++j)
         ASSERT_EQ(fb[transposed(j, nx, ny)], fa[j]) << "event " << k;
     }
+    EXPECT_GT(spread, 50);
   }
 }
 
@@ -182,7 +199,7 @@ TEST(Ofc, OnATorusAShiftOfTheFieldShiftsTheEvents) {
     // The releases are summed in another order: equal to rounding.
     ASSERT_NEAR(ra.moment, rb.moment, 1e-12 * ra.moment) << "event " << k;
     // The trigger is the lowest-index site of the largest stress: the same stress.
-    ASSERT_EQ(a.stress(ra.trigger), b.stress(rb.trigger)) << "event " << k;
+    ASSERT_EQ(a.stress(trigger_site(ra, nx)), b.stress(trigger_site(rb, nx))) << "event " << k;
     const std::vector<double> fa = a.field(), fb = b.field();
     for (int j = 0; j < p.sites(); ++j) ASSERT_EQ(fb[shift(j)], fa[j]) << "event " << k;
   }
@@ -196,6 +213,7 @@ TEST(Ofc, ASnapshotContinuesBitForBit) {
   for (int k = 0; k < 3000; ++k) {  // past renormalisations of the offset
     const EventRecord ra = a.next_event(), rb = b.next_event();
     ASSERT_EQ(ra.trigger, rb.trigger);
+    ASSERT_EQ(ra.trigger_row, rb.trigger_row);
     ASSERT_EQ(ra.moment, rb.moment);
     ASSERT_EQ(ra.load, rb.load);
   }
@@ -211,11 +229,16 @@ TEST(Ofc, DriveEndsWhenTheTriggerIsAnUlpBelowThreshold) {
   f[15] = 1.0 - 0x1p-53;  // not a neighbour of site 5
   OfcEngine e(p, f);
   const EventRecord r = e.next_event();
-  EXPECT_EQ(r.trigger, 5);
+  // Site 5 is (x, y) = (1, 1), site 15 is (3, 3): the bounding box spans both.
+  EXPECT_EQ(r.trigger, 1);
+  EXPECT_EQ(r.trigger_row, 1);
   EXPECT_EQ(r.topplings, 2);
   EXPECT_EQ(r.blocks, 2);
   EXPECT_EQ(r.duration, 1.0);
-  EXPECT_EQ(r.last_block, 15);
+  EXPECT_EQ(r.first_block, 1);
+  EXPECT_EQ(r.last_block, 3);
+  EXPECT_EQ(r.first_row, 1);
+  EXPECT_EQ(r.last_row, 3);
   for (int j = 0; j < p.sites(); ++j) EXPECT_LT(e.stress(j), 1.0) << j;
   EXPECT_EQ(e.stress(5), 0.0);
   EXPECT_EQ(e.stress(15), 0.0);
@@ -331,7 +354,7 @@ TEST(Ofc, RelaxationLeavesEverySiteBelowThresholdAndFeedsLaterEvents) {
     std::vector<double> f = e.field();
     const int largest = static_cast<int>(std::max_element(f.begin(), f.end()) - f.begin());
     const EventRecord r = e.next_event();
-    relaxed_triggers += r.trigger != largest;
+    relaxed_triggers += trigger_site(r, p.nx) != largest;
     for (int j = 0; j < p.sites(); ++j) {
       ASSERT_LT(e.stress(j), 1.0) << "event " << k;
       ASSERT_GE(e.pending(j), 0.0);
@@ -347,7 +370,7 @@ TEST(Ofc, RelaxationSnapshotContinuesBitForBit) {
   OfcEngine b(p, a.snapshot());
   for (int k = 0; k < 3000; ++k) {
     const EventRecord ra = a.next_event(), rb = b.next_event();
-    ASSERT_EQ(ra.trigger, rb.trigger) << k;
+    ASSERT_EQ(trigger_site(ra, p.nx), trigger_site(rb, p.nx)) << k;
     ASSERT_EQ(ra.moment, rb.moment) << k;
     ASSERT_EQ(ra.load, rb.load) << k;
   }

@@ -16,6 +16,7 @@
 #include "cli_helpers.hpp"
 #include "io/catalog.hpp"
 #include "io/catalog_h5.hpp"
+#include "io/catalog_reader.hpp"
 #include "io/checkpoint.hpp"
 #include "io/scene.hpp"
 #include "io/settings.hpp"
@@ -46,30 +47,37 @@ std::vector<std::string> lines_of(const std::string& text) {
   return out;
 }
 
-TEST(OfcCli, CatalogueHasTheCommonColumnsPlusTopplings) {
+// A lattice of 20 rows: the common columns, topplings, then the rows' columns; the trigger
+// and the bounding box lie on the lattice and the trigger inside its box.
+TEST(OfcCli, CatalogueHasTheCommonColumnsPlusTopplingsAndRows) {
   test::TempDir tmp;
   const std::string out = tmp.file("out");
   const auto r = run_bkquake(run_args(ofc_with({"--set", "run.events=3000"}), {"--out", out}));
   ASSERT_EQ(r.status, 0) << r.err;
   const auto rows = lines_of(read_file(out + "/catalog.csv"));
   ASSERT_EQ(rows.size(), 3001u);
-  EXPECT_EQ(rows[0], catalog_header() + ",topplings");
-  EXPECT_EQ(rows[0], catalog_header(true));
-  std::int64_t several = 0;
+  EXPECT_EQ(rows[0], catalog_header() + ",topplings,trigger_row,first_row,last_row");
+  EXPECT_EQ(rows[0], catalog_header({.topplings = true, .rows = true}));
+  std::int64_t several = 0, across = 0;
   for (std::size_t k = 1; k < rows.size(); ++k) {
     std::vector<std::string> cells;
     std::istringstream in(rows[k]);
     for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
-    ASSERT_EQ(cells.size(), ofc_catalog_schema().size()) << rows[k];
-    const long blocks = std::stol(cells[3]), topplings = std::stol(cells.back());
-    const long trigger = std::stol(cells[2]);
+    ASSERT_EQ(cells.size(), ofc_catalog_schema().size() + 3) << rows[k];
+    const long blocks = std::stol(cells[3]), topplings = std::stol(cells[12]);
+    const long x = std::stol(cells[2]), x0 = std::stol(cells[9]), x1 = std::stol(cells[10]);
+    const long y = std::stol(cells[13]), y0 = std::stol(cells[14]), y1 = std::stol(cells[15]);
     ASSERT_GE(topplings, blocks) << rows[k];
     ASSERT_GE(blocks, 1) << rows[k];
-    ASSERT_GE(trigger, 0);
-    ASSERT_LT(trigger, 24 * 20);
+    ASSERT_TRUE(0 <= x0 && x0 <= x && x <= x1 && x1 < 24) << rows[k];
+    ASSERT_TRUE(0 <= y0 && y0 <= y && y <= y1 && y1 < 20) << rows[k];
+    // The box holds the sites that toppled.
+    ASSERT_GE((x1 - x0 + 1) * (y1 - y0 + 1), blocks) << rows[k];
     several += blocks > 1;
+    across += y1 > y0;
   }
   EXPECT_GT(several, 100);
+  EXPECT_GT(across, 50);
   EXPECT_TRUE(fs::exists(out + "/histogram.csv"));
   const std::string summary = read_file(out + "/summary.json");
   EXPECT_NE(summary.find("\"b_mle\""), std::string::npos) << summary;
@@ -78,10 +86,55 @@ TEST(OfcCli, CatalogueHasTheCommonColumnsPlusTopplings) {
   EXPECT_NE(scene.find("rows = 20"), std::string::npos) << scene;
   // Keys of the chain's physics do not apply to the automaton: written as comments.
   EXPECT_EQ(scene.find("\nscheme = "), std::string::npos) << scene;
-  // A chain run keeps today's columns.
+  // A chain run keeps today's columns, and so does a single row of the automaton (its
+  // trigger and first/last_block are the site indices they always were).
   const std::string bk = tmp.file("bk");
   ASSERT_EQ(run_bkquake({"run", "--set", "run.events=50", "--quiet", "--out", bk}).status, 0);
   EXPECT_EQ(lines_of(read_file(bk + "/catalog.csv"))[0], catalog_header());
+  const std::string row = tmp.file("row");
+  ASSERT_EQ(run_bkquake(run_args({"--set", "model.kind=ofc", "--set", "model.blocks=64", "--set",
+                                  "ofc.alpha=0.2", "--set", "run.events=50", "--quiet"},
+                                 {"--out", row}))
+                .status,
+            0);
+  EXPECT_EQ(lines_of(read_file(row + "/catalog.csv"))[0], catalog_header() + ",topplings");
+}
+
+// A lattice's catalogue read back (io/catalog_reader.hpp) from catalog.csv and catalog.h5:
+// the same triggers (x, y) and bounding boxes; a single row has no row columns.
+TEST(OfcCli, CatalogReaderReadsTheRowsOfCsvAndHdf5) {
+  test::TempDir tmp;
+  const std::string csv = tmp.file("csv"), h5 = tmp.file("h5");
+  const auto scene = ofc_with({"--set", "run.events=2000"});
+  ASSERT_EQ(run_bkquake(run_args(scene, {"--out", csv})).status, 0);
+  std::vector<CatalogEvent> a;
+  {
+    CatalogReader r(csv + "/catalog.csv");
+    EXPECT_TRUE(r.has_rows());
+    for (CatalogEvent e; r.next(e);) a.push_back(e);
+  }
+  ASSERT_EQ(a.size(), 2000u);
+  int off_row0 = 0;
+  for (const auto& e : a) off_row0 += e.trigger_row > 0;
+  EXPECT_GT(off_row0, 1000);
+  if (hdf5_available()) {
+    auto with_h5 = scene;
+    with_h5.insert(with_h5.end(), {"--set", "output.catalog=hdf5"});
+    ASSERT_EQ(run_bkquake(run_args(with_h5, {"--out", h5})).status, 0);
+    CatalogReader r(h5 + "/catalog.h5");
+    EXPECT_TRUE(r.has_rows());
+    std::size_t k = 0;
+    for (CatalogEvent e; r.next(e); ++k) {
+      ASSERT_LT(k, a.size());
+      ASSERT_EQ(e.trigger, a[k].trigger) << k;
+      ASSERT_EQ(e.trigger_row, a[k].trigger_row) << k;
+      ASSERT_EQ(e.first_block, a[k].first_block) << k;
+      ASSERT_EQ(e.last_block, a[k].last_block) << k;
+      ASSERT_EQ(e.first_row, a[k].first_row) << k;
+      ASSERT_EQ(e.last_row, a[k].last_row) << k;
+    }
+    EXPECT_EQ(k, a.size());
+  }
 }
 
 TEST(OfcCli, ResumeAfterSigkillWritesTheStraightRunsFiles) {
@@ -141,10 +194,48 @@ TEST(OfcCli, ScenesThatCannotRunAreRefusedInOneLine) {
   EXPECT_FALSE(fs::exists(out + "/catalog.csv"));
 }
 
-// The rows of a catalog.h5 as doubles: event, moment, topplings.
+// seismicity and fit on a lattice's run folder take its shape from scene.ini: the Mogi
+// picture's distances are in the plane (a 24 x 40 lattice's largest distance is
+// sqrt(23^2 + 39^2) = 45.3, 46 distances in bands of 5, where a chain of 24 has bands of
+// 3), and the event classes count sites of the 960; a bare catalogue takes the shape from
+// fit --blocks NXxNY.
+TEST(OfcCli, SeismicityAndFitTakeTheLatticesShape) {
+  test::TempDir tmp;
+  const std::string out = tmp.file("out");
+  ASSERT_EQ(run_bkquake(run_args({"--set", "model.kind=ofc", "--set", "model.blocks=24", "--set",
+                                  "model.rows=40", "--set", "ofc.alpha=0.2", "--set",
+                                  "run.events=4000", "--quiet"},
+                                 {"--out", out}))
+                .status,
+            0);
+  auto r = run_bkquake({"seismicity", out, "--mainshock-mu", "2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("a lattice of 40 rows, from scene.ini"), std::string::npos) << r.out;
+  const std::string json = read_file(out + "/seismicity/seismicity.json");
+  EXPECT_NE(json.find("\"rows\": 40"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"distance_band\": 5"), std::string::npos) << json;
+  EXPECT_NE(json.find("Euclidean between trigger sites"), std::string::npos) << json;
+
+  r = run_bkquake({"fit", out});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("classes (a lattice of 24 x 40 = 960 sites"), std::string::npos) << r.out;
+  const std::string bare = tmp.file("bare");
+  fs::create_directories(bare);
+  fs::copy_file(out + "/catalog.csv", bare + "/catalog.csv");
+  const auto b = run_bkquake({"fit", bare + "/catalog.csv", "--blocks", "24x40"});
+  ASSERT_EQ(b.status, 0) << b.err;
+  // The same classes as from the scene (the table after the header line).
+  const auto table = [](const std::string& text) { return text.substr(text.find("classes (")); };
+  EXPECT_EQ(table(b.out), table(r.out));
+  test::expect_refused(run_bkquake({"fit", bare + "/catalog.csv", "--blocks", "24x0"}),
+                       {"--blocks", "model.rows", "0"});
+}
+
+// The rows of a catalog.h5 as doubles: event, moment, topplings, trigger_row, last_row.
 std::vector<double> h5_rows(const std::string& path) {
-  CatalogH5Reader r(path, {"event", "moment", "topplings"});
+  CatalogH5Reader r(path, {"event", "moment", "topplings", "trigger_row", "last_row"});
   EXPECT_TRUE(r.has(2)) << "no topplings column";
+  EXPECT_TRUE(r.has(4)) << "no last_row column";
   std::vector<double> all, block;
   while (r.next_block(block) > 0) all.insert(all.end(), block.begin(), block.end());
   return all;
@@ -163,14 +254,16 @@ TEST(OfcCli, Hdf5CatalogueHoldsTheCsvRowsAndResumes) {
   ASSERT_EQ(run_bkquake(run_args(with_h5, {"--out", h5})).status, 0);
   const std::vector<double> rows = h5_rows(h5 + "/catalog.h5");
   const auto lines = lines_of(read_file(csv + "/catalog.csv"));
-  ASSERT_EQ(rows.size(), 3 * (lines.size() - 1));
+  ASSERT_EQ(rows.size(), 5 * (lines.size() - 1));
   for (std::size_t k = 1; k < lines.size(); k += 997) {
     std::vector<std::string> cells;
     std::istringstream in(lines[k]);
     for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
-    EXPECT_EQ(rows[3 * (k - 1)], std::stod(cells[0]));
-    EXPECT_EQ(rows[3 * (k - 1) + 1], std::stod(cells[4]));
-    EXPECT_EQ(rows[3 * (k - 1) + 2], std::stod(cells.back()));
+    EXPECT_EQ(rows[5 * (k - 1)], std::stod(cells[0]));
+    EXPECT_EQ(rows[5 * (k - 1) + 1], std::stod(cells[4]));
+    EXPECT_EQ(rows[5 * (k - 1) + 2], std::stod(cells[12]));
+    EXPECT_EQ(rows[5 * (k - 1) + 3], std::stod(cells[13]));
+    EXPECT_EQ(rows[5 * (k - 1) + 4], std::stod(cells[15]));
   }
   const int status = test::run_and_signal_when(
       run_args(with_h5, {"--out", out}), [&] { return fs::exists(out + "/checkpoint.prev.bin"); },

@@ -186,6 +186,34 @@ TEST_F(Plots, FiguresGoIntoTheFolderReadUnderItsLockAndNeverOverAnInput) {
   EXPECT_FALSE(fs::exists(run + "/bkquake.lock"));
 }
 
+// plot_lattice.py draws a lattice run (the OFC automaton on 24 x 16 sites) into
+// RUN_DIR/lattice.png, and refuses a chain's run and a single row (no row columns) in one
+// line.
+TEST_F(Plots, LatticeFigureOfAnOfcRunAndRefusalsOfAChain) {
+  const auto ofc = [](const std::string& rows, const std::string& out) {
+    return test::run_bkquake({"run", "--set", "model.kind=ofc", "--set", "model.blocks=24", "--set",
+                              "model.rows=" + rows, "--set", "ofc.alpha=0.2", "--set",
+                              "run.events=3000", "--quiet", "--out", out});
+  };
+  const std::string run = dir_.file("ofc");
+  ASSERT_EQ(ofc("16", run).status, 0);
+  const auto p = test::run_process(kPython, {script("plot_lattice.py"), run, "--largest", "5"});
+  ASSERT_EQ(p.status, 0) << p.err;
+  const std::string png = test::read_file(run + "/lattice.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  const std::string chain = dir_.file("chain");
+  ASSERT_EQ(test::run_bkquake({"run", "--set", "run.events=200", "--quiet", "--out", chain}).status,
+            0);
+  expect_one_line_refusal(test::run_process(kPython, {script("plot_lattice.py"), chain}),
+                          "has no trigger_row, first_row, last_row");
+  const std::string row = dir_.file("row");
+  ASSERT_EQ(ofc("1", row).status, 0);
+  expect_one_line_refusal(test::run_process(kPython, {script("plot_lattice.py"), row}),
+                          "not a lattice");
+  EXPECT_FALSE(fs::exists(row + "/lattice.png"));
+}
+
 TEST_F(Plots, WorkPrecisionOfTheReferenceStudy) {
   const std::string png = dir_.file("wp.png");
   const auto p = test::run_process(

@@ -245,3 +245,86 @@ TEST(SeismicityStats, ScalingExponentOfAPowerLaw) {
 
 }  // namespace
 }  // namespace bkq::seis
+
+namespace bkq::seis {
+namespace {
+
+// Distances on a lattice: Euclidean in site spacings; along a periodic axis the shorter way
+// round, so shifting both sites by the same amount (mod the axis) leaves every distance as
+// it was; along a free axis a shift across the edge changes it.
+TEST(SeismicityGeometry, LatticeDistancesAreEuclideanAndShiftInvariantWherePeriodic) {
+  const Geometry torus{11, 7, true, true};
+  EXPECT_EQ(torus.distance(0, 0, 4, 3), 5.0);
+  EXPECT_EQ(torus.distance(0, 0, 3, 4), std::sqrt(18.0));  // 4 rows down is 3 rows up
+  EXPECT_EQ(torus.distance(0, 0, 10, 6), std::sqrt(2.0));  // one step each way round
+  EXPECT_EQ(torus.max_distance(), std::sqrt(5.0 * 5.0 + 3.0 * 3.0));
+  for (int sx = 0; sx < 11; ++sx)
+    for (int sy = 0; sy < 7; ++sy)
+      for (int x1 = 0; x1 < 11; x1 += 3)
+        for (int y2 = 0; y2 < 7; y2 += 2)
+          ASSERT_EQ(torus.distance((x1 + sx) % 11, sy % 7, (5 + sx) % 11, (y2 + sy) % 7),
+                    torus.distance(x1, 0, 5, y2))
+              << sx << " " << sy << " " << x1 << " " << y2;
+  const Geometry open{11, 7, false, false};
+  EXPECT_EQ(open.distance(0, 0, 10, 6), std::sqrt(100.0 + 36.0));
+  EXPECT_EQ(open.max_distance(), std::sqrt(100.0 + 36.0));
+  // A cylinder: wrapped along strike only.
+  const Geometry cylinder{11, 7, true, false};
+  EXPECT_EQ(cylinder.distance(0, 0, 10, 6), std::sqrt(1.0 + 36.0));
+  // A chain keeps |x - x'|, periodic or not.
+  EXPECT_EQ(Geometry::chain(20).distance(1, 0, 19, 0), 18.0);
+  EXPECT_EQ(Geometry::chain(20).max_distance(), 19.0);
+}
+
+// The Mogi picture on a lattice: a foreshock's band is its Euclidean distance from the
+// mainshock's trigger (x, y), and the exposure counts the lattice's sites per band.
+TEST(SeismicityGeometry, SpaceTimeOnALatticeBandsByPlaneDistance) {
+  const Geometry g{30, 20, false, false};  // largest distance sqrt(29^2 + 19^2) = 34.7
+  SeismicityOptions o;
+  o.blocks = g.nx;
+  o.geometry = g;
+  o.mainshock.blocks = g.nx;
+  o.mainshock.mu = 5.0;
+  Seismicity s(o);
+  auto at = [](double t, double mu, int x, int y) {
+    Quake q;
+    q.t = t;
+    q.mu = mu;
+    q.moment = std::exp(mu);
+    q.trigger = q.first = q.last = x;
+    q.trigger_row = y;
+    q.blocks = 1;
+    return q;
+  };
+  s.add(at(0.0, 6.0, 0, 0));  // a mainshock opens the window
+  // A foreshock 3 columns and 4 rows from the next mainshock: distance 5, not 3 (the
+  // along-strike distance a chain would use).
+  s.add(at(1.0, 0.5, 13, 14));
+  s.add(at(2.0, 6.0, 10, 10));
+  s.finish();
+  const SpaceTime& st = s.spacetime();
+  EXPECT_EQ(st.band_width(), 4);  // 35 distances 0..34 in bands of 4
+  EXPECT_EQ(st.bands(), 9);
+  double in_band1 = 0, total = 0;
+  for (std::size_t i = 0; i < st.count().size(); ++i) {
+    in_band1 += st.count()[i][1];
+    for (double c : st.count()[i]) total += c;
+  }
+  EXPECT_EQ(in_band1, 1.0);  // floor(5) / 4 = 1
+  EXPECT_EQ(total, 1.0);
+  // Exposure: each time bin the window covers, split over the bands as the sites are.
+  for (std::size_t i = 0; i < st.exposure().size(); ++i) {
+    double row = 0;
+    for (double e : st.exposure()[i]) row += e;
+    if (row > 0) {
+      // Band 0 (distances 0..3.99 from (10, 10)) holds the sites with dx^2 + dy^2 < 16.
+      int near = 0;
+      for (int y = 0; y < g.ny; ++y)
+        for (int x = 0; x < g.nx; ++x) near += (x - 10) * (x - 10) + (y - 10) * (y - 10) < 16;
+      EXPECT_NEAR(st.exposure()[i][0] / row, near / 600.0, 1e-12);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bkq::seis

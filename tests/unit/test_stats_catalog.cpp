@@ -110,6 +110,15 @@ TEST(EventClasses, Definitions) {
   EXPECT_EQ(classify_event(5, 95, 99, n, Boundary::Free), EventClass::delocalised);
   EXPECT_EQ(classify_event(5, 0, 4, n, Boundary::Periodic), EventClass::localised);
   EXPECT_EQ(classify_event(99, 0, 98, n, Boundary::Periodic), EventClass::delocalised);
+  // A lattice of 20 x 10 = 200 sites: by sites toppled and the bounding box.
+  EXPECT_EQ(classify_lattice_event(1, 0, 0, 0, 0, 20, 10), EventClass::single_block);
+  EXPECT_EQ(classify_lattice_event(12, 3, 7, 2, 5, 20, 10), EventClass::localised);
+  EXPECT_EQ(classify_lattice_event(12, 0, 19, 4, 4, 20, 10), EventClass::delocalised);
+  EXPECT_EQ(classify_lattice_event(12, 5, 6, 0, 9, 20, 10), EventClass::delocalised);
+  EXPECT_EQ(classify_lattice_event(99, 1, 18, 1, 8, 20, 10), EventClass::localised);
+  EXPECT_EQ(classify_lattice_event(100, 1, 18, 1, 8, 20, 10), EventClass::delocalised);
+  // An edge touched is not enough (unlike a chain's free end): the box must span an axis.
+  EXPECT_EQ(classify_lattice_event(5, 0, 4, 0, 1, 20, 10), EventClass::localised);
   EventClassCounts c;
   c.add(EventClass::single_block);
   c.add(EventClass::single_block);

@@ -18,12 +18,12 @@ std::string joined(const std::vector<std::string>& lines) {
 }  // namespace
 
 CatalogWriter::CatalogWriter(CatalogFormat format, std::string path, const Scene& scene,
-                             std::int64_t resumed_rows, bool deflate, bool topplings)
+                             std::int64_t resumed_rows, bool deflate, CatalogLayout layout)
     : format_(format),
       path_(std::move(path)),
       resumed_rows_(resumed_rows),
       deflate_(deflate),
-      topplings_(topplings) {
+      layout_(layout) {
   if (format_ == CatalogFormat::Hdf5)
     attributes_ = {{"provenance", joined(provenance_lines(scene))}, {"scene", scene.to_ini()}};
 }
@@ -48,7 +48,7 @@ void CatalogWriter::on_resume(const Checkpoint& c) {
 }
 
 void CatalogWriter::on_start() {
-  file_ = open_catalog_file(format_, path_, attributes_, resumed_rows_, deflate_, topplings_);
+  file_ = open_catalog_file(format_, path_, attributes_, resumed_rows_, deflate_, layout_);
   if (saved_checksum_) file_->set_checksum(*saved_checksum_);
 }
 

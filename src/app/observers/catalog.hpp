@@ -25,9 +25,10 @@ class CatalogWriter : public RunObserver {
   // `resumed_rows` >= 0: continue the file of a resumed run after that many rows (a csv
   // file is already cut back to its checkpoint). `scene`: for catalog.h5's attributes.
   // `deflate`: compress a new catalog.h5 (output.catalog = hdf5-deflate).
-  // `topplings`: the OFC catalogue, with its topplings column.
+  // `layout`: the columns beyond the common ones (the OFC catalogue's topplings, a
+  // lattice's rows).
   CatalogWriter(CatalogFormat format, std::string path, const Scene& scene,
-                std::int64_t resumed_rows = -1, bool deflate = false, bool topplings = false);
+                std::int64_t resumed_rows = -1, bool deflate = false, CatalogLayout layout = {});
   void on_resume(const Checkpoint& c) override;
   void on_start() override;
   void on_event(const EventRecord& e) override;
@@ -41,7 +42,7 @@ class CatalogWriter : public RunObserver {
   std::vector<std::pair<std::string, std::string>> attributes_;
   std::int64_t resumed_rows_;
   bool deflate_;
-  bool topplings_;
+  CatalogLayout layout_;
   std::unique_ptr<CatalogFile> file_;
   std::optional<std::uint64_t> saved_checksum_;  // of the rows a resumed run continues
 };

@@ -16,6 +16,7 @@ struct PastEvent {
   double t;
   double mu;
   int trigger;
+  int trigger_row;
   bool operator==(const PastEvent&) const = default;
 };
 
@@ -37,11 +38,11 @@ class Lookback {
       return;
     }
     if (buf_.size() < cap_) {
-      buf_.push_back({q.t, q.mu, q.trigger});
+      buf_.push_back({q.t, q.mu, q.trigger, q.trigger_row});
       return;
     }
     start_ = buf_[head_].t;  // the oldest is dropped: the window now starts there
-    buf_[head_] = {q.t, q.mu, q.trigger};
+    buf_[head_] = {q.t, q.mu, q.trigger, q.trigger_row};
     head_ = (head_ + 1) % cap_;
   }
   // The window's start: the last mainshock, the first event, or the oldest event dropped.

@@ -1,7 +1,8 @@
 // The event the seismicity statistics see (stats/seismicity/*): a catalogue row reduced to
 // time, size, place and extent, with the mainshock class already decided. Time is the
 // catalogue's clock (substrate displacement `load` of an event-driven run, the episode
-// start of a continuous one); place is a block index along the chain ("along strike").
+// start of a continuous one); place is a block index along the chain ("along strike"), and
+// on a lattice also the row across it.
 #pragma once
 
 #include <cmath>
@@ -15,7 +16,8 @@ struct Quake {
   double moment = 0;        // M = sum of slips
   double mu = 0;            // ln M
   double duration = 0;      // from trigger to the last re-stick; 0 when the catalogue lacks it
-  int trigger = 0;          // hypocentre (block index)
+  int trigger = 0;          // hypocentre (block index; a lattice's column x)
+  int trigger_row = 0;      // a lattice's hypocentre row y; 0 on a chain
   int first = 0, last = 0;  // the slipped extent; first > last when unknown
   int blocks = 0;           // blocks that slipped; 0 when unknown
   bool mainshock = false;

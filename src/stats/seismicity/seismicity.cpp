@@ -16,7 +16,7 @@ Seismicity::Seismicity(const SeismicityOptions& options)
       lookback_(options.lookback),
       interevent_(options.interevent_mu),
       recurrence_(options.blocks),
-      spacetime_(options.blocks) {}
+      spacetime_(options.where()) {}
 
 void Seismicity::add(Quake q) {
   q.mainshock = opt_.mainshock.is_main(q);

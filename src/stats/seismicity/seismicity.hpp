@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stats/seismicity/fits.hpp"
+#include "stats/seismicity/geometry.hpp"
 #include "stats/seismicity/interevent.hpp"
 #include "stats/seismicity/lookback.hpp"
 #include "stats/seismicity/moment_rate.hpp"
@@ -36,7 +37,10 @@ struct MainshockRule {
 };
 
 struct SeismicityOptions {
-  int blocks = 0;  // N
+  int blocks = 0;  // N (a lattice's columns along strike)
+  // Where the events are; a chain of `blocks` when left as it is (nx = 0).
+  Geometry geometry{0, 1, false, false};
+  Geometry where() const { return geometry.nx > 0 ? geometry : Geometry::chain(blocks); }
   MainshockRule mainshock;
   std::vector<double> interevent_mu = {-4, -2, 0, 2};
   std::optional<double> b_mu_min;  // lower magnitude of the b-values (default: MAXC)

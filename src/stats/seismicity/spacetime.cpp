@@ -33,10 +33,17 @@ double MagSums::max_curvature() const {
   return low(static_cast<int>(it - count.begin()));
 }
 
-SpaceTime::SpaceTime(int blocks)
-    : n_(std::max(1, blocks)),
-      band_(std::max(1, (n_ + kBands - 1) / kBands)),
-      bands_((n_ + band_ - 1) / band_) {
+namespace {
+// Distances 0 .. floor(largest): on a chain of N blocks, N of them.
+int distances(const Geometry& g) {
+  return static_cast<int>(std::floor(g.max_distance())) + 1;
+}
+}  // namespace
+
+SpaceTime::SpaceTime(const Geometry& geometry)
+    : geo_(geometry),
+      band_(std::max(1, (distances(geo_) + kBands - 1) / kBands)),
+      bands_((distances(geo_) + band_ - 1) / band_) {
   count_.assign(bins_.size(), std::vector<double>(static_cast<std::size_t>(bands_), 0.0));
   exposure_ = count_;
   before_.resize(bins_.size());
@@ -49,16 +56,21 @@ void SpaceTime::add(const Quake& q, const Lookback& lookback) {
   }
   if (!lookback.started()) return;
   ++mainshocks_;
-  const int h = std::clamp(q.trigger, 0, n_ - 1);
+  const int hx = std::clamp(q.trigger, 0, geo_.nx - 1);
+  const int hy = std::clamp(q.trigger_row, 0, geo_.ny - 1);
+  const auto band = [&](int x, int y) {
+    return static_cast<int>(std::floor(geo_.distance(x, y, hx, hy))) / band_;
+  };
   lookback.for_each([&](const PastEvent& e) {
     const std::size_t i = bins_.index(q.t - e.t);
-    const int d = std::abs(e.trigger - h) / band_;
+    const int d = band(e.trigger, e.trigger_row);
     if (d < bands_) count_[i][static_cast<std::size_t>(d)] += 1;
     before_[i].add(e.mu);
   });
-  // Blocks of the chain in each band of distance from the hypocentre h.
+  // Sites (blocks of a chain) in each band of distance from the hypocentre.
   std::vector<double> blocks(static_cast<std::size_t>(bands_), 0.0);
-  for (int j = 0; j < n_; ++j) blocks[static_cast<std::size_t>(std::abs(j - h) / band_)] += 1;
+  for (int y = 0; y < geo_.ny; ++y)
+    for (int x = 0; x < geo_.nx; ++x) blocks[static_cast<std::size_t>(band(x, y))] += 1;
   const double length = q.t - lookback.window_start();
   for (std::size_t i = 0; i < bins_.size(); ++i) {
     const double part = bins_.covered(i, length);

@@ -1,5 +1,6 @@
-// Seismicity before mainshocks in space and time: the density of events (per block per unit
-// time) against the distance of their hypocentre from the next mainshock's and the time
+// Seismicity before mainshocks in space and time: the density of events (per block, or per
+// site of a lattice, per unit time) against the distance of their hypocentre from the next
+// mainshock's (geometry.hpp: along the chain, or Euclidean in the lattice's plane) and the time
 // before it (the Mogi doughnut: quiet near the coming rupture, active around it; Mogi 1969,
 // Bull. Earthquake Res. Inst. 47, 395), and the b-value (Aki 1965, Bull. Earthquake Res.
 // Inst. 43, 237: b = 1 / (mean mu - mu_c) over the events with mu >= mu_c, error b / sqrt n,
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "stats/seismicity/fits.hpp"
+#include "stats/seismicity/geometry.hpp"
 #include "stats/seismicity/log_bins.hpp"
 #include "stats/seismicity/lookback.hpp"
 #include "stats/seismicity/quake.hpp"
@@ -48,8 +50,9 @@ class SpaceTime {
  public:
   static constexpr int kPerDecade = 2;
   static constexpr int kBands = 10;
-  // `blocks`: N.
-  explicit SpaceTime(int blocks);
+  // Bands of distance of width band_width() from 0 to the geometry's largest distance; a
+  // distance d falls in band floor(d) / band_width().
+  explicit SpaceTime(const Geometry& geometry);
   void add(const Quake& q, const Lookback& lookback);  // before lookback.add(q)
   const LogBins& bins() const { return bins_; }
   int band_width() const { return band_; }
@@ -65,7 +68,8 @@ class SpaceTime {
 
  private:
   LogBins bins_ = time_bins(kPerDecade);
-  int n_, band_, bands_;
+  Geometry geo_;
+  int band_, bands_;
   std::vector<std::vector<double>> count_, exposure_;
   std::vector<MagSums> before_;
   MagSums all_;
