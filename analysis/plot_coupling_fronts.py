@@ -18,7 +18,8 @@ the event (median over the same blocks). Speeds are in units of the sound speed 
 blocks per unit time), widths in blocks and in fault length (blocks / N).
 
 Left: front speed against N; right: front width (fault length) against N; solid without
-dashpots, dashed with. Prints one row per measured front and a per-run median table.
+dashpots, dashed with. Prints one row per measured front and per run the quartiles of
+the speed and the width over its fronts.
 
 Large events that start before TRANSIENT (default 150 time units) are left out: the first
 chain-wide event after the random start releases the start's disorder, and its blocks fail
@@ -152,21 +153,23 @@ def main():
             print(f"{n},{eta0:g},{t0:.6g},{side},{extent},{speed / l:.4g},{width:.4g},"
                   f"{width / n:.4g}")
         if not fr:
-            table.append((n, eta0, 0, float("nan"), float("nan"), float("nan")))
+            table.append((n, eta0, 0, [float("nan")] * 3, [float("nan")] * 3))
             continue
         speeds = np.array([f[3] / l for f in fr])
         widths = np.array([f[4] for f in fr])
-        table.append((n, eta0, len(fr), np.median(speeds), np.median(widths),
-                      np.median(widths) / n))
+        table.append((n, eta0, len(fr), np.percentile(speeds, [25, 50, 75]),
+                      np.percentile(widths, [25, 50, 75])))
         c = curves.setdefault(eta0, ([], [], [], [], []))
         c[0].append(n)
         c[1].append(np.median(speeds))
         c[2].append(np.median(widths) / n)
         c[3].append(speeds)
         c[4].append(widths / n)
-    print("blocks,eta0,fronts,median_speed_over_l,median_width_blocks,median_width_length")
-    for n, eta0, count, s, w, wl in table:
-        print(f"{n},{eta0:g},{count},{s:.4g},{w:.4g},{wl:.4g}")
+    print("blocks,eta0,fronts,speed_over_l_q25,q50,q75,width_blocks_q25,q50,q75,"
+          "median_width_length")
+    for n, eta0, count, s, w in table:
+        print(f"{n},{eta0:g},{count},{s[0]:.3g},{s[1]:.3g},{s[2]:.3g},{w[0]:.3g},{w[1]:.3g},"
+              f"{w[2]:.3g},{w[1] / n:.3g}")
     for eta0, (ns, s, w, all_s, all_w) in sorted(curves.items()):
         style = "-" if eta0 == 0 else "--"
         label = "eta = 0" if eta0 == 0 else f"eta = {eta0:g} (N/100)^2"
