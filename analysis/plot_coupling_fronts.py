@@ -5,21 +5,21 @@ with blocks.csv: every block's displacement and velocity every output.every).
 
 A block slips while its velocity differs from a stuck block's (minus the drive speed:
 displacements are measured from the drive) by more than THRESHOLD (default 0.1, a tenth
-of the large events' typical slip speed; slow creep below it is not a front). A large event is a stretch of samples in
-which some block slips and at most 1 % of samples apart, that slips at least a quarter of
-the chain. In each large event the front is the onset of slip: the time at which each
-block first slips, linearly interpolated between samples. From the hypocentre (the first
-block of a nucleation point) a front runs left or right: a front is a run of adjacent
-blocks along which the onset rises monotonically, at least a tenth of the chain (and 8
-blocks) long, to where it meets another front or an end. Over the middle 60 % of its
-blocks a least-squares line of onset time against position gives the front's speed, and the width is the front speed times the rise
-time, the time from a block's onset to its first reaching half of its largest velocity in
-the event (median over the same blocks). Speeds are in units of the sound speed l a (l
-blocks per unit time), widths in blocks and in fault length (blocks / N).
+of the large events' typical slip speed; slow creep below it is not a front). A large
+event is a stretch of samples in which some block slips (gaps of at most 1 % of the
+samples) that slips at least a quarter of the chain. A block's onset is the time at which
+it first slips, linearly interpolated between samples. A front is a run of adjacent blocks
+along which the onset rises monotonically (from a nucleation point to where it meets
+another front or an end), at least a tenth of the chain and 8 blocks long. Over the middle
+60 % of its blocks a least-squares line of onset time against position gives the front's
+speed; two widths follow as the speed times a median time over the same blocks: the width
+from the onset to half the block's largest velocity in the event (the rise), and the
+leading edge from the onset (THRESHOLD) to twice THRESHOLD. Speeds are in units of the
+sound speed (l blocks per unit time), widths in blocks and in fault length (blocks / N).
 
-Left: front speed against N; right: front width (fault length) against N; solid without
-dashpots, dashed with. Prints one row per measured front and per run the quartiles of
-the speed and the width over its fronts.
+Panels: front speed, width and leading edge against N (medians, and every front); solid
+without dashpots, dashed with. Prints one row per measured front and per run the
+quartiles of the speed, the width and the leading edge over its fronts.
 
 Large events that start before TRANSIENT (default 150 time units) are left out: the first
 chain-wide event after the random start releases the start's disorder, and its blocks fail
@@ -91,15 +91,19 @@ def event_fronts(t, rel, sliding, threshold, min_blocks):
     n = rel.shape[1]
     onset = np.full(n, np.nan)
     rise = np.full(n, np.nan)
+    edge = np.full(n, np.nan)
     for j in range(n):
         first = np.nonzero(sliding[:, j])[0]
         if len(first) == 0:
             continue
         t0 = crossing(t, rel[:, j], threshold, 0)
         half = crossing(t, rel[:, j], 0.5 * rel[:, j].max(), first[0])
+        double = crossing(t, rel[:, j], 2 * threshold, first[0])
         onset[j] = t0
         if half is not None:
             rise[j] = half - t0
+        if double is not None:
+            edge[j] = double - t0
     # Split the slipped blocks into runs along which the onset rises monotonically (each
     # run is one front, from a nucleation point to where it meets another front or an end).
     result = []
@@ -118,7 +122,8 @@ def event_fronts(t, rel, sliding, threshold, min_blocks):
             slope, _ = np.polyfit(sel.astype(float), onset[sel], 1)
             speed = 1.0 / abs(slope)  # blocks per unit time
             width = speed * np.nanmedian(rise[sel])
-            result.append((t[0], side, k - j + 1, speed, width))
+            edge_width = speed * np.nanmedian(edge[sel])
+            result.append((t[0], side, k - j + 1, speed, width, edge_width))
         j = k
     return result
 
@@ -139,8 +144,9 @@ def main():
     if not runs:
         sys.exit(f"plot_coupling_fronts.py: no runs N<N>-eta<ETA0> with a blocks.csv in {a.runs}")
     runs.sort()
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
-    print("blocks,eta0,event_start,direction,front_blocks,speed_over_l,width_blocks,width_length")
+    fig, (left, right, edge_ax) = plt.subplots(1, 3, figsize=(15, 4.2))
+    print("blocks,eta0,event_start,direction,front_blocks,speed_over_l,width_blocks,width_length,"
+          "edge_blocks,edge_length")
     table = []
     curves = {}
     for eta0, n, path in runs:
@@ -149,36 +155,39 @@ def main():
         t, _, v = load_blocks(os.path.join(path, "blocks.csv"))
         stuck = -float(scene["drive"]["speed"])  # a stuck block moves back with the drive
         fr = fronts(t, v, stuck, a.threshold, transient=a.transient)
-        for t0, side, extent, speed, width in fr:
+        for t0, side, extent, speed, width, edge in fr:
             print(f"{n},{eta0:g},{t0:.6g},{side},{extent},{speed / l:.4g},{width:.4g},"
-                  f"{width / n:.4g}")
+                  f"{width / n:.4g},{edge:.4g},{edge / n:.4g}")
         if not fr:
-            table.append((n, eta0, 0, [float("nan")] * 3, [float("nan")] * 3))
+            table.append((n, eta0, 0, [float("nan")] * 3, [float("nan")] * 3, [float("nan")] * 3))
             continue
         speeds = np.array([f[3] / l for f in fr])
         widths = np.array([f[4] for f in fr])
+        edges = np.array([f[5] for f in fr])
+        edges = edges[np.isfinite(edges)]
         table.append((n, eta0, len(fr), np.percentile(speeds, [25, 50, 75]),
-                      np.percentile(widths, [25, 50, 75])))
-        c = curves.setdefault(eta0, ([], [], [], [], []))
-        c[0].append(n)
-        c[1].append(np.median(speeds))
-        c[2].append(np.median(widths) / n)
-        c[3].append(speeds)
-        c[4].append(widths / n)
+                      np.percentile(widths, [25, 50, 75]), np.percentile(edges, [25, 50, 75])))
+        c = curves.setdefault(eta0, {"n": [], "s": [], "w": [], "e": []})
+        c["n"].append(n)
+        c["s"].append(speeds)
+        c["w"].append(widths / n)
+        c["e"].append(edges / n)
     print("blocks,eta0,fronts,speed_over_l_q25,q50,q75,width_blocks_q25,q50,q75,"
-          "median_width_length")
-    for n, eta0, count, s, w in table:
+          "median_width_length,edge_blocks_q25,q50,q75,median_edge_length")
+    for n, eta0, count, s, w, e in table:
         print(f"{n},{eta0:g},{count},{s[0]:.3g},{s[1]:.3g},{s[2]:.3g},{w[0]:.3g},{w[1]:.3g},"
-              f"{w[2]:.3g},{w[1] / n:.3g}")
-    for eta0, (ns, s, w, all_s, all_w) in sorted(curves.items()):
+              f"{w[2]:.3g},{w[1] / n:.3g},{e[0]:.3g},{e[1]:.3g},{e[2]:.3g},{e[1] / n:.3g}")
+    for eta0, c in sorted(curves.items()):
         style = "-" if eta0 == 0 else "--"
         label = "eta = 0" if eta0 == 0 else f"eta = {eta0:g} (N/100)^2"
-        line = left.plot(ns, s, style, marker="o", label=label)[0]
-        right.plot(ns, w, style, marker="o", color=line.get_color(), label=label)
-        for n, ss, ww in zip(ns, all_s, all_w):
-            left.scatter([n] * len(ss), ss, s=8, alpha=0.4, color=line.get_color())
-            right.scatter([n] * len(ww), ww, s=8, alpha=0.4, color=line.get_color())
-    for ax in (left, right):
+        colour = None
+        for ax, key in ((left, "s"), (right, "w"), (edge_ax, "e")):
+            line = ax.plot(c["n"], [np.median(x) for x in c[key]], style, marker="o",
+                           color=colour, label=label)[0]
+            colour = line.get_color()
+            for n, xs in zip(c["n"], c[key]):
+                ax.scatter([n] * len(xs), xs, s=8, alpha=0.4, color=colour)
+    for ax in (left, right, edge_ax):
         ax.set_xscale("log", base=2)
         ax.set_xlabel("blocks N (l = 10 N/100)")
         ax.legend()
@@ -186,7 +195,10 @@ def main():
     left.set_title("rupture front speed (median, and every front)")
     right.set_yscale("log")
     right.set_ylabel("front width / fault length")
-    right.set_title("rupture front width")
+    right.set_title("front width: speed x rise to half the peak")
+    edge_ax.set_yscale("log")
+    edge_ax.set_ylabel("leading edge / fault length")
+    edge_ax.set_title("leading edge: speed x rise from 0.1 to 0.2")
     fig.tight_layout()
     bkquake_io.save_figure(fig, a.out, [p for _, _, p in runs], "plot_coupling_fronts.py", dpi=110)
     print(f"wrote {a.out}")

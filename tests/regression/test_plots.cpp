@@ -199,7 +199,8 @@ TEST_F(Plots, WorkPrecisionOfTheReferenceStudy) {
 // plot_coupling_fronts.py measures a rupture front from the blocks' velocities: on a
 // synthetic event whose onset runs out from block 50 at 20 blocks per unit time and whose
 // velocity rises linearly to 1 in 0.3 time units, it finds one front each way with that
-// speed and the width speed x (time from the 0.1 threshold to half the peak) = 20 x 0.12.
+// speed, the width speed x (time from the 0.1 threshold to half the peak) = 20 x 0.12 and
+// the leading edge speed x (time from 0.1 to 0.2) = 20 x 0.03.
 TEST_F(Plots, CouplingFrontsMeasureTheSpeedAndWidthOfASyntheticFront) {
   const std::string check =
       "import sys; sys.path.insert(0, '" + script("") +
@@ -212,10 +213,11 @@ TEST_F(Plots, CouplingFrontsMeasureTheSpeedAndWidthOfASyntheticFront) {
       "fr = f.fronts(t, v, stuck, 0.1)\n"
       "assert len(fr) == 2, fr\n"
       "assert sorted(x[1] for x in fr) == [-1, 1], fr\n"
-      "for _, _, blocks, speed, width in fr:\n"
+      "for _, _, blocks, speed, width, edge in fr:\n"
       "    assert blocks in (51, 150), fr\n"
       "    assert abs(speed - c) < 0.01 * c, fr\n"
-      "    assert abs(width - c * 0.12) < 0.05 * c * 0.12, fr\n";
+      "    assert abs(width - c * 0.12) < 0.05 * c * 0.12, fr\n"
+      "    assert abs(edge - c * 0.03) < 0.05 * c * 0.03, fr\n";
   const auto p = test::run_process(kPython, {"-c", check});
   EXPECT_EQ(p.status, 0) << p.err;
 }
