@@ -43,4 +43,4 @@ for law in clst91 thesis; do
   done
 done
 wait
-"$PYTHON" analysis/plot_coupling.py "$OUT" --blocks "$N" --out "$OUT/b_vs_range.png"
+"$PYTHON" analysis/plot_coupling.py "$OUT" --out "$OUT/b_vs_range.png"

@@ -224,5 +224,31 @@ TEST_F(Plots, WorkPrecisionOfTheReferenceStudy) {
   EXPECT_GT(fs::file_size(png), 10000u);
 }
 
+// plot_coupling_fronts.py measures a rupture front from the blocks' velocities: on a
+// synthetic event whose onset runs out from block 50 at 20 blocks per unit time and whose
+// velocity rises linearly to 1 in 0.3 time units, it finds one front each way with that
+// speed, the width speed x (time from the 0.1 threshold to half the peak) = 20 x 0.12 and
+// the leading edge speed x (time from 0.1 to 0.2) = 20 x 0.03.
+TEST_F(Plots, CouplingFrontsMeasureTheSpeedAndWidthOfASyntheticFront) {
+  const std::string check =
+      "import sys; sys.path.insert(0, '" + script("") +
+      "')\n"
+      "import numpy as np, plot_coupling_fronts as f\n"
+      "t = np.arange(0, 30, 0.01); n = 200; c = 20.0; stuck = -0.01\n"
+      "onset = 5 + np.abs(np.arange(n) - 50) / c\n"
+      "s = t[:, None] - onset[None, :]\n"
+      "v = np.where((s > 0) & (s < 4), np.minimum(s / 0.3, 1.0), 0.0) + stuck\n"
+      "fr = f.fronts(t, v, stuck, 0.1)\n"
+      "assert len(fr) == 2, fr\n"
+      "assert sorted(x[1] for x in fr) == [-1, 1], fr\n"
+      "for _, _, blocks, speed, width, edge in fr:\n"
+      "    assert blocks in (51, 150), fr\n"
+      "    assert abs(speed - c) < 0.01 * c, fr\n"
+      "    assert abs(width - c * 0.12) < 0.05 * c * 0.12, fr\n"
+      "    assert abs(edge - c * 0.03) < 0.05 * c * 0.03, fr\n";
+  const auto p = test::run_process(kPython, {"-c", check});
+  EXPECT_EQ(p.status, 0) << p.err;
+}
+
 }  // namespace
 }  // namespace bkq
