@@ -8,7 +8,6 @@
 
 #include "core/error.hpp"
 #include "engine/contacts.hpp"
-#include "integrate/located.hpp"
 #include "model/friction_laws.hpp"
 
 namespace bkq {
@@ -20,7 +19,7 @@ ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
       substrate_(substrate),
       st_(std::move(state)),
       dt_(dt),
-      located_releases_(dynamic_cast<const LocatedTransitions*>(&stepper) != nullptr) {
+      located_releases_(stepper.stick_rule() == StickRule::Located) {
   const int n = forces.n();
   all_ = Range{0, n};
   wd_old_.assign(n, 0.0);
@@ -46,7 +45,7 @@ ContinuousDriver::ContinuousDriver(const ChainForces& forces, Stepper& stepper,
       substrate_(substrate),
       st_(saved.state),
       dt_(dt),
-      located_releases_(dynamic_cast<const LocatedTransitions*>(&stepper) != nullptr) {
+      located_releases_(stepper.stick_rule() == StickRule::Located) {
   const int n = forces.n();
   const auto size = static_cast<std::size_t>(n);
   if (st_.w.size() != size || st_.wd.size() != size || st_.mobile.size() != size ||
@@ -192,10 +191,10 @@ void ContinuousDriver::step() {
                         if (first_release < 0) first_release = j;
                         if (in_episode_) slid_[j] = 1;
                       });
-  // Located transitions: the blocks that broke loose inside the step (the contact pass sees
-  // none of them: they are sliding, or stuck again, at its end). Without them an episode
-  // left out every block it reached inside a step, with its slip, and a slip that began and
-  // ended inside one step was no episode.
+  // Located releases (the located wrapper and the adaptive stepper): the blocks that broke
+  // loose inside the step (the contact pass sees none of them: they are sliding, or stuck
+  // again, at its end). Without them an episode left out every block it reached inside a
+  // step, with its slip, and a slip that began and ended inside one step was no episode.
   std::span<const Stepper::Release> inside;
   if (located_releases_) inside = stepper_.releases_in_step();
   if (first_release < 0 && !inside.empty()) first_release = inside.front().block;

@@ -93,7 +93,8 @@ class ContinuousDriver {
   Range all_;
   std::vector<double> wd_old_;
   int sliding_ = 0;
-  // Located transitions (integrate/located.hpp): blocks released inside a step are taken
+  // Steppers that locate releases (integrate/located.hpp, adaptive.hpp): blocks released
+  // inside a step are taken
   // from the stepper's list (their slip counted from where they broke loose, also when they
   // stuck again before the step ended); see step().
   bool located_releases_ = false;
