@@ -439,6 +439,32 @@ EventRecord OfcEngine::next_event() {
 // after every release of the generation. With relaxation each site is brought up to date
 // before it is read, and relaxation_alpha of each release joins each neighbour's pending
 // stress (over a free edge it is lost).
+// The bookkeeping of a site's first toppling in the event (both orders): the stamp that
+// marks it, the count of distinct sites and the event's bounding box (rows as site indices
+// until the event is finished).
+inline void OfcEngine::note_first_toppling(int j, std::uint32_t stamp,
+                                           std::uint32_t first_generation, EventRecord& e,
+                                           int& distinct) {
+  Site& sj = site_[j];
+  if (sj.toppled_at >= first_generation) return;
+  sj.toppled_at = stamp;
+  ++distinct;
+  const int x = j % p_.nx;
+  e.first_block = std::min(e.first_block, x);
+  e.last_block = std::max(e.last_block, x);
+  e.first_row = std::min(e.first_row, j);
+  e.last_row = std::max(e.last_row, j);
+}
+
+// Relaxation: the share a toppling passes to neighbour n as pending stress, which flows in
+// over the drive (both orders).
+inline void OfcEngine::pass_pending(int n, double amount) {
+  fold(n);
+  pend_[n] += amount;
+  pend_at_[n] = load_;
+  mark_relaxing(n);
+}
+
 template <bool kRelax>
 void OfcEngine::avalanche_generations(EventRecord& e, std::uint32_t first_generation,
                                       double& moment, double& lost, std::int64_t& topplings,
@@ -460,16 +486,7 @@ void OfcEngine::avalanche_generations(EventRecord& e, std::uint32_t first_genera
       g[j] = -offset_;
       moment += r;
       touch(j);
-      Site& sj = site_[j];
-      if (sj.toppled_at < first_generation) {
-        sj.toppled_at = gen;
-        ++distinct;
-        const int x = j % p_.nx;
-        e.first_block = std::min(e.first_block, x);
-        e.last_block = std::max(e.last_block, x);
-        e.first_row = std::min(e.first_row, j);
-        e.last_row = std::max(e.last_row, j);
-      }
+      note_first_toppling(j, gen, first_generation, e, distinct);
       int nb[4];
       neighbours(j, nb);
       for (int d = 0; d < 4; ++d) {
@@ -486,12 +503,7 @@ void OfcEngine::avalanche_generations(EventRecord& e, std::uint32_t first_genera
           receivers_.push_back(Receiver{n, {0.0, 0.0, 0.0, 0.0}});
         }
         receivers_[sn.slot].in[d ^ 1] = s;  // j is n's neighbour on the opposite side
-        if constexpr (kRelax) {
-          fold(n);
-          pend_[n] += beta * r;
-          pend_at_[n] = load_;
-          mark_relaxing(n);
-        }
+        if constexpr (kRelax) pass_pending(n, beta * r);
       }
     }
     topplings += static_cast<std::int64_t>(now_.size());
@@ -551,16 +563,7 @@ void OfcEngine::avalanche_sequential(EventRecord& e, std::uint32_t first_generat
     ++topplings;
     touch(j);
     if constexpr (kRelax) mark_relaxing(j);
-    Site& sj = site_[j];
-    if (sj.toppled_at < first_generation) {
-      sj.toppled_at = stamp;
-      ++distinct;
-      const int x = j % p_.nx;
-      e.first_block = std::min(e.first_block, x);
-      e.last_block = std::max(e.last_block, x);
-      e.first_row = std::min(e.first_row, j);
-      e.last_row = std::max(e.last_row, j);
-    }
+    note_first_toppling(j, stamp, first_generation, e, distinct);
     int nb[4];
     neighbours(j, nb);
     for (int d = 0; d < 4; ++d) {
@@ -570,12 +573,7 @@ void OfcEngine::avalanche_sequential(EventRecord& e, std::uint32_t first_generat
         if constexpr (kRelax) lost += beta * r;
         continue;
       }
-      if constexpr (kRelax) {
-        fold(n);
-        pend_[n] += beta * r;
-        pend_at_[n] = load_;
-        mark_relaxing(n);
-      }
+      if constexpr (kRelax) pass_pending(n, beta * r);
       g[n] += s;
       touch(n);
       if (!queued_[n] && g[n] + offset_ >= 1.0) push(n, depth + 1);

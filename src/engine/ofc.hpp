@@ -126,6 +126,9 @@ class OfcEngine {
   void pull(int i);
   void touch(int j);  // marks j's bucket for the end-of-event tree update
   void renormalise();
+  void note_first_toppling(int j, std::uint32_t stamp, std::uint32_t first_generation,
+                           EventRecord& e, int& distinct);
+  void pass_pending(int n, double amount);
   template <bool kRelax>
   void avalanche_generations(EventRecord& e, std::uint32_t first_generation, double& moment,
                              double& lost, std::int64_t& topplings, std::int64_t& generations,
