@@ -5,6 +5,7 @@
 #include "io/folder_lock.hpp"
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -141,6 +142,26 @@ void install_release_handlers() {
   }
 }
 
+// Holds SIGINT, SIGTERM and SIGHUP back while the lock is being taken: a signal between the
+// lock file's creation and the release handler's installation would otherwise end the
+// process by its default action and leave the lock behind. On leaving, a signal held back is
+// delivered to the handler, which removes the lock.
+class SignalsHeldBack {
+ public:
+  SignalsHeldBack() {
+    sigset_t set;
+    sigemptyset(&set);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&set, sig);
+    ::pthread_sigmask(SIG_BLOCK, &set, &old_);
+  }
+  ~SignalsHeldBack() { ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+  SignalsHeldBack(const SignalsHeldBack&) = delete;
+  SignalsHeldBack& operator=(const SignalsHeldBack&) = delete;
+
+ private:
+  sigset_t old_{};
+};
+
 }  // namespace
 
 void release_folder_locks_from_signal() noexcept {
@@ -159,6 +180,7 @@ std::string LockHolder::describe() const {
 
 FolderLock::FolderLock(const std::string& dir, const std::string& command, StaleLock stale)
     : path_((fs::path(dir) / kFileName).string()) {
+  const SignalsHeldBack held_back;
   const std::string me = host_name();
   const std::string content = "bkquake folder lock\nhost " + me + "\npid " +
                               std::to_string(::getpid()) + "\ncommand " + command + "\nsince " +
