@@ -40,6 +40,25 @@ std::vector<std::string> ofc_with(std::vector<std::string> more) {
   return a;
 }
 
+// Runs the 20 000-event scene straight into `straight`, and into `out` killed (SIGKILL) after a
+// checkpoint that holds the named engine state, then resumed: the two catalogues and
+// histograms are the same bytes.
+void resume_after_sigkill(const std::vector<std::string>& scene, const char* state,
+                          const std::string& straight, const std::string& out) {
+  ASSERT_EQ(run_bkquake(run_args(scene, {"--out", straight})).status, 0);
+  const int status = test::run_and_signal_when(
+      run_args(scene, {"--out", out}), [&] { return fs::exists(out + "/checkpoint.prev.bin"); },
+      SIGKILL);
+  ASSERT_EQ(status, 128 + SIGKILL);
+  const Checkpoint c = CheckpointFiles(out).read();
+  ASSERT_LT(c.progress.events_done, 20000);
+  ASSERT_NE(c.find(state), nullptr);
+  const auto r = run_bkquake({"run", out + "/scene.ini", "--out", out, "--resume", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(read_file(out + "/catalog.csv") == read_file(straight + "/catalog.csv"));
+  EXPECT_EQ(read_file(out + "/histogram.csv"), read_file(straight + "/histogram.csv"));
+}
+
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;
   std::istringstream in(text);
@@ -141,18 +160,8 @@ TEST(OfcCli, ResumeAfterSigkillWritesTheStraightRunsFiles) {
   test::TempDir tmp;
   const std::string straight = tmp.file("straight"), out = tmp.file("out");
   const auto scene = ofc_with({"--set", "run.events=20000", "--set", "run.checkpoint_events=200"});
-  ASSERT_EQ(run_bkquake(run_args(scene, {"--out", straight})).status, 0);
-  const int status = test::run_and_signal_when(
-      run_args(scene, {"--out", out}), [&] { return fs::exists(out + "/checkpoint.prev.bin"); },
-      SIGKILL);
-  ASSERT_EQ(status, 128 + SIGKILL);
-  const Checkpoint c = CheckpointFiles(out).read();
-  ASSERT_LT(c.progress.events_done, 20000);
-  ASSERT_NE(c.find("ofc.engine"), nullptr);
-  const auto r = run_bkquake({"run", out + "/scene.ini", "--out", out, "--resume", "--quiet"});
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_TRUE(read_file(out + "/catalog.csv") == read_file(straight + "/catalog.csv"));
-  EXPECT_EQ(read_file(out + "/histogram.csv"), read_file(straight + "/histogram.csv"));
+  resume_after_sigkill(scene, "ofc.engine", straight, out);
+  if (HasFatalFailure()) return;
   EXPECT_EQ(test::summary_without_timing(read_file(out + "/summary.json")),
             test::summary_without_timing(read_file(straight + "/summary.json")));
 }
@@ -336,18 +345,7 @@ TEST(OfcCli, RelaxingRunResumesByteForByte) {
       ofc_with({"--set", "run.events=20000", "--set", "run.checkpoint_events=200", "--set",
                 "ofc.alpha=0.15", "--set", "ofc.relaxation_alpha=0.05", "--set",
                 "ofc.relaxation_time=0.01", "--set", "ofc.order=sequential"});
-  ASSERT_EQ(run_bkquake(run_args(scene, {"--out", straight})).status, 0);
-  const int status = test::run_and_signal_when(
-      run_args(scene, {"--out", out}), [&] { return fs::exists(out + "/checkpoint.prev.bin"); },
-      SIGKILL);
-  ASSERT_EQ(status, 128 + SIGKILL);
-  const Checkpoint c = CheckpointFiles(out).read();
-  ASSERT_LT(c.progress.events_done, 20000);
-  ASSERT_NE(c.find("ofc.relaxation"), nullptr);
-  const auto r = run_bkquake({"run", out + "/scene.ini", "--out", out, "--resume", "--quiet"});
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_TRUE(read_file(out + "/catalog.csv") == read_file(straight + "/catalog.csv"));
-  EXPECT_EQ(read_file(out + "/histogram.csv"), read_file(straight + "/histogram.csv"));
+  resume_after_sigkill(scene, "ofc.relaxation", straight, out);
 }
 
 // An OFC checkpoint edited with its checksum redone: each field is checked as a scene key is,
