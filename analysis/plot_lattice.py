@@ -11,10 +11,13 @@ last_row) and scene.ini:
           events, coloured by mu, its trigger site (x, y) = (trigger, trigger_row) marked;
   right   the triggers of all events: the count per site of the lattice.
 
-The automaton writes no per-site slip maps (output.event_slip is a chain's), so the map is
-drawn from the catalogue's bounding boxes.
+When the run wrote slip maps (output.event_slip = MU: event_slip.csv, one row per site
+that toppled, with block = x, row = y, the stress it released and its topplings), a second
+row of panels draws the maps of the --maps M largest events in that file (largest total
+release, which is the event's moment): the stress each site released, blank where none
+toppled.
 
-Usage: /usr/bin/python3 analysis/plot_lattice.py RUN_DIR [--out PNG] [--largest K]
+Usage: /usr/bin/python3 analysis/plot_lattice.py RUN_DIR [--out PNG] [--largest K] [--maps M]
 Writes RUN_DIR/lattice.png by default. A folder that is not a lattice run (no scene.ini or
 catalogue, or a catalogue without the row columns: a chain or a single row) is refused
 with a one-line message (exit 2).
@@ -105,15 +108,76 @@ def trigger_map(ax, cat, nx, ny):
     plt.colorbar(im, ax=ax, shrink=0.8)
 
 
+SLIP_COLUMNS = ("event", "block", "row", "slip")
+
+
+def load_slip_maps(run_dir):
+    """event_slip.csv's columns as arrays, or None when the run wrote none; a file without
+    the lattice's columns (event, block, row, slip) is refused."""
+    path = os.path.join(run_dir, "event_slip.csv")
+    if not os.path.isfile(path):
+        return None
+    try:
+        cols = bkquake_io.read_csv_columns(path)
+    except ValueError as e:
+        refuse(str(e))
+    missing = [c for c in SLIP_COLUMNS if c not in cols]
+    if missing:
+        refuse(f"{path} has no {', '.join(missing)} column (expected a lattice's slip maps: "
+               f"{','.join(SLIP_COLUMNS)},topplings)")
+    return cols
+
+
+def largest_maps(slips, nx, ny, k):
+    """[(event, released, topplings)] of the k events of largest total release in the
+    slip-map columns, largest first: released[y, x] the stress site (x, y) released (nan
+    where it did not topple), topplings[y, x] its topplings (0 where none; all 0 when the
+    file has no topplings column)."""
+    events = np.asarray(slips["event"], dtype=np.int64)
+    if len(events) == 0:
+        return []
+    ids, inverse = np.unique(events, return_inverse=True)
+    total = np.bincount(inverse, weights=np.asarray(slips["slip"], dtype=float))
+    out = []
+    for e in ids[np.argsort(total, kind="stable")[::-1][:k]]:
+        m = events == e
+        x = np.asarray(slips["block"], dtype=np.int64)[m]
+        y = np.asarray(slips["row"], dtype=np.int64)[m]
+        released = np.full((ny, nx), np.nan)
+        released[y, x] = np.asarray(slips["slip"], dtype=float)[m]
+        topplings = np.zeros((ny, nx), dtype=np.int64)
+        if "topplings" in slips:
+            topplings[y, x] = np.asarray(slips["topplings"], dtype=np.int64)[m]
+        out.append((int(e), released, topplings))
+    return out
+
+
+def slip_map(ax, event, released, topplings):
+    """One event's map: the stress each site released."""
+    im = ax.imshow(released, origin="lower", cmap="viridis", interpolation="nearest")
+    sites = int(np.count_nonzero(~np.isnan(released)))
+    mu = np.log(np.nansum(released))
+    ax.set_title(f"event {event}: mu = {mu:.2f}, {sites} sites, {int(topplings.sum())} "
+                 "topplings", fontsize=9)
+    ax.set_xlabel("x (column, along strike)")
+    ax.set_ylabel("y (row, across strike)")
+    plt.colorbar(im, ax=ax, shrink=0.8, label="stress released")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("run", help="run folder of a lattice (model.kind = ofc, model.rows > 1)")
     ap.add_argument("--out", help="PNG file (default RUN_DIR/lattice.png)")
     ap.add_argument("--largest", type=int, default=20,
                     help="how many of the largest events to map (default 20)")
+    ap.add_argument("--maps", type=int, default=3,
+                    help="how many of the largest events' slip maps to draw, when the run "
+                         "wrote event_slip.csv (default 3)")
     args = ap.parse_args()
     if args.largest < 1:
         refuse(f"--largest = {args.largest}: expected at least 1")
+    if args.maps < 1:
+        refuse(f"--maps = {args.maps}: expected at least 1")
     try:
         bkquake_io.require_files(args.run, ["scene.ini"], "a lattice run folder is expected")
         cat = bkquake_io.load_catalog(args.run)
@@ -126,11 +190,22 @@ def main():
     if len(cat["magnitude"]) == 0:
         refuse(f"{args.run}: the catalogue holds no events")
     nx, ny = lattice_shape(args.run, cat)
+    slips = load_slip_maps(args.run)
+    maps = largest_maps(slips, nx, ny, args.maps) if slips is not None else []
     out = args.out or os.path.join(args.run, "lattice.png")
     inputs = [args.run]
     bkquake_io.check_output_or_exit(out, inputs, COMMAND)
 
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4), dpi=100)
+    if maps:
+        # Top: the catalogue's three panels; bottom: one panel per slip map.
+        n = len(maps)
+        fig = plt.figure(figsize=(max(15, 5 * n), 8.8), dpi=100)
+        grid = fig.add_gridspec(2, 3 * n)
+        axes = [fig.add_subplot(grid[0, i * n:(i + 1) * n]) for i in range(3)]
+        for i, (event, released, topplings) in enumerate(maps):
+            slip_map(fig.add_subplot(grid[1, 3 * i:3 * (i + 1)]), event, released, topplings)
+    else:
+        fig, axes = plt.subplots(1, 3, figsize=(15, 4.4), dpi=100)
     magnitude_frequency(axes[0], np.asarray(cat["magnitude"], dtype=float),
                         bkquake_io.load_summary(args.run))
     alpha = bkquake_io.load_scene(args.run).get("ofc", {}).get("alpha", "?")

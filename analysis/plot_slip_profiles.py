@@ -27,7 +27,11 @@ def largest_profiles(path, k):
     """{event: (blocks, slips)} of the k events of largest total slip (moment)."""
     with open(path) as f:
         header = f.readline().strip()
-    if header != "event,block,slip":
+    if header.startswith("event,block,row,"):
+        sys.exit(f"plot_slip_profiles: {path} holds a lattice's slip maps (a row column): "
+                 "draw them with analysis/plot_lattice.py")
+    # A chain's file, or a single row of the OFC automaton's (a topplings column after slip).
+    if header not in ("event,block,slip", "event,block,slip,topplings"):
         sys.exit(f"plot_slip_profiles: {path}: header '{header}', expected event,block,slip")
     data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
     if data.size == 0:

@@ -50,8 +50,8 @@ class LoopEngine {
   virtual void take_back(Checkpoint& c) = 0;
   // A new engine of the same scene from a checkpoint's state, or from the seed.
   virtual std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const = 0;
-  // The chain's event engine, for what only a chain has (slip profiles); nullptr otherwise.
-  virtual EventEngine* chain() { return nullptr; }
+  // Has the engine keep each event's slips (output.event_slip) and says where it keeps them.
+  virtual SlipSource keep_slips() = 0;
 };
 
 class ChainLoopEngine : public LoopEngine {
@@ -78,7 +78,11 @@ class ChainLoopEngine : public LoopEngine {
   // would be the largest thing the run holds).
   void lend(Checkpoint& c) override { c.engine = engine_.lend_snapshot(); }
   void take_back(Checkpoint& c) override { engine_.take_back(std::move(c.engine)); }
-  EventEngine* chain() override { return &engine_; }
+  // A chain: one row of n sites, each block its own index.
+  SlipSource keep_slips() override {
+    engine_.keep_slips(true);
+    return {.slips = &engine_.slips(), .width = engine_.state().n()};
+  }
   std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const override {
     return std::make_unique<ChainLoopEngine>(settings_, forces_, nullptr, from);
   }
@@ -110,6 +114,14 @@ class OfcLoopEngine : public LoopEngine {
   // The state travels as named states of the checkpoint (io/checkpoint.hpp).
   void lend(Checkpoint& c) override { put_ofc_state(c, engine_.snapshot()); }
   void take_back(Checkpoint&) override {}
+  // The automaton's slip is the stress a site released; it also counts topplings.
+  SlipSource keep_slips() override {
+    engine_.keep_slips(true);
+    return {.slips = &engine_.slips(),
+            .topplings = &engine_.slip_topplings(),
+            .width = engine_.params().nx,
+            .rows = engine_.params().ny};
+  }
   std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const override {
     return std::make_unique<OfcLoopEngine>(settings_, from);
   }
@@ -183,20 +195,13 @@ class EventRun {
   // summary that fits it, the summary (which says how the run ended) after every file.
   void attach_observers(bool resumed) {
     const RunSettings& r = settings_.run;
-    // Slip profiles are a chain's (checked before any file is opened).
-    EventEngine* chain = engine_->chain();
-    if (settings_.output.event_slip && !chain)
-      throw Error("output.event_slip: slip profiles are written for chain models, not for " +
-                  std::string("model.kind = ofc"));
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
                                        resumed ? prog_.events_done : -1,
                                        settings_.output.catalog_deflate, catalog_layout(settings_));
-    if (settings_.output.event_slip) {
-      chain->keep_slips(true);
+    if (settings_.output.event_slip)
       observers_.attach<EventSlipWriter>(out_.path(EventSlipWriter::kFileName),
-                                         *settings_.output.event_slip, *chain);
-    }
+                                         *settings_.output.event_slip, engine_->keep_slips());
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
     if (stepper_) accuracy_ = &observers_.attach<AccuracyCheck>(settings_, *stepper_);

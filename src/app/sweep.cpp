@@ -312,7 +312,9 @@ class Sweep {
 
   double cost(std::size_t p) const {
     const Scene s = spec_.point(p).scene;
-    const double blocks = static_cast<double>(s.integer("model.blocks"));
+    // A lattice's cost grows with its sites, blocks times rows.
+    const double blocks = static_cast<double>(s.integer("model.blocks")) *
+                          static_cast<double>(s.integer("model.rows"));
     if (s.choice("drive.mode") == "events")
       return blocks *
              static_cast<double>(s.integer("run.events") + s.integer("run.transient_events"));

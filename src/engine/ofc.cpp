@@ -392,6 +392,7 @@ EventRecord OfcEngine::next_event() {
                                    distinct);
   }
   lost_ += lost;
+  if (keep_slips_) collect_slips();
   counters_.topplings += topplings;
   counters_.generations += generations;
 
@@ -456,6 +457,38 @@ inline void OfcEngine::note_first_toppling(int j, std::uint32_t stamp,
   e.last_row = std::max(e.last_row, j);
 }
 
+void OfcEngine::keep_slips(bool on) {
+  keep_slips_ = on;
+  released_.assign(on ? p_.sites() : 0, 0.0);
+  toppled_count_.assign(on ? p_.sites() : 0, 0);
+  toppled_sites_.clear();
+  slips_.clear();
+  slip_topplings_.clear();
+}
+
+// A toppling of site j that released `released` (keep_slips, both orders).
+inline void OfcEngine::note_release(int j, double released) {
+  if (toppled_count_[j]++ == 0) {
+    toppled_sites_.push_back(j);
+    released_[j] = released;
+  } else {
+    released_[j] += released;
+  }
+}
+
+// The event's map in site order, and the per-site tallies cleared for the next event.
+void OfcEngine::collect_slips() {
+  std::sort(toppled_sites_.begin(), toppled_sites_.end());
+  slips_.clear();
+  slip_topplings_.clear();
+  for (const int j : toppled_sites_) {
+    slips_.emplace_back(j, released_[j]);
+    slip_topplings_.push_back(toppled_count_[j]);
+    toppled_count_[j] = 0;
+  }
+  toppled_sites_.clear();
+}
+
 // Relaxation: the share a toppling passes to neighbour n as pending stress, which flows in
 // over the drive (both orders).
 inline void OfcEngine::pass_pending(int n, double amount) {
@@ -485,6 +518,7 @@ void OfcEngine::avalanche_generations(EventRecord& e, std::uint32_t first_genera
       const double s = alpha * r;
       g[j] = -offset_;
       moment += r;
+      if (keep_slips_) note_release(j, r);
       touch(j);
       note_first_toppling(j, gen, first_generation, e, distinct);
       int nb[4];
@@ -560,6 +594,7 @@ void OfcEngine::avalanche_sequential(EventRecord& e, std::uint32_t first_generat
     const double s = alpha * r;
     g[j] = -offset_;
     moment += r;
+    if (keep_slips_) note_release(j, r);
     ++topplings;
     touch(j);
     if constexpr (kRelax) mark_relaxing(j);

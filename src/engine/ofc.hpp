@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "engine/event_record.hpp"
@@ -107,6 +108,16 @@ class OfcEngine {
   // Stress that left the lattice over free edges in all events so far (for the balance).
   double lost() const { return lost_; }
 
+  // Keep each event's slip map (output.event_slip): after next_event(), slips() holds
+  // (site j, stress it released over the event: the sum over its topplings of what it held)
+  // for the sites that toppled, ascending in j, and slip_topplings() how many times each
+  // toppled (the same order). The released stresses sum to the event's moment (up to the
+  // rounding of the order of summation). Off (the default): nothing is kept, at the cost
+  // of one untaken branch per toppling.
+  void keep_slips(bool on);
+  const std::vector<std::pair<int, double>>& slips() const { return slips_; }
+  const std::vector<int>& slip_topplings() const { return slip_topplings_; }
+
  private:
   // The loader's max tree over buckets of kBucket sites: a node holds its subtree's largest
   // value, the lowest site holding it, and whether another site holds it too (so that an
@@ -129,6 +140,8 @@ class OfcEngine {
   void note_first_toppling(int j, std::uint32_t stamp, std::uint32_t first_generation,
                            EventRecord& e, int& distinct);
   void pass_pending(int n, double amount);
+  void note_release(int j, double released);
+  void collect_slips();
   template <bool kRelax>
   void avalanche_generations(EventRecord& e, std::uint32_t first_generation, double& moment,
                              double& lost, std::int64_t& topplings, std::int64_t& generations,
@@ -190,6 +203,14 @@ class OfcEngine {
   std::vector<std::pair<double, int>> heap_;
   std::vector<int> heap_pos_, relax_dirty_;
   std::vector<unsigned char> relax_marked_;
+  // The slip map (keep_slips): per site, what it released and how many times it toppled in
+  // this event (0: not yet), the sites that toppled in the order they first did, and the
+  // event's map as handed out.
+  bool keep_slips_ = false;
+  std::vector<double> released_;
+  std::vector<int> toppled_count_, toppled_sites_;
+  std::vector<std::pair<int, double>> slips_;
+  std::vector<int> slip_topplings_;
   std::vector<unsigned char> edge_;  // bit d: side d (left, right, down, up) is an edge
   int wrap_[4] = {0, 0, 0, 0};       // offset to the neighbour across side d on a wrapped axis
 };

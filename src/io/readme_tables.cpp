@@ -14,6 +14,7 @@
 #include "io/histogram_csv.hpp"
 #include "io/scene.hpp"
 #include "io/segments_csv.hpp"
+#include "io/seismicity_csv.hpp"
 #include "io/spectrum_csv.hpp"
 #include "io/stability_csv.hpp"
 #include "io/sweep_file.hpp"
@@ -68,6 +69,8 @@ std::vector<ReadmeTable> readme_tables() {
       {"catalog.csv", column_table(catalog_schema())},
       {"ofc catalog.csv",
        column_table(catalog_schema(CatalogLayout{.topplings = true, .rows = true}))},
+      {"ofc event_slip.csv",
+       column_table(event_slip_schema(SlipLayout{.rows = true, .topplings = true}))},
       {"histogram.csv", column_table(histogram_schema())},
       {"timeseries.csv", column_table(timeseries_schema())},
       {"timeseries.csv status", column_table(timeseries_status_schema())},

@@ -277,7 +277,9 @@ std::vector<ParamSpec> make_table() {
              "catalogue; the histogram and the fit are still written)"),
       none_real("output.event_slip", kMuLimit, "",
                 "write event_slip.csv (event runs): the slip of every block of each event with "
-                "mu >= this, one row per block (event,block,slip); none: not written"),
+                "mu >= this, one row per block (event,block,slip; a lattice of more than one "
+                "row adds row after block, the OFC automaton topplings after slip, its slip "
+                "being the stress a site released); none: not written"),
       integer("output.segment_blocks", "4", 1, 1e6, "",
               "blocks M of the segment statistics' errors in segments.csv (thesis eq. 4.3)"),
 

@@ -1,6 +1,7 @@
 // The files of `bkquake seismicity`; see seismicity_csv.hpp.
 #include "io/seismicity_csv.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "core/format.hpp"
@@ -169,13 +170,36 @@ const Schema& seismicity_export_schema() {
   return s;
 }
 
-const Schema& event_slip_schema() {
-  static const Schema s = {
-      {"event", "", "the catalogue's event number", kInteger},
-      {"block", "", "0-based index of a block that slipped in the event", kInteger},
-      {"slip", "length", "its slip over the event; the event's slips sum to its moment"},
-  };
-  return s;
+const Schema& event_slip_schema(SlipLayout layout) {
+  // The four layouts, each built once: [rows + 2 topplings].
+  static const std::array<Schema, 4> all = [] {
+    std::array<Schema, 4> a;
+    for (int k = 0; k < 4; ++k) {
+      const bool rows = k & 1, topplings = k & 2;
+      Schema& s = a[k];
+      s.push_back({"event", "", "the catalogue's event number", kInteger});
+      if (rows)
+        s.push_back({"block", "",
+                     "column x (0-based, along strike, model.blocks) of a site that slipped in "
+                     "the event",
+                     kInteger});
+      else
+        s.push_back({"block", "", "0-based index of a block that slipped in the event", kInteger});
+      if (rows)
+        s.push_back({"row", "", "its row y (0-based, across strike, model.rows)", kInteger});
+      if (topplings)
+        s.push_back({"slip", "stress",
+                     "the stress the site released over the event: the sum over its topplings "
+                     "of the stress it held; an event's values sum to its moment"});
+      else
+        s.push_back(
+            {"slip", "length", "its slip over the event; the event's slips sum to its moment"});
+      if (topplings)
+        s.push_back({"topplings", "", "how many times the site toppled in the event", kInteger});
+    }
+    return a;
+  }();
+  return all[(layout.rows ? 1 : 0) + (layout.topplings ? 2 : 0)];
 }
 
 std::vector<std::pair<std::string, const Schema*>> seismicity_schemas() {

@@ -23,9 +23,16 @@ const Schema& spacetime_schema();
 // The catalogue in seismology's column conventions (`bkquake seismicity --export FILE`).
 const Schema& seismicity_export_schema();
 
-// event_slip.csv of a run with output.event_slip: the slip of each block of each event
-// with mu >= the threshold, long form.
-const Schema& event_slip_schema();
+// event_slip.csv of a run with output.event_slip: the slip of each block (a lattice's
+// site) of each event with mu >= the threshold, long form. Its columns beyond
+// event,block,slip: `row` (after block) on a lattice of more than one row, where block is
+// the site's column x along strike; `topplings` (last) for the OFC automaton, whose slip is
+// the stress a site released. A chain has neither.
+struct SlipLayout {
+  bool rows = false;
+  bool topplings = false;
+};
+const Schema& event_slip_schema(SlipLayout layout = {});
 
 // (file name, schema) of every file above, in the docs' order.
 std::vector<std::pair<std::string, const Schema*>> seismicity_schemas();

@@ -186,14 +186,17 @@ TEST_F(Plots, FiguresGoIntoTheFolderReadUnderItsLockAndNeverOverAnInput) {
   EXPECT_FALSE(fs::exists(run + "/bkquake.lock"));
 }
 
-// plot_lattice.py draws a lattice run (the OFC automaton on 24 x 16 sites) into
-// RUN_DIR/lattice.png, and refuses a chain's run and a single row (no row columns) in one
-// line.
+// plot_lattice.py draws a lattice run (the OFC automaton on 24 x 16 sites, with slip maps)
+// into RUN_DIR/lattice.png; the maps it draws are the largest events of the catalogue with
+// mu >= 2, each site's value where the event's sites are (as many as the catalogue's
+// blocks, inside its box) and summing to its moment; a chain's run and a single row (no
+// row columns) are refused in one line.
 TEST_F(Plots, LatticeFigureOfAnOfcRunAndRefusalsOfAChain) {
   const auto ofc = [](const std::string& rows, const std::string& out) {
     return test::run_bkquake({"run", "--set", "model.kind=ofc", "--set", "model.blocks=24", "--set",
                               "model.rows=" + rows, "--set", "ofc.alpha=0.2", "--set",
-                              "run.events=3000", "--quiet", "--out", out});
+                              "run.events=3000", "--set", "output.event_slip=2", "--quiet", "--out",
+                              out});
   };
   const std::string run = dir_.file("ofc");
   ASSERT_EQ(ofc("16", run).status, 0);
@@ -202,6 +205,27 @@ TEST_F(Plots, LatticeFigureOfAnOfcRunAndRefusalsOfAChain) {
   const std::string png = test::read_file(run + "/lattice.png");
   ASSERT_GT(png.size(), 1000u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
+  const std::string check =
+      "import sys; sys.path.insert(0, '" + script("") +
+      "')\n"
+      "import numpy as np, bkquake_io, plot_lattice\n"
+      "cat = bkquake_io.load_catalog(sys.argv[1])\n"
+      "maps = plot_lattice.largest_maps(plot_lattice.load_slip_maps(sys.argv[1]), 24, 16, 3)\n"
+      "mu = np.asarray(cat['magnitude'], float)\n"
+      "top = np.sort(mu)[::-1][:3]\n"
+      "got = [np.log(np.nansum(m[1])) for m in maps]\n"
+      "assert len(maps) == 3 and np.allclose(got, top, rtol=0, atol=1e-12), (got, top)\n"
+      "for e, released, topplings in maps:\n"
+      "    i = int(np.flatnonzero(np.asarray(cat['event']) == e)[0])\n"
+      "    y, x = np.nonzero(~np.isnan(released))\n"
+      "    assert len(x) == int(cat['blocks'][i]) and topplings.sum() == int(cat['topplings'][i])\n"
+      "    assert x.min() == cat['first_block'][i] and x.max() == cat['last_block'][i]\n"
+      "    assert y.min() == cat['first_row'][i] and y.max() == cat['last_row'][i]\n"
+      "    assert abs(np.nansum(released) - cat['moment'][i]) < 1e-9 * cat['moment'][i]\n"
+      "print('maps', len(maps))\n";
+  const auto c = test::run_process(kPython, {"-c", check, run});
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_NE(c.out.find("maps 3"), std::string::npos) << c.out;
   const std::string chain = dir_.file("chain");
   ASSERT_EQ(test::run_bkquake({"run", "--set", "run.events=200", "--quiet", "--out", chain}).status,
             0);

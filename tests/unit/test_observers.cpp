@@ -10,11 +10,14 @@
 
 #include "../cli_helpers.hpp"
 #include "app/observers/checkpoint_timer.hpp"
+#include "app/observers/event_slip.hpp"
 #include "app/observers/observer.hpp"
 #include "app/run.hpp"
 #include "core/error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/json.hpp"
+#include "io/schema.hpp"
+#include "io/seismicity_csv.hpp"
 
 namespace bkq {
 namespace {
@@ -193,6 +196,41 @@ TEST(Observers, OwnStateSurvivesAStopAndResume) {
   ASSERT_EQ(run_scene(req), 0);
   EXPECT_TRUE(second.restored);
   EXPECT_EQ(second.n, 40);
+}
+
+// The slip writer splits an engine's flat site index j = x + width * y into block (x) and,
+// with more than one row, row (y): the form a lattice engine that reports (j, slip) gets
+// (here a made-up 5 x 3 lattice without topplings, and one with them); a chain (one row)
+// keeps event,block,slip; events below the threshold write nothing.
+TEST(Observers, EventSlipWriterSplitsTheSiteIndexByTheLatticesWidth) {
+  test::TempDir tmp;
+  std::vector<std::pair<int, double>> slips;
+  std::vector<int> topplings;
+  auto write = [&](const std::string& name, SlipSource source) {
+    const std::string path = tmp.file(name);
+    EventSlipWriter w(path, 0.5, source);
+    w.on_start();
+    EventRecord e;
+    slips = {{0, 0.25}, {4, 1.5}, {7, 2}, {14, 0.125}};
+    topplings = {1, 2, 1, 3};
+    e.event = 3;
+    e.magnitude = 1.0;
+    w.on_event(e);
+    e.event = 4;
+    e.magnitude = 0.25;  // below 0.5: not written
+    w.on_event(e);
+    w.on_end(RunEnd{});
+    return test::read_file(path);
+  };
+  EXPECT_EQ(write("lattice.csv", {.slips = &slips, .width = 5, .rows = 3}),
+            "event,block,row,slip\n3,0,0,0.25\n3,4,0,1.5\n3,2,1,2\n3,4,2,0.125\n");
+  EXPECT_EQ(header_of(event_slip_schema({.rows = true})), "event,block,row,slip");
+  EXPECT_EQ(write("ofc.csv", {.slips = &slips, .topplings = &topplings, .width = 5, .rows = 3}),
+            "event,block,row,slip,topplings\n3,0,0,0.25,1\n3,4,0,1.5,2\n3,2,1,2,1\n"
+            "3,4,2,0.125,3\n");
+  EXPECT_EQ(write("chain.csv", {.slips = &slips, .width = 15}),
+            "event,block,slip\n3,0,0.25\n3,4,1.5\n3,7,2\n3,14,0.125\n");
+  EXPECT_EQ(header_of(event_slip_schema()), "event,block,slip");
 }
 
 TEST(Checkpoint, ObserverStatesRoundTrip) {

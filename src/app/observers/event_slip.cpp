@@ -6,7 +6,6 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
-#include "engine/event_engine.hpp"
 #include "io/checkpoint.hpp"
 #include "io/output.hpp"
 #include "io/seismicity_csv.hpp"
@@ -17,8 +16,8 @@ namespace {
 constexpr const char* kState = "event_slip.bytes";
 }  // namespace
 
-EventSlipWriter::EventSlipWriter(std::string path, double mu_min, const EventEngine& engine)
-    : path_(std::move(path)), mu_min_(mu_min), engine_(engine) {}
+EventSlipWriter::EventSlipWriter(std::string path, double mu_min, SlipSource source)
+    : path_(std::move(path)), mu_min_(mu_min), source_(source) {}
 
 EventSlipWriter::~EventSlipWriter() = default;
 
@@ -40,15 +39,35 @@ void EventSlipWriter::on_resume(const Checkpoint& c) {
 }
 
 void EventSlipWriter::on_start() {
-  file_ = std::make_unique<CsvStream>(path_, header_of(event_slip_schema()), resumed_,
+  const SlipLayout layout{.rows = source_.rows > 1, .topplings = source_.topplings != nullptr};
+  file_ = std::make_unique<CsvStream>(path_, header_of(event_slip_schema(layout)), resumed_,
                                       CsvStream::kWhenFull);
 }
 
 void EventSlipWriter::on_event(const EventRecord& e) {
   if (!(e.magnitude >= mu_min_)) return;
+  // Appended piece by piece (GCC 12 warns falsely, -Wrestrict, on "," + std::string).
   const std::string event = std::to_string(e.event) + ",";
-  for (const auto& [block, slip] : engine_.slips())
-    file_->row(event + std::to_string(block) + "," + format_real(slip));
+  const auto& slips = *source_.slips;
+  std::string row;
+  for (std::size_t k = 0; k < slips.size(); ++k) {
+    const auto [j, slip] = slips[k];
+    row = event;
+    if (source_.rows > 1) {
+      row += std::to_string(j % source_.width);
+      row += ',';
+      row += std::to_string(j / source_.width);
+    } else {
+      row += std::to_string(j);
+    }
+    row += ',';
+    row += format_real(slip);
+    if (source_.topplings) {
+      row += ',';
+      row += std::to_string((*source_.topplings)[k]);
+    }
+    file_->row(row);
+  }
 }
 
 void EventSlipWriter::on_phase_end(const Advance&) {
