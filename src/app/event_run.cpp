@@ -50,8 +50,10 @@ class LoopEngine {
   virtual void take_back(Checkpoint& c) = 0;
   // A new engine of the same scene from a checkpoint's state, or from the seed.
   virtual std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const = 0;
-  // Has the engine keep each event's slips (output.event_slip) and says where it keeps them.
-  virtual SlipSource keep_slips() = 0;
+  // Has the engine keep the slips of each event of magnitude >= min_magnitude
+  // (output.event_slip; an engine may keep those of smaller events too) and says where it
+  // keeps them.
+  virtual SlipSource keep_slips(double min_magnitude) = 0;
 };
 
 class ChainLoopEngine : public LoopEngine {
@@ -79,7 +81,7 @@ class ChainLoopEngine : public LoopEngine {
   void lend(Checkpoint& c) override { c.engine = engine_.lend_snapshot(); }
   void take_back(Checkpoint& c) override { engine_.take_back(std::move(c.engine)); }
   // A chain: one row of n sites, each block its own index.
-  SlipSource keep_slips() override {
+  SlipSource keep_slips(double) override {
     engine_.keep_slips(true);
     return {.slips = &engine_.slips(), .width = engine_.state().n()};
   }
@@ -115,8 +117,8 @@ class OfcLoopEngine : public LoopEngine {
   void lend(Checkpoint& c) override { put_ofc_state(c, engine_.snapshot()); }
   void take_back(Checkpoint&) override {}
   // The automaton's slip is the stress a site released; it also counts topplings.
-  SlipSource keep_slips() override {
-    engine_.keep_slips(true);
+  SlipSource keep_slips(double min_magnitude) override {
+    engine_.keep_slips(true, min_magnitude);
     return {.slips = &engine_.slips(),
             .topplings = &engine_.slip_topplings(),
             .width = engine_.params().nx,
@@ -201,7 +203,8 @@ class EventRun {
                                        settings_.output.catalog_deflate, catalog_layout(settings_));
     if (settings_.output.event_slip)
       observers_.attach<EventSlipWriter>(out_.path(EventSlipWriter::kFileName),
-                                         *settings_.output.event_slip, engine_->keep_slips());
+                                         *settings_.output.event_slip,
+                                         engine_->keep_slips(*settings_.output.event_slip));
     const auto& hist =
         observers_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
     if (stepper_) accuracy_ = &observers_.attach<AccuracyCheck>(settings_, *stepper_);

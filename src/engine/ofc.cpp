@@ -392,7 +392,6 @@ EventRecord OfcEngine::next_event() {
                                    distinct);
   }
   lost_ += lost;
-  if (keep_slips_) collect_slips();
   counters_.topplings += topplings;
   counters_.generations += generations;
 
@@ -431,6 +430,7 @@ EventRecord OfcEngine::next_event() {
   e.magnitude = std::log(moment);
   e.duration = static_cast<double>(generations);
   e.topplings = topplings;
+  if (keep_slips_) collect_slips(e.magnitude);
   return e;
 }
 
@@ -457,36 +457,34 @@ inline void OfcEngine::note_first_toppling(int j, std::uint32_t stamp,
   e.last_row = std::max(e.last_row, j);
 }
 
-void OfcEngine::keep_slips(bool on) {
+void OfcEngine::keep_slips(bool on, double min_magnitude) {
   keep_slips_ = on;
-  released_.assign(on ? p_.sites() : 0, 0.0);
-  toppled_count_.assign(on ? p_.sites() : 0, 0);
-  toppled_sites_.clear();
+  slip_min_magnitude_ = min_magnitude;
+  releases_.clear();
+  releases_.reserve(on ? p_.sites() : 0);
   slips_.clear();
   slip_topplings_.clear();
 }
 
-// A toppling of site j that released `released` (keep_slips, both orders).
-inline void OfcEngine::note_release(int j, double released) {
-  if (toppled_count_[j]++ == 0) {
-    toppled_sites_.push_back(j);
-    released_[j] = released;
-  } else {
-    released_[j] += released;
-  }
-}
-
-// The event's map in site order, and the per-site tallies cleared for the next event.
-void OfcEngine::collect_slips() {
-  std::sort(toppled_sites_.begin(), toppled_sites_.end());
+// The event's map from its topplings when its magnitude reaches the threshold: sorted by
+// site, stably, so each site's releases add up in the order it toppled.
+void OfcEngine::collect_slips(double magnitude) {
   slips_.clear();
   slip_topplings_.clear();
-  for (const int j : toppled_sites_) {
-    slips_.emplace_back(j, released_[j]);
-    slip_topplings_.push_back(toppled_count_[j]);
-    toppled_count_[j] = 0;
+  if (magnitude >= slip_min_magnitude_) {
+    std::stable_sort(releases_.begin(), releases_.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [j, released] : releases_) {
+      if (!slips_.empty() && slips_.back().first == j) {
+        slips_.back().second += released;
+        ++slip_topplings_.back();
+      } else {
+        slips_.emplace_back(j, released);
+        slip_topplings_.push_back(1);
+      }
+    }
   }
-  toppled_sites_.clear();
+  releases_.clear();
 }
 
 // Relaxation: the share a toppling passes to neighbour n as pending stress, which flows in
@@ -518,7 +516,7 @@ void OfcEngine::avalanche_generations(EventRecord& e, std::uint32_t first_genera
       const double s = alpha * r;
       g[j] = -offset_;
       moment += r;
-      if (keep_slips_) note_release(j, r);
+      if (keep_slips_) releases_.emplace_back(j, r);
       touch(j);
       note_first_toppling(j, gen, first_generation, e, distinct);
       int nb[4];
@@ -594,7 +592,7 @@ void OfcEngine::avalanche_sequential(EventRecord& e, std::uint32_t first_generat
     const double s = alpha * r;
     g[j] = -offset_;
     moment += r;
-    if (keep_slips_) note_release(j, r);
+    if (keep_slips_) releases_.emplace_back(j, r);
     ++topplings;
     touch(j);
     if constexpr (kRelax) mark_relaxing(j);

@@ -24,6 +24,7 @@
 // An event is one avalanche: sites index j = x + nx y (x along strike, model.blocks).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -109,12 +110,14 @@ class OfcEngine {
   double lost() const { return lost_; }
 
   // Keep each event's slip map (output.event_slip): after next_event(), slips() holds
-  // (site j, stress it released over the event: the sum over its topplings of what it held)
-  // for the sites that toppled, ascending in j, and slip_topplings() how many times each
-  // toppled (the same order). The released stresses sum to the event's moment (up to the
-  // rounding of the order of summation). Off (the default): nothing is kept, at the cost
-  // of one untaken branch per toppling.
-  void keep_slips(bool on);
+  // (site j, stress it released over the event: the sum over its topplings, in their order,
+  // of what it held) for the sites that toppled, ascending in j, and slip_topplings() how
+  // many times each toppled (the same order), for an event of magnitude >= min_magnitude;
+  // for a smaller one both are empty. The released stresses sum to the event's moment (up
+  // to the rounding of the order of summation). Off (the default): nothing is kept, at the
+  // cost of one untaken branch per toppling; on, a toppling appends (site, release) to a
+  // list, and only a mapped event sorts it.
+  void keep_slips(bool on, double min_magnitude = -HUGE_VAL);
   const std::vector<std::pair<int, double>>& slips() const { return slips_; }
   const std::vector<int>& slip_topplings() const { return slip_topplings_; }
 
@@ -140,8 +143,7 @@ class OfcEngine {
   void note_first_toppling(int j, std::uint32_t stamp, std::uint32_t first_generation,
                            EventRecord& e, int& distinct);
   void pass_pending(int n, double amount);
-  void note_release(int j, double released);
-  void collect_slips();
+  void collect_slips(double magnitude);
   template <bool kRelax>
   void avalanche_generations(EventRecord& e, std::uint32_t first_generation, double& moment,
                              double& lost, std::int64_t& topplings, std::int64_t& generations,
@@ -203,13 +205,11 @@ class OfcEngine {
   std::vector<std::pair<double, int>> heap_;
   std::vector<int> heap_pos_, relax_dirty_;
   std::vector<unsigned char> relax_marked_;
-  // The slip map (keep_slips): per site, what it released and how many times it toppled in
-  // this event (0: not yet), the sites that toppled in the order they first did, and the
-  // event's map as handed out.
+  // The slip map (keep_slips): the event's topplings as (site, release) in toppling order,
+  // and the event's map as handed out.
   bool keep_slips_ = false;
-  std::vector<double> released_;
-  std::vector<int> toppled_count_, toppled_sites_;
-  std::vector<std::pair<int, double>> slips_;
+  double slip_min_magnitude_ = 0;
+  std::vector<std::pair<int, double>> releases_, slips_;
   std::vector<int> slip_topplings_;
   std::vector<unsigned char> edge_;  // bit d: side d (left, right, down, up) is an edge
   int wrap_[4] = {0, 0, 0, 0};       // offset to the neighbour across side d on a wrapped axis

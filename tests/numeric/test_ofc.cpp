@@ -398,14 +398,17 @@ TEST(Ofc, RefusesRelaxationOutsideItsLimits) {
 // toppled and inside the event's box, the trigger among them, every toppling's release at
 // least the threshold (a site topples at F >= 1, the trigger a rounding step below), the counts
 // adding up to the topplings and the releases to the moment; and keeping it changes no
-// event (the same records bit for bit as an engine that keeps none). Both orders, and with
-// relaxation.
+// event (the same records bit for bit as an engine that keeps none); with a magnitude
+// threshold the maps of the events at or above it are the same and the others empty. Both
+// orders, and with relaxation.
 TEST(Ofc, SlipMapAddsUpToTheEventAndChangesNothing) {
   for (const OfcParams& p :
        {lattice(17, 13, 0.2, false, false), lattice(16, 12, 0.25, true, false, true),
         relaxing(lattice(14, 14, 0.15, false, true), 0.05, 0.01)}) {
-    OfcEngine kept(p, ofc_initial_field(p, 31)), plain(p, ofc_initial_field(p, 31));
+    OfcEngine kept(p, ofc_initial_field(p, 31)), plain(p, ofc_initial_field(p, 31)),
+        above(p, ofc_initial_field(p, 31));
     kept.keep_slips(true);
+    above.keep_slips(true, 1.0);
     std::int64_t repeated = 0;
     for (int k = 0; k < 3000; ++k) {
       const EventRecord r = kept.next_event(), q = plain.next_event();
@@ -413,6 +416,14 @@ TEST(Ofc, SlipMapAddsUpToTheEventAndChangesNothing) {
       ASSERT_EQ(r.load, q.load) << k;
       ASSERT_EQ(r.topplings, q.topplings) << k;
       ASSERT_EQ(trigger_site(r, p.nx), trigger_site(q, p.nx)) << k;
+      // With a threshold, the same map for the events at or above it, none for the others.
+      ASSERT_EQ(above.next_event().moment, r.moment) << k;
+      if (r.magnitude >= 1.0) {
+        ASSERT_EQ(above.slips(), kept.slips()) << k;
+        ASSERT_EQ(above.slip_topplings(), kept.slip_topplings()) << k;
+      } else {
+        ASSERT_TRUE(above.slips().empty() && above.slip_topplings().empty()) << k;
+      }
       const auto& slips = kept.slips();
       const auto& counts = kept.slip_topplings();
       ASSERT_EQ(slips.size(), static_cast<std::size_t>(r.blocks)) << k;

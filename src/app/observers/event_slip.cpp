@@ -1,6 +1,7 @@
 // The event-slip writer; see event_slip.hpp.
 #include "app/observers/event_slip.hpp"
 
+#include <charconv>
 #include <filesystem>
 #include <system_error>
 
@@ -14,6 +15,8 @@ namespace bkq {
 
 namespace {
 constexpr const char* kState = "event_slip.bytes";
+// The longest row: four integers of at most 20 characters, a real and four commas.
+constexpr std::size_t kMaxRow = 4 * 20 + kMaxRealChars + 4;
 }  // namespace
 
 EventSlipWriter::EventSlipWriter(std::string path, double mu_min, SlipSource source)
@@ -46,27 +49,29 @@ void EventSlipWriter::on_start() {
 
 void EventSlipWriter::on_event(const EventRecord& e) {
   if (!(e.magnitude >= mu_min_)) return;
-  // Appended piece by piece (GCC 12 warns falsely, -Wrestrict, on "," + std::string).
-  const std::string event = std::to_string(e.event) + ",";
+  // Formatted in place in the file's buffer (as the catalogue's rows are): a map can be
+  // thousands of rows per event.
   const auto& slips = *source_.slips;
-  std::string row;
+  const auto integer = [](char* out, long long v) { return std::to_chars(out, out + 20, v).ptr; };
   for (std::size_t k = 0; k < slips.size(); ++k) {
     const auto [j, slip] = slips[k];
-    row = event;
+    char* const row = file_->begin_row(kMaxRow);
+    char* out = integer(row, e.event);
+    *out++ = ',';
     if (source_.rows > 1) {
-      row += std::to_string(j % source_.width);
-      row += ',';
-      row += std::to_string(j / source_.width);
+      out = integer(out, j % source_.width);
+      *out++ = ',';
+      out = integer(out, j / source_.width);
     } else {
-      row += std::to_string(j);
+      out = integer(out, j);
     }
-    row += ',';
-    row += format_real(slip);
+    *out++ = ',';
+    out = format_real_to(out, slip);
     if (source_.topplings) {
-      row += ',';
-      row += std::to_string((*source_.topplings)[k]);
+      *out++ = ',';
+      out = integer(out, (*source_.topplings)[k]);
     }
-    file_->row(row);
+    file_->end_row(out);
   }
 }
 
