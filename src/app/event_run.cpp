@@ -70,7 +70,11 @@ class ChainLoopEngine : public LoopEngine {
                                                  settings.run.initial_disorder, true))) {
     engine_.max_steps_per_event = settings.run.max_steps_per_event;
   }
-  EventRecord next_event() override { return engine_.next_event(); }
+  EventRecord next_event() override {
+    EventRecord e = engine_.next_event();
+    if (column_) place_on_column(e);
+    return e;
+  }
   EngineCounters counters() const override { return engine_.counters(); }
   double load() const override { return engine_.load(); }
   int sites() const override { return engine_.state().n(); }
@@ -88,6 +92,8 @@ class ChainLoopEngine : public LoopEngine {
   const ChainForces& forces_;
   std::unique_ptr<Stepper> own_;
   EventEngine engine_;
+  // A lattice of one column runs as the chain along y; its events are read as rows.
+  bool column_ = settings_.lattice.nx == 1 && settings_.lattice.ny > 1;
 };
 
 class OfcLoopEngine : public LoopEngine {
@@ -188,6 +194,11 @@ class EventRun {
     if (settings_.output.event_slip && !chain)
       throw Error("output.event_slip: slip profiles are written for chain models, not for " +
                   std::string("model.kind = ofc"));
+    if (settings_.output.event_slip && settings_.lattice.ny > 1)
+      throw Error(
+          "output.event_slip: slip profiles are written for chains, not for a lattice "
+          "(model.rows = " +
+          std::to_string(settings_.lattice.ny) + "); allowed: output.event_slip = none");
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
                                        resumed ? prog_.events_done : -1,
