@@ -177,6 +177,8 @@ class ContinuousRun {
       ++done_;
       if (auto e = driver_->finished_episode()) {
         ++episodes_;
+        // A lattice of one column runs as the chain along y; its episodes are read as rows.
+        if (settings_.lattice.nx == 1 && settings_.lattice.ny > 1) place_on_column(*e);
         observers_.event(*e);
       }
       if (!std::isfinite(driver_->state().x) || !std::isfinite(driver_->state().w[0])) {
@@ -216,7 +218,7 @@ class ContinuousRun {
     if (const char* catalog = catalog_file_name(settings_.output.catalog))
       observers_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
                                        resumed ? prog_.events_done : -1,
-                                       settings_.output.catalog_deflate);
+                                       settings_.output.catalog_deflate, catalog_layout(settings_));
     if (settings_.output.blocks)
       observers_.attach<BlockTrajectories>(out_.path("blocks.csv"), resumed,
                                            settings_.output.block_first,

@@ -72,7 +72,11 @@ class ChainLoopEngine : public LoopEngine {
                                                  settings.run.initial_disorder, true))) {
     engine_.max_steps_per_event = settings.run.max_steps_per_event;
   }
-  EventRecord next_event() override { return engine_.next_event(); }
+  EventRecord next_event() override {
+    EventRecord e = engine_.next_event();
+    if (column_) place_on_column(e);
+    return e;
+  }
   EngineCounters counters() const override { return engine_.counters(); }
   double load() const override { return engine_.load(); }
   int sites() const override { return engine_.state().n(); }
@@ -81,9 +85,12 @@ class ChainLoopEngine : public LoopEngine {
   void lend(Checkpoint& c) override { c.engine = engine_.lend_snapshot(); }
   void take_back(Checkpoint& c) override { engine_.take_back(std::move(c.engine)); }
   // A chain: one row of n sites, each block its own index.
+  // A lattice's sites (a column's too: the chain's blocks are its rows) split by its width.
   SlipSource keep_slips(double) override {
     engine_.keep_slips(true);
-    return {.slips = &engine_.slips(), .width = engine_.state().n()};
+    return {.slips = &engine_.slips(),
+            .width = settings_.lattice.nx,
+            .rows = settings_.lattice.ny};
   }
   std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const override {
     return std::make_unique<ChainLoopEngine>(settings_, forces_, nullptr, from);
@@ -94,6 +101,8 @@ class ChainLoopEngine : public LoopEngine {
   const ChainForces& forces_;
   std::unique_ptr<Stepper> own_;
   EventEngine engine_;
+  // A lattice of one column runs as the chain along y; its events are read as rows.
+  bool column_ = settings_.lattice.nx == 1 && settings_.lattice.ny > 1;
 };
 
 class OfcLoopEngine : public LoopEngine {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "engine/contacts.hpp"
@@ -239,6 +240,12 @@ void ContinuousDriver::step() {
       e.duration = st_.t - episode_t0_;
       e.pad_displacement = forces_.params().pad_moves() ? st_.x - episode_x0_ : 0.0;
       if (e.trigger < 0) e.trigger = first;
+      if (forces_.lattice()) {
+        std::vector<int> sites;
+        for (int j = 0; j < forces_.n(); ++j)
+          if (slid_[j]) sites.push_back(j);
+        place_on_lattice(e, e.trigger, sites, forces_.nx());
+      }
       finished_ = e;
     }
   }

@@ -128,6 +128,20 @@ void EventEngine::add_to_ranges(int k) {
 void EventEngine::cover(int j) {
   // A sliding block and `margin_` neighbours on each side are integrated (the kernels
   // read j±1; a stepper that locates releases inside its step needs the next block too).
+  // On a lattice: the site and its stencil's partners, the sites whose force it changes.
+  auto add = [&](int k) {
+    if (covered_[k]) return;
+    covered_[k] = 1;
+    // The tree answers for uncovered blocks while the pad swings; with the pad held it is
+    // not asked during the event, and every covered block is put back when uncovered.
+    if (pad_) tree_.remove(k);
+    add_to_ranges(k);
+  };
+  if (forces_.lattice()) {
+    add(j);
+    forces_.for_each_partner(j, add);
+    return;
+  }
   const bool periodic = forces_.params().boundary == Boundary::Periodic;
   for (int d = -margin_; d <= margin_; ++d) {
     int k = j + d;
@@ -135,12 +149,7 @@ void EventEngine::cover(int j) {
       if (!periodic) continue;
       k = ((k % n_) + n_) % n_;
     }
-    if (covered_[k]) continue;
-    covered_[k] = 1;
-    // The tree answers for uncovered blocks while the pad swings; with the pad held it is
-    // not asked during the event, and every covered block is put back when uncovered.
-    if (pad_) tree_.remove(k);
-    add_to_ranges(k);
+    add(k);
   }
 }
 
@@ -162,9 +171,15 @@ void EventEngine::release(int j) {
 
 void EventEngine::shrink_ranges() {
   const bool periodic = forces_.params().boundary == Boundary::Periodic;
+  const bool lattice = forces_.lattice();
   for (const Range& r : ranges_)
     for (int j = r.lo; j < r.hi; ++j) {
       if (st_.mobile[j] == 0.0) continue;
+      if (lattice) {
+        need_[j] = 1;
+        forces_.for_each_partner(j, [&](int k) { need_[k] = 1; });
+        continue;
+      }
       for (int d = -margin_; d <= margin_; ++d) {
         const int k = j + d;
         if (k >= 0 && k < n_)
@@ -301,7 +316,29 @@ double EventEngine::stored_energy_change(double x0) const {
   double e_pull = 0, e_bond = 0, sum_slipped = 0;
   const bool periodic = p.boundary == Boundary::Periodic && n_ > 2;
   const bool bonds = p.has_neighbours();
-  if (forces_.long_range()) {
+  if (forces_.lattice()) {
+    // Each spring once, as below: to the partner at +offset always, to the one at -offset
+    // only when that site did not slip.
+    const int nx = forces_.nx();
+    for (int j : slipped_list_) {
+      const double d1 = w[j] - s - x1, d0 = before(j) - s - x0;
+      e_pull += d1 * d1 - d0 * d0;
+      sum_slipped += w[j];
+      const int x = j % nx, y = j / nx;
+      for (const LatticeSpring& c : forces_.lattice_stencil()) {
+        double e = 0;
+        if (const int r = forces_.site(x + c.dx, y + c.dy); r >= 0) {
+          const double d1b = w[r] - w[j], d0b = before(r) - before(j);
+          e += d1b * d1b - d0b * d0b;
+        }
+        if (const int l = forces_.site(x - c.dx, y - c.dy); l >= 0 && !slipped_[l]) {
+          const double d1b = w[j] - w[l], d0b = before(j) - before(l);
+          e += d1b * d1b - d0b * d0b;
+        }
+        e_bond += c.k * e;
+      }
+    }
+  } else if (forces_.long_range()) {
     // Each spring of the stencil once, as below: to the right always, to the left only
     // when the block there did not slip.
     for (int j : slipped_list_) {
@@ -347,7 +384,8 @@ double EventEngine::stored_energy_change(double x0) const {
     }
   }
   // With range coupling e_bond already holds each spring's stiffness.
-  double de = 0.5 * p.k_p * e_pull + (forces_.long_range() ? 0.5 : 0.5 * p.k_c) * e_bond;
+  double de = 0.5 * p.k_p * e_pull +
+              (forces_.long_range() || forces_.lattice() ? 0.5 : 0.5 * p.k_c) * e_bond;
   if (pad_) {
     // Blocks that did not slip only see the anchor move from s + x0 to s + x1.
     const double others = static_cast<double>(n_ - static_cast<int>(slipped_list_.size()));
@@ -664,9 +702,10 @@ EventRecord EventEngine::next_event() {
   }
   if (keep_slips_) std::sort(slips_.begin(), slips_.end());
   e.blocks = static_cast<int>(slipped_list_.size());
-  slipped_list_.clear();
   e.first_block = first;
   e.last_block = last;
+  if (forces_.lattice()) place_on_lattice(e, trigger, slipped_list_, forces_.nx());
+  slipped_list_.clear();
   e.moment = moment;
   e.magnitude = moment > 0 ? std::log(moment) : std::nan("");
   e.duration = last_stick_time_;

@@ -2,6 +2,7 @@
 // continuous run. The catalogue's columns (io/catalog.hpp) are these fields.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 namespace bkq {
@@ -27,5 +28,31 @@ struct EventRecord {
   int first_row = 0;
   int last_row = 0;
 };
+
+// An event of a lattice of one column, which ran as the chain along y
+// (model/parameters.hpp: line_as_chain): the chain's blocks are the column's rows.
+inline void place_on_column(EventRecord& e) {
+  e.trigger_row = e.trigger;
+  e.first_row = e.first_block;
+  e.last_row = e.last_block;
+  e.trigger = e.first_block = e.last_block = 0;
+}
+
+// A lattice's event (sites j = y nx + x): the trigger and the bounding box of the sites
+// that slipped, read as (x along strike, y across).
+template <class Sites>
+void place_on_lattice(EventRecord& e, int trigger, const Sites& slipped, int nx) {
+  e.trigger = trigger % nx;
+  e.trigger_row = trigger / nx;
+  e.first_block = nx;
+  e.last_block = -1;
+  e.first_row = e.last_row = trigger / nx;
+  for (int j : slipped) {
+    e.first_block = std::min(e.first_block, j % nx);
+    e.last_block = std::max(e.last_block, j % nx);
+    e.first_row = std::min(e.first_row, j / nx);
+    e.last_row = std::max(e.last_row, j / nx);
+  }
+}
 
 }  // namespace bkq

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "engine/contacts.hpp"
@@ -84,13 +85,16 @@ EventRecord ReferenceEventEngine::next_event() {
 
   e.first_block = n;
   e.last_block = -1;
+  std::vector<int> sites;
   for (int j = 0; j < n; ++j) {
     if (!slipped_[j]) continue;
     ++e.blocks;
     e.moment += st_.w[j] - w_before_[j];
     e.first_block = std::min(e.first_block, j);
     e.last_block = j;
+    if (forces_.lattice()) sites.push_back(j);
   }
+  if (forces_.lattice()) place_on_lattice(e, e.trigger, sites, forces_.nx());
   e.magnitude = e.moment > 0 ? std::log(e.moment) : std::nan("");
   e.duration = st_.t;
   e.max_speed = max_speed;

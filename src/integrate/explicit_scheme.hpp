@@ -60,10 +60,11 @@ class ExplicitScheme final : public Stepper {
 
  private:
   // Whether the ranges are better stepped one by one, and can be: their span is much wider
-  // than the blocks in them, no moving pad couples them, and no range reaches across a
-  // periodic chain's ends to another.
+  // than the blocks in them, no moving pad couples them, no range reaches across a periodic
+  // chain's ends to another, and they are not rows of a lattice (springs across strike
+  // couple them).
   static bool separable(const ChainForces& forces, Ranges ranges) {
-    if (ranges.size() < 2) return false;
+    if (ranges.size() < 2 || forces.lattice()) return false;
     int lo = ranges.front().lo, hi = ranges.front().hi, blocks = 0;
     for (const Range& r : ranges) lo = std::min(lo, r.lo), hi = std::max(hi, r.hi);
     for (const Range& r : ranges) blocks += r.hi - r.lo;

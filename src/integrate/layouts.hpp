@@ -45,7 +45,7 @@ struct ExplicitScratch {
   ExplicitScratch(const ExplicitScratch&) = delete;
   ExplicitScratch& operator=(const ExplicitScratch&) = delete;
   void fit(const ChainForces& forces, Ranges ranges) {
-    window.fit(ranges, forces.n(), forces.params().boundary == Boundary::Periodic, forces.reach());
+    window.fit(ranges, forces.n(), forces.wraps(), forces.reach());
   }
 
   BlockWindow window{8};
@@ -267,7 +267,9 @@ class ChainLayout {
       forces_.block_accelerations(w_at, v_at, st_.mobile.data(), st_.dir.data(), anchor, anchor_v,
                                   sub, Ranges(&piece, 1), s_.a.data());
     };
-    if (ranges_.size() == 1 && ranges_[0].hi - ranges_[0].lo >= kLongRange) {
+    // The fused pass lags the updates by one block: only kernels that read j +- 1 may take it.
+    if (ranges_.size() == 1 && ranges_[0].hi - ranges_[0].lo >= kLongRange &&
+        !forces_.general_kernel()) {
       layout_detail::fused_chain_pass<typename Round::BlockRound>(
           ranges_[0], pad_, accel, st_.w.data(), st_.wd.data(), s_.x.data(), s_.y.data(),
           s_.cw.data(), s_.cv.data(), s_.u.data(), s_.a.data(), update, sum, earlier, totals);

@@ -20,7 +20,7 @@ namespace bkq {
 // The catalogue's columns for a run of these settings: the OFC automaton's topplings, and
 // the row columns of a lattice with more than one row.
 inline CatalogLayout catalog_layout(const Settings& s) {
-  return {.topplings = s.ofc.on, .rows = s.ofc.on && s.ofc.lattice.ny > 1};
+  return {.topplings = s.ofc.on, .rows = s.lattice.ny > 1};
 }
 
 // "catalog.csv", "catalog.h5"; nullptr for CatalogFormat::None.

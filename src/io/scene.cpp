@@ -15,6 +15,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "core/fnv1a.hpp"
@@ -116,11 +117,12 @@ std::vector<ParamSpec> make_table() {
              "lattice's edges along strike: free is OFC's open edge (stress pushed over it is "
              "lost)"),
       integer("model.rows", "1", 1, 1e7, "",
-              "rows across strike: the lattice is model.blocks x model.rows (ofc; bk, bkp and "
-              "1dof run one row)"),
+              "rows across strike: the lattice is model.blocks x model.rows (bk, bkp, ofc; "
+              "1 is the chain; 1dof runs one block)"),
       choice("model.boundary_y", "free", {"free", "periodic"},
-             "lattice edges across strike (ofc): free is OFC's open edge (stress pushed over "
-             "it is lost), periodic wraps row model.rows - 1 to row 0"),
+             "lattice edges across strike (model.rows > 1, or ofc): free has no spring past "
+             "the edge (for ofc the open edge: stress pushed over it is lost), periodic wraps "
+             "row model.rows - 1 to row 0"),
       choice("model.coupling", "nearest", {"nearest", "range", "power"},
              "block-to-block springs: nearest (k_c to each neighbour), range (k_c/R to every "
              "block within R = model.range on each side; Xia, Gould, Klein & Rundle 2005) or "
@@ -137,7 +139,11 @@ std::vector<ParamSpec> make_table() {
            "eta (w'_{j-1} - 2 w'_j + w'_{j+1}) for nearest neighbours, shaped as the stencil "
            "with sum eta for range and power; event and continuous runs (rk2, rk4, verlet)"),
       real("model.l", "10", '[', 0, 1e4, ']', "",
-           "stiffness ratio l, neighbour spring k_c = l^2 (carlson-langer only)"),
+           "stiffness ratio l, neighbour spring k_c = l^2 (carlson-langer only); on a lattice "
+           "the spring along strike"),
+      auto_real("model.l_y", 1e4, "",
+                "lattice (model.rows > 1): stiffness ratio across strike, k_c_y = l_y^2 "
+                "(carlson-langer only); auto: equal to model.l"),
       real("model.pad_mass", "100", '(', 0, kHuge, ']', "mass", "pad mass m_x (thesis only)"),
       real("model.caliper_stiffness", "100", '[', 0, kHuge, ']', "force/length",
            "caliper-pad spring k_p0 (thesis only)"),
@@ -147,7 +153,11 @@ std::vector<ParamSpec> make_table() {
       real("model.s_p", "1", '(', 0, 1e6, ']', "",
            "pulling-spring scaling s_p: k_p = s_p k_p0 / N"),
       real("model.s_c", "0.01", '[', 0, 1e6, ']', "",
-           "coupling scaling s_c: k_c = s_c k_p0 N (thesis only)"),
+           "coupling scaling s_c: k_c = s_c k_p0 N (thesis only); on a lattice k_c = s_c k_p0 "
+           "model.blocks along strike"),
+      auto_real("model.s_c_y", 1e6, "",
+                "lattice (model.rows > 1): coupling scaling across strike, k_c_y = s_c_y k_p0 "
+                "model.rows (thesis only); auto: equal to model.s_c"),
       real("model.rayleigh_alpha", "0", '[', 0, kHuge, ']', "1/time",
            "Rayleigh damping alpha_M M + beta_K K of blocks and pad (K with k_c, k_p and the pad "
            "row; continuous runs and bkquake stability, event runs refuse it): alpha_M"),
@@ -418,9 +428,11 @@ namespace {
 // to_ini() comments it out, so a run's own scene.ini reads back to the same scene.
 const std::vector<KeyDependency>& dependencies() {
   static const std::vector<KeyDependency> deps = {
-      {{"model.pad_mass", "model.caliper_stiffness", "model.s_c", "friction.F0", "friction.vc"},
+      {{"model.pad_mass", "model.caliper_stiffness", "model.s_c", "model.s_c_y", "friction.F0",
+        "friction.vc"},
        {{"model.parameterisation", {"thesis"}}}},
-      {{"model.l", "friction.alpha"}, {{"model.parameterisation", {"carlson-langer"}}}},
+      {{"model.l", "model.l_y", "friction.alpha"},
+       {{"model.parameterisation", {"carlson-langer"}}}},
       {{"model.range"}, {{"model.coupling", {"range", "power"}}}},
       {{"model.coupling_exponent"}, {{"model.coupling", {"power"}}}},
       // The pad (bkp) and the single block (1dof) have dampers; the plain chain has none.
@@ -444,8 +456,7 @@ const std::vector<KeyDependency>& dependencies() {
        {{"run.start", {"equilibrium"}}}},
       {{"friction.table"}, {{"friction.law", {"table"}}}},
       // The automaton has a threshold and a share alpha, no masses, friction or time steps.
-      {{"model.boundary_y", "ofc.alpha", "ofc.order", "ofc.relaxation_time",
-        "ofc.relaxation_alpha"},
+      {{"ofc.alpha", "ofc.order", "ofc.relaxation_time", "ofc.relaxation_alpha"},
        {{"model.kind", {"ofc"}}}},
       {{"model.parameterisation",
         "model.coupling",
@@ -453,9 +464,11 @@ const std::vector<KeyDependency>& dependencies() {
         "model.coupling_exponent",
         "model.viscosity",
         "model.l",
+        "model.l_y",
         "model.pad_mass",
         "model.caliper_stiffness",
         "model.s_c",
+        "model.s_c_y",
         "model.s_m",
         "model.s_p",
         "model.damping_ratio",
@@ -477,6 +490,11 @@ const std::vector<KeyDependency>& dependencies() {
        {{"model.kind", {"bk", "bkp", "1dof"}}}},
   };
   return deps;
+}
+
+// The across-strike stiffness keys: they apply only to a lattice (model.rows > 1).
+bool lattice_key(const std::string& key) {
+  return key == "model.l_y" || key == "model.s_c_y";
 }
 
 std::string join(const std::vector<std::string>& parts, const std::string& sep) {
@@ -510,6 +528,12 @@ const KeyDependency* Scene::failing_dependency(const std::string& key) const {
 // Why `key` does not apply: "needs drive.schedule = steps, but drive.schedule = constant".
 std::string Scene::why_not(const std::string& key) const {
   if (key == "model.blocks") return "model.kind = 1dof has one block";
+  if (key == "model.rows") return "model.kind = 1dof has one block";
+  if (key == "model.boundary_y")
+    return "needs model.rows > 1 or model.kind = ofc, but model.rows = " + text("model.rows") +
+           " and model.kind = " + choice("model.kind");
+  if (lattice_key(key) && failing_dependency(key) == nullptr)
+    return "needs model.rows > 1, but model.rows = " + text("model.rows");
   const KeyDependency* d = failing_dependency(key);
   if (!d) return "";
   std::vector<std::string> now;
@@ -617,8 +641,16 @@ void Scene::apply_override(const std::string& assignment) {
 
 bool Scene::applies(const std::string& key) const {
   if (key == "model.blocks") return choice("model.kind") != "1dof" || integer(key) == 1;
-  // A chain is one row: given as 1 it is accepted, any other count is refused by validate().
-  if (key == "model.rows") return choice("model.kind") == "ofc";
+  // A chain is one row: given as 1 it is accepted (and left out of a chain's scene.ini), more
+  // make a lattice of bk or bkp; 1dof refuses more in validate().
+  if (key == "model.rows")
+    return choice("model.kind") == "ofc" ||
+           (choice("model.kind") != "1dof" && integer("model.rows") > 1);
+  // The edges across strike mean something on a lattice, and for the automaton always.
+  if (key == "model.boundary_y")
+    return choice("model.kind") == "ofc" ||
+           (choice("model.kind") != "1dof" && integer("model.rows") > 1);
+  if (lattice_key(key) && integer("model.rows") == 1) return false;
   return failing_dependency(key) == nullptr;
 }
 
@@ -657,11 +689,15 @@ void Scene::validate() const {
     if (!is_set(p.key) || applies(p.key)) continue;
     if (p.key == "model.rows") {
       if (integer(p.key) == 1) continue;
-      throw Error("model.rows = " + text(p.key) + " with model.kind = " + choice("model.kind") +
-                  ": the BK lattice (more than one row) is not implemented; allowed: model.rows "
-                  "= 1, or model.kind = ofc" +
+      throw Error("model.rows = " + text(p.key) +
+                  " with model.kind = 1dof: one block has one row; allowed: model.rows = 1, or "
+                  "model.kind = bk, bkp or ofc" +
                   where);
     }
+    if (p.key == "model.boundary_y" || (lattice_key(p.key) && failing_dependency(p.key) == nullptr))
+      throw Error(p.key + " = " + text(p.key) +
+                  " applies only to a lattice (model.rows > 1), but model.rows = " +
+                  text("model.rows") + where);
     if (p.key == "model.blocks")
       throw Error("model.blocks = " + text(p.key) +
                   " contradicts model.kind = 1dof (a single block); remove model.blocks or set "
@@ -679,7 +715,8 @@ void Scene::validate() const {
     throw Error("model.boundary = periodic needs model.blocks >= 3, got model.blocks = " +
                 text("model.blocks") + where);
   if (choice("model.kind") == "ofc") check_ofc(where);
-  if (applies("model.range")) check_range(where);
+  if (choice("model.kind") != "ofc" && integer("model.rows") > 1) check_lattice(where);
+  if (applies("model.range") && integer("model.rows") == 1) check_range(where);
   if (choice("run.start") == "equilibrium" && choice("drive.mode") != "continuous")
     throw Error("run.start = equilibrium needs drive.mode = continuous, but drive.mode = " +
                 choice("drive.mode") + where);
@@ -701,6 +738,42 @@ void Scene::check_range(const std::string& where) const {
       "model.range = " + text("model.range") + " with model.blocks = " + text("model.blocks") +
       " and model.boundary = " + choice("model.boundary") + ": allowed " +
       (ring ? "2 model.range < model.blocks (a ring)" : "model.range < model.blocks") + where);
+}
+
+void Scene::check_lattice(const std::string& where) const {
+  // The BK lattice (Carlson 1991): what its engine and its forces are written for.
+  const std::int64_t nx = integer("model.blocks"), ny = integer("model.rows");
+  if (nx * ny > 10'000'000)
+    throw Error("model.blocks x model.rows = " + text("model.blocks") + " x " + text("model.rows") +
+                ": allowed at most 1e7 blocks for a bk or bkp lattice" + where);
+  const bool py = choice("model.boundary_y") == "periodic";
+  if (py && ny < 3)
+    throw Error("model.boundary_y = periodic needs model.rows >= 3, got model.rows = " +
+                text("model.rows") + where);
+  if (real("model.viscosity") != 0)
+    throw Error("model.viscosity = " + text("model.viscosity") +
+                " with model.rows = " + text("model.rows") +
+                ": the viscous coupling is written for chains; allowed on a lattice: "
+                "model.viscosity = 0" +
+                where);
+  if (choice("drive.mode") == "continuous" && choice("run.start") == "equilibrium")
+    throw Error("run.start = equilibrium with model.rows = " + text("model.rows") +
+                ": steady sliding is solved for chains; allowed on a lattice: run.start = "
+                "disorder" +
+                where);
+  if (!applies("model.range")) return;
+  // A lattice's range couples a disc of radius R: per axis as for a chain (a lattice of one
+  // column is the chain along y).
+  const std::int64_t r = integer("model.range");
+  for (const auto& [key, boundary, count] :
+       {std::tuple{"model.blocks", "model.boundary", nx}, {"model.rows", "model.boundary_y", ny}}) {
+    const bool ring = choice(boundary) == "periodic";
+    if (count == 1 || (ring ? 2 * r < count : r < count)) continue;
+    throw Error("model.range = " + text("model.range") + " with " + key + " = " + text(key) +
+                " and " + boundary + " = " + choice(boundary) + ": allowed " +
+                (ring ? std::string("2 model.range < ") : std::string("model.range < ")) + key +
+                where);
+  }
 }
 
 void Scene::check_ofc(const std::string& where) const {
@@ -860,7 +933,7 @@ bool added_later(const std::string& key) {
   static const std::set<std::string> keys{
       "model.rows",          "model.boundary_y",        "ofc.alpha",       "model.coupling",
       "model.range",         "model.coupling_exponent", "model.viscosity", "ofc.order",
-      "ofc.relaxation_time", "ofc.relaxation_alpha"};
+      "ofc.relaxation_time", "ofc.relaxation_alpha",    "model.l_y",       "model.s_c_y"};
   return keys.count(key) != 0;
 }
 }  // namespace

@@ -105,6 +105,7 @@ class Scene {
   void check_continuous_run(const std::string& where) const;
   // validate()'s checks of an OFC scene: events only, its catalogue format, its lattice.
   void check_ofc(const std::string& where) const;
+  void check_lattice(const std::string& where) const;
   void check_range(const std::string& where) const;
   // The first applies-when row of `key` that does not hold (nullptr when it applies), and
   // why in words ("needs drive.schedule = steps, but drive.schedule = constant").

@@ -20,7 +20,14 @@ ModelParams model_from_scene(const Scene& scene) {
   const std::string& kind = scene.choice("model.kind");
   p.kind = kind == "bkp" ? ModelKind::BKP : kind == "1dof" ? ModelKind::OneDof : ModelKind::BK;
   p.boundary = scene.choice("model.boundary") == "periodic" ? Boundary::Periodic : Boundary::Free;
-  p.n = p.kind == ModelKind::OneDof ? 1 : static_cast<int>(scene.integer("model.blocks"));
+  // A lattice (model.rows > 1) stores its rows one after the other: n counts every block.
+  const int nx = p.kind == ModelKind::OneDof ? 1 : static_cast<int>(scene.integer("model.blocks"));
+  p.rows = kind == "ofc" || p.kind == ModelKind::OneDof
+               ? 1
+               : static_cast<int>(scene.integer("model.rows"));
+  p.n = nx * p.rows;
+  p.boundary_y =
+      scene.choice("model.boundary_y") == "periodic" ? Boundary::Periodic : Boundary::Free;
 
   // The scene has checked the keyword against the registry's names.
   p.law = law_named(scene.choice("friction.law")).value();
@@ -38,7 +45,10 @@ ModelParams model_from_scene(const Scene& scene) {
     k_p0 = scene.real("model.caliper_stiffness");
     p.m_u = s_m * m_x / p.n;
     p.k_p = s_p * k_p0 / p.n;
-    p.k_c = scene.real("model.s_c") * k_p0 * p.n;
+    // On a lattice each axis keeps the stiffness of its own elements.
+    p.k_c = scene.real("model.s_c") * k_p0 * nx;
+    if (p.rows > 1)
+      p.k_c_y = scene.real_or_auto("model.s_c_y").value_or(scene.real("model.s_c")) * k_p0 * p.rows;
     p.F0 = scene.real("friction.F0");
     p.v_c = scene.real("friction.vc");
   } else {
@@ -49,6 +59,10 @@ ModelParams model_from_scene(const Scene& scene) {
     p.F0 = 1;
     const double l = scene.real("model.l");
     p.k_c = l * l;
+    if (p.rows > 1) {
+      const double l_y = scene.real_or_auto("model.l_y").value_or(l);
+      p.k_c_y = l_y * l_y;
+    }
     const double alpha = scene.real("friction.alpha");
     p.v_c = alpha > 0 ? 1.0 / (2.0 * alpha) : HUGE_VAL;
     m_x = p.n * p.m_u / s_m;
@@ -72,12 +86,16 @@ ModelParams model_from_scene(const Scene& scene) {
     // Thesis eq. 2.11: one mass on a spring with a damper, m x'' = -c x' - k x - F(x' + v).
     p.c_u = critical_damping(zeta, p.k_p, p.m_u);
   }
-  return p;
+  return line_as_chain(p);
 }
 
 Settings settings_from_scene(const Scene& scene) {
   Settings s;
   s.model = model_from_scene(scene);
+  if (scene.choice("model.kind") != "1dof") {
+    s.lattice.nx = static_cast<int>(scene.integer("model.blocks"));
+    s.lattice.ny = static_cast<int>(scene.integer("model.rows"));
+  }
   if (scene.choice("model.kind") == "ofc") {
     s.ofc.on = true;
     OfcParams& o = s.ofc.lattice;
@@ -133,15 +151,16 @@ Settings settings_from_scene(const Scene& scene) {
   // event functions are written for nearest-neighbour springs without dashpots.
   const std::string& scheme = s.integrator.scheme;
   const bool crossing = scheme == "rk2" || scheme == "rk4" || scheme == "verlet";
-  const bool general = s.model.long_range() || s.model.viscous();
+  const bool general = s.model.long_range() || s.model.viscous() || s.model.lattice();
   if (general && (!crossing || s.integrator.located_transitions))
     throw Error((crossing ? "integrator.transitions = located" : "integrator.scheme = " + scheme) +
                 " with " +
-                (s.model.long_range() ? "model.coupling = " + scene.choice("model.coupling") +
-                                            " and model.range = " + scene.text("model.range")
-                                      : "model.viscosity = " + scene.text("model.viscosity")) +
-                ": written for nearest-neighbour springs without dashpots; allowed here: "
-                "integrator.scheme = rk2, rk4 or verlet with integrator.transitions = step");
+                (s.model.lattice()      ? "model.rows = " + scene.text("model.rows")
+                 : s.model.long_range() ? "model.coupling = " + scene.choice("model.coupling") +
+                                              " and model.range = " + scene.text("model.range")
+                                        : "model.viscosity = " + scene.text("model.viscosity")) +
+                ": written for chains of nearest-neighbour springs without dashpots; allowed "
+                "here: integrator.scheme = rk2, rk4 or verlet with integrator.transitions = step");
 
   s.output.every = scene.real("output.every");
   s.output.blocks = scene.flag("output.blocks");

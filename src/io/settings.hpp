@@ -94,8 +94,16 @@ struct OfcSettings {
   OfcParams lattice;
 };
 
+// The scene's lattice as given (model.blocks along strike, model.rows across), for the outputs:
+// a lattice of one column runs as the chain along y (model/parameters.hpp: line_as_chain), and
+// its catalogue still reads (x, y) = (0, the chain's block).
+struct LatticeShape {
+  int nx = 1, ny = 1;
+};
+
 struct Settings {
   ModelParams model;
+  LatticeShape lattice;
   OfcSettings ofc;
   DriveSettings drive;
   RunSettings run;

@@ -17,15 +17,22 @@ ChainForces::ChainForces(const ModelParams& p)
     : p_(p),
       law_(make_law(p)),
       friction_(friction_of(p)),
-      stencil_(coupling_stencil(p)),
+      stencil_(p.lattice() ? CouplingStencil{} : coupling_stencil(p)),
       dampers_(damper_stencil(p)),
-      long_range_(p.long_range()),
+      grid_(bkq::lattice_stencil(p)),
+      long_range_(p.long_range() && !p.lattice()),
       viscous_(p.viscous()),
+      lattice_(p.lattice()),
+      nx_(p.nx()),
+      ny_(p.rows),
       inv_m_(1.0 / p.m_u),
       rayleigh_(p.rayleigh_alpha != 0 || p.rayleigh_beta != 0),
       beta_m_(p.rayleigh_beta / p.m_u) {
   for (const CouplingStencil* st : {&stencil_, &dampers_})
     for (const CouplingSpring& c : *st) reach_ = std::max(reach_, c.offset);
+  // A lattice site's partners lie within max |dy| + 1 rows of it in the storage order (a
+  // periodic row's wrap included).
+  for (const LatticeSpring& c : grid_) reach_ = std::max(reach_, (std::abs(c.dy) + 1) * nx_);
   kernel_ = select_kernel(false);
   kernel_inertial_ = select_kernel(true);
 }
@@ -88,7 +95,7 @@ ChainForces::Kernel ChainForces::select_kernel(bool inertial) const {
     // The Rayleigh switch is picked here, not in with_switches: only the continuous runs'
     // kernels take it (the event engine's paths refuse the damping).
     using Damped = ForceTerms<Terms::neighbours, Terms::damper, true>;
-    if (long_range_ || viscous_) {
+    if (long_range_ || viscous_ || lattice_) {
       if (rayleigh_)
         return inertial ? &kernel_long<L, Damped, true> : &kernel_long<L, Damped, false>;
       return inertial ? &kernel_long<L, Terms, true> : &kernel_long<L, Terms, false>;
@@ -112,6 +119,21 @@ double ChainForces::stiffness_energy(const double* w, double anchor, double x) c
   for (int j = 0; j < n; ++j) {
     const double d = w[j] - anchor;
     e_p += d * d;
+  }
+  if (lattice_) {
+    // Each spring once: from every site to its partner at +offset.
+    double e = 0;
+    for (int j = 0; j < n; ++j) {
+      const int x = j % nx_, y = j / nx_;
+      for (const LatticeSpring& s : grid_)
+        if (const int i = site(x + s.dx, y + s.dy); i >= 0) {
+          const double d = w[i] - w[j];
+          e += s.k * d * d;
+        }
+    }
+    double total = 0.5 * e + 0.5 * p_.k_p * e_p;
+    if (p_.pad_moves()) total += 0.5 * p_.k_p0 * x * x;
+    return total;
   }
   if (long_range_) {
     // Each spring once: from every block to the block `offset` to its right (a periodic

@@ -29,6 +29,10 @@
 // nearest-neighbour kernels and everything below that reads only j +- 1 are untouched, so
 // a nearest-neighbour scene (and range or power at R = 1) keeps its bits.
 //
+// A lattice (ModelParams::lattice, Carlson 1991): the sites are stored row by row and the
+// stencil lives in the plane (model/coupling.hpp's LatticeStencil); every force goes through
+// lattice_sum and the general kernel, and the chain's fast paths, which read j +- 1, stay off.
+//
 // Only the terms a scene switches on are compiled into the kernel that runs (templates
 // on the friction law's policy type, model/friction_laws.hpp; on the optional terms,
 // ForceTerms; and on the substrate acceleration).
@@ -116,12 +120,59 @@ class ChainForces {
   const CouplingStencil& dampers() const { return dampers_; }
   bool long_range() const { return long_range_; }
   bool viscous() const { return viscous_; }
-  // Whether the forces need the general kernel (kernel_long): springs beyond j +- 1 or
-  // dashpots. The nearest-neighbour fast paths (cluster, held ranges, lone slip, the
+  // A two-dimensional lattice: its stencil in the plane, and its shape.
+  bool lattice() const { return lattice_; }
+  const LatticeStencil& lattice_stencil() const { return grid_; }
+  int nx() const { return nx_; }
+  // Whether the forces need the general kernel (kernel_long): springs beyond j +- 1, dashpots
+  // or a lattice. The nearest-neighbour fast paths (cluster, held ranges, lone slip, the
   // vectorised contact pass) apply only where this is false.
-  bool general_kernel() const { return long_range_ || viscous_; }
-  // Blocks on each side of a block that its springs and dashpots reach.
+  bool general_kernel() const { return long_range_ || viscous_ || lattice_; }
+  // Blocks on each side of a block (in the order they are stored) that its springs and
+  // dashpots reach: on a lattice the farthest partner's distance in that order.
   int reach() const { return reach_; }
+  // Whether a block's springs reach from one end of the storage order to the other (a
+  // periodic chain, or a lattice with periodic rows).
+  bool wraps() const {
+    return lattice_ ? p_.boundary_y == Boundary::Periodic : p_.boundary == Boundary::Periodic;
+  }
+  // Calls f(i) for every site i a spring couples to site j of a lattice (each once per spring,
+  // in the stencil's order, the partner at -offset first).
+  template <class F>
+  void for_each_partner(int j, F&& f) const {
+    const int x = j % nx_, y = j / nx_;
+    for (const LatticeSpring& s : grid_) {
+      if (const int i = site(x - s.dx, y - s.dy); i >= 0) f(i);
+      if (const int i = site(x + s.dx, y + s.dy); i >= 0) f(i);
+    }
+  }
+  // The site at (x, y) of a lattice, wrapped across periodic edges; -1 past a free edge.
+  int site(int x, int y) const {
+    if (x < 0 || x >= nx_) {
+      if (p_.boundary != Boundary::Periodic) return -1;
+      x += x < 0 ? nx_ : -nx_;
+    }
+    if (y < 0 || y >= ny_) {
+      if (p_.boundary_y != Boundary::Periodic) return -1;
+      y += y < 0 ? ny_ : -ny_;
+    }
+    return y * nx_ + x;
+  }
+  // sum_s k_s ((w_{j-s} - w_j) + (w_{j+s} - w_j)) over the lattice's stencil, the edges
+  // applied. Nearest neighbours give k_c (...) + k_c_y (...): a sum of two terms, the same
+  // with the axes swapped.
+  double lattice_sum(const double* w, int j) const {
+    const int x = j % nx_, y = j / nx_;
+    const double wj = w[j];
+    double f = 0;
+    for (const LatticeSpring& s : grid_) {
+      double d = 0;
+      if (const int i = site(x - s.dx, y - s.dy); i >= 0) d += w[i] - wj;
+      if (const int i = site(x + s.dx, y + s.dy); i >= 0) d += w[i] - wj;
+      f += s.k * d;
+    }
+    return f;
+  }
 
   // Spring force on block j (neighbours and pulling spring), the force friction must hold.
   double spring_force(const double* w, int j, double anchor) const {
@@ -129,6 +180,7 @@ class ChainForces {
   }
   // k_c (w_{j-1} - 2 w_j + w_{j+1}) with the scene's boundary (free ends: no spring).
   double neighbour_force(const double* w, int j) const {
+    if (lattice_) return lattice_sum(w, j);
     const int n = p_.n;
     if (n < 2 || p_.k_c == 0) return 0.0;
     if (long_range_) return stencil_force(w, j);
@@ -304,8 +356,11 @@ class ChainForces {
   LawVariant law_;
   Friction friction_;
   CouplingStencil stencil_, dampers_;
+  LatticeStencil grid_;
   bool long_range_ = false;
   bool viscous_ = false;
+  bool lattice_ = false;
+  int nx_ = 1, ny_ = 1;
   int reach_ = 1;
   double inv_m_ = 1;
   bool rayleigh_ = false;

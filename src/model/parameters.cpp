@@ -12,9 +12,21 @@ double critical_damping(double zeta, double k, double m) {
   return zeta * 2.0 * std::sqrt(k * m);
 }
 
+ModelParams line_as_chain(ModelParams p) {
+  if (p.rows <= 1 || p.n != p.rows) return p;
+  p.rows = 1;
+  p.k_c = p.k_c_y;
+  p.k_c_y = 0;
+  p.boundary = p.boundary_y;
+  p.boundary_y = Boundary::Free;
+  return p;
+}
+
 double ModelParams::max_angular_frequency() const {
-  // Thesis eq. 3.2: the fastest chain mode has neighbours in antiphase, sqrt((4 k_c + k_p)/m_u).
-  double w = std::sqrt(((has_neighbours() ? 4.0 * k_c : 0.0) + k_p) / m_u);
+  // Thesis eq. 3.2: the fastest chain mode has neighbours in antiphase, sqrt((4 k_c + k_p)/m_u);
+  // on a lattice the checkerboard mode, with 4 (k_c + k_c_y).
+  const double k_nb = has_neighbours() ? 4.0 * (k_c + (lattice() ? k_c_y : 0.0)) : 0.0;
+  double w = std::sqrt((k_nb + k_p) / m_u);
   // A damper is a real eigenvalue of size c/m; explicit steppers must resolve it too.
   w = std::max(w, c_u / m_u);
   // The dashpots' fastest mode (neighbours in antiphase) decays at 4 eta / m_u at most.
@@ -26,7 +38,7 @@ double ModelParams::max_angular_frequency() const {
   if (rayleigh_alpha != 0 || rayleigh_beta != 0) {
     // Rayleigh damping alpha_M M + beta_K K adds alpha_M + beta_K omega^2 to a mode of
     // angular frequency omega: the fastest block and pad modes' damping rates, as the dampers'.
-    const double wb2 = ((has_neighbours() ? 4.0 * k_c : 0.0) + k_p) / m_u;
+    const double wb2 = (k_nb + k_p) / m_u;
     const double eta = viscous() ? 4.0 * viscosity / m_u : 0.0;
     w = std::max(w, c_u / m_u + rayleigh_alpha + rayleigh_beta * wb2 + eta);
     if (pad_moves())

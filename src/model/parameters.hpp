@@ -25,8 +25,14 @@ struct FrictionTable {
 
 struct ModelParams {
   ModelKind kind = ModelKind::BK;
-  Boundary boundary = Boundary::Free;
-  int n = 100;  // number of blocks
+  Boundary boundary = Boundary::Free;  // along strike (the chain's ends)
+  int n = 100;                         // number of blocks (sites of a lattice)
+  // A lattice (Carlson 1991): `rows` rows across strike of nx() = n / rows blocks along strike,
+  // stored row by row, site j = y nx + x. rows = 1 is the chain; a lattice of one column is
+  // the chain along y (line_as_chain), so rows > 1 below means nx() > 1 as well.
+  int rows = 1;
+  Boundary boundary_y = Boundary::Free;  // across strike: free edges or periodic rows
+  double k_c_y = 0;                      // across-strike neighbour spring (k_c along strike)
 
   double m_u = 1;  // block mass
   double k_p = 1;  // pulling spring (block to pad)
@@ -57,11 +63,16 @@ struct ModelParams {
   FrictionTable table;  // the table law's rows (empty for the other laws)
 
   bool pad_moves() const { return kind == ModelKind::BKP; }
-  bool has_neighbours() const { return k_c != 0 && n > 1; }
+  bool has_neighbours() const { return (k_c != 0 || (lattice() && k_c_y != 0)) && n > 1; }
+  // A two-dimensional lattice (more than one row and more than one column).
+  bool lattice() const { return rows > 1; }
+  int nx() const { return n / rows; }
   // How far the coupling reaches on each side: 1 for nearest neighbours (and for range or
-  // power at R = 1, which are the nearest-neighbour chain), R otherwise.
+  // power at R = 1, which are the nearest-neighbour chain), R otherwise (on a lattice, the
+  // radius of the disc of coupled sites).
   int reach() const { return coupling == Coupling::Nearest ? 1 : range; }
-  // Coupling beyond the nearest neighbours: the kernels that read only j +- 1 do not apply.
+  // Coupling beyond the nearest neighbours of a chain: the kernels that read only j +- 1 do not
+  // apply.
   bool long_range() const { return has_neighbours() && reach() > 1; }
   // Dashpots between blocks (model.viscosity).
   bool viscous() const { return viscosity != 0 && n > 1; }
@@ -76,6 +87,10 @@ struct ModelParams {
 
 // Damper of a mass m on a spring k at damping ratio zeta: zeta 2 sqrt(k m) (Ferre 2018 §3.1).
 double critical_damping(double zeta, double k, double m);
+
+// A lattice of one column (n = rows) is the chain of its rows: the across-strike spring and
+// boundary become the chain's. Anything else is returned as it is.
+ModelParams line_as_chain(ModelParams p);
 
 const char* to_string(ModelKind k);
 

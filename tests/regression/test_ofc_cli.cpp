@@ -193,8 +193,10 @@ TEST(OfcCli, ScenesThatCannotRunAreRefusedInOneLine) {
       {"ofc.alpha = 0.25", "never end", "model.boundary_y"});
   test::expect_refused(run_bkquake(run_args(ofc_with({"--set", "ofc.alpha=0.3"}), {"--out", out})),
                        {"ofc.alpha", "0.3", "(0, 0.25]"});
-  test::expect_refused(run_bkquake(run_args({"--set", "model.rows=4", "--quiet"}, {"--out", out})),
-                       {"model.rows = 4", "BK lattice", "not implemented"});
+  test::expect_refused(
+      run_bkquake(run_args({"--set", "model.kind=1dof", "--set", "model.rows=4", "--quiet"},
+                           {"--out", out})),
+      {"model.rows = 4", "1dof", "one block"});
   test::expect_refused(
       run_bkquake(run_args(ofc_with({"--set", "drive.mode=continuous"}), {"--out", out})),
       {"drive.mode = continuous", "model.kind = ofc", "event by event"});
