@@ -88,9 +88,7 @@ class ChainLoopEngine : public LoopEngine {
   // A lattice's sites (a column's too: the chain's blocks are its rows) split by its width.
   SlipSource keep_slips(double) override {
     engine_.keep_slips(true);
-    return {.slips = &engine_.slips(),
-            .width = settings_.lattice.nx,
-            .rows = settings_.lattice.ny};
+    return {.slips = &engine_.slips(), .width = settings_.lattice.nx, .rows = settings_.lattice.ny};
   }
   std::unique_ptr<LoopEngine> restart(const Checkpoint* from) const override {
     return std::make_unique<ChainLoopEngine>(settings_, forces_, nullptr, from);

@@ -345,6 +345,45 @@ TEST(LatticeRun, EventAndContinuousRunsWriteTheRowColumns) {
   EXPECT_GE(column_of(rows[0], "last_row"), 0);
 }
 
+// Slip maps of a lattice (output.event_slip): each event's sites as (block, row) inside the
+// lattice and its bounding box, their slips adding up to the catalogue's moment.
+TEST(LatticeRun, SlipMapsAddUpToTheMomentInsideTheBoundingBox) {
+  test::TempDir tmp;
+  const auto r = test::run_bkquake(
+      {"run", "--quiet", "--set", "model.blocks=10", "--set", "model.rows=8", "--set",
+       "run.events=1000", "--set", "output.event_slip=-6", "--out", "ev"},
+      tmp.path().string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto cat = catalog_rows(tmp.file("ev/catalog.csv"));
+  const auto slip = catalog_rows(tmp.file("ev/event_slip.csv"));
+  ASSERT_GT(slip.size(), 1u);
+  const auto& h = slip[0];
+  ASSERT_EQ(h, (std::vector<std::string>{"event", "block", "row", "slip"}));
+  std::vector<double> sum(cat.size(), 0.0);
+  std::vector<int> sites(cat.size(), 0);
+  const auto& hc = cat[0];
+  for (std::size_t i = 1; i < slip.size(); ++i) {
+    const auto e = static_cast<std::size_t>(std::stoll(slip[i][0]));
+    ASSERT_LT(e, cat.size());
+    const int x = std::stoi(slip[i][1]), y = std::stoi(slip[i][2]);
+    EXPECT_GE(x, std::stoi(cat[e][column_of(hc, "first_block")]));
+    EXPECT_LE(x, std::stoi(cat[e][column_of(hc, "last_block")]));
+    EXPECT_GE(y, std::stoi(cat[e][column_of(hc, "first_row")]));
+    EXPECT_LE(y, std::stoi(cat[e][column_of(hc, "last_row")]));
+    sum[e] += std::stod(slip[i][3]);
+    ++sites[e];
+  }
+  int mapped = 0;
+  for (std::size_t e = 1; e < cat.size(); ++e) {
+    if (sites[e] == 0) continue;
+    ++mapped;
+    EXPECT_EQ(sites[e], std::stoi(cat[e][column_of(hc, "blocks")])) << "event " << e;
+    const double m = std::stod(cat[e][column_of(hc, "moment")]);
+    EXPECT_NEAR(sum[e], m, 1e-9 * m) << "event " << e;
+  }
+  EXPECT_GT(mapped, 20);
+}
+
 TEST(LatticeRefusals, WhatTheLatticeIsNotWrittenFor) {
   auto refused = [](const std::vector<std::string>& sets, const std::vector<std::string>& parts) {
     test::TempDir tmp;
