@@ -1,5 +1,6 @@
 #!/usr/bin/env -S /usr/bin/python3
-"""The events of a lattice run (the OFC automaton with model.rows > 1) in one figure, from
+"""The events of a lattice run in one figure: the OFC automaton or the Burridge-Knopoff
+lattice (model.kind = ofc, bk or bkp with model.rows > 1; event-driven or continuous), from
 its catalogue (catalog.csv or catalog.h5, with the row columns trigger_row, first_row,
 last_row) and scene.ini:
 
@@ -9,15 +10,22 @@ last_row) and scene.ini:
   middle  where the largest events happened: the bounding box (columns first_block ..
           last_block by rows first_row .. last_row) of each of the --largest largest
           events, coloured by mu, its trigger site (x, y) = (trigger, trigger_row) marked;
-  right   the triggers of all events: the count per site of the lattice.
+  third   the triggers of all events: the count per site of the lattice;
+  fourth  (a continuous BK run that wrote blocks.csv, output.blocks = true) the stress field:
+          the force the springs put on every block, sum over its stencil of k (u_nb - u_j)
+          - k_p (u_j - x), in units of its static threshold F0 m_u (failure at 1), from the
+          displacements of one row of blocks.csv (--time T: the row nearest T; default the
+          last row, the final state). Without blocks.csv (or with part of the lattice in
+          it) the panel is left out with a note.
 
 When the run wrote slip maps (output.event_slip = MU: event_slip.csv, one row per site
-that toppled, with block = x, row = y, the stress it released and its topplings), a second
-row of panels draws the maps of the --maps M largest events in that file (largest total
-release, which is the event's moment): the stress each site released, blank where none
-toppled.
+that slipped, with block = x, row = y and its slip; for OFC the stress it released and its
+topplings), a second row of panels draws the maps of the --maps M largest events in that
+file (largest total, which is the event's moment): blank where nothing slipped. In a
+continuous run the events are the slip episodes (which write no slip maps).
 
 Usage: /usr/bin/python3 analysis/plot_lattice.py RUN_DIR [--out PNG] [--largest K] [--maps M]
+       [--time T]
 Writes RUN_DIR/lattice.png by default. A folder that is not a lattice run (no scene.ini or
 catalogue, or a catalogue without the row columns: a chain or a single row) is refused
 with a one-line message (exit 2).
@@ -108,6 +116,139 @@ def trigger_map(ax, cat, nx, ny):
     plt.colorbar(im, ax=ax, shrink=0.8)
 
 
+def _value(section, key, default=None):
+    """A scene value as a float; `auto` (or missing) gives `default`."""
+    v = section.get(key, "auto")
+    return default if v == "auto" else float(v)
+
+
+def lattice_springs(scene, nx, ny):
+    """(k_p, threshold F0 m_u, stencil [(dx, dy, k)]) of a BK lattice's scene.ini, as
+    src/model/coupling.cpp and src/io/settings.cpp compute them: carlson-langer units
+    m_u = k_p = F0 = 1, k_c = l^2, k_c_y = l_y^2; thesis units m_u = s_m m_x / N,
+    k_p = s_p k_p0 / N, k_c = s_c k_p0 nx, k_c_y = s_c_y k_p0 ny (N = nx ny). range and
+    power spread k_c + k_c_y over the disc 0 < r <= R with weights w(r) (k_c dx^2 + k_c_y
+    dy^2) / r^2, normalised by the sum of w dx^2 / r^2 over the half disc."""
+    model, friction = scene.get("model", {}), scene.get("friction", {})
+    n = nx * ny
+    if model.get("parameterisation", "carlson-langer") == "thesis":
+        k_p0 = _value(model, "caliper_stiffness")
+        m_u = _value(model, "s_m", 1.0) * _value(model, "pad_mass") / n
+        k_p = _value(model, "s_p", 1.0) * k_p0 / n
+        s_c = _value(model, "s_c")
+        k_c, k_c_y = s_c * k_p0 * nx, _value(model, "s_c_y", s_c) * k_p0 * ny
+        threshold = _value(friction, "f0") * m_u
+    else:
+        l = _value(model, "l")
+        k_p, threshold = 1.0, 1.0
+        k_c, k_c_y = l * l, _value(model, "l_y", l) ** 2
+    coupling = model.get("coupling", "nearest")
+    reach = 1 if coupling == "nearest" else int(model.get("range", "1"))
+    if reach == 1:
+        return k_p, threshold, [(1, 0, k_c), (0, 1, k_c_y)]
+    p = _value(model, "coupling_exponent", 3.0)
+    half = [(dx, dy) for dx in range(reach + 1) for dy in range(-reach, reach + 1)
+            if 0 < dx * dx + dy * dy <= reach * reach and not (dx == 0 and dy < 0)]
+    w = {(dx, dy): (np.hypot(dx, dy) ** -p if coupling == "power" else 1.0) for dx, dy in half}
+    norm = sum(w[d] * d[0] ** 2 / (d[0] ** 2 + d[1] ** 2) for d in half)
+    return k_p, threshold, [(dx, dy, w[(dx, dy)] * (k_c * dx * dx + k_c_y * dy * dy)
+                             / (dx * dx + dy * dy) / norm) for dx, dy in half]
+
+
+def stress_field(scene, nx, ny, u, pad_x=0.0):
+    """The force of the springs on each block in units of its threshold, as a (ny, nx)
+    array: sum over the stencil of k (u_nb - u_j) (free edges drop the springs past them,
+    periodic ones wrap) minus k_p (u_j - pad_x). u holds the lab-frame displacements row by
+    row (site j = y nx + x), as blocks.csv writes them."""
+    model = scene.get("model", {})
+    k_p, threshold, springs = lattice_springs(scene, nx, ny)
+    periodic = (model.get("boundary", "free") == "periodic",
+                model.get("boundary_y", "free") == "periodic")
+    grid = np.asarray(u, dtype=float).reshape(ny, nx)
+    force = -k_p * (grid - pad_x)
+    ys, xs = np.mgrid[0:ny, 0:nx]
+    for dx, dy, k in springs:
+        for sx, sy in ((dx, dy), (-dx, -dy)):
+            px, py = xs + sx, ys + sy
+            ok = np.ones_like(grid, dtype=bool)
+            if periodic[0]:
+                px %= nx
+            else:
+                ok &= (px >= 0) & (px < nx)
+            if periodic[1]:
+                py %= ny
+            else:
+                ok &= (py >= 0) & (py < ny)
+            partner = grid[np.where(ok, py, 0), np.where(ok, px, 0)]
+            force += np.where(ok, k * (partner - grid), 0.0)
+    return force / threshold
+
+
+def block_row(run_dir, n, time):
+    """(t, u[0..n-1]) of the row of blocks.csv nearest `time` (None: the last row), or None
+    with the reason when blocks.csv is missing or does not hold every block."""
+    path = os.path.join(run_dir, "blocks.csv")
+    if not os.path.exists(path):
+        return None, "no blocks.csv (output.blocks = true writes it)"
+    with open(path) as f:
+        lines = [line for line in f if line.strip() and not line.startswith("#")]
+    if not lines:
+        return None, "blocks.csv is empty"
+    header, rows = lines[0].strip().split(","), lines[1:]
+    if header[1:n + 1] != [f"u{j}" for j in range(n)]:
+        return None, ("blocks.csv does not hold every block of the lattice "
+                      "(output.block_first, output.block_count)")
+    if not rows:
+        return None, "blocks.csv holds no rows"
+    t = np.array([float(r.split(",", 1)[0]) for r in rows])
+    i = len(rows) - 1 if time is None else int(np.argmin(np.abs(t - time)))
+    cells = rows[i].strip().split(",")
+    return (t[i], np.array(cells[1:n + 1], dtype=float)), None
+
+
+def pad_position(run_dir, t):
+    """The pad's position at time t from timeseries.csv (0 without it: the bk model)."""
+    path = os.path.join(run_dir, "timeseries.csv")
+    if not os.path.exists(path):
+        return 0.0
+    ts = bkquake_io.read_csv_columns(path)
+    if "pad_x" not in ts or len(ts["t"]) == 0:
+        return 0.0
+    times = np.asarray(ts["t"], dtype=float)
+    return float(np.asarray(ts["pad_x"], dtype=float)[np.argmin(np.abs(times - t))])
+
+
+def stress_map(ax, field, t):
+    """The stress field, the threshold (failure) at the top of the colour scale."""
+    im = ax.imshow(field, origin="lower", cmap="viridis", interpolation="nearest",
+                   vmin=min(0.0, field.min()), vmax=max(1.0, field.max()))
+    ax.set_xlabel("x (column, along strike)")
+    ax.set_ylabel("y (row, across strike)")
+    ax.set_title(f"spring force / threshold at t = {t:g}", fontsize=9)
+    plt.colorbar(im, ax=ax, shrink=0.8)
+
+
+def title(scene, nx, ny):
+    """What the run is: the automaton's alpha, or the BK lattice's coupling and friction."""
+    model = scene.get("model", {})
+    kind = model.get("kind", "bk")
+    if kind == "ofc":
+        return f"ofc {nx} x {ny}, alpha = {scene.get('ofc', {}).get('alpha', '?')}"
+    coupling = model.get("coupling", "nearest")
+    if coupling != "nearest":
+        coupling += f" R = {model.get('range', '?')}"
+        if model.get("coupling", "") == "power":
+            coupling += f" p = {model.get('coupling_exponent', '?')}"
+    if model.get("parameterisation", "carlson-langer") == "thesis":
+        springs = f"s_c = {model.get('s_c', '?')}"
+    else:
+        springs = f"l = {model.get('l', '?')}"
+    alpha = scene.get("friction", {}).get("alpha")
+    friction = f", alpha = {alpha}" if alpha else ""
+    drive = scene.get("drive", {}).get("mode", "events")
+    return f"{kind} {nx} x {ny}, {coupling}, {springs}{friction}, {drive}"
+
+
 SLIP_COLUMNS = ("event", "block", "row", "slip")
 
 
@@ -124,7 +265,7 @@ def load_slip_maps(run_dir):
     missing = [c for c in SLIP_COLUMNS if c not in cols]
     if missing:
         refuse(f"{path} has no {', '.join(missing)} column (expected a lattice's slip maps: "
-               f"{','.join(SLIP_COLUMNS)},topplings)")
+               f"{','.join(SLIP_COLUMNS)}[,topplings])")
     return cols
 
 
@@ -152,27 +293,30 @@ def largest_maps(slips, nx, ny, k):
     return out
 
 
-def slip_map(ax, event, released, topplings):
-    """One event's map: the stress each site released."""
+def slip_map(ax, event, released, topplings, automaton):
+    """One event's map: each site's slip (the automaton: the stress it released)."""
     im = ax.imshow(released, origin="lower", cmap="viridis", interpolation="nearest")
     sites = int(np.count_nonzero(~np.isnan(released)))
     mu = np.log(np.nansum(released))
-    ax.set_title(f"event {event}: mu = {mu:.2f}, {sites} sites, {int(topplings.sum())} "
-                 "topplings", fontsize=9)
+    counted = f", {int(topplings.sum())} topplings" if automaton else ""
+    ax.set_title(f"event {event}: mu = {mu:.2f}, {sites} sites{counted}", fontsize=9)
     ax.set_xlabel("x (column, along strike)")
     ax.set_ylabel("y (row, across strike)")
-    plt.colorbar(im, ax=ax, shrink=0.8, label="stress released")
+    plt.colorbar(im, ax=ax, shrink=0.8, label="stress released" if automaton else "slip")
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("run", help="run folder of a lattice (model.kind = ofc, model.rows > 1)")
+    ap.add_argument("run", help="run folder of a lattice (model.rows > 1: ofc, bk or bkp)")
     ap.add_argument("--out", help="PNG file (default RUN_DIR/lattice.png)")
     ap.add_argument("--largest", type=int, default=20,
                     help="how many of the largest events to map (default 20)")
     ap.add_argument("--maps", type=int, default=3,
                     help="how many of the largest events' slip maps to draw, when the run "
                          "wrote event_slip.csv (default 3)")
+    ap.add_argument("--time", type=float,
+                    help="continuous BK runs: the time of the stress field's row of blocks.csv "
+                         "(default the last row)")
     args = ap.parse_args()
     if args.largest < 1:
         refuse(f"--largest = {args.largest}: expected at least 1")
@@ -190,29 +334,46 @@ def main():
     if len(cat["magnitude"]) == 0:
         refuse(f"{args.run}: the catalogue holds no events")
     nx, ny = lattice_shape(args.run, cat)
-    slips = load_slip_maps(args.run)
-    maps = largest_maps(slips, nx, ny, args.maps) if slips is not None else []
+    scene = bkquake_io.load_scene(args.run)
     out = args.out or os.path.join(args.run, "lattice.png")
     inputs = [args.run]
     bkquake_io.check_output_or_exit(out, inputs, COMMAND)
 
+    stress = None
+    continuous = scene.get("drive", {}).get("mode") == "continuous"
+    if continuous and scene.get("model", {}).get("kind", "bk") != "ofc":
+        row, why = block_row(args.run, nx * ny, args.time)
+        if row is None:
+            print(f"{COMMAND}: no stress field: {why}")
+        else:
+            t, u = row
+            stress = (stress_field(scene, nx, ny, u, pad_position(args.run, t)), t)
+    elif args.time is not None:
+        refuse(f"--time = {args.time:g}: the stress field is drawn for continuous BK runs only")
+
+    slips = load_slip_maps(args.run)
+    maps = largest_maps(slips, nx, ny, args.maps) if slips is not None else []
+    panels = 4 if stress else 3
     if maps:
-        # Top: the catalogue's three panels; bottom: one panel per slip map.
+        # Top: the catalogue's panels; bottom: one panel per slip map.
         n = len(maps)
-        fig = plt.figure(figsize=(max(15, 5 * n), 8.8), dpi=100)
-        grid = fig.add_gridspec(2, 3 * n)
-        axes = [fig.add_subplot(grid[0, i * n:(i + 1) * n]) for i in range(3)]
+        automaton = "topplings" in slips
+        fig = plt.figure(figsize=(max(5 * panels, 5 * n), 8.8), dpi=100)
+        grid = fig.add_gridspec(2, panels * n)
+        axes = [fig.add_subplot(grid[0, i * n:(i + 1) * n]) for i in range(panels)]
         for i, (event, released, topplings) in enumerate(maps):
-            slip_map(fig.add_subplot(grid[1, 3 * i:3 * (i + 1)]), event, released, topplings)
+            slip_map(fig.add_subplot(grid[1, panels * i:panels * (i + 1)]), event, released,
+                     topplings, automaton)
     else:
-        fig, axes = plt.subplots(1, 3, figsize=(15, 4.4), dpi=100)
+        fig, axes = plt.subplots(1, panels, figsize=(5 * panels, 4.4), dpi=100)
     magnitude_frequency(axes[0], np.asarray(cat["magnitude"], dtype=float),
                         bkquake_io.load_summary(args.run))
-    alpha = bkquake_io.load_scene(args.run).get("ofc", {}).get("alpha", "?")
     name = os.path.basename(os.path.normpath(args.run))
-    axes[0].set_title(f"{name}: {nx} x {ny} sites, alpha = {alpha}", fontsize=9)
+    axes[0].set_title(f"{name}: {title(scene, nx, ny)}", fontsize=8)
     largest_boxes(axes[1], cat, nx, ny, args.largest)
     trigger_map(axes[2], cat, nx, ny)
+    if stress:
+        stress_map(axes[3], *stress)
     fig.tight_layout()
     bkquake_io.save_figure(fig, out, inputs, COMMAND, dpi=110)
     print(out)

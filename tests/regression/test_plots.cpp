@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "../cli_helpers.hpp"
 #include "io/folder_lock.hpp"
@@ -236,6 +238,76 @@ TEST_F(Plots, LatticeFigureOfAnOfcRunAndRefusalsOfAChain) {
   expect_one_line_refusal(test::run_process(kPython, {script("plot_lattice.py"), row}),
                           "not a lattice");
   EXPECT_FALSE(fs::exists(row + "/lattice.png"));
+}
+
+// The width in pixels of a PNG file's image (its IHDR chunk, big-endian at bytes 16..19).
+std::uint32_t png_width(const std::string& png) {
+  if (png.size() < 24) return 0;
+  std::uint32_t w = 0;
+  for (int i = 16; i < 20; ++i) w = (w << 8) | static_cast<unsigned char>(png[i]);
+  return w;
+}
+
+// plot_lattice.py on the BK lattice: an event run gets the automaton's three panels; a
+// continuous run that wrote blocks.csv gets a fourth, the stress field, which is checked
+// against the run's own numbers on every row of blocks.csv: its sum is minus timeseries.csv's
+// pad friction (the springs between blocks cancel in the sum, on free and periodic edges),
+// and where no block slides no block carries more than its threshold (one step's loading
+// aside). Two lattices: 1/r^3 springs within r <= 2 with periodic rows (carlson-langer
+// units), and a pad under nearest neighbours (thesis units).
+TEST_F(Plots, LatticeFigureOfBkRunsAndTheStressFieldOfAContinuousRun) {
+  const std::string events = dir_.file("bk");
+  ASSERT_EQ(test::run_bkquake({"run", "--set", "model.blocks=12", "--set", "model.rows=10", "--set",
+                               "run.events=400", "--quiet", "--out", events})
+                .status,
+            0);
+  const auto p = test::run_process(kPython, {script("plot_lattice.py"), events, "--largest", "5"});
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_EQ(png_width(test::read_file(events + "/lattice.png")), 1650u);
+  expect_one_line_refusal(test::run_process(kPython, {script("plot_lattice.py"), events, "--time",
+                                                      "3", "--out", dir_.file("t.png")}),
+                          "continuous BK runs only");
+
+  const std::vector<std::vector<std::string>> lattices = {
+      {"model.blocks=10", "model.rows=6", "model.coupling=power", "model.range=2",
+       "model.boundary_y=periodic"},
+      {"model.kind=bkp", "model.parameterisation=thesis", "model.blocks=8", "model.rows=6"}};
+  const std::string check =
+      "import sys; sys.path.insert(0, '" + script("") +
+      "')\n"
+      "import numpy as np, bkquake_io, plot_lattice as pl\n"
+      "run = sys.argv[1]; scene = bkquake_io.load_scene(run)\n"
+      "nx, ny = int(scene['model']['blocks']), int(scene['model']['rows'])\n"
+      "ts = bkquake_io.read_csv_columns(run + '/timeseries.csv')\n"
+      "rows = np.loadtxt(run + '/blocks.csv', delimiter=',', skiprows=1, ndmin=2)\n"
+      "assert len(rows) == len(ts['t']) > 100, (len(rows), len(ts['t']))\n"
+      "thr = pl.lattice_springs(scene, nx, ny)[1]\n"
+      "stuck, top = 0, 0.0\n"
+      "for r, t, pf, sl, x in zip(rows, ts['t'], ts['pad_friction'], ts['sliding'], "
+      "ts['pad_x']):\n"
+      "    assert r[0] == float(t), (r[0], t)\n"
+      "    f = pl.stress_field(scene, nx, ny, r[1:nx * ny + 1], float(x))\n"
+      "    assert abs(f.sum() * thr + float(pf)) <= 1e-9 * max(1.0, abs(float(pf))), (t, "
+      "f.sum() * thr, pf)\n"
+      "    if float(sl) == 0:\n"
+      "        stuck += 1; top = max(top, f.max())\n"
+      "        assert f.max() <= 1 + 1e-3, (t, f.max())\n"
+      "assert stuck > 20 and top > 0.9, (stuck, top)\n";
+  int i = 0;
+  for (const auto& sets : lattices) {
+    const std::string run = dir_.file("continuous" + std::to_string(i++));
+    std::vector<std::string> args = {"run", "--quiet", "--out", run};
+    for (const char* s :
+         {"drive.mode=continuous", "drive.speed=0.01", "run.duration=300", "output.blocks=true"})
+      args.insert(args.end(), {"--set", s});
+    for (const std::string& s : sets) args.insert(args.end(), {"--set", s});
+    ASSERT_EQ(test::run_bkquake(args).status, 0) << sets[0];
+    const auto q = test::run_process(kPython, {script("plot_lattice.py"), run});
+    ASSERT_EQ(q.status, 0) << q.err;
+    EXPECT_EQ(png_width(test::read_file(run + "/lattice.png")), 2200u) << sets[0];
+    const auto c = test::run_process(kPython, {"-c", check, run});
+    EXPECT_EQ(c.status, 0) << sets[0] << ": " << c.err;
+  }
 }
 
 TEST_F(Plots, WorkPrecisionOfTheReferenceStudy) {
