@@ -1,4 +1,5 @@
-// The shipped BK lattice scenes (data/scenes/lattice/): each says in its header what it is
+// The shipped lattice scenes (data/scenes/lattice/: BK, and the OFC automaton's with ofc in
+// the file name): each says in its header what it is
 // for and how long it takes, reads as a lattice (model.rows > 1), and runs a few events (or
 // time units) from the command line as users run it. Among them are a nearest-neighbour
 // lattice, a lattice with 1/r^3 springs (Mori & Kawamura's elastic kernel) and a continuous
@@ -28,7 +29,7 @@ TEST(LatticeScenes, EachShippedSceneSaysWhatItIsAndRunsBriefly) {
     if (e.path().extension() == ".ini") scenes.push_back(e.path());
   std::sort(scenes.begin(), scenes.end());
   ASSERT_GE(scenes.size(), 3u);
-  int nearest = 0, power3 = 0, continuous = 0;
+  int nearest = 0, power3 = 0, continuous = 0, ofc = 0, relaxation = 0;
   test::TempDir tmp;
   for (const fs::path& scene : scenes) {
     const std::string name = scene.filename().string();
@@ -46,6 +47,14 @@ TEST(LatticeScenes, EachShippedSceneSaysWhatItIsAndRunsBriefly) {
     const auto r = test::run_bkquake(args);
     ASSERT_EQ(r.status, 0) << name << ": " << r.err;
     const std::string effective = test::read_file(tmp.file(name) + "/scene.ini");
+    // The automaton's scenes (ofc in the file name) beside the BK lattice's.
+    if (has(name, "ofc")) {
+      EXPECT_TRUE(has(effective, "\nkind = ofc")) << name;
+      EXPECT_TRUE(has(test::read_file(tmp.file(name) + "/catalog.csv"), ",trigger_row")) << name;
+      ofc += 1;
+      relaxation += has(effective, "\nrelaxation_time = 0.001");
+      continue;
+    }
     EXPECT_TRUE(has(effective, "\nkind = bk")) << name;
     EXPECT_FALSE(has(effective, "\nrows = 1\n")) << name;
     const std::string catalog = test::read_file(tmp.file(name) + "/catalog.csv");
@@ -62,6 +71,8 @@ TEST(LatticeScenes, EachShippedSceneSaysWhatItIsAndRunsBriefly) {
   EXPECT_GE(nearest, 1);
   EXPECT_GE(power3, 1);
   EXPECT_GE(continuous, 1);
+  EXPECT_GE(ofc, 2);
+  EXPECT_GE(relaxation, 1);
 }
 
 }  // namespace

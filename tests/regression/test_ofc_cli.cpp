@@ -170,13 +170,13 @@ TEST(OfcCli, ShippedSceneRuns) {
   test::TempDir tmp;
   const std::string out = tmp.file("out");
   const auto r =
-      run_bkquake({"run", BKQUAKE_SOURCE_DIR "/data/scenes/ofc-256-a020.ini", "--set",
+      run_bkquake({"run", BKQUAKE_SOURCE_DIR "/data/scenes/lattice/ofc-256-a020.ini", "--set",
                    "run.events=300", "--set", "run.transient_events=0", "--quiet", "--out", out});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(lines_of(read_file(out + "/catalog.csv")).size(), 301u);
   const std::string relax = tmp.file("relax");
   const auto rr =
-      run_bkquake({"run", BKQUAKE_SOURCE_DIR "/data/scenes/ofc-relaxation-64.ini", "--set",
+      run_bkquake({"run", BKQUAKE_SOURCE_DIR "/data/scenes/lattice/ofc-relaxation-64.ini", "--set",
                    "run.events=300", "--set", "run.transient_events=0", "--quiet", "--out", relax});
   ASSERT_EQ(rr.status, 0) << rr.err;
   EXPECT_EQ(lines_of(read_file(relax + "/catalog.csv")).size(), 301u);
