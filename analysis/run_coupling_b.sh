@@ -12,7 +12,8 @@
 #                              (defaults: 20000, 20000, 1000, R = 1 3 10 30 100)
 #
 # Environment: BKQUAKE (default build/bkquake), PYTHON (default /usr/bin/python3), JOBS
-# (runs at once, default 2). Existing runs are replaced (--force).
+# (runs at once, default 2), SEED (run.seed; default the scene's), OUT (default
+# runs/coupling). Existing runs are replaced (--force).
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
@@ -25,7 +26,9 @@ RANGES=("$@")
 BKQUAKE=${BKQUAKE:-build/bkquake}
 PYTHON=${PYTHON:-/usr/bin/python3}
 JOBS=${JOBS:-2}
-OUT=runs/coupling
+OUT=${OUT:-runs/coupling}
+SEED_SET=()
+[[ -z ${SEED:-} ]] || SEED_SET=(--set run.seed="$SEED")
 
 if [[ ! -x $BKQUAKE ]]; then
   echo "run_coupling_b.sh: $BKQUAKE not found; build it (./run.sh) or set BKQUAKE" >&2
@@ -39,7 +42,7 @@ for law in clst91 thesis; do
     "$BKQUAKE" run --quiet --force --out "$OUT/$law-N$N-R$r" \
       --set model.blocks="$N" --set friction.law="$law" \
       --set model.coupling=range --set model.range="$r" \
-      --set run.events="$EVENTS" --set run.transient_events="$TRANSIENT" &
+      --set run.events="$EVENTS" --set run.transient_events="$TRANSIENT" "${SEED_SET[@]}" &
   done
 done
 wait
