@@ -12,12 +12,13 @@
 // milliseconds, so each repeats them from S until it has run for 0.2 s. One row per round and
 // engine: events per CPU second, the ratio to the straightforward engine in the same round,
 // blocks advanced per event (sites stepped, summed over the steps), sliding block-steps per
-// event (equal for all three: the same events), and the share of events started from the
-// replay. The rows also count the events whose trigger and size differ from the
-// straightforward engine's (0: the same events).
+// event (equal for all three: the same events), the shares of events started and finished
+// (lone slips) from the replay, and the number of events whose trigger or size differ from
+// the straightforward engine's (0: the same events). A last row per size: the event engine
+// alone over S more events from S (round "steady"), the rate a long run sees.
 //
-//   build/lattice_events [--events F] [--rounds R] [--transient T] [L ...]
-//                        (defaults: F = 200, R = 3, T = 10, L = 64 256)
+//   build/lattice_events [--events F] [--rounds R] [--transient T] [--steady S] [L ...]
+//                        (defaults: F = 200, R = 3, T = 10, S = 100000, L = 64 256)
 #include <time.h>
 
 #include <cstdio>
@@ -47,7 +48,7 @@ double thread_seconds() {
 // What one engine did over the F events of a round.
 struct Pass {
   double seconds = 0;  // CPU time per pass over the F events
-  double block_steps = 0, sliding_block_steps = 0, replayed = 0;
+  double block_steps = 0, sliding_block_steps = 0, replayed = 0, finished = 0;
   std::vector<bkq::EventRecord> events;
 };
 
@@ -75,6 +76,7 @@ Pass event_engine_pass(const bkq::ChainForces& forces, const std::string& scheme
       out.block_steps = static_cast<double>(c.block_steps - c0.block_steps);
       out.sliding_block_steps = static_cast<double>(c.sliding_block_steps - c0.sliding_block_steps);
       out.replayed = static_cast<double>(engine.lone_slip_starts().replayed);
+      out.finished = static_cast<double>(engine.lone_slip_starts().finished);
     }
     ++passes;
   }
@@ -105,7 +107,7 @@ int differing(const std::vector<bkq::EventRecord>& a, const std::vector<bkq::Eve
 }  // namespace
 
 int main(int argc, char** argv) {
-  long long f = 200, transient_per_site = 10;
+  long long f = 200, transient_per_site = 10, steady = 100000;
   int rounds = 3;
   std::vector<int> sizes;
   for (int i = 1; i < argc; ++i) {
@@ -116,21 +118,24 @@ int main(int argc, char** argv) {
       rounds = static_cast<int>(value());
     else if (std::strcmp(argv[i], "--transient") == 0)
       transient_per_site = value();
+    else if (std::strcmp(argv[i], "--steady") == 0)
+      steady = value();
     else
       sizes.push_back(std::atoi(argv[i]));
   }
   if (sizes.empty()) sizes = {64, 256};
   for (int l : sizes)
-    if (l < 2 || f < 1 || rounds < 1 || transient_per_site < 0) {
+    if (l < 2 || f < 1 || rounds < 1 || transient_per_site < 0 || steady < 0) {
       std::fprintf(stderr,
                    "usage: lattice_events [--events F >= 1] [--rounds R >= 1] [--transient T >= "
-                   "0] [L >= 2 ...]\n");
+                   "0] [--steady S >= 0] [L >= 2 ...]\n");
       return 2;
     }
 
   std::printf(
       "lattice,round,engine,events,events_per_cpu_second,ratio,blocks_per_event,"
-      "sliding_block_steps_per_event,mean_event_blocks,replayed_share,differing_events\n");
+      "sliding_block_steps_per_event,mean_event_blocks,replayed_share,finished_share,"
+      "differing_events\n");
   try {
     for (int l : sizes) {
       bkq::Scene scene;
@@ -155,14 +160,30 @@ int main(int argc, char** argv) {
         for (const bkq::EventRecord& e : full.events) blocks += e.blocks;
         const double ff = static_cast<double>(f);
         auto row = [&](const char* name, const Pass& pass) {
-          std::printf("%dx%d,%d,%s,%lld,%.6g,%.4g,%.6g,%.6g,%.4g,%.4g,%d\n", l, l, round, name, f,
-                      ff / pass.seconds, full.seconds / pass.seconds, pass.block_steps / ff,
+          std::printf("%dx%d,%d,%s,%lld,%.6g,%.4g,%.6g,%.6g,%.4g,%.4g,%.4g,%d\n", l, l, round, name,
+                      f, ff / pass.seconds, full.seconds / pass.seconds, pass.block_steps / ff,
                       pass.sliding_block_steps / ff, blocks / ff, pass.replayed / ff,
-                      differing(pass.events, full.events));
+                      pass.finished / ff, differing(pass.events, full.events));
         };
         row("event", fast);
         row("event_replay_off", direct);
         row("straightforward", full);
+        std::fflush(stdout);
+      }
+      if (steady > 0) {
+        bkq::EventEngine engine(forces, *stepper, dt, start);
+        const bkq::EngineCounters c0 = engine.counters();
+        double blocks = 0;
+        const double t0 = thread_seconds();
+        for (long long i = 0; i < steady; ++i) blocks += engine.next_event().blocks;
+        const double seconds = thread_seconds() - t0;
+        const bkq::EngineCounters& c = engine.counters();
+        const double s = static_cast<double>(steady);
+        std::printf("%dx%d,steady,event,%lld,%.6g,,%.6g,%.6g,%.4g,%.4g,%.4g,\n", l, l, steady,
+                    s / seconds, static_cast<double>(c.block_steps - c0.block_steps) / s,
+                    static_cast<double>(c.sliding_block_steps - c0.sliding_block_steps) / s,
+                    blocks / s, static_cast<double>(engine.lone_slip_starts().replayed) / s,
+                    static_cast<double>(engine.lone_slip_starts().finished) / s);
         std::fflush(stdout);
       }
     }
