@@ -457,71 +457,58 @@ bool EventEngine::relax_cluster(ClusterRelaxation& r, std::int64_t& steps, Conta
 bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   const ModelParams& p = forces_.params();
   const bool periodic = p.boundary == Boundary::Periodic;
+  const bool lattice = forces_.lattice();
   // Located transitions (the wrapper of a fixed-step scheme): the record is the located
   // stepper's, and a neighbour's failure is left to the general path (lone_slip.hpp).
   const bool located = dynamic_cast<const LocatedTransitions*>(&stepper_) != nullptr;
+  // A lattice's general kernel is the chain's equation with more springs: the lone site's
+  // slide is recorded per stiffness as a block's is. Long-range chains and dashpots are not.
   if (!lone_slip_path || pad_ || (stepper_.stick_rule() != StickRule::Crossing && !located) ||
-      (periodic && n_ == 2) || forces_.general_kernel())
+      (!lattice && periodic && n_ == 2) || (forces_.general_kernel() && !lattice) ||
+      forces_.viscous())
     return false;
-  // The neighbours whose spring force the block's slide changes, in block order (the
-  // order in which the general path would release them).
-  std::array<int, 2> nb{};
-  int count = 0;
-  if (p.has_neighbours()) {
-    if (periodic) {
-      nb = {(j + n_ - 1) % n_, (j + 1) % n_};
-      count = 2;
-      if (nb[0] > nb[1]) std::swap(nb[0], nb[1]);
-    } else {
-      if (j > 0) nb[count++] = j - 1;
-      if (j + 1 < n_) nb[count++] = j + 1;
-    }
-  }
-  const bool at_end = p.has_neighbours() && count == 1;
-  LoneSlip& table = lone_[at_end];
-  if (!lone_built_[at_end]) {
-    const double stiffness = p.k_p + (p.has_neighbours() ? (at_end ? 1.0 : 2.0) * p.k_c : 0.0);
-    table = integrate_lone_slip(p, stiffness, stepper_.name(), dt_, max_steps_per_event, located);
-    lone_built_[at_end] = true;
-  }
+  const LoneSlip& table = lattice ? lattice_lone_slip(j) : chain_lone_slip(j);
   const auto last = static_cast<std::int64_t>(table.steps.size());
   if (!table.usable || last > max_steps_per_event) return false;
 
   const double* w = st_.w.data();
-  const double a = anchor(), thr = forces_.friction().threshold, kc = p.k_c;
+  const double a = anchor(), thr = forces_.friction().threshold;
   const bool backslip = forces_.friction().backslip;
   const LoneSlip::Step& end = table.steps.back();
-  const LoneSlipTolerance tol = lone_slip_tolerance(
-      p, std::abs(w[j]) + std::abs(a) + std::max(end.d_max, -end.d_min), dt_, last);
+  const double scale = std::abs(w[j]) + std::abs(a) + std::max(end.d_max, -end.d_min);
+  const LoneSlipTolerance tol = lattice ? lone_slip_tolerance(p, scale, dt_, last, lattice_coupled_)
+                                        : lone_slip_tolerance(p, scale, dt_, last);
   const double f0 = forces_.spring_force(w, j, a);
   bool clear = std::abs(f0 - thr) <= tol.force && table.force_margin > 2.0 * tol.force &&
                table.velocity_margin > 2.0 * tol.velocity;
-  // Each neighbour breaks at the first step n where its force f + k_c d_n passes the
-  // threshold, i.e. where f + k_c times the running extreme of d does (monotone in n).
-  // How far past the threshold a neighbour of force f is after step n (n = 0: the start).
-  auto excess = [&](double f, std::int64_t n) {
+  // Each partner breaks at the first step n where its force f + k d_n passes the threshold,
+  // i.e. where f + k times the running extreme of d does (monotone in n); k is the spring
+  // between them. How far past the threshold a partner of force f is after step n (n = 0:
+  // the start).
+  auto excess = [&](double f, double k, std::int64_t n) {
     const double hi = n == 0 ? 0.0 : table.steps[n - 1].d_max,
                  lo = n == 0 ? 0.0 : table.steps[n - 1].d_min;
-    return backslip ? std::max(f + kc * hi - thr, -thr - (f + kc * lo)) : f + kc * hi - thr;
+    return backslip ? std::max(f + k * hi - thr, -thr - (f + k * lo)) : f + k * hi - thr;
   };
-  std::array<std::int64_t, 2> breaks_at{last + 1, last + 1};
-  for (int k = 0; k < count && clear; ++k) {
-    const double f = forces_.spring_force(w, nb[k], a);
+  std::int64_t first_break = last + 1;
+  for (std::size_t i = 0; i < partners_.size() && clear; ++i) {
+    Partner& q = partners_[i];
+    const double f = forces_.spring_force(w, q.site, a);
     const auto n = std::partition_point(table.steps.begin(), table.steps.end(),
                                         [&](const LoneSlip::Step& s) {
-                                          return excess(f, &s - table.steps.data() + 1) <= 0.0;
+                                          return excess(f, q.k, &s - table.steps.data() + 1) <= 0.0;
                                         }) -
                    table.steps.begin() + 1;
-    breaks_at[k] = n;
+    q.breaks_at = n;
+    first_break = std::min(first_break, n);
     // Both sides of the decision clear of the bound: before step n it holds, after it not.
-    clear = excess(f, n - 1) < -tol.force && (n > last || excess(f, n) > tol.force);
+    clear = excess(f, q.k, n - 1) < -tol.force && (n > last || excess(f, q.k, n) > tol.force);
   }
   if (!clear) {
     ++lone_starts_.declined;
     return false;
   }
 
-  const std::int64_t first_break = std::min(breaks_at[0], breaks_at[1]);
   // Located: up to the step before the first failure, which the general path locates.
   const std::int64_t stop = std::min(last, located ? first_break - 1 : first_break);
   if (stop == 0) {
@@ -536,8 +523,9 @@ bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   st_.t = s.t;
   dissipated_ += s.work;
   released_now_.clear();
-  for (int k = 0; k < count; ++k)
-    if (breaks_at[k] == stop && !located) released_now_.push_back(nb[k]);
+  // In site order: the order in which the general path's contact pass releases them.
+  for (const Partner& q : partners_)
+    if (q.breaks_at == stop && !located) released_now_.push_back(q.site);
   if (located && s.sliding == 0) replayed_stick_time_ = table.stick_time;
   const int released = static_cast<int>(released_now_.size());
   steps = stop;
@@ -549,6 +537,72 @@ bool EventEngine::replay_start(int j, std::int64_t& steps, ContactScan& scan) {
   lone_starts_.steps += stop;
   if (scan.sliding == 0) ++lone_starts_.finished;
   return true;
+}
+
+const LoneSlip& EventEngine::chain_lone_slip(int j) {
+  const ModelParams& p = forces_.params();
+  const bool periodic = p.boundary == Boundary::Periodic;
+  // The neighbours whose spring force the block's slide changes, in block order (the
+  // order in which the general path would release them).
+  partners_.clear();
+  if (p.has_neighbours()) {
+    if (periodic) {
+      int left = (j + n_ - 1) % n_, right = (j + 1) % n_;
+      if (left > right) std::swap(left, right);
+      partners_.push_back(Partner{left, p.k_c});
+      partners_.push_back(Partner{right, p.k_c});
+    } else {
+      if (j > 0) partners_.push_back(Partner{j - 1, p.k_c});
+      if (j + 1 < n_) partners_.push_back(Partner{j + 1, p.k_c});
+    }
+  }
+  const bool at_end = p.has_neighbours() && partners_.size() == 1;
+  LoneSlip& table = lone_[at_end];
+  if (!lone_built_[at_end]) {
+    const double stiffness = p.k_p + (p.has_neighbours() ? (at_end ? 1.0 : 2.0) * p.k_c : 0.0);
+    table = integrate_lone_slip(p, stiffness, stepper_.name(), dt_, max_steps_per_event,
+                                dynamic_cast<const LocatedTransitions*>(&stepper_) != nullptr);
+    lone_built_[at_end] = true;
+  }
+  return table;
+}
+
+const LoneSlip& EventEngine::lattice_lone_slip(int j) {
+  // The site's partners with the spring to each (two springs to one site, across a narrow
+  // periodic lattice, add up), in site order; its stiffness k_p plus those springs, summed
+  // in the stencil's order so that sites alike get the same bits and share one record.
+  partners_.clear();
+  const int nx = forces_.nx(), x = j % nx, y = j / nx;
+  double coupled = 0;
+  for (const LatticeSpring& c : forces_.lattice_stencil()) {
+    for (const int sign : {-1, 1})
+      if (const int i = forces_.site(x + sign * c.dx, y + sign * c.dy); i >= 0) {
+        partners_.push_back(Partner{i, c.k});
+        coupled += c.k;
+      }
+  }
+  std::sort(partners_.begin(), partners_.end(),
+            [](const Partner& l, const Partner& r) { return l.site < r.site; });
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < partners_.size(); ++i) {
+    if (kept > 0 && partners_[kept - 1].site == partners_[i].site)
+      partners_[kept - 1].k += partners_[i].k;
+    else
+      partners_[kept++] = partners_[i];
+  }
+  partners_.resize(kept);
+  const double stiffness = forces_.params().k_p + coupled;
+  for (const LoneSlip& t : lattice_lone_)
+    if (t.stiffness == stiffness) return t;
+  if (lattice_lone_.empty()) {
+    // The rounding bound's stiffness: an interior site's springs, every spring twice.
+    lattice_coupled_ = 0;
+    for (const LatticeSpring& c : forces_.lattice_stencil()) lattice_coupled_ += 2.0 * c.k;
+  }
+  lattice_lone_.push_back(
+      integrate_lone_slip(forces_.params(), stiffness, stepper_.name(), dt_, max_steps_per_event,
+                          dynamic_cast<const LocatedTransitions*>(&stepper_) != nullptr));
+  return lattice_lone_.back();
 }
 
 void EventEngine::check_finite() const {

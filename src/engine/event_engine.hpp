@@ -98,7 +98,9 @@ class EventEngine {
   };
   const ClusterSteps& cluster_steps() const { return cluster_steps_; }
   // Start each event from the lone block's recorded slide (engine/lone_slip.hpp) where
-  // rounding cannot change the outcome; off, every step is integrated directly.
+  // rounding cannot change the outcome; off, every step is integrated directly. Chains with
+  // nearest-neighbour springs and lattices (any stencil in the plane: a record per stiffness
+  // of a site, its partners tested each with its spring); no dashpots, no moving pad.
   bool lone_slip_path = true;
   // Events this engine started from the record (not part of snapshots): all of them, those
   // it finished there (no neighbour broke loose), the steps it took from it, and the
@@ -140,6 +142,10 @@ class EventEngine {
   // the step at which the block sticks or a neighbour breaks loose; false, having done
   // nothing, when the record does not apply or rounding could decide.
   bool replay_start(int j, std::int64_t& steps, ContactScan& scan);
+  // The record for block j of a chain or site j of a lattice (built when first needed), with
+  // partners_ set to the blocks its slide pulls on.
+  const LoneSlip& chain_lone_slip(int j);
+  const LoneSlip& lattice_lone_slip(int j);
 
   const ChainForces& forces_;
   Stepper& stepper_;
@@ -177,6 +183,18 @@ class EventEngine {
   // when first needed.
   LoneSlip lone_[2];
   bool lone_built_[2] = {false, false};
+  // A lattice's records, one per stiffness met (interior, edge and corner sites), and the
+  // largest sum of a site's springs (the rounding bound's, lone_slip_tolerance).
+  std::vector<LoneSlip> lattice_lone_;
+  double lattice_coupled_ = 0;
+  // The blocks a lone block's slide pulls on, the spring to each and the step at which each
+  // breaks loose (past the record: never).
+  struct Partner {
+    int site = 0;
+    double k = 0;
+    std::int64_t breaks_at = 0;
+  };
+  std::vector<Partner> partners_;
   LoneSlipStarts lone_starts_;
 };
 

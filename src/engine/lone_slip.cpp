@@ -25,9 +25,11 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
   ModelParams q = p;
   if (q.kind == ModelKind::BKP) q.kind = ModelKind::BK;
   q.n = 1;
+  q.rows = 1;  // a lattice's lone site too: one block, its springs folded into the stiffness
   q.k_p = stiffness;
-  q.k_c = 0;
-  q.boundary = Boundary::Free;
+  q.k_c = q.k_c_y = 0;
+  q.coupling = Coupling::Nearest;
+  q.boundary = q.boundary_y = Boundary::Free;
   q.m_x = q.k_p0 = q.c_p = 0;
   const ChainForces forces(q);
   const Friction& fr = forces.friction();
@@ -125,13 +127,19 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
 
 LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scale, double dt,
                                       std::int64_t steps) {
+  return lone_slip_tolerance(p, position_scale, dt, steps, 2.0 * p.k_c);
+}
+
+LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scale, double dt,
+                                      std::int64_t steps, double coupled) {
   // A direct step rounds positions of size position_scale, a few times eps * scale each
-  // step; a spring force sees position errors through at most k_p + 4 k_c. Over n steps
-  // the force errors accumulate into the velocity (n dt / m_u) and both into the position.
+  // step; a spring force sees position errors through at most k_p + 2 C (its own position
+  // through k_p + C, its partners' through C; C = 2 k_c in a chain). Over n steps the
+  // force errors accumulate into the velocity (n dt / m_u) and both into the position.
   constexpr double kSafety = 10;  // ten times the worst case (lone_slip.hpp)
   const double eps = std::numeric_limits<double>::epsilon();
   const double n = static_cast<double>(std::max<std::int64_t>(steps, 1));
-  const double stiffness = p.k_p + 4.0 * p.k_c;
+  const double stiffness = p.k_p + 2.0 * coupled;
   const double per_step = 4.0 * eps * (position_scale + p.threshold() / stiffness);
   const double force_rounding = stiffness * per_step;
   // (and velocities, of size at most F0/m_u * n dt, round by eps each operation)

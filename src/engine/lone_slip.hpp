@@ -6,7 +6,9 @@
 // where it started its equation is the same in every event:
 //     m_u d'' = F0 - K d - m_u phi(d') [- c_u d'],     d(0) = d'(0) = 0,
 // where K is its stiffness (k_p + 2 k_c inside the chain, k_p + k_c at a free end, k_p
-// without neighbour springs): nothing in it depends on where the chain is. So the engine
+// without neighbour springs; on a lattice k_p plus the springs to the site's partners, and a
+// partner's force changes by its spring times d): nothing in it depends on where the chain is.
+// So the engine
 // integrates it once per stiffness, with the scene's own stepper, step and stick rule
 // (Crossing), through the general code path (step, dissipated_power, settle_contacts),
 // and records every step until the block sticks. An event then takes its start from the
@@ -100,5 +102,9 @@ struct LoneSlipTolerance {
 };
 LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scale, double dt,
                                       std::int64_t steps);
+// The same for a block whose springs to its partners sum to at most `coupled` (2 k_c in a
+// chain, which the form above takes; on a lattice twice the stencil's springs).
+LoneSlipTolerance lone_slip_tolerance(const ModelParams& p, double position_scale, double dt,
+                                      std::int64_t steps, double coupled);
 
 }  // namespace bkq

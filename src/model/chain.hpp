@@ -31,7 +31,8 @@
 //
 // A lattice (ModelParams::lattice, Carlson 1991): the sites are stored row by row and the
 // stencil lives in the plane (model/coupling.hpp's LatticeStencil); every force goes through
-// lattice_sum and the general kernel, and the chain's fast paths, which read j +- 1, stay off.
+// lattice_sum and the general kernel, and the chain's fast paths, which read j +- 1, stay off
+// (all but the replayed event start, engine/lone_slip.hpp, which takes a site's partners).
 //
 // Only the terms a scene switches on are compiled into the kernel that runs (templates
 // on the friction law's policy type, model/friction_laws.hpp; on the optional terms,
@@ -126,7 +127,7 @@ class ChainForces {
   int nx() const { return nx_; }
   // Whether the forces need the general kernel (kernel_long): springs beyond j +- 1, dashpots
   // or a lattice. The nearest-neighbour fast paths (cluster, held ranges, lone slip, the
-  // vectorised contact pass) apply only where this is false.
+  // vectorised contact pass) apply only where this is false; the lone slip also on a lattice.
   bool general_kernel() const { return long_range_ || viscous_ || lattice_; }
   // Blocks on each side of a block (in the order they are stored) that its springs and
   // dashpots reach: on a lattice the farthest partner's distance in that order.

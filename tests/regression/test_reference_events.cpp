@@ -140,11 +140,8 @@ TEST_P(ReferenceEvents, SameEventsToRoundingWithTheReplayFromTheSameStates) {
   EXPECT_EQ(sim.engine.counters().steps - before.steps, ref->steps);
   EXPECT_EQ(sim.engine.counters().sliding_block_steps - before.sliding_block_steps,
             ref->sliding_block_steps);
-  // The replay is a chain's fast path: a lattice takes none.
-  if (sim.forces.general_kernel())
-    EXPECT_EQ(sim.engine.lone_slip_starts().replayed, 0);
-  else
-    EXPECT_GT(sim.engine.lone_slip_starts().replayed, 1000);
+  // The replay ran, on lattices too (a record per stiffness of a site).
+  EXPECT_GT(sim.engine.lone_slip_starts().replayed, 1000);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceEvents, ::testing::ValuesIn(kCases),
