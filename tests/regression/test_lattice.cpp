@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -382,6 +383,44 @@ TEST(LatticeRun, SlipMapsAddUpToTheMomentInsideTheBoundingBox) {
     EXPECT_NEAR(sum[e], m, 1e-9 * m) << "event " << e;
   }
   EXPECT_GT(mapped, 20);
+}
+
+// A lattice run killed (SIGKILL) after a checkpoint and resumed writes the files of a run
+// that never stopped, byte for byte: catalogue with the row columns, slip maps, histogram.
+TEST(LatticeRun, ResumeAfterSigkillWritesTheStraightRunsFiles) {
+  test::TempDir tmp;
+  const std::vector<std::string> scene = {"--quiet",
+                                          "--set",
+                                          "model.blocks=16",
+                                          "--set",
+                                          "model.rows=12",
+                                          "--set",
+                                          "run.events=20000",
+                                          "--set",
+                                          "run.checkpoint_events=500",
+                                          "--set",
+                                          "output.event_slip=-5"};
+  auto args = [&](const std::string& out) {
+    std::vector<std::string> a = {"run"};
+    a.insert(a.end(), scene.begin(), scene.end());
+    a.insert(a.end(), {"--out", out});
+    return a;
+  };
+  const std::string straight = tmp.file("straight"), out = tmp.file("out");
+  ASSERT_EQ(test::run_bkquake(args(straight)).status, 0);
+  const int status = test::run_and_signal_when(
+      args(out), [&] { return std::filesystem::exists(out + "/checkpoint.prev.bin"); }, SIGKILL);
+  ASSERT_EQ(status, 128 + SIGKILL);
+  ASSERT_FALSE(std::filesystem::exists(out + "/summary.json") &&
+               test::read_file(out + "/summary.json").find("finished") != std::string::npos);
+  const auto r =
+      test::run_bkquake({"run", out + "/scene.ini", "--out", out, "--resume", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* file : {"catalog.csv", "event_slip.csv", "histogram.csv"})
+    EXPECT_TRUE(test::read_file(out + "/" + file) == test::read_file(straight + "/" + file))
+        << file;
+  EXPECT_NE(test::read_file(out + "/catalog.csv").find(",trigger_row,first_row,last_row"),
+            std::string::npos);
 }
 
 TEST(LatticeRefusals, WhatTheLatticeIsNotWrittenFor) {
