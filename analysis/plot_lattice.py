@@ -75,6 +75,8 @@ def magnitude_frequency(ax, mu, summary):
         x = np.linspace(lo, hi, 50)
         ax.semilogy(x, n_lo * np.exp(-b * (x - lo)), "-", color="tab:red",
                     label=f"b = {b:.3f} on [{lo:.2f}, {hi:.2f}]")
+    # The fitted line may fall below one event past the data: the axis ends at one event.
+    ax.set_ylim(bottom=0.5)
     ax.set_xlabel(r"magnitude $\mu = \ln M$")
     ax.set_ylabel(r"events with magnitude $\geq \mu$")
     ax.legend(fontsize=8)
