@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
 #include "integrate/adaptive.hpp"
@@ -282,6 +283,16 @@ AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
   check_accuracy_options(options);
   AccuracyStudy study;
   const Settings settings = settings_from_scene(scene);
+  // Its reference is the adaptive scheme, written for chains of nearest-neighbour springs.
+  if (settings.model.lattice() || settings.model.long_range() || settings.model.viscous())
+    throw Error(std::string("accuracy: ") +
+                (settings.model.lattice() ? "model.rows = " + std::to_string(settings.model.rows)
+                 : settings.model.long_range()
+                     ? "model.range = " + std::to_string(settings.model.range)
+                     : "model.viscosity = " + format_real(settings.model.viscosity)) +
+                ": the study's reference (the adaptive scheme with located transitions) is "
+                "written for chains of nearest-neighbour springs without dashpots; allowed: "
+                "model.rows = 1, model.coupling = nearest, model.viscosity = 0");
   Study s(settings, options);
   s.sample_states();
   for (AccuracyPoint& row : s.reference_rows(study)) {

@@ -86,8 +86,10 @@ SpectrumReport spectrum_of_run(const SpectrumRequest& req) {
     const KineticBranch branch = kinetic_branch(settings.model, r.speed, &why);
     // The modal reduction is not exact for a free chain with range coupling: no lines then.
     const ModelParams& m = settings.model;
+    // Nor is there one for a lattice (the modes are a chain's).
     const bool modal =
-        !(m.reach() > 1 && (m.long_range() || m.viscous()) && m.boundary == Boundary::Free);
+        !(m.reach() > 1 && (m.long_range() || m.viscous()) && m.boundary == Boundary::Free) &&
+        !m.lattice();
     if (why == NoEquilibrium::None && modal) {
       r.linear = modal_eigenmodes(settings.model, branch.slope);
       std::erase_if(r.linear, [](const Eigenmode& m) { return !(m.frequency() > 0); });

@@ -34,6 +34,11 @@ double start_speed(const Settings& s) {
 StabilityPoint analyse(const Scene& scene, double value, const StabilityOptions& opt) {
   const Settings settings = settings_from_scene(scene);
   const ModelParams& p = settings.model;
+  if (p.lattice())
+    throw Error("stability: model.rows = " + std::to_string(p.rows) +
+                " with model.blocks = " + std::to_string(p.nx()) +
+                ": the linear analysis is written for chains; allowed: model.rows = 1 (or "
+                "model.blocks = 1, a column, which is the chain along y)");
   StabilityPoint pt;
   pt.value = value;
   pt.speed = settings.drive.speed;

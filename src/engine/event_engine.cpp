@@ -33,6 +33,23 @@ int margin_for(const ChainForces& forces, const Stepper& stepper) {
 }
 }  // namespace
 
+namespace {
+// Steppers that place transitions inside their step (theta's projection, the adaptive scheme,
+// the located wrapper) read and cover only j +- 1: lattices, couplings beyond the nearest
+// neighbours and dashpots need a Crossing scheme (the scene refuses the others; this holds for
+// every caller).
+void check_stepper(const ChainForces& forces, const Stepper& stepper) {
+  if (!forces.general_kernel()) return;
+  if (stepper.stick_rule() == StickRule::Crossing &&
+      dynamic_cast<const LocatedTransitions*>(&stepper) == nullptr)
+    return;
+  throw Error("the " + std::string(stepper.name()) +
+              " stepper (transitions inside its step) is written for chains of "
+              "nearest-neighbour springs without dashpots; this model needs rk2, rk4 or verlet "
+              "with transitions at the step");
+}
+}  // namespace
+
 EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt, ChainState state)
     : forces_(forces),
       stepper_(stepper),
@@ -42,6 +59,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
       n_(forces.n()),
       margin_(margin_for(forces, stepper)) {
   check_model(forces.params());
+  check_stepper(forces, stepper);
   allocate_bookkeeping();
   std::fill(st_.mobile.begin(), st_.mobile.end(), 0.0);
   std::fill(st_.wd.begin(), st_.wd.end(), 0.0);
@@ -62,6 +80,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
       margin_(margin_for(forces, stepper)),
       counters_(saved.counters) {
   check_model(forces.params());
+  check_stepper(forces, stepper);
   if (st_.n() != n_)
     throw Error("checkpoint: it holds " + std::to_string(st_.n()) + " blocks, the scene has " +
                 std::to_string(n_));

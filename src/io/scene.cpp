@@ -92,6 +92,13 @@ ParamSpec auto_real(const char* key, double limit, const char* units, const char
   return p;
 }
 
+// The same on [0, limit] (a stiffness).
+ParamSpec auto_stiffness(const char* key, double limit, const char* doc) {
+  ParamSpec p = real(key, "auto", '[', 0, limit, ']', "", doc);
+  p.allow_auto = true;
+  return p;
+}
+
 // A Real key whose default `none` turns its output off.
 ParamSpec none_real(const char* key, double limit, const char* units, const char* doc) {
   ParamSpec p = real(key, "none", '[', -limit, limit, ']', units, doc);
@@ -141,9 +148,9 @@ std::vector<ParamSpec> make_table() {
       real("model.l", "10", '[', 0, 1e4, ']', "",
            "stiffness ratio l, neighbour spring k_c = l^2 (carlson-langer only); on a lattice "
            "the spring along strike"),
-      auto_real("model.l_y", 1e4, "",
-                "lattice (model.rows > 1): stiffness ratio across strike, k_c_y = l_y^2 "
-                "(carlson-langer only); auto: equal to model.l"),
+      auto_stiffness("model.l_y", 1e4,
+                     "lattice (model.rows > 1): stiffness ratio across strike, k_c_y = l_y^2 "
+                     "(carlson-langer only); auto: equal to model.l"),
       real("model.pad_mass", "100", '(', 0, kHuge, ']', "mass", "pad mass m_x (thesis only)"),
       real("model.caliper_stiffness", "100", '[', 0, kHuge, ']', "force/length",
            "caliper-pad spring k_p0 (thesis only)"),
@@ -155,9 +162,9 @@ std::vector<ParamSpec> make_table() {
       real("model.s_c", "0.01", '[', 0, 1e6, ']', "",
            "coupling scaling s_c: k_c = s_c k_p0 N (thesis only); on a lattice k_c = s_c k_p0 "
            "model.blocks along strike"),
-      auto_real("model.s_c_y", 1e6, "",
-                "lattice (model.rows > 1): coupling scaling across strike, k_c_y = s_c_y k_p0 "
-                "model.rows (thesis only); auto: equal to model.s_c"),
+      auto_stiffness("model.s_c_y", 1e6,
+                     "lattice (model.rows > 1): coupling scaling across strike, k_c_y = s_c_y k_p0 "
+                     "model.rows (thesis only); auto: equal to model.s_c"),
       real("model.rayleigh_alpha", "0", '[', 0, kHuge, ']', "1/time",
            "Rayleigh damping alpha_M M + beta_K K of blocks and pad (K with k_c, k_p and the pad "
            "row; continuous runs and bkquake stability, event runs refuse it): alpha_M"),
@@ -528,7 +535,9 @@ const KeyDependency* Scene::failing_dependency(const std::string& key) const {
 // Why `key` does not apply: "needs drive.schedule = steps, but drive.schedule = constant".
 std::string Scene::why_not(const std::string& key) const {
   if (key == "model.blocks") return "model.kind = 1dof has one block";
-  if (key == "model.rows") return "model.kind = 1dof has one block";
+  if (key == "model.rows")
+    return choice("model.kind") == "1dof" ? "model.kind = 1dof has one block"
+                                          : "one row is the chain (more make a lattice)";
   if (key == "model.boundary_y")
     return "needs model.rows > 1 or model.kind = ofc, but model.rows = " + text("model.rows") +
            " and model.kind = " + choice("model.kind");

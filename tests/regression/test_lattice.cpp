@@ -17,6 +17,7 @@
 #include "../cli_helpers.hpp"
 #include "../refusal.hpp"
 #include "../scene_sim.hpp"
+#include "core/error.hpp"
 #include "model/coupling.hpp"
 
 namespace bkq {
@@ -423,6 +424,18 @@ TEST(LatticeRun, ResumeAfterSigkillWritesTheStraightRunsFiles) {
             std::string::npos);
 }
 
+// The engine itself refuses a stepper that places transitions inside its step on a lattice
+// (whatever the caller: the scene refuses it first for runs).
+TEST(LatticeRefusals, TheEngineRefusesSteppersThatLocateTransitions) {
+  Sim sim(Settings{{"model.blocks", "6"}, {"model.rows", "5"}});
+  for (const char* name : {"adaptive", "theta"}) {
+    auto stepper = make_stepper(name, sim.p.n);
+    EXPECT_THROW(EventEngine(sim.forces, *stepper, 0.01, sim.engine.state()), Error) << name;
+  }
+  auto located = with_located_transitions(make_stepper("rk4", sim.p.n), sim.p.n);
+  EXPECT_THROW(EventEngine(sim.forces, *located, 0.01, sim.engine.state()), Error);
+}
+
 TEST(LatticeRefusals, WhatTheLatticeIsNotWrittenFor) {
   auto refused = [](const std::vector<std::string>& sets, const std::vector<std::string>& parts) {
     test::TempDir tmp;
@@ -446,6 +459,23 @@ TEST(LatticeRefusals, WhatTheLatticeIsNotWrittenFor) {
           {"model.boundary_y = periodic", "model.rows >= 3"});
   refused({"model.blocks=20", "model.rows=6", "model.coupling=range", "model.range=6"},
           {"model.range = 6", "model.rows = 6", "model.range < model.rows"});
+  // Springs across strike are stiffnesses: negative ones are refused by the key's range.
+  refused({"model.rows=4", "model.l_y=-2"}, {"model.l_y", "-2"});
+  refused({"model.rows=4", "model.parameterisation=thesis", "model.s_c_y=-0.5"},
+          {"model.s_c_y", "-0.5"});
+  // The linear analysis and the accuracy study are written for chains.
+  auto command_refused = [](const std::vector<std::string>& args,
+                            const std::vector<std::string>& parts) {
+    test::TempDir tmp;
+    auto a = args;
+    a.insert(a.end(), {"--out", "out"});
+    test::expect_refused(test::run_bkquake(a, tmp.path().string()), parts);
+  };
+  command_refused({"stability", "--set", "model.blocks=4", "--set", "model.rows=3", "--set",
+                   "drive.speed=0.01"},
+                  {"model.rows = 3", "chains"});
+  command_refused({"accuracy", "--set", "model.blocks=6", "--set", "model.rows=6"},
+                  {"accuracy", "model.rows = 6", "chains"});
 }
 
 }  // namespace
