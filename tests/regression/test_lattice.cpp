@@ -424,6 +424,20 @@ TEST(LatticeRun, ResumeAfterSigkillWritesTheStraightRunsFiles) {
             std::string::npos);
 }
 
+// The run's accuracy advice names only what the lattice allows: at a coarse dt it says to
+// reduce dt, not to use the adaptive scheme (which a lattice refuses).
+TEST(LatticeRun, AccuracyAdviceNamesOnlyWhatTheLatticeAllows) {
+  test::TempDir tmp;
+  const auto r =
+      test::run_bkquake({"run", "--quiet", "--set", "model.blocks=16", "--set", "model.rows=16",
+                         "--set", "run.events=3000", "--set", "integrator.dt=0.05", "--out", "out"},
+                        tmp.path().string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_NE(r.err.find("energy_residual_max"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("reduce integrator.dt"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("adaptive"), std::string::npos) << r.err;
+}
+
 // The engine itself refuses a stepper that places transitions inside its step on a lattice
 // (whatever the caller: the scene refuses it first for runs).
 TEST(LatticeRefusals, TheEngineRefusesSteppersThatLocateTransitions) {

@@ -34,7 +34,10 @@ AccuracyCheck::AccuracyCheck(const Settings& settings, const Stepper& stepper)
       dt_(settings.integrator.dt),
       omega_dt_(settings.model.max_angular_frequency() * settings.integrator.dt),
       dt_over_limit_(settings.integrator.dt / stepper.time_step_limit(settings.model).dt),
-      max_steps_(settings.run.max_steps_per_event) {}
+      max_steps_(settings.run.max_steps_per_event),
+      // The adaptive scheme is written for chains of nearest-neighbour springs.
+      adaptive_allowed_(
+          !(settings.model.lattice() || settings.model.long_range() || settings.model.viscous())) {}
 
 void AccuracyCheck::on_event(const EventRecord& e) {
   if (!events_mode_) return;  // slip episodes carry no energy balance
@@ -61,7 +64,9 @@ std::vector<AccuracyCheck::Finding> AccuracyCheck::findings() const {
     f.push_back({indicator, std::string(indicator) + " = " + shown(value, limit) + " is above " +
                                 format_real(limit) + rest});
   };
-  const std::string reduce_dt = ": reduce integrator.dt (or use integrator.scheme = adaptive)";
+  const std::string reduce_dt = adaptive_allowed_
+                                    ? ": reduce integrator.dt (or use integrator.scheme = adaptive)"
+                                    : ": reduce integrator.dt";
   if (events_mode_ && !(residual_max_ <= kEnergyResidualLimit))
     above("energy_residual_max", residual_max_, kEnergyResidualLimit,
           " (the largest relative energy-balance error of an event)" + reduce_dt);

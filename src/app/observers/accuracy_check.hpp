@@ -51,6 +51,7 @@ class AccuracyCheck : public RunObserver {
   bool events_mode_, error_mode_, fixed_step_;
   double dt_, omega_dt_, dt_over_limit_;
   std::int64_t max_steps_;
+  bool adaptive_allowed_;  // may the advice name the adaptive scheme
   double residual_max_ = 0, residual_sum_ = 0;
   std::int64_t residual_n_ = 0, steps_max_ = 0;
   double run_residual_ = 0;
