@@ -15,7 +15,6 @@
 #include <limits>
 #include <set>
 #include <sstream>
-#include <tuple>
 
 #include "core/error.hpp"
 #include "core/fnv1a.hpp"
@@ -651,12 +650,9 @@ void Scene::apply_override(const std::string& assignment) {
 bool Scene::applies(const std::string& key) const {
   if (key == "model.blocks") return choice("model.kind") != "1dof" || integer(key) == 1;
   // A chain is one row: given as 1 it is accepted (and left out of a chain's scene.ini), more
-  // make a lattice of bk or bkp; 1dof refuses more in validate().
-  if (key == "model.rows")
-    return choice("model.kind") == "ofc" ||
-           (choice("model.kind") != "1dof" && integer("model.rows") > 1);
-  // The edges across strike mean something on a lattice, and for the automaton always.
-  if (key == "model.boundary_y")
+  // make a lattice of bk or bkp; 1dof refuses more in validate(). The edges across strike
+  // mean something on a lattice, and for the automaton always.
+  if (key == "model.rows" || key == "model.boundary_y")
     return choice("model.kind") == "ofc" ||
            (choice("model.kind") != "1dof" && integer("model.rows") > 1);
   if (lattice_key(key) && integer("model.rows") == 1) return false;
@@ -725,7 +721,8 @@ void Scene::validate() const {
                 text("model.blocks") + where);
   if (choice("model.kind") == "ofc") check_ofc(where);
   if (choice("model.kind") != "ofc" && integer("model.rows") > 1) check_lattice(where);
-  if (applies("model.range") && integer("model.rows") == 1) check_range(where);
+  if (applies("model.range") && integer("model.rows") == 1)
+    check_range("model.blocks", "model.boundary", where);
   if (choice("run.start") == "equilibrium" && choice("drive.mode") != "continuous")
     throw Error("run.start = equilibrium needs drive.mode = continuous, but drive.mode = " +
                 choice("drive.mode") + where);
@@ -737,16 +734,17 @@ void Scene::validate() const {
   if (choice("drive.mode") == "continuous") check_continuous_run(where);
 }
 
-void Scene::check_range(const std::string& where) const {
-  // A spring reaching past a free chain's far end, or two offsets of a ring reaching the
-  // same block, would not be the coupling the key describes.
-  const std::int64_t r = integer("model.range"), n = integer("model.blocks");
-  const bool ring = choice("model.boundary") == "periodic";
+void Scene::check_range(const std::string& count_key, const std::string& boundary_key,
+                        const std::string& where) const {
+  // A spring reaching past a free end, or two offsets of a ring reaching the same block,
+  // would not be the coupling the key describes.
+  const std::int64_t r = integer("model.range"), n = integer(count_key);
+  const bool ring = choice(boundary_key) == "periodic";
   if (ring ? 2 * r < n : r < n) return;
   throw Error(
-      "model.range = " + text("model.range") + " with model.blocks = " + text("model.blocks") +
-      " and model.boundary = " + choice("model.boundary") + ": allowed " +
-      (ring ? "2 model.range < model.blocks (a ring)" : "model.range < model.blocks") + where);
+      "model.range = " + text("model.range") + " with " + count_key + " = " + text(count_key) +
+      " and " + boundary_key + " = " + choice(boundary_key) + ": allowed " +
+      (ring ? "2 model.range < " + count_key + " (a ring)" : "model.range < " + count_key) + where);
 }
 
 void Scene::check_lattice(const std::string& where) const {
@@ -773,16 +771,8 @@ void Scene::check_lattice(const std::string& where) const {
   if (!applies("model.range")) return;
   // A lattice's range couples a disc of radius R: per axis as for a chain (a lattice of one
   // column is the chain along y).
-  const std::int64_t r = integer("model.range");
-  for (const auto& [key, boundary, count] :
-       {std::tuple{"model.blocks", "model.boundary", nx}, {"model.rows", "model.boundary_y", ny}}) {
-    const bool ring = choice(boundary) == "periodic";
-    if (count == 1 || (ring ? 2 * r < count : r < count)) continue;
-    throw Error("model.range = " + text("model.range") + " with " + key + " = " + text(key) +
-                " and " + boundary + " = " + choice(boundary) + ": allowed " +
-                (ring ? std::string("2 model.range < ") : std::string("model.range < ")) + key +
-                where);
-  }
+  if (nx > 1) check_range("model.blocks", "model.boundary", where);
+  if (ny > 1) check_range("model.rows", "model.boundary_y", where);
 }
 
 void Scene::check_ofc(const std::string& where) const {

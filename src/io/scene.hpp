@@ -106,7 +106,9 @@ class Scene {
   // validate()'s checks of an OFC scene: events only, its catalogue format, its lattice.
   void check_ofc(const std::string& where) const;
   void check_lattice(const std::string& where) const;
-  void check_range(const std::string& where) const;
+  // model.range against one axis: count_key's sites with boundary_key's ends.
+  void check_range(const std::string& count_key, const std::string& boundary_key,
+                   const std::string& where) const;
   // The first applies-when row of `key` that does not hold (nullptr when it applies), and
   // why in words ("needs drive.schedule = steps, but drive.schedule = constant").
   const KeyDependency* failing_dependency(const std::string& key) const;
