@@ -335,35 +335,27 @@ double EventEngine::stored_energy_change(double x0) const {
   double e_pull = 0, e_bond = 0, sum_slipped = 0;
   const bool periodic = p.boundary == Boundary::Periodic && n_ > 2;
   const bool bonds = p.has_neighbours();
-  if (forces_.lattice()) {
-    // Each spring once, as below: to the partner at +offset always, to the one at -offset
-    // only when that site did not slip.
-    const int nx = forces_.nx();
-    for (int j : slipped_list_) {
-      const double d1 = w[j] - s - x1, d0 = before(j) - s - x0;
-      e_pull += d1 * d1 - d0 * d0;
-      sum_slipped += w[j];
+  // The change over the event of (w_a - w_b)^2, for the spring between blocks a and b.
+  auto bond = [&](int a, int b) {
+    const double d1 = w[a] - w[b], d0 = before(a) - before(b);
+    return d1 * d1 - d0 * d0;
+  };
+  // Each spring once: to the partner ahead (the right, +offset) always, to the one behind
+  // only when it did not slip (else it is counted as that block's spring ahead).
+  const int nx = forces_.nx();
+  for (int j : slipped_list_) {
+    const double d1 = w[j] - s - x1, d0 = before(j) - s - x0;
+    e_pull += d1 * d1 - d0 * d0;
+    sum_slipped += w[j];
+    if (forces_.lattice()) {
       const int x = j % nx, y = j / nx;
       for (const LatticeSpring& c : forces_.lattice_stencil()) {
         double e = 0;
-        if (const int r = forces_.site(x + c.dx, y + c.dy); r >= 0) {
-          const double d1b = w[r] - w[j], d0b = before(r) - before(j);
-          e += d1b * d1b - d0b * d0b;
-        }
-        if (const int l = forces_.site(x - c.dx, y - c.dy); l >= 0 && !slipped_[l]) {
-          const double d1b = w[j] - w[l], d0b = before(j) - before(l);
-          e += d1b * d1b - d0b * d0b;
-        }
+        if (const int r = forces_.site(x + c.dx, y + c.dy); r >= 0) e += bond(r, j);
+        if (const int l = forces_.site(x - c.dx, y - c.dy); l >= 0 && !slipped_[l]) e += bond(j, l);
         e_bond += c.k * e;
       }
-    }
-  } else if (forces_.long_range()) {
-    // Each spring of the stencil once, as below: to the right always, to the left only
-    // when the block there did not slip.
-    for (int j : slipped_list_) {
-      const double d1 = w[j] - s - x1, d0 = before(j) - s - x0;
-      e_pull += d1 * d1 - d0 * d0;
-      sum_slipped += w[j];
+    } else if (forces_.long_range()) {
       for (const CouplingSpring& c : forces_.stencil()) {
         int right = j + c.offset, left = j - c.offset;
         if (periodic) {
@@ -371,35 +363,15 @@ double EventEngine::stored_energy_change(double x0) const {
           left = left < 0 ? left + n_ : left;
         }
         double e = 0;
-        if (right < n_) {
-          const double d1b = w[right] - w[j], d0b = before(right) - before(j);
-          e += d1b * d1b - d0b * d0b;
-        }
-        if (left >= 0 && !slipped_[left]) {
-          const double d1b = w[j] - w[left], d0b = before(j) - before(left);
-          e += d1b * d1b - d0b * d0b;
-        }
+        if (right < n_) e += bond(right, j);
+        if (left >= 0 && !slipped_[left]) e += bond(j, left);
         e_bond += c.k * e;
       }
-    }
-  } else {
-    for (int j : slipped_list_) {
-      const double d1 = w[j] - s - x1, d0 = before(j) - s - x0;
-      e_pull += d1 * d1 - d0 * d0;
-      sum_slipped += w[j];
-      if (!bonds) continue;
-      // Each bond once: the one to the right always, the one to the left only when that
-      // neighbour did not slip (else it is counted as that neighbour's right bond).
+    } else if (bonds) {
       const int right = j + 1 < n_ ? j + 1 : (periodic ? 0 : -1);
       const int left = j > 0 ? j - 1 : (periodic ? n_ - 1 : -1);
-      if (right >= 0) {
-        const double d1b = w[right] - w[j], d0b = before(right) - before(j);
-        e_bond += d1b * d1b - d0b * d0b;
-      }
-      if (left >= 0 && !slipped_[left]) {
-        const double d1b = w[j] - w[left], d0b = before(j) - before(left);
-        e_bond += d1b * d1b - d0b * d0b;
-      }
+      if (right >= 0) e_bond += bond(right, j);
+      if (left >= 0 && !slipped_[left]) e_bond += bond(j, left);
     }
   }
   // With range coupling e_bond already holds each spring's stiffness.

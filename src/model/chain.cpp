@@ -120,38 +120,35 @@ double ChainForces::stiffness_energy(const double* w, double anchor, double x) c
     const double d = w[j] - anchor;
     e_p += d * d;
   }
-  if (lattice_) {
-    // Each spring once: from every site to its partner at +offset.
+  if (lattice_ || long_range_) {
+    // Each spring once: on a lattice from every site to its partner at +offset, on a chain
+    // from every block to the block `offset` to its right (a periodic chain's wrap included;
+    // 2R < N keeps the springs distinct).
     double e = 0;
-    for (int j = 0; j < n; ++j) {
-      const int x = j % nx_, y = j / nx_;
-      for (const LatticeSpring& s : grid_)
-        if (const int i = site(x + s.dx, y + s.dy); i >= 0) {
-          const double d = w[i] - w[j];
-          e += s.k * d * d;
-        }
-    }
-    double total = 0.5 * e + 0.5 * p_.k_p * e_p;
-    if (p_.pad_moves()) total += 0.5 * p_.k_p0 * x * x;
-    return total;
-  }
-  if (long_range_) {
-    // Each spring once: from every block to the block `offset` to its right (a periodic
-    // chain's wrap included; 2R < N keeps the springs distinct).
-    const bool ring = p_.boundary == Boundary::Periodic;
-    double e = 0;
-    for (const CouplingSpring& s : stencil_) {
-      double sum = 0;
+    if (lattice_) {
       for (int j = 0; j < n; ++j) {
-        int r = j + s.offset;
-        if (r >= n) {
-          if (!ring) break;
-          r -= n;
-        }
-        const double d = w[r] - w[j];
-        sum += d * d;
+        const int x = j % nx_, y = j / nx_;
+        for (const LatticeSpring& s : grid_)
+          if (const int i = site(x + s.dx, y + s.dy); i >= 0) {
+            const double d = w[i] - w[j];
+            e += s.k * d * d;
+          }
       }
-      e += s.k * sum;
+    } else {
+      const bool ring = p_.boundary == Boundary::Periodic;
+      for (const CouplingSpring& s : stencil_) {
+        double sum = 0;
+        for (int j = 0; j < n; ++j) {
+          int r = j + s.offset;
+          if (r >= n) {
+            if (!ring) break;
+            r -= n;
+          }
+          const double d = w[r] - w[j];
+          sum += d * d;
+        }
+        e += s.k * sum;
+      }
     }
     double total = 0.5 * e + 0.5 * p_.k_p * e_p;
     if (p_.pad_moves()) total += 0.5 * p_.k_p0 * x * x;
