@@ -295,6 +295,8 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
       // step that ran past the transition, where the right-hand side has a kink (friction
       // at zero velocity), which limits the interpolant's accuracy there; the real steps
       // end before it, so the polished instant has the scheme's own accuracy.
+      ++cuts_;
+      for (const Range& r : cur) cut_blocks_ += r.hi - r.lo;
       double tau = theta * h;
       restore_start(st, cur);
       scheme_->step(forces, sub, st, tau, cur);

@@ -85,6 +85,11 @@ class LocatedTransitions final : public Stepper {
   // scheme steps taken (the attempted steps that found a transition included).
   std::int64_t located_transitions() const { return located_; }
   std::int64_t scheme_steps() const { return scheme_steps_; }
+  // Steps cut at a located instant inside them (a transition at a step's very end cuts
+  // nothing), and the blocks of the step's ranges summed over those cuts: each cut steps
+  // them all to the instant (the whole-range cut above), one scheme step more at least.
+  std::int64_t cuts() const { return cuts_; }
+  std::int64_t cut_blocks() const { return cut_blocks_; }
 
  private:
   // Saves (restore: puts back) the start of the step: the blocks of the ranges, the pad.
@@ -134,7 +139,7 @@ class LocatedTransitions final : public Stepper {
   std::vector<Release> releases_;
   double last_stick_time_ = std::nan("");
   double work_ = 0;
-  std::int64_t located_ = 0, scheme_steps_ = 0;
+  std::int64_t located_ = 0, scheme_steps_ = 0, cuts_ = 0, cut_blocks_ = 0;
 };
 
 // The stepper of `scheme` with located transitions (the wrapper above); bkq::Error naming

@@ -24,6 +24,7 @@
 //    in between, in both modes (located, the blocks released inside a step count too);
 //  - a rupture front through blocks at the threshold, cut once per block inside one step,
 //    is not refused for the number of its cuts (the thesis scene at dt = 0.03);
+//  - the cut counters: a stick inside a step is one cut over the step's whole range;
 //  - the scene key: located for a scheme that resolves its transitions itself is refused.
 #include <gtest/gtest.h>
 
@@ -442,6 +443,28 @@ TEST(LocatedCuts, ARuptureFrontInsideOneStepIsNotRefused) {
   for (int i = 0; i < 20; ++i) largest = std::max(largest, sim.engine.next_event().blocks);
   EXPECT_GT(largest, 10);  // the front ran through many blocks
   EXPECT_GT(dynamic_cast<const LocatedTransitions&>(*sim.stepper).located_transitions(), 40);
+}
+
+// The counters of the lower bound (bench/located_bound.cpp): a stick inside a step is one
+// cut, over every block of the step's ranges (the whole-range cut), whether or not they
+// move; a step without a transition cuts nothing.
+TEST(LocatedCuts, AStickInsideAStepIsOneCutOverTheWholeRange) {
+  ModelParams p = single_block(law_id<law::Clst91>);
+  p.n = 3;  // uncoupled (k_c = 0): the ends stay stuck, below the threshold
+  const ChainForces forces(p);
+  for (const char* scheme : {"rk2", "rk4", "verlet"}) {
+    ChainState st;
+    st.resize(3);
+    st.w[1] = -1.0;  // the middle block, released at the threshold, sticks at t = pi
+    st.mobile[1] = 1.0;
+    auto s = located(scheme, 3);
+    const auto& counters = dynamic_cast<const LocatedTransitions&>(*s);
+    const Driven run = drive(forces, *s, st, M_PI / 10.5, 4.0);
+    ASSERT_EQ(run.st.mobile[1], 0.0) << scheme;
+    EXPECT_EQ(counters.cuts(), 1) << scheme;
+    EXPECT_EQ(counters.cut_blocks(), 3) << scheme;
+    EXPECT_EQ(counters.located_transitions(), 1) << scheme;
+  }
 }
 
 TEST(LocatedKey, RefusedForSchemesThatResolveTransitionsThemselves) {

@@ -1,0 +1,204 @@
+// A lower bound on the cost of located transitions, measured against a scene's own point.
+//
+// A located run at step dt takes at least the steps of a step-mode run at the same dt (the
+// same scheme, the same events), and each cut (a transition located inside a step) takes at
+// least one scheme step more over the blocks of the step's ranges (the whole-range cut,
+// integrate/located.hpp): the step to the instant and the rest of the step, where step mode
+// takes one. So, whatever the bracketing, the polish and the fast paths cost,
+//   located(dt) >= step(dt) + sum over cuts of (blocks cut) x (step mode's price per block-step)
+// priced per event-size class from the step-mode run itself. Three engines run on the scene,
+// alternating within each round: the scene's own point (its scheme
+// and dt, transitions at the step), SCHEME at DT at the step, and SCHEME at DT located. Each
+// is timed twice per round: a whole pass (the µs per event of the totals, thread CPU time) and a
+// pass timed event by event (wall clock less its own reading's cost: the split by event size,
+// and the price of a block-step per class).
+//   build/located_bound [EVENTS=50000] [ROUNDS=2] [DT=0.04] [SCHEME=rk4] [SCENE]
+// SCENE: an INI file (keys of continuous runs are dropped; the run is event by event), or the
+// built-in carlson-langer scene. Prints the ratios to the scene's own point per round, and the
+// split by event size of the last round.
+#include <time.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "core/error.hpp"
+#include "engine/event_engine.hpp"
+#include "engine/initial_state.hpp"
+#include "integrate/located.hpp"
+#include "integrate/stepper.hpp"
+#include "io/scene.hpp"
+#include "io/settings.hpp"
+#include "model/chain.hpp"
+
+namespace {
+
+using namespace bkq;
+
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Event-size classes: blocks in [kEdges[c], kEdges[c + 1]).
+constexpr std::array<int, 6> kEdges = {1, 2, 4, 10, 30, 1 << 30};
+constexpr int kClasses = static_cast<int>(kEdges.size()) - 1;
+
+int size_class(int blocks) {
+  int c = 0;
+  while (c + 1 < kClasses && blocks >= kEdges[c + 1]) ++c;
+  return c;
+}
+
+struct ClassTally {
+  double events = 0, seconds = 0, block_steps = 0, cuts = 0, cut_blocks = 0;
+};
+
+struct Config {
+  std::string label;
+  std::unique_ptr<Stepper> stepper;
+  std::unique_ptr<EventEngine> engine;
+  double us_per_event = 0;
+  std::array<ClassTally, kClasses> split{};
+};
+
+// The whole pass: µs per event over `events` events.
+double timed_pass(EventEngine& engine, long events) {
+  const double t0 = cpu_seconds();
+  for (long i = 0; i < events; ++i) engine.next_event();
+  return 1e6 * (cpu_seconds() - t0) / static_cast<double>(events);
+}
+
+// Wall seconds from the steady clock (read in user space: the thread CPU clock costs a
+// system call, too much beside a sub-microsecond event).
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// What one reading of the clock pair costs, taken off every event's time below.
+double clock_overhead() {
+  constexpr int kReads = 100000;
+  double sink = 0;
+  const double t0 = wall_seconds();
+  for (int i = 0; i < kReads; ++i) sink += wall_seconds();
+  const double each = (wall_seconds() - t0) / kReads;
+  return sink > 0 ? each : 0.0;
+}
+
+// The pass timed event by event (wall clock, less its own cost), split by event size.
+void split_pass(Config& c, long events, double overhead) {
+  const auto* located = dynamic_cast<const LocatedTransitions*>(c.stepper.get());
+  c.split = {};
+  for (long i = 0; i < events; ++i) {
+    const auto block_steps0 = c.engine->counters().block_steps;
+    const auto cuts0 = located ? located->cuts() : 0;
+    const auto cut_blocks0 = located ? located->cut_blocks() : 0;
+    const double t0 = wall_seconds();
+    const EventRecord e = c.engine->next_event();
+    const double seconds = std::max(0.0, wall_seconds() - t0 - overhead);
+    ClassTally& t = c.split[size_class(e.blocks)];
+    t.events += 1;
+    t.seconds += seconds;
+    t.block_steps += static_cast<double>(c.engine->counters().block_steps - block_steps0);
+    if (located) {
+      t.cuts += static_cast<double>(located->cuts() - cuts0);
+      t.cut_blocks += static_cast<double>(located->cut_blocks() - cut_blocks0);
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const long events = argc > 1 ? std::atol(argv[1]) : 50000;
+  const int rounds = argc > 2 ? std::atoi(argv[2]) : 2;
+  const double dt = argc > 3 ? std::atof(argv[3]) : 0.04;
+  const std::string scheme = argc > 4 ? argv[4] : "rk4";
+  if (events < 1 || rounds < 1 || !(dt > 0)) {
+    std::fprintf(stderr,
+                 "usage: located_bound [EVENTS=50000] [ROUNDS=2] [DT=0.04] [SCHEME=rk4] [SCENE]\n");
+    return 2;
+  }
+  try {
+    Scene scene = argc > 5 ? Scene::from_file(argv[5]) : Scene();
+    scene.set("drive.mode", "events", "located_bound");
+    scene.drop_inapplicable();
+    scene.validate();
+    const Settings settings = settings_from_scene(scene);
+    const ModelParams p = model_from_scene(scene);
+    const ChainForces forces(p);
+    const ChainState start =
+        initial_state(forces, settings.run.seed, settings.run.initial_disorder, true);
+
+    char dt_text[32];
+    std::snprintf(dt_text, sizeof dt_text, "%g", dt);
+    std::array<Config, 3> configs;
+    configs[0].label = settings.integrator.scheme + " step, dt " + scene.text("integrator.dt");
+    configs[0].stepper = make_stepper(settings.integrator.scheme, p.n);
+    configs[1].label = scheme + " step, dt " + dt_text;
+    configs[1].stepper = make_stepper(scheme, p.n);
+    configs[2].label = scheme + " located, dt " + dt_text;
+    configs[2].stepper = with_located_transitions(make_stepper(scheme, p.n), p.n);
+    const double dts[3] = {settings.integrator.dt, dt, dt};
+    for (int i = 0; i < 3; ++i) {
+      check_time_step(*configs[i].stepper, p, dts[i]);
+      configs[i].engine = std::make_unique<EventEngine>(forces, *configs[i].stepper, dts[i], start);
+      for (int k = 0; k < 2000; ++k) configs[i].engine->next_event();  // the transient
+    }
+    std::printf("scene: %s; %ld events per pass, thread CPU time\n", scene.origin.c_str(), events);
+    std::printf("%5s %14s %14s %16s %14s %14s %14s\n", "round", "own us/event", "step us/event",
+                "located us/event", "cut us/event", "bound/own", "located/own");
+    const double overhead = clock_overhead();
+    for (int round = 1; round <= rounds; ++round) {
+      for (Config& c : configs) c.us_per_event = timed_pass(*c.engine, events);
+      for (Config& c : configs) split_pass(c, events, overhead);
+      // The cuts priced at step mode's µs per block-step in the same event-size class.
+      double cut_us = 0;
+      for (int k = 0; k < kClasses; ++k) {
+        const ClassTally& step = configs[1].split[k];
+        const ClassTally& loc = configs[2].split[k];
+        if (step.block_steps > 0)
+          cut_us += loc.cut_blocks * (1e6 * step.seconds / step.block_steps);
+      }
+      cut_us /= static_cast<double>(events);
+      const double own = configs[0].us_per_event;
+      std::printf("%5d %14.3f %14.3f %16.3f %14.3f %14.3f %14.3f\n", round, own,
+                  configs[1].us_per_event, configs[2].us_per_event, cut_us,
+                  (configs[1].us_per_event + cut_us) / own, configs[2].us_per_event / own);
+    }
+    std::printf(
+        "\nsplit by event size (last round's timed pass; us per event of the class, its\n"
+        "share of the run's time; located: cuts per event, blocks per cut):\n");
+    std::printf("%-12s", "blocks");
+    for (const Config& c : configs) std::printf(" | %-30s", c.label.c_str());
+    std::printf(" | %-16s\n", "cuts, blocks/cut");
+    for (int k = 0; k < kClasses; ++k) {
+      char range[32];
+      if (k + 1 < kClasses)
+        std::snprintf(range, sizeof range, "%d-%d", kEdges[k], kEdges[k + 1] - 1);
+      else
+        std::snprintf(range, sizeof range, ">= %d", kEdges[k]);
+      std::printf("%-12s", range);
+      for (const Config& c : configs) {
+        double total = 0;
+        for (const ClassTally& t : c.split) total += t.seconds;
+        const ClassTally& t = c.split[k];
+        std::printf(" | share %5.3f %8.2f us %5.1f%%", t.events / static_cast<double>(events),
+                    t.events > 0 ? 1e6 * t.seconds / t.events : 0.0,
+                    total > 0 ? 100 * t.seconds / total : 0.0);
+      }
+      const ClassTally& loc = configs[2].split[k];
+      std::printf(" | %6.1f %8.1f\n", loc.events > 0 ? loc.cuts / loc.events : 0.0,
+                  loc.cuts > 0 ? loc.cut_blocks / loc.cuts : 0.0);
+    }
+    return 0;
+  } catch (const Error& e) {
+    std::fprintf(stderr, "located_bound: %s\n", e.what());
+    return 2;
+  }
+}
