@@ -226,6 +226,14 @@ void LocatedTransitions::halo(const ChainState& st) {
       if (!in_ranges(k)) w0_[k] = w1_[k] = st.w[k];
 }
 
+bool LocatedTransitions::instant_matters(const ChainState& st, int who, Ranges ranges) {
+  if (st.mobile[who] == 0.0) return true;  // a failure
+  for (const Range& r : ranges)
+    for (int j = r.lo; j < r.hi; ++j)
+      if (j != who && st.mobile[j] != 0.0 && !(st.dir[j] * st.wd[j] <= 0.0)) return false;
+  return true;  // a stick after which nothing of the ranges slides: the event may end here
+}
+
 void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, ChainState& st,
                               double dt, Ranges ranges) {
   const bool pad = forces.params().pad_moves();
@@ -301,7 +309,8 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
       restore_start(st, cur);
       scheme_->step(forces, sub, st, tau, cur);
       ++scheme_steps_;
-      for (int k = 0; k < kPolish; ++k) {
+      const int polish = instant_matters(st, who, cur) ? kPolish : 0;
+      for (int k = 0; k < polish; ++k) {
         const double g_over_rate = newton_ratio(forces, sub, st, who);
         const double next = tau - g_over_rate;
         if (!(next > 0.0 && next < h) || std::abs(next - tau) <= kLocate * h) break;

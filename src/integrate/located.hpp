@@ -9,22 +9,28 @@
 // the step (positions from w, w' at both ends; velocities from w', w'' at both ends, the
 // accelerations at the ends evaluated with the frozen flags), bracketed to 1e-13 of the
 // step (Illinois regula falsi, bisecting where a step does not halve the bracket). The step is then
-// taken again, by the same scheme, from its start to that instant, and the instant polished by at
-// most three Newton steps on such real steps (the attempted step ran past the transition, where
-// friction has a kink at zero velocity, which limits the interpolant there; the real steps end
-// before it); there the located block (and every other block whose transition has happened by then)
-// changes state by the stick rule below, and the rest of the step proceeds the same way. The work
-// against friction and the block dampers is summed piece by piece (step_work()). This is a
-// whole-cluster cut: every block of the ranges is stepped to the transition instant. A per-block
-// cut (only the blocks a transition concerns stepped to it) is not possible within one explicit
-// step, whose stages couple each block to its neighbours at the intermediate times: a block stepped
-// alone to the instant would see its neighbours at the step's end, which is first order again.
+// taken again, by the same scheme, from its start to that instant. A failure's instant, and a
+// stick's after which nothing of the ranges slides (the event's end, whose duration it is), is
+// then polished by at most three Newton steps on such real steps (the attempted step ran past
+// the transition, where friction has a kink at zero velocity, which limits the interpolant
+// there; the real steps end before it). Any other stick keeps the interpolant's instant: the
+// block's velocity is zero there, so the instant's error enters the state only quadratically,
+// while a failure's instant carries over one to one into the rest of the event (the released
+// block's slip starts then). There the located block (and every other block whose transition has
+// happened by then) changes state by the stick rule below, and the rest of the step proceeds the
+// same way. The work against friction and the block dampers is summed piece by piece (step_work()).
+// This is a whole-cluster cut: every block of the ranges is stepped to the transition instant. A
+// per-block cut (only the blocks a transition concerns stepped to it) is not possible within one
+// explicit step, whose stages couple each block to its neighbours at the intermediate times: a
+// block stepped alone to the instant would see its neighbours at the step's end, which is first
+// order again.
 //
 // Order. Between transitions the scheme's own (order p; rk2 2, rk4 4, verlet 2). The
 // cubic Hermite interpolant is exact to O(h^4) locally and passes through the scheme's
 // values, and the polish brings the instant to the accuracy of the scheme's state, so a
-// transition time is located to O(h^p): a failure time's error enters
-// the slip linearly, a stick time's only quadratically (the velocity is zero there). The
+// polished transition time is located to O(h^p): a failure time's error enters
+// the slip linearly, a stick time's only quadratically (the velocity is zero there), so an
+// unpolished stick, O(h^2) at worst, costs O(h^4) in the state. The
 // event therefore keeps the scheme's order (Hairer, Nørsett & Wanner 1993, Solving ODEs I,
 // §II.6 on dense output; Shampine 1986, Appl. Math. Comput., on event location).
 //
@@ -122,6 +128,10 @@ class LocatedTransitions final : public Stepper {
   // The work of one piece of length tau: from the velocities v0_ at its start to st's.
   double sub_step_work(const ChainForces& forces, const ChainState& st, Ranges ranges,
                        double tau) const;
+  // Whether the instant of `who`'s transition (st at its estimate) is polished: a failure's
+  // always, a stick's when every other sliding block of the ranges has stopped by then too
+  // (the event may end there, and its duration is the instant). See the header comment.
+  static bool instant_matters(const ChainState& st, int who, Ranges ranges);
   double dense_w(int j, double theta) const;
   double dense_wd(int j, double theta) const;
 
