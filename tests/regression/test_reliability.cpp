@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <sys/stat.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -424,6 +425,27 @@ TEST(Reliability, VersionNamesTheBuildTarget) {
   EXPECT_TRUE(target == "x86-64-v3" || target == "native" || target == "default" ||
               target.rfind("x86-64", 0) == 0)
       << target;
+}
+
+// The revision a binary names is the source tree's at build time, not at the last configure:
+// the header is rewritten at every build (src/core/version.cmake), so a build after a
+// commit names that commit. Skipped where the sources are not a git checkout.
+TEST(Reliability, VersionNamesTheCommitItWasBuiltFrom) {
+  const std::string command =
+      std::string("git -C '") + BKQUAKE_SOURCE_DIR + "' rev-parse --short=12 HEAD 2>/dev/null";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char buffer[64] = {};
+  const bool read = std::fgets(buffer, sizeof buffer, pipe) != nullptr;
+  const int status = ::pclose(pipe);
+  if (!read || status != 0) GTEST_SKIP() << "the sources are not a git checkout";
+  std::string head(buffer);
+  head.erase(head.find_last_not_of(" \n") + 1);
+  ASSERT_EQ(head.size(), 12u) << head;
+  const auto r = run_bkquake({"--version"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("git " + head), std::string::npos)
+      << r.out << " does not name HEAD " << head;
 }
 
 // Messages that said something untrue or cut themselves short.
