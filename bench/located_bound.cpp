@@ -15,7 +15,10 @@
 //   build/located_bound [EVENTS=50000] [ROUNDS=2] [DT=0.04] [SCHEME=rk4] [SCENE]
 // SCENE: an INI file (keys of continuous runs are dropped; the run is event by event), or the
 // built-in carlson-langer scene. Prints the ratios to the scene's own point per round, and the
-// split by event size of the last round.
+// split by event size of the last round. Without a moving pad it also prints the bound that
+// cuts of the sliding stretch alone would have (LocatedTransitions::stretch_blocks(): a
+// stuck block decouples its two sides for the step), which would need more than this
+// stepper does.
 #include <time.h>
 
 #include <algorithm>
@@ -56,7 +59,7 @@ int size_class(int blocks) {
 }
 
 struct ClassTally {
-  double events = 0, seconds = 0, block_steps = 0, cuts = 0, cut_blocks = 0;
+  double events = 0, seconds = 0, block_steps = 0, cuts = 0, cut_blocks = 0, stretch_blocks = 0;
 };
 
 struct Config {
@@ -98,6 +101,7 @@ void split_pass(Config& c, long events, double overhead) {
     const auto block_steps0 = c.engine->counters().block_steps;
     const auto cuts0 = located ? located->cuts() : 0;
     const auto cut_blocks0 = located ? located->cut_blocks() : 0;
+    const auto stretch_blocks0 = located ? located->stretch_blocks() : 0;
     const double t0 = wall_seconds();
     const EventRecord e = c.engine->next_event();
     const double seconds = std::max(0.0, wall_seconds() - t0 - overhead);
@@ -108,6 +112,7 @@ void split_pass(Config& c, long events, double overhead) {
     if (located) {
       t.cuts += static_cast<double>(located->cuts() - cuts0);
       t.cut_blocks += static_cast<double>(located->cut_blocks() - cut_blocks0);
+      t.stretch_blocks += static_cast<double>(located->stretch_blocks() - stretch_blocks0);
     }
   }
 }
@@ -151,8 +156,9 @@ int main(int argc, char** argv) {
       for (int k = 0; k < 2000; ++k) configs[i].engine->next_event();  // the transient
     }
     std::printf("scene: %s; %ld events per pass, thread CPU time\n", scene.origin.c_str(), events);
-    std::printf("%5s %14s %14s %16s %14s %14s %14s\n", "round", "own us/event", "step us/event",
-                "located us/event", "cut us/event", "bound/own", "located/own");
+    std::printf("%5s %14s %14s %16s %14s %14s %14s %18s\n", "round", "own us/event",
+                "step us/event", "located us/event", "cut us/event", "bound/own", "located/own",
+                "stretch bound/own");
     // A pass of each, not counted: the first timed round ran slow without it.
     for (Config& c : configs) timed_pass(*c.engine, events);
     const double overhead = clock_overhead();
@@ -160,18 +166,27 @@ int main(int argc, char** argv) {
       for (Config& c : configs) c.us_per_event = timed_pass(*c.engine, events);
       for (Config& c : configs) split_pass(c, events, overhead);
       // The cuts priced at step mode's µs per block-step in the same event-size class.
-      double cut_us = 0;
+      double cut_us = 0, stretch_us = 0;
       for (int k = 0; k < kClasses; ++k) {
         const ClassTally& step = configs[1].split[k];
         const ClassTally& loc = configs[2].split[k];
-        if (step.block_steps > 0)
-          cut_us += loc.cut_blocks * (1e6 * step.seconds / step.block_steps);
+        if (step.block_steps > 0) {
+          const double price = 1e6 * step.seconds / step.block_steps;
+          cut_us += loc.cut_blocks * price;
+          stretch_us += loc.stretch_blocks * price;
+        }
       }
       cut_us /= static_cast<double>(events);
+      stretch_us /= static_cast<double>(events);
       const double own = configs[0].us_per_event;
-      std::printf("%5d %14.3f %14.3f %16.3f %14.3f %14.3f %14.3f\n", round, own,
+      std::printf("%5d %14.3f %14.3f %16.3f %14.3f %14.3f %14.3f", round, own,
                   configs[1].us_per_event, configs[2].us_per_event, cut_us,
                   (configs[1].us_per_event + cut_us) / own, configs[2].us_per_event / own);
+      // A moving pad couples every block: there the stretch alone could not be cut.
+      if (p.pad_moves())
+        std::printf(" %18s\n", "n/a (pad)");
+      else
+        std::printf(" %18.3f\n", (configs[1].us_per_event + stretch_us) / own);
     }
     std::printf(
         "\nsplit by event size (last round's timed pass; us per event of the class, its\n"

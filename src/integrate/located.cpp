@@ -226,6 +226,27 @@ void LocatedTransitions::halo(const ChainState& st) {
       if (!in_ranges(k)) w0_[k] = w1_[k] = st.w[k];
 }
 
+int LocatedTransitions::sliding_stretch(const ChainState& st, int who) const {
+  // Out from `who` over sliding blocks on each side, then the stuck block that ends the
+  // stretch (none past a free end; a periodic chain wraps, at most once round).
+  int count = 1;
+  for (int side : {-1, 1}) {
+    int j = who;
+    for (int seen = 1; seen < n_; ++seen) {
+      int k = j + side;
+      if (k < 0 || k >= n_) {
+        if (!periodic_) break;
+        k = (k + n_) % n_;
+      }
+      if (k == who) break;
+      ++count;
+      if (st.mobile[k] == 0.0) break;
+      j = k;
+    }
+  }
+  return std::min(count, n_);
+}
+
 bool LocatedTransitions::instant_matters(const ChainState& st, int who, Ranges ranges) {
   if (st.mobile[who] == 0.0) return true;  // a failure
   for (const Range& r : ranges)
@@ -238,6 +259,7 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
                               double dt, Ranges ranges) {
   const bool pad = forces.params().pad_moves();
   const bool periodic = forces.params().boundary == Boundary::Periodic;
+  periodic_ = periodic;
   const double t_end = st.t + dt;
   ++stamp_;
   releases_.clear();
@@ -305,6 +327,7 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
       // end before it, so the polished instant has the scheme's own accuracy.
       ++cuts_;
       for (const Range& r : cur) cut_blocks_ += r.hi - r.lo;
+      stretch_blocks_ += sliding_stretch(st, who);
       double tau = theta * h;
       restore_start(st, cur);
       scheme_->step(forces, sub, st, tau, cur);

@@ -96,6 +96,11 @@ class LocatedTransitions final : public Stepper {
   // them all to the instant (the whole-range cut above), one scheme step more at least.
   std::int64_t cuts() const { return cuts_; }
   std::int64_t cut_blocks() const { return cut_blocks_; }
+  // The same sum over the sliding stretch of each cut's block only: the block, the sliding
+  // blocks next to it on either side and the stuck block that ends each side. Without a
+  // moving pad a stuck block decouples the two sides for the step (flags are frozen), so a
+  // cut of that stretch alone would do; this is what such cuts would step (not done).
+  std::int64_t stretch_blocks() const { return stretch_blocks_; }
 
  private:
   // Saves (restore: puts back) the start of the step: the blocks of the ranges, the pad.
@@ -132,6 +137,8 @@ class LocatedTransitions final : public Stepper {
   // always, a stick's when every other sliding block of the ranges has stopped by then too
   // (the event may end there, and its duration is the instant). See the header comment.
   static bool instant_matters(const ChainState& st, int who, Ranges ranges);
+  // The blocks of the sliding stretch of `who` (see stretch_blocks()).
+  int sliding_stretch(const ChainState& st, int who) const;
   double dense_w(int j, double theta) const;
   double dense_wd(int j, double theta) const;
 
@@ -149,7 +156,8 @@ class LocatedTransitions final : public Stepper {
   std::vector<Release> releases_;
   double last_stick_time_ = std::nan("");
   double work_ = 0;
-  std::int64_t located_ = 0, scheme_steps_ = 0, cuts_ = 0, cut_blocks_ = 0;
+  std::int64_t located_ = 0, scheme_steps_ = 0, cuts_ = 0, cut_blocks_ = 0, stretch_blocks_ = 0;
+  bool periodic_ = false;
 };
 
 // The stepper of `scheme` with located transitions (the wrapper above); bkq::Error naming

@@ -447,22 +447,24 @@ TEST(LocatedCuts, ARuptureFrontInsideOneStepIsNotRefused) {
 
 // The counters of the lower bound (bench/located_bound.cpp): a stick inside a step is one
 // cut, over every block of the step's ranges (the whole-range cut), whether or not they
-// move; a step without a transition cuts nothing.
+// move; its sliding stretch is the block and the stuck blocks that end it on either side;
+// a step without a transition cuts nothing.
 TEST(LocatedCuts, AStickInsideAStepIsOneCutOverTheWholeRange) {
   ModelParams p = single_block(law_id<law::Clst91>);
-  p.n = 3;  // uncoupled (k_c = 0): the ends stay stuck, below the threshold
+  p.n = 5;  // uncoupled (k_c = 0): the others stay stuck, below the threshold
   const ChainForces forces(p);
   for (const char* scheme : {"rk2", "rk4", "verlet"}) {
     ChainState st;
-    st.resize(3);
-    st.w[1] = -1.0;  // the middle block, released at the threshold, sticks at t = pi
-    st.mobile[1] = 1.0;
-    auto s = located(scheme, 3);
+    st.resize(5);
+    st.w[2] = -1.0;  // the middle block, released at the threshold, sticks at t = pi
+    st.mobile[2] = 1.0;
+    auto s = located(scheme, 5);
     const auto& counters = dynamic_cast<const LocatedTransitions&>(*s);
     const Driven run = drive(forces, *s, st, M_PI / 10.5, 4.0);
-    ASSERT_EQ(run.st.mobile[1], 0.0) << scheme;
+    ASSERT_EQ(run.st.mobile[2], 0.0) << scheme;
     EXPECT_EQ(counters.cuts(), 1) << scheme;
-    EXPECT_EQ(counters.cut_blocks(), 3) << scheme;
+    EXPECT_EQ(counters.cut_blocks(), 5) << scheme;
+    EXPECT_EQ(counters.stretch_blocks(), 3) << scheme;
     EXPECT_EQ(counters.located_transitions(), 1) << scheme;
   }
 }
