@@ -32,7 +32,12 @@ ChainForces::ChainForces(const ModelParams& p)
     for (const CouplingSpring& c : *st) reach_ = std::max(reach_, c.offset);
   // A lattice site's partners lie within max |dy| + 1 rows of it in the storage order (a
   // periodic row's wrap included).
-  for (const LatticeSpring& c : grid_) reach_ = std::max(reach_, (std::abs(c.dy) + 1) * nx_);
+  for (const LatticeSpring& c : grid_) {
+    reach_ = std::max(reach_, (std::abs(c.dy) + 1) * nx_);
+    grid_offset_.push_back(c.dx + c.dy * nx_);
+    grid_reach_x_ = std::max(grid_reach_x_, std::abs(c.dx));
+    grid_reach_y_ = std::max(grid_reach_y_, std::abs(c.dy));
+  }
   kernel_ = select_kernel(false);
   kernel_inertial_ = select_kernel(true);
 }

@@ -142,10 +142,23 @@ class ChainForces {
   template <class F>
   void for_each_partner(int j, F&& f) const {
     const int x = j % nx_, y = j / nx_;
+    if (interior_site(x, y)) {
+      for (const int o : grid_offset_) {
+        f(j - o);
+        f(j + o);
+      }
+      return;
+    }
     for (const LatticeSpring& s : grid_) {
       if (const int i = site(x - s.dx, y - s.dy); i >= 0) f(i);
       if (const int i = site(x + s.dx, y + s.dy); i >= 0) f(i);
     }
+  }
+  // Whether every partner of the site at (x, y) lies inside the lattice, at j -+ offset
+  // (grid_offset_), with no edge to test.
+  bool interior_site(int x, int y) const {
+    return x >= grid_reach_x_ && x < nx_ - grid_reach_x_ && y >= grid_reach_y_ &&
+           y < ny_ - grid_reach_y_;
   }
   // The site at (x, y) of a lattice, wrapped across periodic edges; -1 past a free edge.
   int site(int x, int y) const {
@@ -166,6 +179,18 @@ class ChainForces {
     const int x = j % nx_, y = j / nx_;
     const double wj = w[j];
     double f = 0;
+    if (interior_site(x, y)) {
+      // Every partner is inside the lattice, at j -+ (dx + dy nx): no edge to test, the same
+      // operations in the same order as below.
+      for (std::size_t k = 0; k < grid_.size(); ++k) {
+        const int o = grid_offset_[k];
+        double d = 0;
+        d += w[j - o] - wj;
+        d += w[j + o] - wj;
+        f += grid_[k].k * d;
+      }
+      return f;
+    }
     for (const LatticeSpring& s : grid_) {
       double d = 0;
       if (const int i = site(x - s.dx, y - s.dy); i >= 0) d += w[i] - wj;
@@ -358,6 +383,10 @@ class ChainForces {
   Friction friction_;
   CouplingStencil stencil_, dampers_;
   LatticeStencil grid_;
+  // Each lattice spring's partner offset in storage order (dx + dy nx), and the stencil's
+  // largest |dx| and |dy|: a site that far from every edge has all its partners.
+  std::vector<int> grid_offset_;
+  int grid_reach_x_ = 0, grid_reach_y_ = 0;
   bool long_range_ = false;
   bool viscous_ = false;
   bool lattice_ = false;
