@@ -125,6 +125,54 @@ TEST(LatticeForces, NeighbourSumsAreTheLatticeLaplacianWithTheEdges) {
   EXPECT_DOUBLE_EQ(p.max_angular_frequency(), std::sqrt(4.0 * (100 + 49) + 1));
 }
 
+// Sites whose partners all lie inside the lattice sum them at fixed offsets, without edge
+// tests (ChainForces::lattice_sum, for_each_partner): the force and the partners are those of
+// the stencil applied site by site with the edges tested, bit for bit, on every site of
+// lattices with sites far from every edge, near them and on them.
+TEST(LatticeForces, InteriorSitesSumTheirStencilAsTheEdgeTestedSumDoes) {
+  const int nx = 11, ny = 9;
+  for (Coupling c : {Coupling::Nearest, Coupling::Range, Coupling::Power})
+    for (Boundary bx : {Boundary::Free, Boundary::Periodic})
+      for (Boundary by : {Boundary::Free, Boundary::Periodic}) {
+        ModelParams p = lattice_params(nx, ny, c, c == Coupling::Nearest ? 1 : 3);
+        p.boundary = bx;
+        p.boundary_y = by;
+        const ChainForces f(p);
+        std::vector<double> w(nx * ny);
+        for (int j = 0; j < nx * ny; ++j) w[j] = std::sin(1.3 * j) + 0.01 * j;
+        auto site = [&](int x, int y) {
+          if (x < 0 || x >= nx) {
+            if (bx == Boundary::Free) return -1;
+            x = (x + nx) % nx;
+          }
+          if (y < 0 || y >= ny) {
+            if (by == Boundary::Free) return -1;
+            y = (y + ny) % ny;
+          }
+          return y * nx + x;
+        };
+        for (int y = 0; y < ny; ++y)
+          for (int x = 0; x < nx; ++x) {
+            const int j = y * nx + x;
+            double want = 0;
+            std::vector<int> partners;
+            for (const LatticeSpring& sp : f.lattice_stencil()) {
+              double d = 0;
+              for (int i : {site(x - sp.dx, y - sp.dy), site(x + sp.dx, y + sp.dy)})
+                if (i >= 0) {
+                  d += w[i] - w[j];
+                  partners.push_back(i);
+                }
+              want += sp.k * d;
+            }
+            EXPECT_EQ(f.neighbour_force(w.data(), j), want) << x << ", " << y;
+            std::vector<int> seen;
+            f.for_each_partner(j, [&](int i) { seen.push_back(i); });
+            EXPECT_EQ(seen, partners) << x << ", " << y;
+          }
+      }
+}
+
 // The state of an nx x ny lattice as the ny x nx lattice with the axes swapped.
 ChainState transposed(const ChainState& a, int nx, int ny) {
   ChainState b = a;
