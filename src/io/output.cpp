@@ -46,6 +46,9 @@ int write_all(int fd, const std::string& data) {
   return 0;
 }
 
+// The name of the write probe's file where the file system has no unnamed files.
+constexpr const char* kProbePrefix = ".bkquake-probe-";
+
 std::string folder_of(const std::string& path) {
   const fs::path parent = fs::path(path).parent_path();
   return parent.empty() ? "." : parent.string();
@@ -68,12 +71,19 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
   lock_ = std::make_unique<FolderLock>(dir, command,
                                        force || resume ? StaleLock::TakeOver : StaleLock::Refuse);
   // Probe with a real file: permissions, read-only mounts and full disks all show up here,
-  // before hours of simulation rather than after.
-  std::string probe = path(".bkquake-probe-XXXXXX");
-  const int fd = ::mkstemp(probe.data());
+  // before hours of simulation rather than after. An unnamed file (O_TMPFILE) leaves nothing
+  // behind whenever the process dies; where the file system has none, a named one is made
+  // and removed, and one that a kill left between the two is removed here next time.
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (entry.path().filename().string().rfind(kProbePrefix, 0) == 0) fs::remove(entry.path(), ec);
+  int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0600);
+  if (fd < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL)) {
+    std::string probe = path(std::string(kProbePrefix) + "XXXXXX");
+    fd = ::mkstemp(probe.data());
+    if (fd >= 0) ::unlink(probe.c_str());
+  }
   if (fd < 0) throw Error("cannot write to output folder '" + dir + "': " + reason(errno));
   ::close(fd);
-  ::unlink(probe.c_str());
   if (force || resume) return;
   const bool can_resume = command == "run";
   if (run_status(dir) == RunStatus::Finished)

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -116,6 +117,23 @@ TEST(OutputFolder, CreatesParentsAndGivesPaths) {
   // The probe leaves nothing behind; the lock goes with the folder object.
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
   EXPECT_TRUE(fs::exists(dir + "/bkquake.lock"));
+}
+
+// A process killed while probing a folder on a file system without unnamed files leaves
+// the named probe; the next opening of the folder removes it (it once stood among a resumed
+// sweep's files, which then differed from the straight sweep's).
+TEST(OutputFolder, RemovesAProbeThatAKillLeftBehind) {
+  for (bool resume : {false, true}) {
+    test::TempDir tmp;
+    const std::string dir = tmp.file("out");
+    fs::create_directory(dir);
+    const std::string stale = dir + "/.bkquake-probe-AbC123";
+    std::ofstream(stale) << "";
+    ASSERT_TRUE(fs::exists(stale));
+    OutputFolder out(dir, false, resume);
+    EXPECT_FALSE(fs::exists(stale)) << "resume " << resume;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  }
 }
 
 TEST(OutputFolder, RefusesAPathUnderARegularFile) {
