@@ -6,12 +6,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
@@ -49,6 +51,14 @@ int write_all(int fd, const std::string& data) {
 // The name of the write probe's file where the file system has no unnamed files.
 constexpr const char* kProbePrefix = ".bkquake-probe-";
 
+// NAME.tmp-XXXXXX, the temporary of write_temp_beside (mkstemp's six characters).
+bool is_write_temporary(const std::string& name) {
+  const auto at = name.rfind(".tmp-");
+  return at != std::string::npos && at > 0 && name.size() == at + 5 + 6 &&
+         std::all_of(name.begin() + static_cast<std::ptrdiff_t>(at + 5), name.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; });
+}
+
 std::string folder_of(const std::string& path) {
   const fs::path parent = fs::path(path).parent_path();
   return parent.empty() ? "." : parent.string();
@@ -84,7 +94,16 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
   }
   if (fd < 0) throw Error("cannot write to output folder '" + dir + "': " + reason(errno));
   ::close(fd);
-  if (force || resume) return;
+  if (force || resume) {
+    // A write cut short by a kill leaves its temporary (write_temp_beside: NAME.tmp-XXXXXX)
+    // beside the file, which is old or new but whole; the run that takes the folder over
+    // removes it, as the sweep does for its replicas.
+    std::vector<fs::path> stale;
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+      if (is_write_temporary(entry.path().filename().string())) stale.push_back(entry.path());
+    for (const fs::path& f : stale) fs::remove(f, ec);
+    return;
+  }
   const bool can_resume = command == "run";
   if (run_status(dir) == RunStatus::Finished)
     throw Error(

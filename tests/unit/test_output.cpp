@@ -136,6 +136,26 @@ TEST(OutputFolder, RemovesAProbeThatAKillLeftBehind) {
   }
 }
 
+// A write cut short by a kill leaves NAME.tmp-XXXXXX beside the file: a run that takes the
+// folder over (--resume, --force) removes it; a new run in the folder refuses it as a file
+// it did not write, and removes nothing.
+TEST(OutputFolder, TakingTheFolderOverRemovesTheTemporariesOfCutWrites) {
+  for (bool resume : {false, true}) {
+    test::TempDir tmp;
+    const std::string dir = tmp.file("out");
+    fs::create_directory(dir);
+    const std::string cut = dir + "/summary.json.tmp-Ab12Cd";
+    const std::string kept = dir + "/notes.tmp-1.txt";  // not a temporary of ours
+    std::ofstream(cut) << "{";
+    std::ofstream(kept) << "mine";
+    EXPECT_THROW(OutputFolder(dir, false, false), Error);
+    EXPECT_TRUE(fs::exists(cut));
+    OutputFolder out(dir, !resume, resume);
+    EXPECT_FALSE(fs::exists(cut)) << "resume " << resume;
+    EXPECT_TRUE(fs::exists(kept)) << "resume " << resume;
+  }
+}
+
 TEST(OutputFolder, RefusesAPathUnderARegularFile) {
   test::TempDir tmp;
   const std::string file = tmp.write("plain", "x");
