@@ -298,12 +298,12 @@ class Sweep {
   }
 
  private:
-  // A sweep killed while writing a file atomically leaves its temporary (name.tmp-XXXXXX,
-  // io/output.hpp) beside it; the file itself is either old or new, so the temporary goes.
+  // A sweep killed while writing a file atomically leaves its temporary (io/output.hpp,
+  // is_write_temporary) beside it; the file itself is either old or new, so the temporary goes.
   void remove_temporaries() const {
     std::vector<fs::path> stale;
     for (const auto& e : fs::recursive_directory_iterator(out_))
-      if (e.is_regular_file() && e.path().filename().string().find(".tmp-") != std::string::npos)
+      if (e.is_regular_file() && is_write_temporary(e.path().filename().string()))
         stale.push_back(e.path());
     for (const auto& f : stale) fs::remove(f);
   }

@@ -3,7 +3,8 @@
 # the sources that include it recompile, and only after a commit or an edit changed the
 # revision. Run at configure time (include) and at every build (cmake -P, the
 # bkquake_provenance target), with SOURCE_DIR, OUT, PROJECT_VERSION and BKQUAKE_BUILD_ARCH set.
-execute_process(COMMAND git describe --always --dirty --abbrev=12
+# --exclude=*: the commit's own name even where tags exist (a tag would print tag-N-gHASH).
+execute_process(COMMAND git describe --always --dirty --abbrev=12 --exclude=*
                 WORKING_DIRECTORY ${SOURCE_DIR}
                 OUTPUT_VARIABLE BKQUAKE_GIT_REVISION OUTPUT_STRIP_TRAILING_WHITESPACE
                 ERROR_QUIET)

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <sstream>
+#include <vector>
 
 #include "core/error.hpp"
 #include "io/output.hpp"
@@ -187,7 +188,7 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
                               utc_now_iso() + "\n";
   // A few rounds: a lock released (unlinked) between our attempts sends us round again.
   for (int round = 0; round < 5; ++round) {
-    std::string tmp = (fs::path(dir) / ".bkquake.lock.tmp-XXXXXX").string();
+    std::string tmp = (fs::path(dir) / (std::string(kTemporaryPrefix) + "XXXXXX")).string();
     const int fd = ::mkstemp(tmp.data());
     if (fd < 0) throw Error("cannot write to output folder '" + dir + "': " + std::strerror(errno));
     ::fchmod(fd, 0644);
@@ -284,6 +285,26 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
 void FolderLock::held() {
   register_held(fd_, path_);
   install_release_handlers();
+  remove_stale_temporaries(fs::path(path_).parent_path().string());
+}
+
+void FolderLock::remove_stale_temporaries(const std::string& dir) {
+  // A process killed between creating its temporary and unlinking it (above) leaves it. A
+  // live one holds its temporary's flock from the write on, so one whose flock we can take
+  // is stale. (In the few microseconds before a racing process takes its flock, its
+  // temporary may go: it then fails to link with 'No such file' instead of finding our lock,
+  // and fails either way.)
+  std::error_code ec;
+  std::vector<std::string> candidates;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (entry.path().filename().string().rfind(kTemporaryPrefix, 0) == 0)
+      candidates.push_back(entry.path().string());
+  for (const std::string& f : candidates) {
+    const int fd = ::open(f.c_str(), O_RDWR | O_CLOEXEC);
+    if (fd < 0) continue;
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0 && same_file(fd, f.c_str())) ::unlink(f.c_str());
+    ::close(fd);
+  }
 }
 
 FolderLock::~FolderLock() {

@@ -32,6 +32,8 @@ enum class StaleLock { Refuse, TakeOver };
 class FolderLock {
  public:
   static constexpr const char* kFileName = "bkquake.lock";
+  // The lock is written to a temporary of this prefix, then linked to kFileName.
+  static constexpr const char* kTemporaryPrefix = ".bkquake.lock.tmp-";
 
   // Takes the lock of the existing folder `dir` for `command`. Throws bkq::Error when another
   // live process holds it, when a stale lock is found and `stale` is Refuse (naming --resume
@@ -46,7 +48,9 @@ class FolderLock {
   const std::string& path() const { return path_; }
 
  private:
-  void held();  // registers the lock for release on a signal
+  void held();  // registers the lock for release on a signal, removes stale temporaries
+  // Removes the temporaries of lock attempts whose process died (no flock held on them).
+  static void remove_stale_temporaries(const std::string& dir);
 
   std::string path_;
   int fd_ = -1;

@@ -51,14 +51,6 @@ int write_all(int fd, const std::string& data) {
 // The name of the write probe's file where the file system has no unnamed files.
 constexpr const char* kProbePrefix = ".bkquake-probe-";
 
-// NAME.tmp-XXXXXX, the temporary of write_temp_beside (mkstemp's six characters).
-bool is_write_temporary(const std::string& name) {
-  const auto at = name.rfind(".tmp-");
-  return at != std::string::npos && at > 0 && name.size() == at + 5 + 6 &&
-         std::all_of(name.begin() + static_cast<std::ptrdiff_t>(at + 5), name.end(),
-                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; });
-}
-
 std::string folder_of(const std::string& path) {
   const fs::path parent = fs::path(path).parent_path();
   return parent.empty() ? "." : parent.string();
@@ -95,7 +87,7 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
   if (fd < 0) throw Error("cannot write to output folder '" + dir + "': " + reason(errno));
   ::close(fd);
   if (force || resume) {
-    // A write cut short by a kill leaves its temporary (write_temp_beside: NAME.tmp-XXXXXX)
+    // A write cut short by a kill leaves its temporary (write_temp_beside, kTempMarker)
     // beside the file, which is old or new but whole; the run that takes the folder over
     // removes it, as the sweep does for its replicas.
     std::vector<fs::path> stale;
@@ -147,7 +139,8 @@ std::string OutputFolder::path(const std::string& name) const {
 
 std::string write_temp_beside(const std::string& path, const std::string& content) {
   std::string tmp =
-      (fs::path(folder_of(path)) / (fs::path(path).filename().string() + ".tmp-XXXXXX")).string();
+      (fs::path(folder_of(path)) / (fs::path(path).filename().string() + kTempMarker + "XXXXXX"))
+          .string();
   const int fd = ::mkstemp(tmp.data());
   if (fd < 0) throw Error("cannot write '" + path + "': " + reason(errno));
   int err = write_all(fd, content);
@@ -162,12 +155,24 @@ std::string write_temp_beside(const std::string& path, const std::string& conten
   return tmp;
 }
 
+bool is_write_temporary(const std::string& name) {
+  const std::string marker = kTempMarker;
+  const auto at = name.rfind(marker);
+  const auto tail = at + marker.size();
+  return at != std::string::npos && at > 0 && name.size() == tail + 6 &&
+         std::all_of(name.begin() + static_cast<std::ptrdiff_t>(tail), name.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; });
+}
+
 void remove_temporaries_of(const std::string& path) {
   std::error_code ec;
-  const std::string stem = fs::path(path).filename().string() + ".tmp-";
+  const std::string name = fs::path(path).filename().string();
+  const std::string stem = name + kTempMarker, old_stem = name + ".tmp-";
   std::vector<fs::path> stale;
-  for (const auto& entry : fs::directory_iterator(folder_of(path), ec))
-    if (entry.path().filename().string().rfind(stem, 0) == 0) stale.push_back(entry.path());
+  for (const auto& entry : fs::directory_iterator(folder_of(path), ec)) {
+    const std::string f = entry.path().filename().string();
+    if (f.rfind(stem, 0) == 0 || f.rfind(old_stem, 0) == 0) stale.push_back(entry.path());
+  }
   for (const auto& f : stale) fs::remove(f, ec);
 }
 

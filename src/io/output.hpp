@@ -47,8 +47,14 @@ void write_file_atomic(const std::string& path, const std::string& content);
 // `path` (same folder, so renaming it over `path` is atomic), fsynced and readable;
 // returns its name. Throws bkq::Error naming `path`; nothing is left behind on failure.
 std::string write_temp_beside(const std::string& path, const std::string& content);
+// The temporaries of write_temp_beside are named NAME + kTempMarker + six characters: a
+// marker no user's file and no other temporary (the folder lock's, an export's) carries.
+inline constexpr const char* kTempMarker = ".bkquake-tmp-";
+// Whether a file name is such a temporary.
+bool is_write_temporary(const std::string& name);
 // Removes the temporaries write_temp_beside left beside `path` when a write was cut short
-// (a second signal, a crash); best effort, errors ignored.
+// (a second signal, a crash), and those of versions that named them NAME.tmp-XXXXXX; best
+// effort, errors ignored.
 void remove_temporaries_of(const std::string& path);
 // Renames `from` over `to`; throws bkq::Error naming both.
 void rename_file(const std::string& from, const std::string& to);

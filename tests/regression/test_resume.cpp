@@ -29,6 +29,7 @@
 #include "io/catalog.hpp"
 #include "io/checkpoint.hpp"
 #include "io/histogram_csv.hpp"
+#include "io/output.hpp"
 #include "io/run_folder.hpp"
 #include "io/scene.hpp"
 #include "stats/histogram.hpp"
@@ -114,7 +115,7 @@ class Resume : public ::testing::Test {
               test::summary_without_timing(read_file(straight("summary.json"))));
     EXPECT_FALSE(CheckpointFiles(out).exist()) << "a finished run keeps no checkpoint";
     for (const auto& e : fs::directory_iterator(out))
-      EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+      EXPECT_FALSE(is_write_temporary(e.path().filename().string())) << e.path();
   }
 
   // The summary an interrupted run leaves: marked interrupted, with the figures of its
@@ -496,7 +497,8 @@ TEST(Checkpoint, FilesRotateAndTheOldOneSurvives) {
   EXPECT_EQ(decode_checkpoint(read_file(files.previous()), "prev").progress.events_done, 123456);
   // Only the two checkpoints are left: no temporary files.
   EXPECT_EQ(std::distance(fs::directory_iterator(tmp.path()), fs::directory_iterator()), 2);
-  tmp.write("checkpoint.bin.tmp-abc123", "left by a write cut short");
+  tmp.write(std::string("checkpoint.bin") + kTempMarker + "abc123", "left by a write cut short");
+  tmp.write("checkpoint.bin.tmp-abc123", "left by an earlier version's write cut short");
   files.remove();
   EXPECT_FALSE(files.exist());
   EXPECT_TRUE(fs::is_empty(tmp.path()));

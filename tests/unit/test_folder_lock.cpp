@@ -2,7 +2,9 @@
 // files it did not write: a live holder is refused and named, a stale lock of this host is
 // refused unless taken over (then reported), a lock of another host is never taken over,
 // and the lock file goes when its holder is done.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -61,6 +63,27 @@ TEST(FolderLock, HeldWhileAliveAndRemovedAfter) {
   }
   EXPECT_FALSE(fs::exists(tmp.file(FolderLock::kFileName)));
   EXPECT_TRUE(fs::is_empty(dir)) << "no temporary file is left behind";
+}
+
+// A process killed between creating its lock temporary and unlinking it leaves the
+// temporary; the next process to take the lock removes it, but not the temporary of a live
+// process, which holds its flock (it once stood among a resumed sweep's files).
+TEST(FolderLock, TakingTheLockRemovesTheTemporaryOfAKilledAttempt) {
+  test::TempDir tmp;
+  const std::string dir = tmp.path().string();
+  const std::string dead = dir + "/" + FolderLock::kTemporaryPrefix + "Dead01";
+  const std::string live = dir + "/" + FolderLock::kTemporaryPrefix + "Live01";
+  std::ofstream(dead) << "bkquake folder lock\n";
+  std::ofstream(live) << "bkquake folder lock\n";
+  const int held = ::open(live.c_str(), O_RDWR | O_CLOEXEC);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+  {
+    FolderLock lock(dir, "run", StaleLock::Refuse);
+    EXPECT_FALSE(fs::exists(dead));
+    EXPECT_TRUE(fs::exists(live));
+  }
+  ::close(held);
 }
 
 TEST(FolderLock, StaleLockOfThisHostIsRefusedOrTakenOver) {

@@ -136,24 +136,41 @@ TEST(OutputFolder, RemovesAProbeThatAKillLeftBehind) {
   }
 }
 
-// A write cut short by a kill leaves NAME.tmp-XXXXXX beside the file: a run that takes the
-// folder over (--resume, --force) removes it; a new run in the folder refuses it as a file
-// it did not write, and removes nothing.
+// A write cut short by a kill leaves its temporary (NAME.bkquake-tmp-XXXXXX) beside the file:
+// a run that takes the folder over (--resume, --force) removes it, and nothing else that
+// merely looks like a temporary (a user's file, an export's; the folder lock's own are
+// FolderLock's: TakingTheLockRemovesTheTemporaryOfAKilledAttempt);
+// a new run in the folder refuses it as a file it did not write, and removes nothing.
 TEST(OutputFolder, TakingTheFolderOverRemovesTheTemporariesOfCutWrites) {
   for (bool resume : {false, true}) {
     test::TempDir tmp;
     const std::string dir = tmp.file("out");
     fs::create_directory(dir);
-    const std::string cut = dir + "/summary.json.tmp-Ab12Cd";
-    const std::string kept = dir + "/notes.tmp-1.txt";  // not a temporary of ours
+    const std::string cut = dir + "/summary.json" + kTempMarker + "Ab12Cd";
+    const std::vector<std::string> kept = {dir + "/notes.tmp-1.txt", dir + "/results.tmp-backup",
+                                           dir + "/data.tmp-2024q1", dir + "/x.csv.tmp-123456"};
     std::ofstream(cut) << "{";
-    std::ofstream(kept) << "mine";
+    for (const std::string& f : kept) std::ofstream(f) << "mine";
     EXPECT_THROW(OutputFolder(dir, false, false), Error);
     EXPECT_TRUE(fs::exists(cut));
     OutputFolder out(dir, !resume, resume);
     EXPECT_FALSE(fs::exists(cut)) << "resume " << resume;
-    EXPECT_TRUE(fs::exists(kept)) << "resume " << resume;
+    for (const std::string& f : kept) EXPECT_TRUE(fs::exists(f)) << f << ", resume " << resume;
   }
+}
+
+TEST(OutputFolder, WriteTemporariesCarryTheMarkerAndNothingElseMatches) {
+  test::TempDir tmp;
+  const std::string target = tmp.file("catalog.csv");
+  const std::string t = write_temp_beside(target, "x");
+  EXPECT_TRUE(is_write_temporary(fs::path(t).filename().string())) << t;
+  EXPECT_EQ(fs::path(t).filename().string().rfind(std::string("catalog.csv") + kTempMarker, 0), 0u);
+  for (const char* name :
+       {"catalog.csv", "catalog.csv.tmp-Ab12Cd", ".bkquake.lock.tmp-Ab12Cd", "a.bkquake-tmp-Ab12C",
+        "a.bkquake-tmp-Ab12Cd7", "a.bkquake-tmp-Ab-2Cd", ".bkquake-tmp-Ab12Cd"})
+    EXPECT_FALSE(is_write_temporary(name)) << name;
+  remove_temporaries_of(target);
+  EXPECT_FALSE(fs::exists(t));
 }
 
 TEST(OutputFolder, RefusesAPathUnderARegularFile) {
