@@ -5,13 +5,13 @@
 // least one scheme step more over the blocks of the step's ranges (the whole-range cut,
 // integrate/located.hpp): the step to the instant and the rest of the step, where step mode
 // takes one. So, whatever the bracketing, the polish and the fast paths cost,
-//   located(dt) >= step(dt) + sum over cuts of (blocks cut) x (step mode's price per block-step)
-// priced per event-size class from the step-mode run itself. Three engines run on the scene,
-// alternating within each round: the scene's own point (its scheme
-// and dt, transitions at the step), SCHEME at DT at the step, and SCHEME at DT located. Each
-// is timed twice per round: a whole pass (the µs per event of the totals, thread CPU time) and a
-// pass timed event by event (wall clock less its own reading's cost: the split by event size,
-// and the price of a block-step per class).
+//   located(dt) >= step(dt) + sum over cuts of (one bare scheme step over the blocks cut),
+// the bare step timed on its own for each event-size class's mean cut. Three engines run on the
+// scene, alternating within each round: the scene's own point (its scheme and dt, transitions at
+// the step), SCHEME at DT at the step, and SCHEME at DT located. Each is timed twice per round: a
+// whole pass (the µs per event of the totals, thread CPU time) and a pass timed event by event
+// (wall clock less its own reading's cost: the split by event size, and the cuts and their blocks
+// per class).
 //   build/located_bound [EVENTS=50000] [ROUNDS=2] [DT=0.04] [SCHEME=rk4] [SCENE]
 // SCENE: an INI file (keys of continuous runs are dropped; the run is event by event), or the
 // built-in carlson-langer scene. Prints the ratios to the scene's own point per round, and the
@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -37,6 +38,7 @@
 #include "io/scene.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
+#include "model/substrate.hpp"
 
 namespace {
 
@@ -117,6 +119,41 @@ void split_pass(Config& c, long events, double overhead) {
   }
 }
 
+// µs per bare step of `stepper` over `blocks` sliding blocks of the engine's chain (a range
+// from the middle, every block in it sliding; the pad moves with them where it moves),
+// timed over a batch of steps from a state put back every 32 steps.
+double step_us(Stepper& stepper, const ChainForces& forces, const EventEngine& engine, double dt,
+               int blocks) {
+  const int n = forces.n();
+  ChainState start = engine.state();
+  const Range range{std::max(0, (n - blocks) / 2), std::max(0, (n - blocks) / 2) + blocks};
+  for (int j = range.lo; j < range.hi; ++j) {
+    start.mobile[j] = 1.0;
+    start.dir[j] = 1.0;
+    start.wd[j] = 0.01;
+  }
+  const Substrate frozen = Substrate::frozen(start.s);
+  ChainState st = start;
+  constexpr int kBatch = 32;
+  long steps = 0;
+  const double t0 = cpu_seconds();
+  double elapsed = 0;
+  while (elapsed < 0.02) {
+    st = start;
+    for (int i = 0; i < kBatch; ++i) stepper.step(forces, frozen, st, dt, Ranges(&range, 1));
+    steps += kBatch;
+    elapsed = cpu_seconds() - t0;
+  }
+  // The copies of the state, once per batch, are taken out with a batch of copies alone.
+  const double c0 = cpu_seconds();
+  for (long i = 0; i < steps / kBatch; ++i) {
+    st = start;
+    asm volatile("" : : "r"(st.w.data()) : "memory");
+  }
+  const double copies = cpu_seconds() - c0;
+  return 1e6 * std::max(0.0, elapsed - copies) / static_cast<double>(steps);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -165,16 +202,21 @@ int main(int argc, char** argv) {
     for (int round = 1; round <= rounds; ++round) {
       for (Config& c : configs) c.us_per_event = timed_pass(*c.engine, events);
       for (Config& c : configs) split_pass(c, events, overhead);
-      // The cuts priced at step mode's µs per block-step in the same event-size class.
+      // Each class's cuts priced at what one bare scheme step of its mean cut costs per block
+      // (the step alone: no engine bookkeeping, no location), and the same for the stretch.
       double cut_us = 0, stretch_us = 0;
       for (int k = 0; k < kClasses; ++k) {
-        const ClassTally& step = configs[1].split[k];
         const ClassTally& loc = configs[2].split[k];
-        if (step.block_steps > 0) {
-          const double price = 1e6 * step.seconds / step.block_steps;
-          cut_us += loc.cut_blocks * price;
-          stretch_us += loc.stretch_blocks * price;
-        }
+        if (loc.cuts == 0) continue;
+        const auto blocks = [&](double sum) {
+          return std::clamp(static_cast<int>(std::lround(sum / loc.cuts)), 1, p.n);
+        };
+        const int b_cut = blocks(loc.cut_blocks), b_stretch = blocks(loc.stretch_blocks);
+        cut_us += loc.cut_blocks *
+                  step_us(*configs[1].stepper, forces, *configs[2].engine, dt, b_cut) / b_cut;
+        stretch_us += loc.stretch_blocks *
+                      step_us(*configs[1].stepper, forces, *configs[2].engine, dt, b_stretch) /
+                      b_stretch;
       }
       cut_us /= static_cast<double>(events);
       stretch_us /= static_cast<double>(events);
