@@ -212,7 +212,8 @@ TEST(LocatedOrder, StickUnderVelocityWeakeningKeepsTheOrderOfRk4) {
 // Carlson–Langer scene with 30 blocks: pre-event states sampled from a run, each event
 // relaxed at dt and dt/2 against the adaptive stepper at tolerance 1e-12 (macro step
 // 1e-3, as `bkquake accuracy` does); the median error over the sampled events of each
-// kind (16 of each) falls by at least 2^(order - 1/2) from dt to dt/2. The pairs sit in
+// kind (16 of each) falls by at least 2^(order - 1/2) from dt to dt/2, and so does the median
+// relative error of the moments of the events of several blocks. The pairs sit in
 // each scheme's asymptotic range: the local slopes rise towards the order as dt falls
 // (here rk4 on events of several blocks: 3.19, 3.66, 3.80, 3.92 from dt = 0.04 to 0.0025),
 // so a coarser pair would test the ladder, not the bookkeeping.
@@ -241,24 +242,31 @@ TEST(LocatedOrder, EventDurationKeepsTheSchemesOrder) {
       {"rk2", {0.01, 0.005}}, {"rk4", {0.01, 0.005}}, {"verlet", {0.02, 0.01}}};
   for (const auto& [scheme, hs] : ladders) {
     const int order = make_stepper(scheme, sim.p.n)->order();
-    std::vector<double> err_single, err_multi;  // per dt: the median error
+    std::vector<double> err_single, err_multi, err_moment;  // per dt: the median error
     for (double h : hs) {
       auto s = located(scheme, sim.p.n);
-      std::vector<double> e1, em;
+      std::vector<double> e1, em, mm;
       for (std::size_t k = 0; k < states.size(); ++k) {
         EventEngine e(sim.forces, *s, h, states[k]);
         const EventRecord r = e.next_event();
         ASSERT_EQ(r.blocks, refs[k].blocks) << scheme << " dt " << h << " event " << k;
         (r.blocks == 1 ? e1 : em).push_back(std::abs(r.duration - refs[k].duration));
+        if (r.blocks > 1) mm.push_back(std::abs(r.moment - refs[k].moment) / refs[k].moment);
       }
       err_single.push_back(median(e1));
       err_multi.push_back(median(em));
+      err_moment.push_back(median(mm));
     }
     EXPECT_GE(observed_order(err_single[0], err_single[1], hs[0], hs[1]), order - 0.5)
         << scheme << " one-block events, median errors " << err_single[0] << ", " << err_single[1];
     EXPECT_GE(observed_order(err_multi[0], err_multi[1], hs[0], hs[1]), order - 0.5)
         << scheme << " events of several blocks, median errors " << err_multi[0] << ", "
         << err_multi[1];
+    // Their moments too: the sticks before the last one are located without the polish
+    // (their instants enter the state only quadratically), and the order holds.
+    EXPECT_GE(observed_order(err_moment[0], err_moment[1], hs[0], hs[1]), order - 0.5)
+        << scheme << " moments of events of several blocks, median errors " << err_moment[0] << ", "
+        << err_moment[1];
   }
 }
 
