@@ -11,7 +11,6 @@
 //
 //   build/bench_coupling [--blocks N] [--events E] [--full-events F] [--transient T] [R ...]
 //                  (defaults: N = 1000, E = 20000, F = 200, T = 20000, R = 1 3 10 30)
-#include <time.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -29,14 +28,9 @@
 #include "io/scene.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
+#include "thread_clock.hpp"
 
 namespace {
-
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 struct Row {
   std::string coupling;
@@ -93,20 +87,22 @@ int main(int argc, char** argv) {
 
       // The same F events both ways (the engine gives the whole chain's events bit for bit
       // with the lone-slip replay off, on here as in a run: the same events to rounding).
-      double t0 = thread_seconds();
+      double t0 = bkq::bench::thread_seconds();
       for (long long i = 0; i < full_events; ++i) engine.next_event();
-      const double engine_same = static_cast<double>(full_events) / (thread_seconds() - t0);
+      const double engine_same =
+          static_cast<double>(full_events) / (bkq::bench::thread_seconds() - t0);
       auto full_stepper = bkq::make_stepper(scene.choice("integrator.scheme"), n);
       bkq::ReferenceEventEngine full(forces, *full_stepper, dt, start);
       double full_blocks = 0;
-      t0 = thread_seconds();
+      t0 = bkq::bench::thread_seconds();
       for (long long i = 0; i < full_events; ++i) full_blocks += full.next_event().blocks;
-      const double full_rate = static_cast<double>(full_events) / (thread_seconds() - t0);
+      const double full_rate =
+          static_cast<double>(full_events) / (bkq::bench::thread_seconds() - t0);
       // Then E more events: the engine's steady rate.
       double blocks = 0;
-      t0 = thread_seconds();
+      t0 = bkq::bench::thread_seconds();
       for (long long i = 0; i < events; ++i) blocks += engine.next_event().blocks;
-      const double engine_rate = static_cast<double>(events) / (thread_seconds() - t0);
+      const double engine_rate = static_cast<double>(events) / (bkq::bench::thread_seconds() - t0);
       std::printf("%s,%d,%d,%lld,%.6g,%.4g,%lld,%.6g,%.6g,%.4g\n", row.coupling.c_str(), row.range,
                   n, events, engine_rate, blocks / static_cast<double>(events), full_events,
                   engine_same, full_rate, engine_same / full_rate);

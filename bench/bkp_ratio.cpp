@@ -10,7 +10,6 @@
 // N is measured with the transitions at the step and located inside it
 // (integrator.transitions = step, located; rk4 at dt = 0.01 both), a row per mode.
 //   build/bkp_ratio [ROUNDS=7] [SLICE=0.3] [N...=100 1000]
-#include <time.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -19,14 +18,9 @@
 #include <vector>
 
 #include "carlson_langer_events.hpp"
+#include "thread_clock.hpp"
 
 namespace {
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 struct Tally {
   std::int64_t events = 0, sliding_block_steps = 0;
@@ -36,13 +30,13 @@ struct Tally {
 // Runs events in batches until `slice` CPU seconds have passed; returns events per second.
 double run_slice(bkq::EventEngine& engine, double slice, Tally& tally) {
   const std::int64_t sliding0 = engine.counters().sliding_block_steps;
-  const double t0 = cpu_seconds();
+  const double t0 = bkq::bench::thread_seconds();
   std::int64_t events = 0;
   double t = t0;
   while (t - t0 < slice) {
     for (int i = 0; i < 256; ++i) engine.next_event();
     events += 256;
-    t = cpu_seconds();
+    t = bkq::bench::thread_seconds();
   }
   tally.events += events;
   tally.seconds += t - t0;

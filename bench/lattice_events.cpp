@@ -19,7 +19,6 @@
 //
 //   build/lattice_events [--events F] [--rounds R] [--transient T] [--steady S] [L ...]
 //                        (defaults: F = 200, R = 3, T = 10, S = 100000, L = 64 256)
-#include <time.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -36,14 +35,9 @@
 #include "io/scene.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
+#include "thread_clock.hpp"
 
 namespace {
-
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 // What one engine did over the F events of a round.
 struct Pass {
@@ -65,12 +59,12 @@ Pass event_engine_pass(const bkq::ChainForces& forces, const std::string& scheme
     engine.lone_slip_path = replay;
     const bkq::EngineCounters c0 = engine.counters();
     const bool record = passes == 0;
-    const double t0 = thread_seconds();
+    const double t0 = bkq::bench::thread_seconds();
     for (long long i = 0; i < f; ++i) {
       const bkq::EventRecord e = engine.next_event();
       if (record) out.events.push_back(e);
     }
-    total += thread_seconds() - t0;
+    total += bkq::bench::thread_seconds() - t0;
     if (record) {
       const bkq::EngineCounters& c = engine.counters();
       out.block_steps = static_cast<double>(c.block_steps - c0.block_steps);
@@ -89,9 +83,9 @@ Pass reference_pass(const bkq::ChainForces& forces, const std::string& scheme, d
   Pass out;
   auto stepper = bkq::make_stepper(scheme, forces.n());
   bkq::ReferenceEventEngine engine(forces, *stepper, dt, start);
-  const double t0 = thread_seconds();
+  const double t0 = bkq::bench::thread_seconds();
   for (long long i = 0; i < f; ++i) out.events.push_back(engine.next_event());
-  out.seconds = thread_seconds() - t0;
+  out.seconds = bkq::bench::thread_seconds() - t0;
   out.block_steps = static_cast<double>(engine.block_steps);
   out.sliding_block_steps = static_cast<double>(engine.sliding_block_steps);
   return out;
@@ -174,9 +168,9 @@ int main(int argc, char** argv) {
         bkq::EventEngine engine(forces, *stepper, dt, start);
         const bkq::EngineCounters c0 = engine.counters();
         double blocks = 0;
-        const double t0 = thread_seconds();
+        const double t0 = bkq::bench::thread_seconds();
         for (long long i = 0; i < steady; ++i) blocks += engine.next_event().blocks;
-        const double seconds = thread_seconds() - t0;
+        const double seconds = bkq::bench::thread_seconds() - t0;
         const bkq::EngineCounters& c = engine.counters();
         const double s = static_cast<double>(steady);
         std::printf("%dx%d,steady,event,%lld,%.6g,,%.6g,%.6g,%.4g,%.4g,%.4g,\n", l, l, steady,

@@ -19,7 +19,6 @@
 // cuts of the sliding stretch alone would have (LocatedTransitions::stretch_blocks(): a
 // stuck block decouples its two sides for the step), which would need more than this
 // stepper does.
-#include <time.h>
 
 #include <algorithm>
 #include <array>
@@ -39,16 +38,11 @@
 #include "io/settings.hpp"
 #include "model/chain.hpp"
 #include "model/substrate.hpp"
+#include "thread_clock.hpp"
 
 namespace {
 
 using namespace bkq;
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 // Event-size classes: blocks in [kEdges[c], kEdges[c + 1]).
 constexpr std::array<int, 6> kEdges = {1, 2, 4, 10, 30, 1 << 30};
@@ -74,9 +68,9 @@ struct Config {
 
 // The whole pass: µs per event over `events` events.
 double timed_pass(EventEngine& engine, long events) {
-  const double t0 = cpu_seconds();
+  const double t0 = bkq::bench::thread_seconds();
   for (long i = 0; i < events; ++i) engine.next_event();
-  return 1e6 * (cpu_seconds() - t0) / static_cast<double>(events);
+  return 1e6 * (bkq::bench::thread_seconds() - t0) / static_cast<double>(events);
 }
 
 // Wall seconds from the steady clock (read in user space: the thread CPU clock costs a
@@ -136,21 +130,21 @@ double step_us(Stepper& stepper, const ChainForces& forces, const EventEngine& e
   ChainState st = start;
   constexpr int kBatch = 32;
   long steps = 0;
-  const double t0 = cpu_seconds();
+  const double t0 = bkq::bench::thread_seconds();
   double elapsed = 0;
   while (elapsed < 0.02) {
     st = start;
     for (int i = 0; i < kBatch; ++i) stepper.step(forces, frozen, st, dt, Ranges(&range, 1));
     steps += kBatch;
-    elapsed = cpu_seconds() - t0;
+    elapsed = bkq::bench::thread_seconds() - t0;
   }
   // The copies of the state, once per batch, are taken out with a batch of copies alone.
-  const double c0 = cpu_seconds();
+  const double c0 = bkq::bench::thread_seconds();
   for (long i = 0; i < steps / kBatch; ++i) {
     st = start;
     asm volatile("" : : "r"(st.w.data()) : "memory");
   }
-  const double copies = cpu_seconds() - c0;
+  const double copies = bkq::bench::thread_seconds() - c0;
   return 1e6 * std::max(0.0, elapsed - copies) / static_cast<double>(steps);
 }
 

@@ -9,7 +9,6 @@
 //
 //   build/scaling [--events E] [N ...]        (default: E = 200000, N = 100 1000 10000 100000)
 #include <malloc.h>
-#include <time.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -18,14 +17,9 @@
 #include <vector>
 
 #include "carlson_langer_events.hpp"
+#include "thread_clock.hpp"
 
 namespace {
-
-double thread_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 double heap_bytes() {
   const struct mallinfo2 m = mallinfo2();
@@ -55,9 +49,9 @@ int main(int argc, char** argv) {
     const double per_block = (heap_bytes() - heap0) / n;
     bkq::EventEngine& engine = setup->engine;
     const bkq::EngineCounters c0 = engine.counters();
-    const double t0 = thread_seconds();
+    const double t0 = bkq::bench::thread_seconds();
     for (long long e = 0; e < events; ++e) engine.next_event();
-    const double cpu = thread_seconds() - t0;
+    const double cpu = bkq::bench::thread_seconds() - t0;
     const bkq::EngineCounters& c = engine.counters();
     const double bs = static_cast<double>(c.block_steps - c0.block_steps);
     const double sbs = static_cast<double>(c.sliding_block_steps - c0.sliding_block_steps);
