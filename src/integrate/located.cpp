@@ -226,7 +226,7 @@ void LocatedTransitions::halo(const ChainState& st) {
       if (!in_ranges(k)) w0_[k] = w1_[k] = st.w[k];
 }
 
-int LocatedTransitions::sliding_stretch(const ChainState& st, int who) const {
+int LocatedTransitions::sliding_stretch(const ChainState& st, int who, bool periodic) const {
   // Out from `who` over sliding blocks on each side, then the stuck block that ends the
   // stretch (none past a free end; a periodic chain wraps, at most once round).
   int count = 1;
@@ -235,7 +235,7 @@ int LocatedTransitions::sliding_stretch(const ChainState& st, int who) const {
     for (int seen = 1; seen < n_; ++seen) {
       int k = j + side;
       if (k < 0 || k >= n_) {
-        if (!periodic_) break;
+        if (!periodic) break;
         k = (k + n_) % n_;
       }
       if (k == who) break;
@@ -259,7 +259,6 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
                               double dt, Ranges ranges) {
   const bool pad = forces.params().pad_moves();
   const bool periodic = forces.params().boundary == Boundary::Periodic;
-  periodic_ = periodic;
   const double t_end = st.t + dt;
   ++stamp_;
   releases_.clear();
@@ -327,7 +326,7 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
       // end before it, so the polished instant has the scheme's own accuracy.
       ++cuts_;
       for (const Range& r : cur) cut_blocks_ += r.hi - r.lo;
-      stretch_blocks_ += sliding_stretch(st, who);
+      stretch_blocks_ += sliding_stretch(st, who, periodic);
       double tau = theta * h;
       restore_start(st, cur);
       scheme_->step(forces, sub, st, tau, cur);

@@ -137,8 +137,9 @@ class LocatedTransitions final : public Stepper {
   // always, a stick's when every other sliding block of the ranges has stopped by then too
   // (the event may end there, and its duration is the instant). See the header comment.
   static bool instant_matters(const ChainState& st, int who, Ranges ranges);
-  // The blocks of the sliding stretch of `who` (see stretch_blocks()).
-  int sliding_stretch(const ChainState& st, int who) const;
+  // The blocks of the sliding stretch of `who` (see stretch_blocks()) on a chain of free or
+  // periodic ends.
+  int sliding_stretch(const ChainState& st, int who, bool periodic) const;
   double dense_w(int j, double theta) const;
   double dense_wd(int j, double theta) const;
 
@@ -157,7 +158,6 @@ class LocatedTransitions final : public Stepper {
   double last_stick_time_ = std::nan("");
   double work_ = 0;
   std::int64_t located_ = 0, scheme_steps_ = 0, cuts_ = 0, cut_blocks_ = 0, stretch_blocks_ = 0;
-  bool periodic_ = false;
 };
 
 // The stepper of `scheme` with located transitions (the wrapper above); bkq::Error naming

@@ -72,12 +72,21 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
   // Locked before anything is looked at, so what is checked below stays true.
   lock_ = std::make_unique<FolderLock>(dir, command,
                                        force || resume ? StaleLock::TakeOver : StaleLock::Refuse);
+  // What a killed process left here: the named probe of a file system without unnamed files
+  // (below), always; the temporaries of writes it cut short (write_temp_beside), when a run
+  // takes the folder over (--resume, --force), since the files themselves are whole, old or
+  // new. A new run refuses those as files it did not write (below).
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(kProbePrefix, 0) == 0 || ((force || resume) && is_write_temporary(name)))
+      stale.push_back(entry.path());
+  }
+  for (const fs::path& f : stale) fs::remove(f, ec);
   // Probe with a real file: permissions, read-only mounts and full disks all show up here,
   // before hours of simulation rather than after. An unnamed file (O_TMPFILE) leaves nothing
   // behind whenever the process dies; where the file system has none, a named one is made
-  // and removed, and one that a kill left between the two is removed here next time.
-  for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (entry.path().filename().string().rfind(kProbePrefix, 0) == 0) fs::remove(entry.path(), ec);
+  // and removed at once.
   int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0600);
   if (fd < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL)) {
     std::string probe = path(std::string(kProbePrefix) + "XXXXXX");
@@ -86,16 +95,7 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
   }
   if (fd < 0) throw Error("cannot write to output folder '" + dir + "': " + reason(errno));
   ::close(fd);
-  if (force || resume) {
-    // A write cut short by a kill leaves its temporary (write_temp_beside, kTempMarker)
-    // beside the file, which is old or new but whole; the run that takes the folder over
-    // removes it, as the sweep does for its replicas.
-    std::vector<fs::path> stale;
-    for (const auto& entry : fs::directory_iterator(dir, ec))
-      if (is_write_temporary(entry.path().filename().string())) stale.push_back(entry.path());
-    for (const fs::path& f : stale) fs::remove(f, ec);
-    return;
-  }
+  if (force || resume) return;
   const bool can_resume = command == "run";
   if (run_status(dir) == RunStatus::Finished)
     throw Error(
