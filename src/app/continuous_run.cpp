@@ -190,6 +190,7 @@ class ContinuousRun {
       if (observers_.wants_steps()) observers_.step({done_, *driver_});
       observers_.advance({driver_->state().t, episodes_});
     }
+    signals.stopping();
     observers_.phase_end({driver_->state().t, episodes_});
     if (const int sig = signals.received()) return stop(sig);
     // The final state, before the observers close their partial blocks (the last energy

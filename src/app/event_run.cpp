@@ -181,6 +181,7 @@ class EventRun {
         if (++prog_.transient_done == transient_) begin_recording();
         observers_.advance(advance(prog_.transient_done));
       }
+      if (signals.received()) signals.stopping();
       observers_.phase_end(advance(prog_.transient_done));
     }
     if (prog_.transient_done == transient_ && !signals.received()) {
@@ -192,9 +193,11 @@ class EventRun {
         observers_.event(e);
         observers_.advance(advance(prog_.events_done));
       }
+      signals.stopping();
       events_end_ = Clock::now();  // the summary's fit at phase_end is not event time
       observers_.phase_end(advance(prog_.events_done));
     }
+    signals.stopping();
     if (const int sig = signals.received()) return stop(sig);
     return finish();
   }

@@ -99,6 +99,21 @@ int run_scene(const RunRequest& req) {
         "csv, none");
 
   const OutputFolder out(req.out_dir, req.force, req.resume);
+  // A wide stencil's setup (the engine's tree of times to failure, from every block's force)
+  // and each event spanning the chain sum every block's springs: seconds, near the bound the
+  // scene check sets (io/scene.cpp). Said before they pass in silence.
+  if (!req.quiet && !ofc && p.long_range()) {
+    const std::size_t springs =
+        2 * (p.lattice() ? forces.lattice_stencil().size() : forces.stencil().size());
+    const double terms = static_cast<double>(springs) * static_cast<double>(p.n);
+    if (terms > 1e7) {
+      std::fprintf(stderr,
+                   "bkquake: %d blocks, %zu springs each (%.3g terms per force evaluation): "
+                   "setting up takes seconds, and so may an event that spans the chain\n",
+                   p.n, springs, terms);
+      std::fflush(stderr);
+    }
+  }
   const CheckpointFiles checkpoints(out.dir());
   if (req.resume) {
     // Everything is checked before anything is changed: a refused resume leaves the folder as it

@@ -3,6 +3,7 @@
 // anything else is a bug and exits 1.
 #include <unistd.h>
 
+#include <csignal>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -13,7 +14,7 @@
 #include "bkquake_version.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
-#include "core/format.hpp"
+#include "core/terminal_text.hpp"
 
 namespace {
 
@@ -50,6 +51,10 @@ __attribute__((constructor(101), target("arch=x86-64"))) void require_build_cpu(
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file size limit (ulimit -f) would end the process by SIGXFSZ mid-write, with no word
+  // and its lock left behind; ignored, the write fails with EFBIG and ends the run as a full
+  // disk does: one line naming the file, the lock released, a resumable folder.
+  std::signal(SIGXFSZ, SIG_IGN);
   const std::vector<std::string> all(argv + 1, argv + argc);
   try {
     if (all.empty()) {
@@ -82,7 +87,7 @@ int main(int argc, char** argv) {
     throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
   } catch (const bkq::Error& e) {
     // One line of printable text, whatever file content or value the message quotes.
-    std::cerr << "bkquake: error: " << bkq::escape_unprintable(e.what()) << "\n";
+    std::cerr << "bkquake: error: " << bkq::printable_text(e.what()) << "\n";
     return bkq::kExitBadInput;
   } catch (const std::bad_alloc&) {
     // Out of memory (a memory limit, a request too large for the machine): what was written
@@ -91,7 +96,7 @@ int main(int argc, char** argv) {
                  "cannot hold what was asked for; ask for less)\n";
     return bkq::kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "bkquake: internal error: " << bkq::escape_unprintable(e.what()) << "\n";
+    std::cerr << "bkquake: internal error: " << bkq::printable_text(e.what()) << "\n";
     return 1;
   }
 }

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/terminal_text.hpp"
 
 namespace bkq {
 
@@ -71,7 +72,7 @@ Scene scene_from_command_line(const std::string& command, const po::variables_ma
 
 void drop_inapplicable_keys(Scene& scene) {
   for (const auto& w : scene.drop_inapplicable())
-    std::cerr << "bkquake: warning: " << escape_unprintable(w) << "\n";
+    std::cerr << "bkquake: warning: " << printable_text(w) << "\n";
 }
 
 std::optional<double> window_option(const po::variables_map& vm, const std::string& command,

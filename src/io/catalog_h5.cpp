@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string_view>
 
 #include "core/error.hpp"
 #include "core/fnv1a.hpp"
 #include "io/catalog.hpp"
+#include "io/output.hpp"
 
 #if BKQUAKE_HAVE_HDF5
 #include <hdf5.h>
@@ -18,6 +20,10 @@ namespace bkq {
 
 bool is_hdf5_file(const std::string& path) {
   static const char signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+  // Only a plain file is looked into: a FIFO's opening would wait for a writer, a device's
+  // reads never end (the readers refuse them, io/input_file.hpp).
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;
   std::ifstream in(path, std::ios::binary);
   char head[8] = {};
   return in.read(head, 8) && std::memcmp(head, signature, 8) == 0;
@@ -253,6 +259,7 @@ CatalogH5Writer::CatalogH5Writer(const std::string& path,
   w.columns = kCatalogColumns + layout.extra_columns();
   w.buf.resize(kChunkRows * 8 * w.columns);
   if (append_after >= 0) {
+    refuse_link(path, "cannot append");
     Opened o = open_table(path, true);
     if (o.rows < static_cast<hsize_t>(append_after))
       fail(path, "holds " + std::to_string(o.rows) + " rows, the checkpoint counts " +
@@ -263,6 +270,7 @@ CatalogH5Writer::CatalogH5Writer(const std::string& path,
     check(H5Dset_extent(w.table, &w.rows), path, "cannot cut the table back to its checkpoint");
   } else {
     const Handle fapl = file_access(path, false);
+    replace_link(path);  // H5F_ACC_TRUNC would write through it
     w.file = checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, path,
                      "cannot create the file");
     const hsize_t zero = 0, unlimited = H5S_UNLIMITED;

@@ -14,6 +14,7 @@
 #include "io/catalog.hpp"
 #include "io/catalog_h5.hpp"
 #include "io/csv_util.hpp"
+#include "io/input_file.hpp"
 
 namespace bkq {
 
@@ -198,10 +199,12 @@ ColumnTable read_h5_catalog(const std::filesystem::path& path) {
 }  // namespace
 
 ColumnTable read_csv_table(const std::filesystem::path& path, const Schema& schema) {
+  check_input_file(path, "table");
   return CsvTableReader(path, schema).take();
 }
 
 ColumnTable read_catalog_table(const std::filesystem::path& path) {
+  check_input_file(path, "catalogue");
   if (is_hdf5_file(path.string())) return read_h5_catalog(path);
   return read_csv_table(path, any_catalog_schema());
 }

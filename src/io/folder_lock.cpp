@@ -226,13 +226,22 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
       return;
     }
     ::close(fd);
+    // Our temporary went before it was linked (a holder removed it as stale in the moment
+    // before our flock, see remove_stale_temporaries): go round and find that holder.
+    if (link_err == ENOENT) continue;
     if (link_err != EEXIST)
       throw Error("cannot create the lock file '" + path_ + "': " + std::strerror(link_err));
 
     // A lock exists: whose, and is it alive?
-    const int old = ::open(path_.c_str(), O_RDWR | O_CLOEXEC);
+    const int old = ::open(path_.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
     if (old < 0) {
       if (errno == ENOENT) continue;  // released meanwhile
+      // No bkquake writes its lock as a symbolic link: it is replaced (taking over), never
+      // written through.
+      if (errno == ELOOP && stale == StaleLock::TakeOver && ::unlink(path_.c_str()) == 0) continue;
+      if (errno == ELOOP)
+        throw Error("the lock file '" + path_ +
+                    "' is a symbolic link, which no bkquake writes; remove it, or use --force");
       throw Error("cannot open the lock file '" + path_ + "': " + std::strerror(errno));
     }
     const LockHolder h = parse_holder(read_fd(old));
@@ -266,7 +275,13 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
                   ", which is gone (killed?); use --resume to continue its run or --force to "
                   "start over");
     }
-    // We hold the flock of the stale file: nobody else can take it over now.
+    // We hold the flock of the stale file: nobody else can take it over now. One with other
+    // names (a hard link to a file elsewhere) is replaced, never rewritten in place.
+    struct stat st {};
+    if (::fstat(old, &st) == 0 && st.st_nlink > 1 && ::unlink(path_.c_str()) == 0) {
+      ::close(old);
+      continue;
+    }
     if (::ftruncate(old, 0) != 0 || !write_fd(old, content)) {
       const int e = errno;
       ::close(old);

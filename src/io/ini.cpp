@@ -4,6 +4,7 @@
 #include <boost/program_options.hpp>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "core/error.hpp"
 #include "io/input_file.hpp"
@@ -15,7 +16,9 @@ std::vector<IniEntry> parse_ini(const std::string& text, const std::string& wher
   // No option is declared: every entry comes back unregistered, and the caller decides
   // which keys it knows.
   const po::options_description none;
-  std::istringstream in(text);
+  // A byte-order mark (Windows editors save UTF-8 with one) is no part of the first line.
+  static constexpr std::string_view kBom = "\xEF\xBB\xBF";
+  std::istringstream in(text.starts_with(kBom) ? text.substr(kBom.size()) : text);
   po::parsed_options parsed(&none);
   try {
     parsed = po::parse_config_file(in, none, /*allow_unregistered=*/true);

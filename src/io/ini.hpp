@@ -14,7 +14,8 @@ struct IniEntry {
   std::string value;  // as written, surrounding spaces removed
 };
 
-// The entries in file order. A syntax error throws bkq::Error ending in " (<where>)".
+// The entries in file order; a UTF-8 byte-order mark at the start is skipped. A syntax error
+// throws bkq::Error ending in " (<where>)".
 std::vector<IniEntry> parse_ini(const std::string& text, const std::string& where);
 
 // The whole file as text, at most kMaxTextFileBytes (io/input_file.hpp); bkq::Error "cannot

@@ -17,8 +17,15 @@ namespace bkq {
 // about a thousand times the largest bkquake writes.
 inline constexpr std::size_t kMaxTextFileBytes = std::size_t{64} << 20;
 
-// Opens `path` for reading; bkq::Error "cannot read <what> '<path>': <reason>" when it is a
-// folder or a device (whose reads never end) or cannot be opened.
+// bkq::Error "cannot read <what> '<path>': <reason>" unless `path` is (or links to) a plain
+// file: a folder, a device (whose reads never end), a FIFO or a socket (whose opening waits
+// for a writer) is refused before it is opened. Every reader of a file bkquake did not just
+// write checks this first (open_input does; so do the whole-table readers and the Python
+// module's through them).
+void check_input_file(const std::filesystem::path& path, const std::string& what);
+
+// Opens `path` for reading after check_input_file; bkq::Error as there, or when it cannot be
+// opened.
 std::ifstream open_input(const std::filesystem::path& path, const std::string& what,
                          std::ios::openmode mode = std::ios::in);
 

@@ -18,6 +18,7 @@
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/terminal_text.hpp"
 #include "io/checkpoint.hpp"
 #include "io/folder_lock.hpp"
 #include "io/friction_table.hpp"
@@ -63,6 +64,14 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
     : dir_(dir), resume_(resume) {
   if (dir.empty()) throw Error("output folder: empty path");
   std::error_code ec;
+  if (fs::is_symlink(dir, ec) && !fs::exists(dir, ec)) {
+    // A link as the folder is followed (docs/explanation/reliability.md), but one to nothing
+    // is not made into a folder at the place it names.
+    const fs::path target = fs::read_symlink(dir, ec);
+    throw Error("cannot use output folder '" + dir + "': it is a symbolic link to '" +
+                target.string() +
+                "', which does not exist; create that folder, or choose another --out");
+  }
   if (resume && !fs::exists(dir, ec))
     throw Error("--resume: output folder '" + dir + "' does not exist: nothing to continue");
   fs::create_directories(dir, ec);
@@ -95,6 +104,10 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
   }
   if (fd < 0) throw Error("cannot write to output folder '" + dir + "': " + reason(errno));
   ::close(fd);
+  // Checked before anything is changed: a resume continues these files in place.
+  if (resume)
+    for (const std::string& name : run_own_files())
+      if (name != FolderLock::kFileName) refuse_link(path(name), "--resume");
   if (force || resume) return;
   const bool can_resume = command == "run";
   if (run_status(dir) == RunStatus::Finished)
@@ -123,7 +136,7 @@ OutputFolder::OutputFolder(const std::string& dir, bool force, bool resume,
     std::sort(found.begin(), found.end());
     std::string names;
     for (std::size_t i = 0; i < found.size() && i < 3; ++i)
-      names += (i ? ", " : "") + quote_printable(found[i]);
+      names += (i ? ", " : "") + quote_text(found[i]);
     if (found.size() > 3) names += ", ... (" + std::to_string(found.size()) + " files)";
     throw Error("output folder '" + dir + "' already holds files bkquake did not write in this " +
                 command + " (" + names +
@@ -174,6 +187,40 @@ void remove_temporaries_of(const std::string& path) {
     if (f.rfind(stem, 0) == 0 || f.rfind(old_stem, 0) == 0) stale.push_back(entry.path());
   }
   for (const auto& f : stale) fs::remove(f, ec);
+}
+
+namespace {
+
+// What stands at `path` when it is not one plain file of its own: "a symbolic link to 'x'",
+// "a hard link (N names)", "a FIFO", ...; empty for a plain file or nothing.
+std::string link_kind(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return "";
+  if (S_ISLNK(st.st_mode)) {
+    std::error_code ec;
+    return "a symbolic link to '" + fs::read_symlink(path, ec).string() + "'";
+  }
+  if (S_ISDIR(st.st_mode)) return "";  // opening it fails with its own message
+  if (!S_ISREG(st.st_mode))
+    return S_ISFIFO(st.st_mode) ? "a FIFO" : S_ISSOCK(st.st_mode) ? "a socket" : "a device";
+  if (st.st_nlink > 1) return "a file with " + std::to_string(st.st_nlink) + " names (hard links)";
+  return "";
+}
+
+}  // namespace
+
+void replace_link(const std::string& path) {
+  if (link_kind(path).empty()) return;
+  if (::unlink(path.c_str()) != 0 && errno != ENOENT)
+    throw Error("cannot replace '" + path + "' (" + link_kind(path) + "): " + reason(errno));
+}
+
+void refuse_link(const std::string& path, const std::string& why) {
+  const std::string kind = link_kind(path);
+  if (kind.empty()) return;
+  throw Error(why + ": '" + path + "' is " + kind +
+              "; a run writes only inside its folder, and continuing it would write through "
+              "that: put the file itself in its place, or start over with --force");
 }
 
 void rename_file(const std::string& from, const std::string& to) {
@@ -241,6 +288,10 @@ CsvStream::CsvStream(const std::string& path, const std::string& header, bool ap
                      std::size_t flush_rows)
     : path_(path), flush_rows_(flush_rows == 0 ? 1 : flush_rows), buf_(kBufferBytes) {
   bool need_header = true;
+  if (append)
+    refuse_link(path, "cannot append");
+  else
+    replace_link(path);
   if (append) {
     std::ifstream in(path);
     std::string first;
@@ -251,8 +302,17 @@ CsvStream::CsvStream(const std::string& path, const std::string& header, bool ap
       need_header = false;
     }
   }
-  file_ = std::fopen(path.c_str(), append ? "ab" : "wb");
-  if (!file_) throw Error("cannot open '" + path + "' for writing: " + reason(errno));
+  // O_NOFOLLOW: a link put here since the check above is refused, never written through.
+  const int fd =
+      ::open(path.c_str(),
+             O_WRONLY | O_CREAT | O_CLOEXEC | O_NOFOLLOW | (append ? O_APPEND : O_TRUNC), 0644);
+  if (fd < 0) throw Error("cannot open '" + path + "' for writing: " + reason(errno));
+  file_ = ::fdopen(fd, append ? "ab" : "wb");
+  if (!file_) {
+    const int err = errno;
+    ::close(fd);
+    throw Error("cannot open '" + path + "' for writing: " + reason(err));
+  }
   // The stream's own buffer is the only one: each flush is one write.
   std::setvbuf(file_, nullptr, _IONBF, 0);
   if (need_header) {

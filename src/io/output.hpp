@@ -24,7 +24,9 @@ class OutputFolder {
   // process holds the lock (a stale one of this host is taken over with force or resume),
   // and, unless force or resume is set, when the folder already holds files: a finished run
   // (summary.json), an interrupted one (a checkpoint), or any other file, which a new run
-  // would write over. With resume the folder must exist.
+  // would write over. With resume the folder must exist, and none of a run's own files
+  // (io/run_folder.hpp) in it may be a link or other than a plain file (refuse_link): what
+  // the run continues in place it would otherwise write through into another folder.
   OutputFolder(const std::string& dir, bool force, bool resume, const std::string& command = "run");
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
@@ -56,6 +58,16 @@ bool is_write_temporary(const std::string& name);
 // (a second signal, a crash), and those of versions that named them NAME.tmp-XXXXXX; best
 // effort, errors ignored.
 void remove_temporaries_of(const std::string& path);
+// A run writes only inside its folder: before a file is written anew (created or truncated,
+// not renamed into place), whatever stands at `path` and is not a plain file of one name (a
+// symbolic link, a hard link to a file elsewhere, a FIFO, a device) is removed, so the new
+// file replaces it instead of being written through it. Throws bkq::Error naming the file
+// when it cannot be removed.
+void replace_link(const std::string& path);
+// Before a file is continued in place (appended to, cut back): bkq::Error naming it when it
+// is a symbolic link, a hard link or not a plain file, which continuing would write through.
+// `why` starts the message ("--resume", "cannot append to").
+void refuse_link(const std::string& path, const std::string& why);
 // Renames `from` over `to`; throws bkq::Error naming both.
 void rename_file(const std::string& from, const std::string& to);
 // fsyncs a folder, so that renames in it survive a power cut.
@@ -78,7 +90,8 @@ class CsvStream {
   static constexpr std::size_t kBufferBytes = std::size_t{1} << 20;
 
   // Truncates and writes the header; with `append` keeps existing rows (resume) and writes
-  // the header only when the file is new or empty, or throws if its header differs.
+  // the header only when the file is new or empty, or throws if its header differs. A link
+  // at `path` is replaced (replace_link), or with `append` refused (refuse_link).
   CsvStream(const std::string& path, const std::string& header, bool append = false,
             std::size_t flush_rows = 1000);
   ~CsvStream();  // closes; errors here are lost, so call close() to see them

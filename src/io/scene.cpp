@@ -10,6 +10,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
@@ -19,6 +20,7 @@
 #include "core/error.hpp"
 #include "core/fnv1a.hpp"
 #include "core/format.hpp"
+#include "core/terminal_text.hpp"
 #include "engine/ofc.hpp"
 #include "integrate/stepper.hpp"
 #include "io/ini.hpp"
@@ -591,7 +593,7 @@ std::string option_value(const std::string& option, const std::string& key,
   } catch (const Error&) {
     throw Error(option + ": expected " +
                 (p->type == ParamType::Integer ? "an integer" : std::string("a value")) + " in " +
-                allowed_text(*p) + " (as " + key + "), got " + quote_printable(trim(text)));
+                allowed_text(*p) + " (as " + key + "), got " + quote_text(trim(text)));
   }
 }
 
@@ -688,6 +690,10 @@ std::string Scene::where() const {
   return suffix("scene " + origin + (overridden ? " with --set overrides" : ""));
 }
 
+namespace {
+void check_stencil_cost(const Scene& s, const std::string& where);
+}  // namespace
+
 void Scene::validate() const {
   const std::string where = this->where();
   for (const auto& p : parameter_table()) {
@@ -723,6 +729,7 @@ void Scene::validate() const {
   if (choice("model.kind") != "ofc" && integer("model.rows") > 1) check_lattice(where);
   if (applies("model.range") && integer("model.rows") == 1)
     check_range("model.blocks", "model.boundary", where);
+  if (applies("model.range")) check_stencil_cost(*this, where);
   if (choice("run.start") == "equilibrium" && choice("drive.mode") != "continuous")
     throw Error("run.start = equilibrium needs drive.mode = continuous, but drive.mode = " +
                 choice("drive.mode") + where);
@@ -733,6 +740,55 @@ void Scene::validate() const {
                 " must be below stats.mu_max = " + text("stats.mu_max") + where);
   if (choice("drive.mode") == "continuous") check_continuous_run(where);
 }
+
+namespace {
+
+// The springs of a wide stencil one evaluation of every block's force sums: the engine's
+// construction (its tree of times to failure), a resume's, and each step of an event that
+// spans the chain cost that many terms. A chain's block has 2R partners; a lattice's site
+// those of the disc 0 < dx^2 + dy^2 <= R^2 (model/coupling.hpp), at most N - 1 along an axis.
+// Above this bound (seconds per evaluation; the largest nearest-neighbour lattice costs
+// 10^7 sites x 4 springs) a run would sit for minutes to hours before its first event:
+// refused in one line naming the cost. Every shipped scene and study is below it by orders
+// of magnitude.
+constexpr double kMaxStencilTerms = 1e8;
+
+void check_stencil_cost(const Scene& s, const std::string& where) {
+  const std::int64_t r = s.integer("model.range"), nx = s.integer("model.blocks"),
+                     ny = s.integer("model.rows");
+  double partners = 0;
+  std::string per;
+  if (ny == 1) {
+    partners = 2.0 * static_cast<double>(std::min(r, nx - 1));
+    per = "2 model.range springs per block";
+  } else {
+    const std::int64_t ax = std::min(r, nx - 1), ay = std::min(r, ny - 1);
+    for (std::int64_t dx = -ax; dx <= ax; ++dx) {
+      const auto reach = static_cast<std::int64_t>(
+          std::floor(std::sqrt(static_cast<double>(r * r - dx * dx)) + 1e-9));
+      partners += static_cast<double>(2 * std::min(reach, ay) + 1);
+    }
+    partners -= 1;  // the site itself
+    per = "the sites within model.range of each site";
+  }
+  const double terms = partners * static_cast<double>(nx) * static_cast<double>(ny);
+  if (terms <= kMaxStencilTerms) return;
+  const auto short_number = [](double x, int digits) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    return std::string(buf);
+  };
+  const std::string blocks = ny == 1 ? "model.blocks = " + s.text("model.blocks")
+                                     : "model.blocks x model.rows = " + s.text("model.blocks") +
+                                           " x " + s.text("model.rows");
+  throw Error("model.range = " + s.text("model.range") + " with " + blocks + ": every force " +
+              "evaluation sums " + short_number(terms, 3) + " springs (" + per +
+              "), which would take minutes to hours before the first event; allowed: at most " +
+              short_number(kMaxStencilTerms, 3) +
+              " (blocks x springs per block): a smaller model.range or fewer blocks" + where);
+}
+
+}  // namespace
 
 void Scene::check_range(const std::string& count_key, const std::string& boundary_key,
                         const std::string& where) const {

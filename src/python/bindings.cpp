@@ -24,8 +24,10 @@
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/terminal_text.hpp"
 #include "io/column_table.hpp"
 #include "io/histogram_csv.hpp"
+#include "io/ini.hpp"
 #include "io/run_folder.hpp"
 #include "io/scene.hpp"
 
@@ -95,7 +97,9 @@ PYBIND11_MODULE(_bkquake, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const Error& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      // Valid UTF-8 always (a message may quote a file's raw bytes): Python would otherwise
+      // fail to decode it and raise a ValueError with no message at all.
+      PyErr_SetString(PyExc_ValueError, printable_text(e.what()).c_str());
     }
   });
 
@@ -201,6 +205,15 @@ PYBIND11_MODULE(_bkquake, m) {
       py::arg("path"), "Any headed numeric CSV as [(column, float64 array)].");
   m.def("read_run_scene", &read_run_scene, py::arg("scene_ini"),
         "A run folder's scene.ini as a scene (keys this bkquake does not know are skipped).");
+  m.def(
+      "unknown_scene_keys",
+      [](const std::string& path) {
+        std::vector<std::string> unknown;
+        for (const IniEntry& e : parse_ini(read_text_file(path, "scene"), "in " + path))
+          if (!find_param(e.key)) unknown.push_back(e.key);
+        return unknown;
+      },
+      py::arg("scene_ini"), "The keys of a scene file that read_run_scene skips.");
 
   m.def(
       "fit_catalog",

@@ -235,3 +235,117 @@ def test_ctrl_c_raises_keyboard_interrupt_and_leaves_a_resumable_folder(tmp_path
     assert second["status"] == "interrupted"
     assert second["events"] > first["events"]
     assert len(bkquake.load(out).columns["event"]) == second["events"]
+
+
+def python_call(code, timeout=60, env=None):
+    """Runs `code` in a child interpreter with this module (a reader that hangs fails the
+    test after `timeout` seconds instead of stalling the suite); returns the CompletedProcess."""
+    return subprocess.run([sys.executable, "-c", textwrap.dedent(code)], capture_output=True,
+                          text=True, timeout=timeout, env=env)
+
+
+READ_OR_REFUSE = """
+import sys, bkquake
+try:
+    {call}
+except ValueError as e:
+    print("ValueError:", e)
+    sys.exit(0 if str(e) else 5)
+sys.exit(3)
+"""
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_readers_refuse_devices_at_once(device, cli_run, tmp_path):
+    r = python_call(READ_OR_REFUSE.format(call=f"bkquake.read_catalog({device!r})"))
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "device" in r.stdout
+    # Through a link in a run folder: the catalogue, the histogram, any table, the summary.
+    d = tmp_path / "linked"
+    d.mkdir()
+    for name in ("catalog.csv", "histogram.csv", "timeseries.csv", "summary.json"):
+        (d / name).symlink_to(device)
+    for call in ("bkquake.load(d).columns", "bkquake.load(d).histogram",
+                 "bkquake.load(d).table('timeseries.csv')", "bkquake.load(d).summary"):
+        r = python_call(f"d = {str(d)!r}\n" + READ_OR_REFUSE.format(call=call))
+        assert r.returncode == 0, call + ": " + r.stdout + r.stderr
+
+
+def test_readers_refuse_a_fifo_at_once(tmp_path):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    r = python_call(READ_OR_REFUSE.format(call=f"bkquake.read_catalog({str(fifo)!r})"))
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "FIFO" in r.stdout
+
+
+def test_random_bytes_raise_a_value_error_that_says_why(tmp_path):
+    rng = np.random.default_rng(37)
+    for k in range(20):
+        f = tmp_path / f"garbage{k}.csv"
+        f.write_bytes(rng.integers(0, 256, size=int(rng.integers(1, 4000)), dtype=np.uint8)
+                      .tobytes())
+        with pytest.raises(ValueError) as e:
+            bkquake.read_catalog(f)
+        message = str(e.value)
+        assert message, f"empty message for {f}"
+        assert not any(ord(c) < 32 or 127 <= ord(c) < 160 for c in message), message
+
+
+def test_ctrl_c_without_out_keeps_the_folder_it_names(tmp_path):
+    env = {**os.environ, "TMPDIR": str(tmp_path)}
+    script = textwrap.dedent(
+        f"""
+        import bkquake
+        try:
+            bkquake.run(set={LONG!r}, progress=False)
+        except KeyboardInterrupt as e:
+            print(e)
+            raise SystemExit(7)
+        """
+    )
+    p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True,
+                         env=env)
+    deadline = time.time() + 120
+    while not list(tmp_path.glob("bkquake-run-*/checkpoint.bin")):
+        assert p.poll() is None, "the run ended before it was interrupted"
+        assert time.time() < deadline
+        time.sleep(0.01)
+    p.send_signal(signal.SIGINT)
+    stdout, _ = p.communicate(timeout=120)
+    assert p.returncode == 7, stdout
+    folder = stdout.split("the checkpoint in ")[1].split(" continues it")[0]
+    assert "kept" in stdout
+    assert os.path.isfile(os.path.join(folder, "checkpoint.bin")), stdout
+    assert bkquake.load(folder).summary["status"] == "interrupted"
+
+
+def test_unknown_key_in_scene_ini_is_not_ignored_silently(cli_run, tmp_path):
+    d = tmp_path / "edited"
+    d.mkdir()
+    for name in ("catalog.csv", "histogram.csv", "summary.json", "scene.ini"):
+        (d / name).write_bytes((cli_run / name).read_bytes())
+    with open(d / "scene.ini", "a") as f:
+        f.write("\n[friction]\nalfa = 2\n")
+    r = cli("run", str(d / "scene.ini"), "--out", str(tmp_path / "o"), check=False)
+    assert r.returncode == 2 and "friction.alfa" in r.stderr
+    run = bkquake.load(d)
+    with pytest.warns(UserWarning, match=r"unknown key 'friction.alfa'"):
+        run.scene
+    with pytest.warns(UserWarning, match=r"unknown key 'friction.alfa'"):
+        run.fit()
+
+
+def test_set_takes_a_mapping_or_set_strings_and_refuses_a_key_with_equals():
+    as_dict = bkquake.Scene(None, {"model.blocks": 40, "run.events": 400})
+    assert bkquake.Scene(None, "model.blocks=40")["model.blocks"] == 40
+    as_list = bkquake.Scene(None, ["model.blocks=40", "run.events=400"])
+    assert as_list == as_dict
+    with pytest.raises(ValueError, match=r"unknown key 'run.events=5' \(set\)"):
+        bkquake.Scene({"run.events=5": 7})
+    with pytest.raises(ValueError, match=r"unknown key 'run.events=5' \(set\)"):
+        bkquake.run(set={"run.events=5": 7}, progress=False)
+    with pytest.raises(ValueError, match=r"expected 'section.key=value'"):
+        bkquake.run(set=["run.events"], progress=False)
+    with pytest.raises(TypeError, match=r"set: expected a mapping"):
+        bkquake.run(set=5, progress=False)

@@ -3,9 +3,11 @@
 // --set), fit with random options, and run --resume, fit and merge on truncated and
 // byte-flipped scene, catalog, histogram, summary and checkpoint files, and (third round)
 // the readers' bounds: damaged JSON, damaged HDF5, inputs that fail to read, sweeps too
-// large to plan. The run's length is capped by the harness (blocks, events, duration, steps
-// per event); half the runs are stopped with SIGTERM once they have made progress (a
-// checkpoint, rows of a time series), a state, not a time. Every case must end
+// large to plan, and (fourth round) links among a run's files, the Python readers on
+// devices, FIFOs and garbage, wide coupling stencils under SIGTERM. The run's length is capped by
+// the harness (blocks, events, duration, steps per event); half the runs are stopped with SIGTERM
+// once they have made progress (a checkpoint, rows of a time series), a state, not a time. Every
+// case must end
 //   - with exit 0 and a valid output (run: summary.json written, the lock released), or
 //   - with exit 2 and exactly one error line (warnings before it allowed), or
 //   - when stopped, with exit 143 and, for an event run, output that --resume accepts;
@@ -13,11 +15,13 @@
 // not printable text on stderr, or a changed input file. The cases are drawn from a seeded
 // generator, so a failure reproduces:
 //   BKQUAKE_ABUSE_SEED=S BKQUAKE_ABUSE_CASES=N build/bkquake_tests --gtest_filter='Abuse.*'
-// (CI runs the default: seed 19, 160 cases, well under a minute on two cores; the failure
+// (CI runs the default: seed 19, 160 cases, about a minute on two cores; the failure
 // message names the case number and its command). scripts/abuse.sh runs many more.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -31,6 +35,7 @@
 
 #include "../cli_helpers.hpp"
 #include "../refusal.hpp"
+#include "core/terminal_text.hpp"
 #include "io/run_folder.hpp"
 #include "io/scene.hpp"
 
@@ -155,11 +160,11 @@ class Abuse : public ::testing::Test {
   void check(int n, const std::vector<std::string>& args, const test::ProcessResult& r,
              const std::map<std::string, std::string>& inputs, const fs::path& out) {
     SCOPED_TRACE("case " + std::to_string(n) + ": " + joined(args));
-    for (const char c : r.err)
-      ASSERT_TRUE(c == '\n' || (c >= 0x20 && c < 0x7f))
-          << "unprintable byte " << static_cast<int>(static_cast<unsigned char>(c))
-          << " on stderr:\n"
-          << r.err;
+    // Printable text: ASCII, or UTF-8 of printable characters (a message keeps a path's
+    // letters), which the terminal escaper leaves as it is.
+    for (const std::string& line : r.err_lines())
+      ASSERT_EQ(printable_text(line, line.size() + 1), line) << "unprintable bytes on stderr:\n"
+                                                             << r.err;
     for (const auto& [path, bytes] : inputs)
       EXPECT_TRUE(read_file(path) == bytes) << "input changed: " << path;
     ASSERT_FALSE(r.hung) << "still running after " << kGuard << " s (a hang)\n" << r.err;
@@ -537,6 +542,178 @@ TEST_F(Abuse, ReadersAndSweeps) {
     if (kind == 1 || kind == 2) {
       SCOPED_TRACE("case " + std::to_string(n) + ": " + joined(args));
       EXPECT_EQ(r.status, 2) << r.err;  // every one of these is refused
+    }
+    fs::remove_all(work);
+    if (HasFailure()) return;
+  }
+}
+
+// Links, devices and wide stencils (fourth round): run --force and --resume into folders
+// whose files are links into another run (which must keep every byte: a link is replaced or
+// refused, never written through); the Python readers on devices, FIFOs and garbage, direct
+// or through a link in a run folder (a ValueError with a printable message, never a hang);
+// wide coupling stencils, beyond the cost bound (refused at once) or below it (stopped by
+// SIGTERM, which must end them within the guard, the lock released).
+TEST_F(Abuse, LinksDevicesAndWideStencils) {
+  const int cases = static_cast<int>(env_number("BKQUAKE_ABUSE_CASES", 160)) / 8;
+  auto run_into = [&](const std::string& name, const std::vector<std::string>& more) {
+    std::vector<std::string> a = {"run", "--quiet", "--set", "model.blocks=20"};
+    a.insert(a.end(), more.begin(), more.end());
+    a.insert(a.end(), {"--out", tmp_.file(name)});
+    return a;
+  };
+  ASSERT_EQ(test::run_bkquake(
+                run_into("victim", {"--set", "run.events=400", "--set", "output.event_slip=0"}))
+                .status,
+            0);
+  ASSERT_EQ(
+      test::run_and_signal_when(
+          run_into("stopped", {"--set", "run.events=20000", "--set", "run.checkpoint_events=200"}),
+          [&] { return fs::exists(tmp_.file("stopped/checkpoint.prev.bin")); }, SIGTERM),
+      143);
+  const fs::path python_dir = fs::path(BKQUAKE_BINARY).parent_path() / "python";
+  const bool python =
+      fs::exists(python_dir / "bkquake" / "__init__.py") && fs::exists("/usr/bin/python3");
+  const fs::path victim = tmp_.path() / "victim";
+  const std::vector<std::string> linkable = {
+      "catalog.csv",    "histogram.csv",      "summary.json",  "scene.ini",    "event_slip.csv",
+      "timeseries.csv", "energy.csv",         "blocks.csv",    "segments.csv", "catalog.h5",
+      "bkquake.lock",   "energy_samples.csv", "checkpoint.bin"};
+  for (int n = 0; n < cases; ++n) {
+    const fs::path work = tmp_.path() / ("l" + std::to_string(n));
+    fs::create_directories(work);
+    std::vector<std::string> args;
+    std::map<std::string, std::string> inputs;
+    fs::path out;
+    double stop_after = 0;  // > 0: SIGTERM after this many seconds (a state is not at hand)
+    const std::size_t kind = pick(python ? 3 : 2);
+    if (kind == 0) {  // links among a run's files
+      const bool resume = chance(0.3);
+      out = work / "o";
+      if (resume)
+        fs::copy(tmp_.file("stopped"), out, fs::copy_options::recursive);
+      else
+        fs::create_directories(out);
+      for (int k = 0, m = 1 + static_cast<int>(pick(4)); k < m; ++k) {
+        const std::string name = linkable[pick(linkable.size())];
+        fs::remove(out / name);
+        const fs::path target = victim / (fs::exists(victim / name) ? name : "catalog.csv");
+        if (chance(0.7))
+          fs::create_symlink(target, out / name);
+        else
+          fs::create_hard_link(target, out / name);
+      }
+      if (resume) {
+        args = {"run",     (tmp_.path() / "stopped" / "scene.ini").string(),
+                "--quiet", "--resume",
+                "--out",   out.string()};
+      } else {
+        static const std::vector<std::vector<std::string>> scenes = {
+            {"--set", "run.events=300", "--set", "output.event_slip=0"},
+            {"--set", "run.events=300", "--set", "output.catalog=hdf5"},
+            {"--set", "drive.mode=continuous", "--set", "run.duration=300", "--set",
+             "output.blocks=true", "--set", "output.energy=true", "--set",
+             "output.energy_window=50"}};
+        args = {"run", "--quiet", "--set", "model.blocks=20"};
+        const auto& more = scenes[pick(scenes.size())];
+        args.insert(args.end(), more.begin(), more.end());
+        args.insert(args.end(), {"--force", "--out", out.string()});
+      }
+      inputs = tree_bytes(victim);
+    } else if (kind == 1) {  // wide stencils
+      const bool lattice = chance(0.3);
+      // Costs log-uniform from 1e6 to 1e10 terms: about half beyond the bound.
+      const double terms = std::exp(uniform(std::log(1e6), std::log(1e10)));
+      std::int64_t range = 0, blocks = 0, rows = 1;
+      if (lattice) {
+        range = 2 + static_cast<std::int64_t>(pick(60));
+        const double sites = terms / (3.14 * static_cast<double>(range * range));
+        rows = std::max<std::int64_t>(range + 1, static_cast<std::int64_t>(std::sqrt(sites)));
+        blocks = std::max<std::int64_t>(range + 1, static_cast<std::int64_t>(sites) / rows);
+      } else {
+        range = 1 + static_cast<std::int64_t>(std::exp(uniform(0, std::log(50000.0))));
+        blocks =
+            std::max<std::int64_t>(2 * range + 1, static_cast<std::int64_t>(terms / (2.0 * range)));
+      }
+      blocks = std::min<std::int64_t>(blocks, 10'000'000);
+      rows = std::min<std::int64_t>(rows, 10'000'000 / std::max<std::int64_t>(blocks, 1));
+      out = work / "o";
+      args = {"run",   "--quiet",
+              "--set", std::string("model.coupling=") + (chance(0.5) ? "range" : "power"),
+              "--set", "model.range=" + std::to_string(range),
+              "--set", "model.blocks=" + std::to_string(blocks),
+              "--set", "model.rows=" + std::to_string(std::max<std::int64_t>(rows, 1)),
+              "--set", "run.events=200",
+              "--out", out.string()};
+      stop_after = uniform(0.2, 1.5);
+    } else {  // the Python readers on devices, FIFOs and garbage
+      static const std::vector<std::string> devices = {"/dev/zero", "/dev/urandom", "/dev/null"};
+      std::string path;
+      switch (pick(3)) {
+        case 0:
+          path = devices[pick(devices.size())];
+          break;
+        case 1:
+          path = (work / "fifo").string();
+          ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+          break;
+        default: {
+          path = (work / "garbage").string();
+          std::string bytes(1 + pick(5000), '\0');
+          for (char& c : bytes) c = static_cast<char>(pick(256));
+          std::ofstream(path, std::ios::binary) << bytes;
+        }
+      }
+      // Read directly, or as a file of a run folder (a link to it there).
+      static const std::vector<std::pair<std::string, std::string>> readers = {
+          {"", "bkquake.read_catalog(p)"},
+          {"catalog.csv", "bkquake.load(d).columns"},
+          {"histogram.csv", "bkquake.load(d).histogram"},
+          {"timeseries.csv", "bkquake.load(d).table('timeseries.csv')"},
+          {"summary.json", "bkquake.load(d).summary"},
+          {"scene.ini", "bkquake.load(d).scene"}};
+      const auto& [file, call] = readers[pick(readers.size())];
+      const fs::path d = work / "run";
+      fs::create_directories(d);
+      if (!file.empty()) fs::create_symlink(path, d / file);
+      const std::string script =
+          "import sys, warnings\n"
+          "warnings.simplefilter('ignore')\n"
+          "import bkquake\n"
+          "p, d = sys.argv[1], sys.argv[2]\n"
+          "try:\n"
+          "    " +
+          call +
+          "\n"
+          "except ValueError as e:\n"
+          "    m = str(e)\n"
+          "    ok = m and not any(ord(c) < 32 or 127 <= ord(c) < 160 for c in m)\n"
+          "    sys.exit(0 if ok else 5)\n"
+          "except (OSError, UnicodeDecodeError) as e:\n"
+          "    sys.exit(0 if str(e) else 6)\n";
+      args = {"python3", "-c", script, path, d.string()};
+      const auto r = test::run_process(
+          "/usr/bin/env",
+          {"PYTHONPATH=" + python_dir.string(), "/usr/bin/python3", "-c", script, path, d.string()},
+          "", 60, 5);
+      SCOPED_TRACE("case " + std::to_string(n) + ": " + call + " on " + path);
+      EXPECT_FALSE(r.timed_out) << "a Python reader hung";
+      EXPECT_EQ(r.status, 0) << r.err;
+      fs::remove_all(work);
+      if (HasFailure()) return;
+      continue;
+    }
+    const auto r = stop_after > 0 ? test::run_process(BKQUAKE_BINARY, args, "", stop_after, kGuard)
+                                  : test::run_bkquake_until(kNever, args, kGuard);
+    check(n, args, r, inputs, out);
+    if (kind == 0) {
+      SCOPED_TRACE("case " + std::to_string(n) + ": " + joined(args));
+      // The link's target kept every byte (check() above); the files every run writes are
+      // the run's own (a link of a name the scene does not write stays, untouched).
+      if (r.status == 0)
+        for (const char* name : {"scene.ini", "summary.json"}) {
+          EXPECT_FALSE(fs::is_symlink(out / name)) << name;
+        }
     }
     fs::remove_all(work);
     if (HasFailure()) return;

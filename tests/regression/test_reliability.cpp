@@ -150,19 +150,25 @@ TEST(Reliability, DamagedHdf5CatalogIsRefusedNotAwaited) {
 }
 
 // A signal that arrives while a command holds a folder's lock outside a run's own handlers
-// (here: blocked opening a checkpoint that is a FIFO) ends the command by that signal and
-// removes the lock; the next --resume is not told the folder is in use.
+// (here: setting up a chain of 2e6 blocks) ends the command by that signal and removes the
+// lock; the next --resume is not told the folder is in use. (A FIFO in the checkpoint's
+// place, which once blocked the resume there, is now refused at once: a run's files must be
+// plain files, io/output.hpp refuse_link.)
 TEST(Reliability, SignalOutsideTheRunReleasesTheLock) {
   test::TempDir tmp;
   const std::string s = tmp.file("s");
   interrupted_run(s);
   fs::remove(s + "/checkpoint.bin");
   ASSERT_EQ(::mkfifo((s + "/checkpoint.bin").c_str(), 0644), 0);
+  expect_refused(run_bkquake_for(20, {"run", s + "/scene.ini", "--quiet", "--resume", "--out", s}),
+                 {s + "/checkpoint.bin", "is a FIFO"});
+  EXPECT_FALSE(fs::exists(s + "/bkquake.lock"));
+  const std::string big = tmp.file("big");
   const int status = test::run_and_signal_when(
-      {"run", s + "/scene.ini", "--quiet", "--resume", "--out", s},
-      [&] { return fs::exists(s + "/bkquake.lock"); }, SIGTERM);
+      {"run", "--quiet", "--set", "model.blocks=2000000", "--set", "run.events=10", "--out", big},
+      [&] { return fs::exists(big + "/bkquake.lock"); }, SIGTERM);
   EXPECT_EQ(status, 143);
-  EXPECT_FALSE(fs::exists(s + "/bkquake.lock")) << "the lock outlived its holder";
+  EXPECT_FALSE(fs::exists(big + "/bkquake.lock")) << "the lock outlived its holder";
 }
 
 // A sweep whose product of lists is huge is refused before anything is planned, naming the

@@ -16,8 +16,11 @@ reads catalogues through the same readers, `Run.fit` is `bkquake fit`.
 import collections.abc
 import json
 import os
+import shutil
+import stat
 import tempfile
 import warnings
+import weakref
 
 import numpy as np
 
@@ -32,6 +35,62 @@ __all__ = ["Scene", "Run", "run", "load", "read_catalog", "parameter_table"]
 def parameter_table():
     """Every scene key's declaration: key, type, default, allowed, units, doc."""
     return {p.key: p for p in _bkquake.parameter_table()}
+
+
+def _assignments(set):
+    """`set` as (key, value) pairs: a mapping, or --set's "section.key=value" as one string or
+    a list of them."""
+    if set is None:
+        return []
+    if isinstance(set, collections.abc.Mapping):
+        return list(set.items())
+    if isinstance(set, (str, bytes)):
+        set = [set]
+    if not isinstance(set, collections.abc.Iterable):
+        raise TypeError(
+            f"bkquake: set: expected a mapping {{'section.key': value}} or 'section.key=value' "
+            f"strings, got {type(set).__name__}"
+        )
+    pairs = []
+    for item in set:
+        if not isinstance(item, str) or "=" not in item:
+            raise ValueError(
+                f"bkquake: set: expected 'section.key=value' as --set takes it, got {item!r}"
+            )
+        key, value = item.split("=", 1)
+        pairs.append((key.strip(), value))
+    return pairs
+
+
+def _check_key(key):
+    """A key as a scene key must look: a str without '=' (which would split it into a key
+    and a value, and change another key than the one named)."""
+    if not isinstance(key, str):
+        raise TypeError(f"bkquake: scene keys are 'section.key' strings, got {key!r}")
+    if "=" in key:
+        raise ValueError(
+            f"unknown key {key!r} (set): a key has no '='; give the value separately, "
+            f"{{'section.key': value}}"
+        )
+    return key
+
+
+def _plain_file(path, what):
+    """`path` when it is (or links to) a plain file; ValueError for a device, a FIFO, a
+    socket, whose reading would never end or never begin (the readers' own check)."""
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        return path
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        why = "it is a device"
+    elif stat.S_ISFIFO(mode):
+        why = "it is a FIFO (a pipe)"
+    elif stat.S_ISSOCK(mode):
+        why = "it is a socket"
+    else:
+        return path  # a plain file, or a folder (which open() refuses in its words)
+    raise ValueError(f"cannot read {what} '{path}': {why}, expected a file")
 
 
 def _text(value):
@@ -58,19 +117,20 @@ class Scene(collections.abc.MutableMapping):
     """
 
     def __init__(self, mapping_or_path=None, overrides=None):
+        pairs = _assignments(overrides)
         if isinstance(mapping_or_path, Scene):
             self._core = mapping_or_path._core.copy()
         elif isinstance(mapping_or_path, (str, os.PathLike)):
             self._core = _bkquake.SceneCore.from_file(os.fspath(mapping_or_path))
         elif mapping_or_path is None or isinstance(mapping_or_path, collections.abc.Mapping):
             self._core = _bkquake.SceneCore()
-            overrides = {**(mapping_or_path or {}), **(overrides or {})}
+            pairs = _assignments(mapping_or_path) + pairs
         else:
             raise TypeError(
                 f"bkquake.Scene: expected a mapping, a path or None, got {type(mapping_or_path).__name__}"
             )
-        for key, value in (overrides or {}).items():
-            self._core.apply_override(f"{key}={_text(value)}")
+        for key, value in pairs:
+            self._core.apply_override(f"{_check_key(key)}={_text(value)}")
         self.checked()
 
     def checked(self):
@@ -87,7 +147,7 @@ class Scene(collections.abc.MutableMapping):
         return self._core.get(key)
 
     def __setitem__(self, key, value):
-        self._core.apply_override(f"{key}={_text(value)}")
+        self._core.apply_override(f"{_check_key(key)}={_text(value)}")
 
     def __delitem__(self, key):
         """Resets the key to its default."""
@@ -146,7 +206,8 @@ class Run:
 
     def __init__(self, path, _tmp=None):
         self.path = os.fspath(path)
-        self._tmp = _tmp  # a TemporaryDirectory the run went into, removed with this object
+        # The temporary folder the run went into, removed with this object.
+        self._tmp = weakref.finalize(self, shutil.rmtree, _tmp, True) if _tmp else None
         self._columns = None
         self._catalog = None
         if not os.path.isdir(self.path):
@@ -196,7 +257,7 @@ class Run:
     def summary(self):
         """summary.json as a dict ({} when there is none)."""
         try:
-            with open(self._file("summary.json")) as f:
+            with open(_plain_file(self._file("summary.json"), "summary")) as f:
                 return json.load(f)
         except FileNotFoundError:
             return {}
@@ -204,8 +265,17 @@ class Run:
     @property
     def scene(self):
         """The run's effective scene (scene.ini)."""
+        path = self._file("scene.ini")
         scene = Scene.__new__(Scene)
-        scene._core = _bkquake.read_run_scene(self._file("scene.ini"))
+        scene._core = _bkquake.read_run_scene(path)
+        # Keys this bkquake does not know are skipped (a folder of another version stays
+        # readable), but never silently: bkquake run refuses them.
+        for key in _bkquake.unknown_scene_keys(path):
+            warnings.warn(
+                f"unknown key '{key}' (in {path}) skipped: bkquake run refuses it; written by "
+                f"another bkquake version, or edited?",
+                stacklevel=2,
+            )
         return scene
 
     def fit(self, mu_min=None, mu_max=None, bin_width=None):
@@ -251,25 +321,34 @@ def run(scene=None, set=None, out=None, progress=True, resume=False, force=False
     """Runs a scene in this process, as `bkquake run` does, and returns its Run.
 
     scene: a Scene, a scene file's path, a mapping of overrides, or None (the built-in
-    default); set: overrides applied after it ({"run.events": 20000}); out: the run folder
-    (None: a temporary one, removed with the returned Run); resume, force: as --resume,
-    --force; progress: the progress line on the terminal (stderr).
+    default); set: overrides applied after it ({"run.events": 20000}, or --set's
+    "run.events=20000" as a string or a list of them); out: the run folder (None: a temporary
+    one, removed with the returned Run); resume, force: as --resume, --force; progress: the
+    progress line on the terminal (stderr).
 
     Ctrl-C (SIGINT) stops the run after the current event with a checkpoint and raises
-    KeyboardInterrupt; with `out` given, run(..., out=out, resume=True) continues it.
+    KeyboardInterrupt naming the folder; run(..., out=that folder, resume=True) continues it.
+    A temporary folder is then kept (the message says so): remove it when done.
     """
     s = Scene(scene)  # a copy: the caller's Scene is not changed by `set`
-    for key, value in (set or {}).items():
+    for key, value in _assignments(set):
         s[key] = value
     checked = s.checked()
     tmp = None
     if out is None:
-        tmp = tempfile.TemporaryDirectory(prefix="bkquake-run-")
-        out = tmp.name
-    status = _bkquake.run_scene(checked._core, os.fspath(out), resume, force, not progress)
+        tmp = tempfile.mkdtemp(prefix="bkquake-run-")
+        out = tmp
+    try:
+        status = _bkquake.run_scene(checked._core, os.fspath(out), resume, force, not progress)
+    except BaseException:
+        if tmp:
+            shutil.rmtree(tmp, ignore_errors=True)
+        raise
     if status != 0:
+        # A temporary folder is kept: it holds the checkpoint the message names.
         raise KeyboardInterrupt(
             f"bkquake.run stopped by a signal (exit status {status}); the checkpoint in "
-            f"{os.fspath(out)} continues it with resume=True"
+            f"{os.fspath(out)} continues it with out={os.fspath(out)!r}, resume=True"
+            + (" (a temporary folder, kept: remove it when done)" if tmp else "")
         )
     return Run(out, _tmp=tmp)
