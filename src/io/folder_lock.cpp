@@ -218,6 +218,9 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command, Stale
     ::unlink(tmp.c_str());
     if (!ok) {
       ::close(fd);
+      // Another bkquake holding this folder's lock was probing our temporary for staleness
+      // (remove_stale_temporaries) at the moment we took its flock: go round.
+      if (err == EWOULDBLOCK) continue;
       throw Error("cannot write to output folder '" + dir + "': " + std::strerror(err));
     }
     if (linked == 0) {

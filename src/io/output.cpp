@@ -210,7 +210,16 @@ std::string link_kind(const std::string& path) {
 }  // namespace
 
 void replace_link(const std::string& path) {
-  if (link_kind(path).empty()) return;
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return;
+  // Only a name that leads elsewhere is removed. A FIFO or socket is refused (opening one
+  // would wait, or fail), and a device is written as it stands: neither is ever deleted
+  // (a run started as root must not remove /dev/full).
+  if (S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode))
+    throw Error("cannot write '" + path + "': it is " + link_kind(path) +
+                ", not a file; a run writes plain files: remove it, or choose another --out");
+  const bool elsewhere = S_ISLNK(st.st_mode) || (S_ISREG(st.st_mode) && st.st_nlink > 1);
+  if (!elsewhere) return;
   if (::unlink(path.c_str()) != 0 && errno != ENOENT)
     throw Error("cannot replace '" + path + "' (" + link_kind(path) + "): " + reason(errno));
 }

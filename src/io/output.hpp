@@ -59,10 +59,10 @@ bool is_write_temporary(const std::string& name);
 // effort, errors ignored.
 void remove_temporaries_of(const std::string& path);
 // A run writes only inside its folder: before a file is written anew (created or truncated,
-// not renamed into place), whatever stands at `path` and is not a plain file of one name (a
-// symbolic link, a hard link to a file elsewhere, a FIFO, a device) is removed, so the new
-// file replaces it instead of being written through it. Throws bkq::Error naming the file
-// when it cannot be removed.
+// not renamed into place), a symbolic link or a hard link to a file elsewhere at `path` is
+// removed, so the new file replaces it instead of being written through it. A FIFO or
+// socket there is refused (bkq::Error naming it); a device is left as it is and written
+// (never removed). Throws bkq::Error naming the file when a link cannot be removed.
 void replace_link(const std::string& path);
 // Before a file is continued in place (appended to, cut back): bkq::Error naming it when it
 // is a symbolic link, a hard link or not a plain file, which continuing would write through.

@@ -135,6 +135,21 @@ TEST(RunOutputs, ForceReplacesAHardLink) {
   EXPECT_NE(read_file(r2 + "/catalog.csv"), read_file(victim + "/catalog.csv"));
 }
 
+// A FIFO in a file's place is refused, never opened (which would wait) nor removed: only a
+// link is ever replaced.
+TEST(RunOutputs, ForceRefusesAFifoInAFilesPlace) {
+  test::TempDir tmp;
+  const std::string r2 = tmp.file("r2");
+  fs::create_directories(r2);
+  ASSERT_EQ(::mkfifo((r2 + "/catalog.csv").c_str(), 0600), 0);
+  const auto r = run_bkquake_for(20, {"run", "--quiet", "--set", "model.blocks=10", "--set",
+                                      "run.events=200", "--force", "--out", r2});
+  EXPECT_FALSE(r.timed_out);
+  expect_refused(r, {r2 + "/catalog.csv", "is a FIFO", "plain files"});
+  EXPECT_TRUE(fs::is_fifo(r2 + "/catalog.csv"));
+  EXPECT_FALSE(fs::exists(r2 + "/bkquake.lock"));
+}
+
 // --resume continues files in place, so a link among them is refused before anything
 // changes, naming the file: the folder and the link's target keep every byte.
 TEST(RunOutputs, ResumeRefusesALinkAmongItsFiles) {
