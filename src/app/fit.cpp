@@ -290,6 +290,7 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
         "fit --json");
 
   CatalogReader reader(catalog);
+  if (writer) reader.set_growing();
   const bool lattice = rows > 1;
   const bool classes_on =
       blocks.has_value() && reader.has_extent() && (!lattice || reader.has_rows());

@@ -138,6 +138,7 @@ bool CatalogReader::next(CatalogEvent& e) {
     const std::string where = file_ + " line " + std::to_string(lineno_);
     // Every row bkquake writes ends in a newline: a last row without one was cut short (its
     // last field may still parse, as another number).
+    if (in_.eof() && growing_) break;  // the row its writer is writing now
     if (in_.eof())
       throw Error(where +
                   ": the last row has no line end: the catalogue is cut short "

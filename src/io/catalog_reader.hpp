@@ -42,6 +42,9 @@ class CatalogReader {
   // A lattice's catalogue (model.rows > 1): trigger_row, first_row and last_row.
   bool has_rows() const { return c_trigger_row_ >= 0 && c_first_row_ >= 0 && c_last_row_ >= 0; }
   std::int64_t events_read() const { return events_; }
+  // The catalogue of a run still writing it: a last row without its line end is the row
+  // being written, and ends the reading instead of being refused as a cut.
+  void set_growing() { growing_ = true; }
   // Where the last event read stands, for a message: "<file> line 17" ("row 17" in HDF5).
   std::string where() const;
   const std::string& file() const { return file_; }
@@ -52,6 +55,7 @@ class CatalogReader {
   std::string line_;
   std::int64_t lineno_ = 1;
   std::int64_t events_ = 0;
+  bool growing_ = false;
   std::size_t n_fields_ = 0;
   int c_event_ = -1, c_load_ = -1, c_blocks_ = -1, c_first_ = -1, c_last_ = -1;
   int c_moment_ = -1, c_magnitude_ = -1, c_trigger_ = -1, c_duration_ = -1;
