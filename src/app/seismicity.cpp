@@ -189,26 +189,23 @@ void clean_swap_leftovers(const fs::path& folder) {
 
 // Puts the folder `fresh` in place of `final_dir`: one atomic exchange where the file system
 // has it (a kill leaves the old set or the new one), else two renames, whose gap the next
-// run repairs (clean_swap_leftovers). The old set is then removed.
+// run repairs (clean_swap_leftovers). The old set is removed once the swap is on disk.
 void swap_in(const fs::path& fresh, const fs::path& final_dir) {
   std::error_code ec;
   const fs::path folder = final_dir.parent_path();
+  fs::path old;
   if (!fs::exists(final_dir, ec)) {
     rename_file(fresh.string(), final_dir.string());
   } else if (::renameat2(AT_FDCWD, fresh.c_str(), AT_FDCWD, final_dir.c_str(), RENAME_EXCHANGE) ==
              0) {
-    sync_folder(folder.string());
-    fs::remove_all(fresh, ec);  // now the old set
-    return;
+    old = fresh;  // the exchange left the old set under the new one's name
   } else {
-    const fs::path old = folder / (kOldPrefix + std::to_string(::getpid()));
+    old = folder / (kOldPrefix + std::to_string(::getpid()));
     rename_file(final_dir.string(), old.string());
     rename_file(fresh.string(), final_dir.string());
-    sync_folder(folder.string());
-    fs::remove_all(old, ec);
-    return;
   }
   sync_folder(folder.string());
+  if (!old.empty()) fs::remove_all(old, ec);
 }
 
 // Removes the export temporaries (FILE.tmp-PID) of processes that are gone.
@@ -407,6 +404,9 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   // at once): the export's (a derived output, io/run_folder.hpp), then the folder that gets
   // seismicity/ (or --out).
   const Outputs outputs = lock_outputs(req, rep.catalog, folder);
+  // A run writing the catalogue's folder now (seismicity's files going elsewhere): its rows
+  // so far are analysed, up to the one being written.
+  const std::optional<LockHolder> writer = live_lock_holder(folder);
 
   // The scene beside the catalogue, when there is one.
   std::optional<Scene> scene;
@@ -429,6 +429,7 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     rep.blocks_from = "--blocks";
   } else {
     CatalogReader pre(rep.catalog);
+    if (writer) pre.set_growing();
     if (!pre.has_extent())
       throw Error("seismicity: " + rep.catalog +
                   " has no first_block/last_block columns and no scene.ini beside it: give "
@@ -446,7 +447,9 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   // hypocentres' distances are then Euclidean in the plane (stats/seismicity/geometry.hpp).
   seis::Geometry geometry = seis::Geometry::chain(blocks);
   std::string rows_from;
-  if (CatalogReader probe(rep.catalog); probe.has_rows()) {
+  CatalogReader probe(rep.catalog);
+  if (writer) probe.set_growing();
+  if (probe.has_rows()) {
     geometry.nx = blocks;
     if (scene) {
       geometry.ny = static_cast<int>(scene->integer("model.rows"));
@@ -468,6 +471,7 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   const int sites = geometry.sites();
 
   CatalogReader reader(rep.catalog);
+  if (writer) reader.set_growing();
   if (!reader.has_load())
     throw Error("seismicity: " + rep.catalog + ": missing column 'load' (the events' time)");
   if (!req.mainshock_mu && !reader.has_extent())
@@ -499,7 +503,11 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     log << "; a lattice of " << geometry.ny << " rows, from " << rows_from
         << ": distances Euclidean between trigger sites"
         << (geometry.periodic_x || geometry.periodic_y ? ", wrapped where periodic" : "");
-  log << ")\n  time: " << rep.clock << "\n  mainshocks: " << opt.mainshock.describe() << "\n";
+  log << ")\n";
+  if (writer)
+    log << "  note: " << writer->describe()
+        << " is writing this folder: the events written so far are analysed\n";
+  log << "  time: " << rep.clock << "\n  mainshocks: " << opt.mainshock.describe() << "\n";
 
   std::vector<std::string> comments;
   if (scene) {

@@ -166,6 +166,12 @@ TEST(AnalysisReliability, ALiveRunsLockAndFilesAreItsOwn) {
             std::string::npos)
       << f.out;
   EXPECT_EQ(f.out.find("killed?"), std::string::npos) << f.out;
+  const auto s = run_bkquake({"seismicity", lv, "--out", tmp.file("so")});
+  ASSERT_EQ(s.status, 0) << s.err;
+  EXPECT_NE(s.out.find("is writing this folder: the events written so far are analysed"),
+            std::string::npos)
+      << s.out;
+  EXPECT_NE(s.out.find("3000 events"), std::string::npos) << s.out;
 }
 
 // fit --scan and --json into one folder locked it twice and refused itself ("in use by
