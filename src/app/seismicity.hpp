@@ -35,8 +35,9 @@ struct SeismicityReport {
 };
 
 // The run folders a request covers: the folder itself, or each replica of a sweep folder
-// that kept its catalogue (SWEEP/points/pNNNN/rNN, beside SWEEP/sweep.csv). bkq::Error for a merged folder (no single clock:
-// each merged run's load starts afresh; it names the runs to analyse instead).
+// that kept its catalogue (SWEEP/points/pNNNN/rNN, beside SWEEP/sweep.csv). bkq::Error for a merged
+// folder (no single clock: each merged run's load starts afresh; it names the runs to analyse
+// instead).
 std::vector<std::string> seismicity_inputs(const std::string& input);
 
 // Analyses one catalogue (a run folder or a catalogue file). `log` gets the progress lines

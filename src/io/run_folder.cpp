@@ -208,8 +208,10 @@ DerivedOutput::DerivedOutput(const std::filesystem::path& target,
                 " of the run in '" + dir.string() + "'; " + command +
                 " writes nothing over a run's own files: choose another name");
   // A live run's lock refuses this output; a stale lock (a run killed) is taken over, and
-  // goes when this output is written.
+  // goes when this output is written. Under the lock, the temporaries of an earlier write
+  // of this output cut short by a kill are stale: they go.
   lock_ = share_folder_lock(dir, command, StaleLock::TakeOver);
+  remove_temporaries_of(resolved_.string());
 }
 
 DerivedOutput::~DerivedOutput() = default;

@@ -95,7 +95,8 @@ std::shared_ptr<FolderLock> lock_derived_folder_parent(const std::filesystem::pa
 // command's `inputs` (or a link to one) or, in a folder that holds a run or a run's lock
 // (holds_run_or_lock), one of the run's own files (is_run_own_file); in such a folder it
 // takes the folder's lock (io/folder_lock.hpp, a stale one taken over) for `command` while
-// alive, so it never writes beside a live run, and replaces only its own earlier version.
+// alive, so it never writes beside a live run, and replaces only its own earlier version
+// (whose temporaries, left by a kill, it removes).
 // (A command that writes a whole folder uses OutputFolder, io/output.hpp: new or empty
 // folder, --force, the lock.)
 class DerivedOutput {

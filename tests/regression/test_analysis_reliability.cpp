@@ -212,10 +212,12 @@ TEST(AnalysisReliability, AKilledAnalysisLeavesNothingInTheWay) {
   EXPECT_FALSE(fs::exists(run + "/bkquake.lock"));
 
   leave_stale_lock(run, "fit --scan");
-  const auto f = run_bkquake({"fit", run, "--scan"});
+  std::ofstream(run + "/fit.json.bkquake-tmp-Qw12Er") << "half";
+  const auto f = run_bkquake({"fit", run, "--scan", "--json", run + "/fit.json"});
   ASSERT_EQ(f.status, 0) << f.err;
   EXPECT_TRUE(fs::exists(run + "/b_scan.csv"));
   EXPECT_FALSE(fs::exists(run + "/b_scan.csv.bkquake-tmp-Ab12Cd"));
+  EXPECT_FALSE(fs::exists(run + "/fit.json.bkquake-tmp-Qw12Er"));
   EXPECT_FALSE(fs::exists(run + "/bkquake.lock"));
 
   // A kill between the two renames of a swap left the old set only as .seismicity.old-PID:
