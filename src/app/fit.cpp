@@ -2,6 +2,8 @@
 // through io's readers (catalogue, histogram.csv, sweep.csv), fits and reports.
 #include "app/fit.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -79,11 +81,100 @@ MagnitudeHistogram read_histogram(const fs::path& file, const FitRequest& r) {
   return h;
 }
 
+// The folder b_scan.csv goes into, checked and locked (a stale lock of a killed command taken
+// over, the lock shared with --json's in the same folder; a run's folder it lies in locked
+// too), the temporaries of a write cut short removed. b_scan.csv is a derived output: never over
+// the input or a run's own file.
+std::vector<std::shared_ptr<FolderLock>> lock_scan_folder(const fs::path& dir,
+                                                          const fs::path& input) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw Error("fit: --out " + dir.string() + ": not a folder; b_scan.csv goes into a folder");
+  const auto parent_lock = lock_derived_folder_parent(dir, "fit --scan");
+  fs::create_directories(dir, ec);
+  if (ec) throw Error("fit: --out " + dir.string() + ": cannot create the folder: " + ec.message());
+  const DerivedOutput rule(dir / "b_scan.csv", {input}, "fit --scan");
+  auto lock = share_folder_lock(dir, "fit --scan", StaleLock::TakeOver);
+  remove_temporaries_of((dir / "b_scan.csv").string());
+  return {parent_lock, lock};
+}
+
+// An explicit window that holds no whole bin once snapped to the bin edges (the fit takes
+// mu_min up and mu_max down to them, stats/gutenberg_richter.cpp) is refused naming both
+// options and a window that would do.
+void require_window_holds_a_bin(double w, const FitRequest& r) {
+  if (!r.mu_min || !r.mu_max) return;
+  constexpr double eps = 1e-9;  // the fit's snapping tolerance
+  const double lo = std::ceil(*r.mu_min / w - eps), hi = std::floor(*r.mu_max / w + eps);
+  if (hi > lo) return;
+  char edges[96];
+  std::snprintf(edges, sizeof edges, "--mu-min %.10g --mu-max %.10g", lo * w, (lo + 1) * w);
+  throw Error("fit: --mu-min " + format_real(*r.mu_min) + " --mu-max " + format_real(*r.mu_max) +
+              ": no whole bin of width " + format_real(w) +
+              " lies between them (the window runs from bin edge to bin edge, multiples of " +
+              format_real(w) + "); allowed: a window of at least one bin, e.g. " + edges);
+}
+
+// --blocks against what it may be: at most the largest lattice a run may have, and the
+// shape of the scene.ini beside the catalogue when there is one (seismicity refuses the
+// same contradiction).
+void check_blocks_option(const FitRequest& r, const fs::path& scene,
+                         const std::optional<SceneModelInfo>& info) {
+  const int nx = *r.blocks, ny = r.rows.value_or(1);
+  const std::string given = std::to_string(nx) + (r.rows ? "x" + std::to_string(ny) : "");
+  const std::int64_t sites = static_cast<std::int64_t>(nx) * ny;
+  if (sites > 100'000'000)
+    throw Error("fit: --blocks " + given + ": " + std::to_string(sites) +
+                " sites; allowed at most 1e8, the largest lattice a run may have");
+  if (!info || !info->blocks) return;
+  const int sx = *info->blocks, sy = info->rows.value_or(1);
+  if (nx != sx || ny != sy)
+    throw Error("fit: --blocks " + given + " contradicts " + scene.string() +
+                " (model.blocks = " + std::to_string(sx) + ", model.rows = " + std::to_string(sy) +
+                "); allowed: " + std::to_string(sx) + (sy > 1 ? "x" + std::to_string(sy) : "") +
+                ", or no --blocks");
+}
+
+// A row whose blocks (or rows) lie beyond the chain or lattice the classes are counted on:
+// a catalogue beside another run's scene.ini, an edited scene, a wrong --blocks.
+void check_extent(const CatalogEvent& e, const CatalogReader& r, int blocks, int rows, bool lattice,
+                  const std::string& from) {
+  const auto beyond = [&](const char* column, int v, int n, const char* what) {
+    if (v < n) return;
+    throw Error("fit: " + r.where() + ": " + column + " = " + std::to_string(v) +
+                " lies beyond the " + std::to_string(n) + " " + what + " (from " + from +
+                "); allowed: 0 .. " + std::to_string(n - 1));
+  };
+  beyond("last_block", e.last_block, blocks, "blocks along strike");
+  if (r.has_trigger()) beyond("trigger", e.trigger, blocks, "blocks along strike");
+  if (lattice) {
+    beyond("last_row", e.last_row, rows, "rows");
+    if (r.has_trigger()) beyond("trigger_row", e.trigger_row, rows, "rows");
+  }
+}
+
+// Adds a magnitude to the catalogue's histogram; a bin width too fine for the magnitudes'
+// range (more bins than a histogram holds) is named as the option it came from.
+void add_magnitude(MagnitudeHistogram& h, double mu, const std::vector<double>& so_far,
+                   const FitRequest& r, const CatalogReader& reader) {
+  try {
+    h.add(mu);
+  } catch (const Error& x) {
+    double lo = mu, hi = mu;
+    for (const double m : so_far) lo = std::min(lo, m), hi = std::max(hi, m);
+    throw Error("fit: --bin-width " + format_real(r.bin_width) +
+                ": too fine for the magnitudes of " + reader.file() + " (mu " + format_real(lo) +
+                " .. " + format_real(hi) + " so far: " + x.what() +
+                "); allowed: a width in (0, 10] coarse enough for "
+                "that range, e.g. the default " +
+                format_real(MagnitudeHistogram::kDefaultBinWidth));
+  }
+}
+
 void write_scan(const MagnitudeHistogram& h, const GrFit& fit, const fs::path& folder,
-                std::ostream& out) {
+                const fs::path& input, std::ostream& out) {
   const fs::path dir = folder.empty() ? fs::path(".") : folder;
-  fs::create_directories(dir);
-  const FolderLock lock(dir.string(), "fit", StaleLock::Refuse);
+  const auto scan_lock = lock_scan_folder(dir, input);
   const std::vector<WindowFit> rows = scan_windows(h, fit);
   write_file_atomic((dir / "b_scan.csv").string(), b_scan_csv(rows));
   std::int64_t accepted = 0;
@@ -92,17 +183,38 @@ void write_scan(const MagnitudeHistogram& h, const GrFit& fit, const fs::path& f
       << (dir / "b_scan.csv").string() << "\n";
 }
 
-void write_json(const Json& o, const fs::path& file) {
-  const std::string path = file.string();
-  std::ofstream f(path);
-  if (!f) throw Error("fit: --json: cannot open " + path + " for writing");
-  f << o.str() << "\n";
-  if (!f) throw Error("fit: --json: write to " + path + " failed");
+// The JSON written as a derived output: a temporary renamed over it, so that a kill leaves
+// the old file or the new one, and a link at its name is replaced, never written through;
+// only a device (/dev/null, /dev/stdout, or a link to one) is written directly.
+void write_json(const Json& o, const DerivedOutput& target) {
+  const fs::path& at = target.resolved();
+  const std::string text = o.str() + "\n";
+  std::error_code ec;
+  if (fs::exists(at, ec) && !fs::is_regular_file(at, ec)) {
+    std::ofstream f(at);
+    if (!f) throw Error("fit: --json: cannot open " + target.path() + " for writing");
+    f << text;
+    if (!f.flush()) throw Error("fit: --json: write to " + target.path() + " failed");
+    return;
+  }
+  try {
+    write_file_atomic(at.string(), text);
+  } catch (const Error& e) {
+    throw Error(std::string("fit: --json: ") + e.what());
+  }
 }
 
 void fit_one_histogram(const FitRequest& request, const Resolved& in, std::ostream& out) {
+  // The folder rule (io/run_folder.hpp): --json never over the histogram or a run's files.
+  std::unique_ptr<DerivedOutput> json_out;
+  if (request.json)
+    json_out = std::make_unique<DerivedOutput>(
+        *request.json,
+        std::vector<fs::path>{in.file, in.folder / "summary.json", in.folder / "scene.ini"},
+        "fit --json");
   const MagnitudeHistogram h = read_histogram(in.file, request);
   require_events_to_fit(in.file.string(), h.events());
+  require_window_holds_a_bin(h.bin_width(), request);
   const GrFit fit = fit_histogram(h, request.mu_min, request.mu_max);
   out << "histogram         " << in.file.string() << "\n";
   out << gr_fit_table(fit);
@@ -110,11 +222,11 @@ void fit_one_histogram(const FitRequest& request, const Resolved& in, std::ostre
       "from a histogram: binned estimates only (no unbinned Aki b, no event classes, no other "
       "bin width: a histogram holds only the counts of its own bins)";
   out << "note: " << limits << "\n";
-  if (request.scan) write_scan(h, fit, request.out.value_or(in.folder), out);
+  if (request.scan) write_scan(h, fit, request.out.value_or(in.folder), in.file, out);
   if (request.json) {
     Json o = Json::object();
     o.set("histogram", in.file.string()).set("fit", gr_fit_json(fit)).set("classes_note", limits);
-    write_json(o, *request.json);
+    write_json(o, *json_out);
   }
 }
 
@@ -125,13 +237,16 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
   int rows = 1;  // a lattice's rows (event classes by sites and bounding box when above 1)
   std::string boundary = "free";
   const auto scene = catalog.parent_path() / "scene.ini";
+  std::optional<SceneModelInfo> scene_info;
   if (fs::exists(scene)) {
     const SceneModelInfo info = read_scene_model(scene);
+    scene_info = info;
     blocks = info.blocks;
     if (info.rows) rows = *info.rows;
     if (info.boundary) boundary = *info.boundary;
   }
   if (request.blocks) {
+    check_blocks_option(request, scene, scene_info);
     blocks = request.blocks;
     rows = request.rows.value_or(1);
   }
@@ -158,9 +273,12 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
       summary_events.reset();
     }
   }
-  const bool interrupted = status == RunStatus::Interrupted;
+  // A run writing the folder now (its lock held): its catalogue is a prefix that grows.
+  const std::optional<LockHolder> writer =
+      own ? live_lock_holder(dir.empty() ? fs::path(".") : dir) : std::nullopt;
+  const bool interrupted = status == RunStatus::Interrupted && !writer;
   // A run killed (SIGKILL, a crash) before its first summary leaves only its checkpoints.
-  const bool killed = own && status == RunStatus::None &&
+  const bool killed = own && !writer && status == RunStatus::None &&
                       (std::filesystem::exists(dir / "checkpoint.bin") ||
                        std::filesystem::exists(dir / "checkpoint.prev.bin"));
 
@@ -172,6 +290,7 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
         "fit --json");
 
   CatalogReader reader(catalog);
+  if (writer) reader.set_growing();
   const bool lattice = rows > 1;
   const bool classes_on =
       blocks.has_value() && reader.has_extent() && (!lattice || reader.has_rows());
@@ -188,8 +307,10 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
   std::vector<double> magnitudes;
   EventClassCounts classes;
   CatalogEvent e;
+  const std::string blocks_from = request.blocks ? "--blocks" : scene.string();
   while (reader.next(e)) {
-    hist.add(e.magnitude);
+    if (classes_on) check_extent(e, reader, *blocks, rows, lattice, blocks_from);
+    add_magnitude(hist, e.magnitude, magnitudes, request, reader);
     magnitudes.push_back(e.magnitude);
     if (classes_on)
       classes.add(lattice ? classify_lattice_event(e.blocks, e.first_block, e.last_block,
@@ -207,6 +328,7 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
                   " events: the catalogue is truncated or was changed");
   }
   require_events_to_fit(reader.file(), reader.events_read());
+  require_window_holds_a_bin(request.bin_width, request);
 
   GrFit fit = fit_histogram(hist, request.mu_min, request.mu_max);
   add_unbinned(fit, magnitudes);
@@ -215,6 +337,9 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
   if (interrupted)
     out << "note: an interrupted run (summary.json: \"status\": \"interrupted\"): these are its "
         << reader.events_read() << " events so far; --resume finishes it\n";
+  if (writer)
+    out << "note: " << writer->describe() << " is writing this folder: these are the "
+        << reader.events_read() << " events written so far, and more follow until it ends\n";
   if (killed)
     out << "note: an interrupted run (checkpoints beside it, no summary.json: killed?): these "
            "are its "
@@ -230,12 +355,13 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
         << class_counts_table(classes);
   else
     out << "note: " << class_note << "\n";
-  if (request.scan) write_scan(hist, fit, request.out.value_or(in.folder), out);
+  if (request.scan) write_scan(hist, fit, request.out.value_or(in.folder), in.file, out);
 
   if (request.json) {
     Json o = Json::object();
     o.set("catalog", catalog.string()).set("fit", gr_fit_json(fit));
     if (interrupted || killed) o.set("run_status", status_text(RunStatus::Interrupted));
+    if (writer) o.set("run_status", "running");
     if (classes_on) {
       o.set("blocks", static_cast<std::int64_t>(*blocks))
           .set("boundary", boundary)
@@ -243,7 +369,7 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
       if (lattice) o.set("rows", static_cast<std::int64_t>(rows));
     } else
       o.set("classes_note", class_note);
-    write_json(o, *request.json);
+    write_json(o, *json_out);
   }
 }
 
@@ -318,7 +444,10 @@ void refit_sweep(const FitRequest& request, const fs::path& dir, std::ostream& o
         folders[std::stol(name.substr(1))] = entry.path();
     }
 
-  const FolderLock lock(dir.string(), "fit", StaleLock::Refuse);
+  // Under the sweep folder's lock (a stale one, of a killed command, taken over), the
+  // temporaries of a write cut short removed.
+  const auto lock = share_folder_lock(dir, "fit", StaleLock::TakeOver);
+  remove_temporaries_of((dir / "sweep_fit.csv").string());
   std::string csv;
   {
     std::vector<std::string> h;
@@ -355,6 +484,7 @@ void refit_sweep(const FitRequest& request, const fs::path& dir, std::ostream& o
         const MagnitudeHistogram h = read_histogram(folder->second / "histogram.csv", request);
         events = h.events();
         require_events_to_fit((folder->second / "histogram.csv").string(), h.events());
+        require_window_holds_a_bin(h.bin_width(), request);
         fit = fit_histogram(h, request.mu_min, request.mu_max);
         if (!fit.b_ok) error = fit.no_b_reason;
         ++fitted;

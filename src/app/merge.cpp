@@ -73,6 +73,11 @@ void check_scene_matches_summary(const std::string& run, const fs::path& ini, co
 Inputs read_inputs(const std::vector<std::string>& runs) {
   Inputs in;
   for (const auto& run : runs) {
+    std::error_code ec;
+    if (!fs::exists(run, ec))
+      throw Error("merge: " + run + ": no such folder; expected a finished run's folder");
+    if (!fs::is_directory(run, ec))
+      throw Error("merge: " + run + " is not a folder; expected a finished run's folder");
     const RunStatus status = run_status(run);
     if (status == RunStatus::None)
       throw Error("merge: " + run + " has no summary.json: it is not a finished run");

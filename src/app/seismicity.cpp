@@ -1,12 +1,18 @@
 // The seismicity analysis of a catalogue; see seismicity.hpp.
 #include "app/seismicity.hpp"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <ostream>
 #include <sstream>
 
@@ -152,6 +158,148 @@ void write_outputs(const fs::path& dir, const seis::Seismicity& s,
   write_file_atomic((dir / "seismicity.json").string(), json + "\n");
 }
 
+// The files seismicity writes into its folder (write_outputs).
+const char* const kOutputFiles[] = {"interevent.csv", "moment_rate.csv", "omori.csv",
+                                    "recurrence.csv", "scaling.csv",     "spacetime.csv",
+                                    "seismicity.json"};
+
+// seismicity/ is built in .seismicity.new-PID beside it and swapped in; a set it replaces
+// waits in .seismicity.old-PID only where the file system cannot swap two folders at once.
+const std::string kNewPrefix = std::string(".") + kOutFolder + ".new-";
+const std::string kOldPrefix = std::string(".") + kOutFolder + ".old-";
+
+// What a killed seismicity left in `folder` (its lock held): a half-built new set goes; an
+// old set left between the two renames of a swap is put back when seismicity/ is missing.
+void clean_swap_leftovers(const fs::path& folder) {
+  std::error_code ec;
+  std::vector<fs::path> fresh, old;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(kNewPrefix, 0) == 0) fresh.push_back(entry.path());
+    if (name.rfind(kOldPrefix, 0) == 0) old.push_back(entry.path());
+  }
+  for (const auto& f : fresh) fs::remove_all(f, ec);
+  const fs::path final_dir = folder / kOutFolder;
+  if (!old.empty() && !fs::exists(final_dir, ec)) {
+    fs::rename(old.back(), final_dir, ec);
+    if (!ec) old.pop_back();
+  }
+  for (const auto& f : old) fs::remove_all(f, ec);
+}
+
+// Puts the folder `fresh` in place of `final_dir`: one atomic exchange where the file system
+// has it (a kill leaves the old set or the new one), else two renames, whose gap the next
+// run repairs (clean_swap_leftovers). The old set is removed once the swap is on disk.
+void swap_in(const fs::path& fresh, const fs::path& final_dir) {
+  std::error_code ec;
+  const fs::path folder = final_dir.parent_path();
+  fs::path old;
+  if (!fs::exists(final_dir, ec)) {
+    rename_file(fresh.string(), final_dir.string());
+  } else if (::renameat2(AT_FDCWD, fresh.c_str(), AT_FDCWD, final_dir.c_str(), RENAME_EXCHANGE) ==
+             0) {
+    old = fresh;  // the exchange left the old set under the new one's name
+  } else {
+    old = folder / (kOldPrefix + std::to_string(::getpid()));
+    rename_file(final_dir.string(), old.string());
+    rename_file(fresh.string(), final_dir.string());
+  }
+  sync_folder(folder.string());
+  if (!old.empty()) fs::remove_all(old, ec);
+}
+
+// Removes the export temporaries (FILE.tmp-PID) of processes that are gone.
+void remove_dead_export_temporaries(const fs::path& file) {
+  std::error_code ec;
+  const std::string stem = file.filename().string() + ".tmp-";
+  std::vector<fs::path> dead;
+  for (const auto& entry : fs::directory_iterator(file.parent_path(), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(stem, 0) != 0 || name.size() == stem.size()) continue;
+    const std::string pid = name.substr(stem.size());
+    if (pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+    if (::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH)
+      dead.push_back(entry.path());
+  }
+  for (const auto& f : dead) fs::remove(f, ec);
+}
+
+// The locks and rules of seismicity's outputs, held while it runs.
+struct Outputs {
+  std::unique_ptr<DerivedOutput> exported;  // --export: the derived-output rule and lock
+  std::shared_ptr<FolderLock> parent;       // a run's folder --out lies in
+  std::shared_ptr<FolderLock> lock;         // the folder that gets seismicity/, or --out
+};
+
+Outputs lock_outputs(const SeismicityRequest& req, const std::string& catalog,
+                     const fs::path& folder) {
+  Outputs o;
+  std::error_code ec;
+  const fs::path out_dir = req.out.empty() ? folder : fs::path(req.out);
+  if (!req.out.empty()) {
+    if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec))
+      throw Error("seismicity: --out " + req.out +
+                  ": not a folder; expected a folder for seismicity's files");
+    o.parent = lock_derived_folder_parent(out_dir, "seismicity");
+    fs::create_directories(out_dir, ec);
+    if (ec) throw Error("seismicity: --out " + req.out + ": " + ec.message());
+  }
+  if (!req.export_file.empty()) {
+    // Never over its input or a run's own files, and under the lock of a run's folder.
+    o.exported = std::make_unique<DerivedOutput>(
+        req.export_file,
+        std::vector<fs::path>{catalog, folder / "scene.ini", folder / "summary.json"},
+        "seismicity --export");
+    const fs::path at = o.exported->resolved();
+    if (fs::exists(at, ec) && !fs::is_regular_file(at, ec))
+      throw Error("seismicity: --export " + req.export_file +
+                  ": not a regular file (a device, a pipe or a socket); expected the name of "
+                  "a file to write");
+    // Nor into what seismicity itself replaces.
+    const fs::path into = fs::weakly_canonical(fs::absolute(out_dir), ec);
+    const std::string name = at.filename().string();
+    bool clash = false;
+    if (req.out.empty()) {
+      const auto rel = at.lexically_relative(into / kOutFolder);
+      clash = !rel.empty() && *rel.begin() != "..";
+    } else {
+      for (const char* f : kOutputFiles) clash = clash || (at.parent_path() == into && name == f);
+    }
+    if (clash)
+      throw Error("seismicity: --export " + req.export_file + " would be replaced by " +
+                  "seismicity's own output in " +
+                  (req.out.empty() ? (out_dir / kOutFolder).string() : req.out) +
+                  ": choose a file outside it");
+    remove_dead_export_temporaries(at);
+  }
+  o.lock = share_folder_lock(out_dir, "seismicity", StaleLock::TakeOver);
+  if (req.out.empty())
+    clean_swap_leftovers(out_dir);
+  else
+    for (const char* f : kOutputFiles) remove_temporaries_of((out_dir / f).string());
+  return o;
+}
+
+// Refuses a row whose blocks (or rows) lie beyond the chain or lattice the analysis was
+// given: a catalogue beside another run's scene.ini, an edited scene, a wrong --blocks. Its
+// indices would otherwise fall outside the per-block statistics.
+void check_extent(const CatalogEvent& e, const CatalogReader& r, const seis::Geometry& g,
+                  const std::string& blocks_from, const std::string& rows_from) {
+  const auto beyond = [&](const char* column, int v, int n, const char* what,
+                          const std::string& from) {
+    if (v < n) return;
+    throw Error("seismicity: " + r.where() + ": " + column + " = " + std::to_string(v) +
+                " lies beyond the " + std::to_string(n) + " " + what + " (from " + from +
+                "); allowed: 0 .. " + std::to_string(n - 1));
+  };
+  if (r.has_extent()) beyond("last_block", e.last_block, g.nx, "blocks along strike", blocks_from);
+  if (r.has_trigger()) beyond("trigger", e.trigger, g.nx, "blocks along strike", blocks_from);
+  if (r.has_rows()) {
+    beyond("last_row", e.last_row, g.ny, "rows", rows_from);
+    beyond("trigger_row", e.trigger_row, g.ny, "rows", rows_from);
+  }
+}
+
 // The catalogue's export in seismology's conventions, streamed to FILE.tmp and renamed at
 // the end.
 class ExportFile {
@@ -199,8 +347,9 @@ class ExportFile {
 
 std::vector<std::string> seismicity_inputs(const std::string& input) {
   const fs::path p(input);
-  if (!fs::exists(p)) throw Error("seismicity: " + input + ": no such file or folder");
-  if (!fs::is_directory(p)) return {input};
+  std::error_code ec;
+  if (!fs::exists(p, ec)) throw Error("seismicity: " + input + ": no such file or folder");
+  if (!fs::is_directory(p, ec)) return {input};
   const fs::path summary = p / "summary.json";
   if (fs::exists(summary) && slurp(summary).find("\"merged_from\"") != std::string::npos)
     throw Error("seismicity: " + input +
@@ -209,12 +358,20 @@ std::vector<std::string> seismicity_inputs(const std::string& input) {
                 "merged_from in its summary.json");
   if (catalog_in(p)) return {input};
   if (fs::exists(p / "sweep.csv")) {
+    // A sweep keeps each replica's run in SWEEP/points/pNNNN/rNN (io/sweep_file.hpp); its
+    // catalogue stays there when the sweep file's collect keeps it.
     std::vector<std::string> runs;
-    for (const auto& entry : fs::directory_iterator(p))
-      if (entry.is_directory() && catalog_in(entry.path())) runs.push_back(entry.path().string());
+    for (const auto& point : fs::directory_iterator(p / "points", ec)) {
+      if (!point.is_directory(ec)) continue;
+      for (const auto& replica : fs::directory_iterator(point.path(), ec))
+        if (replica.is_directory(ec) && catalog_in(replica.path()))
+          runs.push_back(replica.path().string());
+    }
     std::sort(runs.begin(), runs.end());
     if (runs.empty())
-      throw Error("seismicity: sweep folder " + input + " has no point with a catalogue");
+      throw Error("seismicity: sweep folder " + input +
+                  " keeps no catalogue in points/*/r*/ (a sweep keeps its replicas' catalogues "
+                  "with collect = catalog in its sweep file's [sweep] section)");
     return runs;
   }
   throw Error("seismicity: " + input +
@@ -233,10 +390,24 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     rep.catalog = c->string();
     folder = in;
   } else {
-    if (!fs::is_regular_file(in)) throw Error("seismicity: " + req.input + ": no such file");
+    std::error_code ec;
+    if (!fs::exists(in, ec)) throw Error("seismicity: " + req.input + ": no such file");
+    // A device (/dev/zero) or a pipe reads without end: refused as the catalogue reader does.
+    if (!fs::is_regular_file(in, ec))
+      throw Error("seismicity: " + req.input +
+                  ": not a regular file (a device, a pipe or a socket); expected a catalogue "
+                  "file or a run folder");
     rep.catalog = in.string();
     folder = in.has_parent_path() ? in.parent_path() : fs::path(".");
   }
+  // The outputs' folders are locked before anything is read (a live run's folder is refused
+  // at once): the export's (a derived output, io/run_folder.hpp), then the folder that gets
+  // seismicity/ (or --out).
+  const Outputs outputs = lock_outputs(req, rep.catalog, folder);
+  // A run writing the catalogue's folder now (seismicity's files going elsewhere): its rows
+  // so far are analysed, up to the one being written.
+  const std::optional<LockHolder> writer = live_lock_holder(folder);
+
   // The scene beside the catalogue, when there is one.
   std::optional<Scene> scene;
   const fs::path scene_ini = folder / "scene.ini";
@@ -258,6 +429,7 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     rep.blocks_from = "--blocks";
   } else {
     CatalogReader pre(rep.catalog);
+    if (writer) pre.set_growing();
     if (!pre.has_extent())
       throw Error("seismicity: " + rep.catalog +
                   " has no first_block/last_block columns and no scene.ini beside it: give "
@@ -275,7 +447,9 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   // hypocentres' distances are then Euclidean in the plane (stats/seismicity/geometry.hpp).
   seis::Geometry geometry = seis::Geometry::chain(blocks);
   std::string rows_from;
-  if (CatalogReader probe(rep.catalog); probe.has_rows()) {
+  CatalogReader probe(rep.catalog);
+  if (writer) probe.set_growing();
+  if (probe.has_rows()) {
     geometry.nx = blocks;
     if (scene) {
       geometry.ny = static_cast<int>(scene->integer("model.rows"));
@@ -287,9 +461,17 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
       rows_from = "max(last_row) + 1 of the catalogue; boundaries taken as free";
     }
   }
+  // The statistics keep a few numbers a site: no more sites than the largest lattice a run
+  // may have (an OFC lattice's 1e8), which a damaged catalogue's extent could exceed.
+  if (static_cast<std::int64_t>(geometry.nx) * geometry.ny > 100'000'000)
+    throw Error("seismicity: " + std::to_string(geometry.nx) + " x " + std::to_string(geometry.ny) +
+                " sites (blocks from " + rep.blocks_from +
+                (rows_from.empty() ? "" : ", rows from " + rows_from) +
+                "): allowed at most 1e8 sites, the largest lattice a run may have");
   const int sites = geometry.sites();
 
   CatalogReader reader(rep.catalog);
+  if (writer) reader.set_growing();
   if (!reader.has_load())
     throw Error("seismicity: " + rep.catalog + ": missing column 'load' (the events' time)");
   if (!req.mainshock_mu && !reader.has_extent())
@@ -321,7 +503,11 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     log << "; a lattice of " << geometry.ny << " rows, from " << rows_from
         << ": distances Euclidean between trigger sites"
         << (geometry.periodic_x || geometry.periodic_y ? ", wrapped where periodic" : "");
-  log << ")\n  time: " << rep.clock << "\n  mainshocks: " << opt.mainshock.describe() << "\n";
+  log << ")\n";
+  if (writer)
+    log << "  note: " << writer->describe()
+        << " is writing this folder: the events written so far are analysed\n";
+  log << "  time: " << rep.clock << "\n  mainshocks: " << opt.mainshock.describe() << "\n";
 
   std::vector<std::string> comments;
   if (scene) {
@@ -338,13 +524,14 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
         "catalogue in seismology's conventions: time, Mw = (2/3) log10(moment) + " +
         format_real(req.mw_offset) + ", x = position along strike (trigger block)"};
     c.insert(c.end(), comments.begin(), comments.end());
-    exporter.emplace(req.export_file, req.mw_offset, c);
+    exporter.emplace(outputs.exported->resolved().string(), req.mw_offset, c);
   }
 
   seis::Seismicity s(opt);
   CatalogEvent e;
   double last_t = -INFINITY;
   while (reader.next(e)) {
+    check_extent(e, reader, geometry, rep.blocks_from, rows_from);
     const seis::Quake q = quake_of(e, reader);
     if (q.t < last_t)
       throw Error("seismicity: " + rep.catalog + " event " + std::to_string(e.event) +
@@ -477,15 +664,11 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   }
   rep.json = j.str();
 
-  // Output: the folder's lock, then seismicity/ replaced as a whole (or --out's files).
+  // Output, under the lock taken above: seismicity/ replaced as a whole (or --out's files).
   if (req.out.empty()) {
-    FolderLock lock(folder.string(), "seismicity", StaleLock::Refuse);
     const fs::path final_dir = folder / kOutFolder;
-    const std::string tag = std::to_string(::getpid());
-    const fs::path tmp = folder / (std::string(".") + kOutFolder + ".new-" + tag);
-    const fs::path old = folder / (std::string(".") + kOutFolder + ".old-" + tag);
+    const fs::path tmp = folder / (kNewPrefix + std::to_string(::getpid()));
     std::error_code ec;
-    fs::remove_all(tmp, ec);
     fs::create_directory(tmp, ec);
     if (ec) throw Error("seismicity: cannot create " + tmp.string() + ": " + ec.message());
     try {
@@ -494,16 +677,9 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
       fs::remove_all(tmp, ec);
       throw;
     }
-    if (fs::exists(final_dir)) rename_file(final_dir.string(), old.string());
-    rename_file(tmp.string(), final_dir.string());
-    sync_folder(folder.string());
-    fs::remove_all(old, ec);
+    swap_in(tmp, final_dir);
     rep.out = final_dir.string();
   } else {
-    std::error_code ec;
-    fs::create_directories(req.out, ec);
-    if (ec) throw Error("seismicity: --out " + req.out + ": " + ec.message());
-    FolderLock lock(req.out, "seismicity", StaleLock::Refuse);
     write_outputs(req.out, s, comments, rep.json);
     rep.out = req.out;
   }

@@ -2,8 +2,10 @@
 // (stats/seismicity/) from any event catalogue (catalog.csv or catalog.h5, read through
 // io/catalog_reader.hpp in one streaming pass), written as the files of io/seismicity_csv.hpp
 // and seismicity.json into RUN_DIR/seismicity/ (or beside a bare catalogue, or --out).
-// Writing into a folder takes its lock (io/folder_lock.hpp) and replaces only the
-// seismicity/ folder, as a whole (built beside it, then renamed over it).
+// Writing into a folder takes its lock (io/folder_lock.hpp; a stale one, of a killed
+// command, taken over) before anything is read, and replaces only the seismicity/ folder, as
+// a whole (built beside it, then swapped in); the export is a derived output
+// (io/run_folder.hpp), never over the input or a run's files.
 #pragma once
 
 #include <iosfwd>
@@ -32,9 +34,10 @@ struct SeismicityReport {
   std::string json;  // seismicity.json as written
 };
 
-// The run folders a request covers: the folder itself, or each point of a sweep folder
-// (sweep.csv beside one folder per point). bkq::Error for a merged folder (no single clock:
-// each merged run's load starts afresh; it names the runs to analyse instead).
+// The run folders a request covers: the folder itself, or each replica of a sweep folder
+// that kept its catalogue (SWEEP/points/pNNNN/rNN, beside SWEEP/sweep.csv). bkq::Error for a merged
+// folder (no single clock: each merged run's load starts afresh; it names the runs to analyse
+// instead).
 std::vector<std::string> seismicity_inputs(const std::string& input);
 
 // Analyses one catalogue (a run folder or a catalogue file). `log` gets the progress lines

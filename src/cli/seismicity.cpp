@@ -94,8 +94,8 @@ int cmd_seismicity(const std::vector<std::string>& args) {
   if (inputs.size() > 1 && (!req.out.empty() || !req.export_file.empty()))
     throw Error("seismicity: " + req.input + " is a sweep folder (" +
                 std::to_string(inputs.size()) +
-                " points): --out and --export take one catalogue; each point's results go "
-                "into its own seismicity/");
+                " replicas with a catalogue): --out and --export take one catalogue; each "
+                "replica's results go into its own seismicity/ (points/pNNNN/rNN/seismicity)");
   for (const auto& in : inputs) {
     SeismicityRequest one = req;
     one.input = in;

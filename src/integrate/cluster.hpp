@@ -96,21 +96,30 @@ struct ClusterRelaxation {
   bool far_break = false;  // with the pad moving: the last step's swing broke a far block
 };
 
+// The laws and force terms the cluster kernel is compiled for: the event-driving laws of the
+// shipped scenes, with neighbour springs. Elsewhere run_cluster returns false and the
+// general path, which gives the same events, takes the steps: without neighbour springs
+// (k_c = 0) every event is one block, which the lone-slip replay takes; a tabulated law
+// pays for its own look-ups; the block damper is the 1DOF model's single block, which never
+// forms a cluster. Each compiled combination costs every scheme 16 shapes x pad x located.
+template <class Law, class Terms>
+inline constexpr bool kClusterKernel = (Law::drives_events && Terms::neighbours && !Terms::damper &&
+                                        !std::is_same_v<Law, law::Table>);
+
 // The arrays a scheme's cluster step works on: entries 0 and K + 1 are the stuck ends.
 template <int K>
 using ClusterArray = std::array<double, K + 2>;
 
 // Runs the loop described above with the Method's step on ClusterArray<K> positions and
 // velocities, interior entries only, the stick flags and directions of sliding frozen for
-// the step. Returns false, having done nothing, for the friction laws the event engine
-// refuses (cl89, none).
+// the step. Returns false, having done nothing, where kClusterKernel is false.
 template <class Method, bool Pad, int K, bool FreeLeft, bool FreeRight, bool Located = false>
 bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
   static_assert(K >= 1 && K <= kMaxCluster);
   return forces.with_switches([&]<class Law, class Terms>(const Law& law_in) {
     // The block damper is the 1DOF model's, a single block free at both ends, which
     // run_cluster turns away before it gets here: no kernel is compiled for it.
-    if constexpr (!Law::drives_events || Terms::damper) {
+    if constexpr (!kClusterKernel<Law, Terms>) {
       return false;
     } else {
       const Law law = law_in;  // a local, which the stores cannot change

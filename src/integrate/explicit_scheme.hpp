@@ -73,24 +73,34 @@ class ExplicitScheme final : public Stepper {
            !(p.boundary == Boundary::Periodic && (lo == 0 || hi == forces.n()));
   }
   // step_held's fused step: with the pad moving all ranges in one layout (the pad couples
-  // them), without it one range at a time (the scratch then holds one range).
+  // them), without it one range at a time (the scratch then holds one range). Not compiled
+  // where the event engine never asks (laws that drive no events, the 1DOF damper): there
+  // the general step, which is the same step, is taken.
   template <bool Pad>
   void step_held_ranges(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                         Ranges ranges) {
     const SubstrateState frozen = sub.at(st.t);
-    forces.with_switches([&]<class Law, class Terms>(const Law&) {
-      auto fused = [&](Ranges rs) {
-        scratch_.fit(forces, rs);
-        HeldRangeLayout<typename Method::Round, Law, Terms, Pad> layout(forces, frozen, st, rs,
-                                                                        scratch_);
-        Method::advance(layout, dt);
-      };
-      if constexpr (Pad)
-        fused(ranges);
-      else
-        for (const Range& r : ranges) fused(Ranges(&r, 1));
+    const bool fused_step = forces.with_switches([&]<class Law, class Terms>(const Law&) {
+      if constexpr (!Law::drives_events || Terms::damper) {
+        return false;
+      } else {
+        auto fused = [&](Ranges rs) {
+          scratch_.fit(forces, rs);
+          HeldRangeLayout<typename Method::Round, Law, Terms, Pad> layout(forces, frozen, st, rs,
+                                                                          scratch_);
+          Method::advance(layout, dt);
+        };
+        if constexpr (Pad)
+          fused(ranges);
+        else
+          for (const Range& r : ranges) fused(Ranges(&r, 1));
+        return true;
+      }
     });
-    st.t += dt;
+    if (fused_step)
+      st.t += dt;
+    else
+      step(forces, sub, st, dt, ranges);
   }
   void step_together(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                      Ranges ranges) {

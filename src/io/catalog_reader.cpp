@@ -21,9 +21,34 @@ const std::vector<std::string> kH5Columns = {
     col::event,     col::load,    col::blocks,   col::first_block, col::last_block, col::moment,
     col::magnitude, col::trigger, col::duration, col::trigger_row, col::first_row,  col::last_row};
 
+// The largest block or row index a catalogue may hold (far above any chain or lattice).
+constexpr std::int64_t kMaxIndex = 1'000'000'000;
+
 }  // namespace
 
 CatalogReader::~CatalogReader() = default;
+
+std::string CatalogReader::where() const {
+  return h5_ ? file_ + " row " + std::to_string(events_)
+             : file_ + " line " + std::to_string(lineno_);
+}
+
+void CatalogReader::check_row(const CatalogEvent& e, const std::string& where) const {
+  if (c_load_ >= 0 && !std::isfinite(e.load))
+    throw Error(where + ": " + col::load + " (the event's time) must be finite, got " +
+                format_real(e.load));
+  if (c_duration_ >= 0 && !std::isfinite(e.duration))
+    throw Error(where + ": " + col::duration + " must be finite, got " + format_real(e.duration));
+  if (c_first_ >= 0 && c_last_ >= 0 && e.first_block > e.last_block)
+    throw Error(where + ": " + col::first_block + " = " + std::to_string(e.first_block) +
+                " is above " + col::last_block + " = " + std::to_string(e.last_block) +
+                "; allowed: first_block <= last_block (the lowest and highest block that "
+                "slipped)");
+  if (c_first_row_ >= 0 && c_last_row_ >= 0 && e.first_row > e.last_row)
+    throw Error(where + ": " + col::first_row + " = " + std::to_string(e.first_row) + " is above " +
+                col::last_row + " = " + std::to_string(e.last_row) +
+                "; allowed: first_row <= last_row (the lowest and highest row that slipped)");
+}
 
 CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.string()) {
   if (is_hdf5_file(file_)) {
@@ -72,8 +97,9 @@ bool CatalogReader::next_h5(CatalogEvent& e) {
   const double* v = block_.data() + block_row_++ * kH5Columns.size();
   const std::string where = file_ + " row " + std::to_string(events_ + 1);
   auto as_int = [&](int c, const char* name) -> int {
-    if (!(v[c] >= 0 && v[c] <= 1e9))
-      throw Error(where + ": " + name + " must be >= 0, got " + format_real(v[c]));
+    if (!(v[c] >= 0 && v[c] <= kMaxIndex))
+      throw Error(where + ": " + name + " must be an integer in [0, 1000000000], got " +
+                  format_real(v[c]));
     return static_cast<int>(v[c]);
   };
   e = CatalogEvent{};
@@ -99,6 +125,7 @@ bool CatalogReader::next_h5(CatalogEvent& e) {
                   format_real(e.magnitude));
     e.moment = std::exp(e.magnitude);
   }
+  check_row(e, where);
   ++events_;
   return true;
 }
@@ -111,6 +138,7 @@ bool CatalogReader::next(CatalogEvent& e) {
     const std::string where = file_ + " line " + std::to_string(lineno_);
     // Every row bkquake writes ends in a newline: a last row without one was cut short (its
     // last field may still parse, as another number).
+    if (in_.eof() && growing_) break;  // the row its writer is writing now
     if (in_.eof())
       throw Error(where +
                   ": the last row has no line end: the catalogue is cut short "
@@ -122,8 +150,9 @@ bool CatalogReader::next(CatalogEvent& e) {
     auto field = [&](int c) { return f[static_cast<std::size_t>(c)]; };
     auto as_int = [&](int c, const char* name) -> int {
       const std::int64_t v = csv::parse_int(field(c), file_, lineno_, name);
-      if (v < 0 || v > 1'000'000'000)
-        throw Error(where + ": " + name + " must be >= 0, got " + std::string(field(c)));
+      if (v < 0 || v > kMaxIndex)
+        throw Error(where + ": " + name + " must be an integer in [0, 1000000000], got " +
+                    std::string(field(c)));
       return static_cast<int>(v);
     };
     e = CatalogEvent{};
@@ -152,6 +181,7 @@ bool CatalogReader::next(CatalogEvent& e) {
                     std::string(field(c_magnitude_)));
       e.moment = std::exp(e.magnitude);
     }
+    check_row(e, where);
     ++events_;
     return true;
   }

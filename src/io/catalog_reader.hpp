@@ -7,7 +7,9 @@
 // Optional: event, load, trigger, blocks, duration, first_block, last_block (the event
 // classes need blocks and the extent; bkquake seismicity the others), and a lattice's
 // trigger_row, first_row, last_row. The magnitude used is
-// ln(moment) (Ferre 2018 eq. 2.6).
+// ln(moment) (Ferre 2018 eq. 2.6). A row is refused when a time (load) or duration is not
+// finite, an index is not in [0, 1e9], or first_block > last_block (first_row > last_row):
+// bkquake writes the lowest and highest block that slipped.
 #pragma once
 
 #include <cstdint>
@@ -40,6 +42,11 @@ class CatalogReader {
   // A lattice's catalogue (model.rows > 1): trigger_row, first_row and last_row.
   bool has_rows() const { return c_trigger_row_ >= 0 && c_first_row_ >= 0 && c_last_row_ >= 0; }
   std::int64_t events_read() const { return events_; }
+  // The catalogue of a run still writing it: a last row without its line end is the row
+  // being written, and ends the reading instead of being refused as a cut.
+  void set_growing() { growing_ = true; }
+  // Where the last event read stands, for a message: "<file> line 17" ("row 17" in HDF5).
+  std::string where() const;
   const std::string& file() const { return file_; }
 
  private:
@@ -48,10 +55,13 @@ class CatalogReader {
   std::string line_;
   std::int64_t lineno_ = 1;
   std::int64_t events_ = 0;
+  bool growing_ = false;
   std::size_t n_fields_ = 0;
   int c_event_ = -1, c_load_ = -1, c_blocks_ = -1, c_first_ = -1, c_last_ = -1;
   int c_moment_ = -1, c_magnitude_ = -1, c_trigger_ = -1, c_duration_ = -1;
   int c_trigger_row_ = -1, c_first_row_ = -1, c_last_row_ = -1;
+  // Refuses a row no run writes (see the file comment), naming `where`.
+  void check_row(const CatalogEvent& e, const std::string& where) const;
   // catalog.h5: the columns in the order of the c_ indices above, read a block at a time.
   bool next_h5(CatalogEvent& e);
   std::unique_ptr<CatalogH5Reader> h5_;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "io/folder_lock.hpp"
 #include "io/scene.hpp"
 #include "model/parameters.hpp"
 
@@ -58,18 +59,46 @@ std::optional<double> read_json_number(const std::filesystem::path& json, const 
 // The files a run writes into its folder (its own files): no other command writes over them.
 const std::vector<std::string>& run_own_files();
 
+// Whether `name` is a file a run owns in its folder: one of run_own_files(), any
+// checkpoint*.bin, or a temporary of the lock or of an atomic write.
+bool is_run_own_file(const std::string& name);
+
 // Whether `dir` holds a run (scene.ini with summary.json or a checkpoint beside it).
 bool is_run_folder(const std::filesystem::path& dir);
 
-class FolderLock;
+// Whether `dir` holds a run or is being written by one: a run folder, or a folder holding
+// the lock file (a run locks its folder before it writes anything else in it).
+bool holds_run_or_lock(const std::filesystem::path& dir);
+
+// The lock of `dir` for this process: the one it already holds on that folder (a command
+// writing two outputs into one folder, fit --scan --json) or a new one (FolderLock's
+// rules). The lock goes when its last holder does.
+std::shared_ptr<FolderLock> share_folder_lock(const std::filesystem::path& dir,
+                                              const std::string& command, StaleLock stale);
+
+// The holder of DIR/bkquake.lock when another live process holds it (its flock is taken),
+// else nullopt: no lock file, a stale one, or this process's own. Takes nothing.
+std::optional<LockHolder> live_lock_holder(const std::filesystem::path& dir);
+
+// The folder rule for a folder of derived outputs (fit --scan --out DIR, seismicity --out
+// DIR) that lies in a folder holding a run or a run's lock: DIR may not take the name of one
+// of the run's files (a folder named checkpoint.bin or bkquake.lock would break the run),
+// and the run's folder is locked as for a derived output. Returns that lock, or null where
+// DIR lies in no such folder; bkq::Error as DerivedOutput.
+std::shared_ptr<FolderLock> lock_derived_folder_parent(const std::filesystem::path& dir,
+                                                       const std::string& command);
 
 // The folder rule for a derived output: a file that a command writes from what it read
-// (spectrum.csv, fit --json, a plot), possibly into an existing run folder. Refuses, with
-// bkq::Error naming both, a target that is one of the command's `inputs` or one of a run's
-// own files (run_own_files() in a run folder); in a run folder it takes that folder's lock
-// (io/folder_lock.hpp) for `command` while alive, so it never writes beside a live run, and
-// replaces only its own earlier version. (A command that writes a whole folder uses
-// OutputFolder, io/output.hpp: new or empty folder, --force, the lock.)
+// (spectrum.csv, fit --json, a plot), possibly into an existing run folder. The output's
+// folder is resolved through links; a link at its own name is replaced by the output, never
+// written through. Refuses, with bkq::Error naming both, a target that is one of the
+// command's `inputs` (or a link to one) or, in a folder that holds a run or a run's lock
+// (holds_run_or_lock), one of the run's own files (is_run_own_file); in such a folder it
+// takes the folder's lock (io/folder_lock.hpp, a stale one taken over) for `command` while
+// alive, so it never writes beside a live run, and replaces only its own earlier version
+// (whose temporaries, left by a kill, it removes).
+// (A command that writes a whole folder uses OutputFolder, io/output.hpp: new or empty
+// folder, --force, the lock.)
 class DerivedOutput {
  public:
   DerivedOutput(const std::filesystem::path& target,
@@ -78,10 +107,13 @@ class DerivedOutput {
   DerivedOutput(const DerivedOutput&) = delete;
   DerivedOutput& operator=(const DerivedOutput&) = delete;
   const std::string& path() const { return path_; }
+  // The path written: the target's folder resolved through links, then its name.
+  const std::filesystem::path& resolved() const { return resolved_; }
 
  private:
   std::string path_;
-  std::unique_ptr<FolderLock> lock_;
+  std::filesystem::path resolved_;
+  std::shared_ptr<FolderLock> lock_;
 };
 
 }  // namespace bkq

@@ -20,6 +20,8 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +30,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
@@ -36,6 +39,7 @@
 #include "../cli_helpers.hpp"
 #include "../refusal.hpp"
 #include "core/terminal_text.hpp"
+#include "io/folder_lock.hpp"
 #include "io/run_folder.hpp"
 #include "io/scene.hpp"
 
@@ -371,6 +375,116 @@ TEST_F(Abuse, DamagedFiles) {
     // A resume refused after a damaged checkpoint or catalogue must leave the folder as it
     // was (the resume checks everything before it changes anything).
     check(n, args, r, inputs, out);
+    fs::remove_all(work);
+    if (HasFailure()) return;
+  }
+}
+
+// The analysis commands on hostile folders (fourth round): fit --json/--scan and
+// seismicity --export/--out aimed at a run's own files, at links (to another run's
+// catalogue, to a device, dangling, to the input), at devices and folders, in a run folder
+// whose lock is live or stale or that holds what a killed analysis left. Beyond check():
+// no file of either run changes, a live run's folder gets nothing, and an analysis that
+// succeeded into the folder leaves no lock and none of the temporaries it found.
+TEST_F(Abuse, AnalysisOnHostileFoldersAndLinks) {
+  const int cases = static_cast<int>(env_number("BKQUAKE_ABUSE_CASES", 160)) / 2;
+  for (const char* name : {"a", "b"}) {
+    const auto r = test::run_bkquake({"run", "--quiet", "--set", "model.blocks=20", "--set",
+                                      "run.events=600", "--set", "run.transient_events=10", "--set",
+                                      std::string("run.seed=") + (name[0] == 'a' ? "1" : "2"),
+                                      "--out", tmp_.file(name)});
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  const std::vector<std::string> own = {"catalog.csv",         "scene.ini",      "summary.json",
+                                        "histogram.csv",       "checkpoint.bin", "bkquake.lock",
+                                        "checkpoint.final.bin"};
+  for (int n = 0; n < cases; ++n) {
+    const fs::path work = tmp_.path() / ("h" + std::to_string(n));
+    fs::create_directories(work);
+    fs::copy(tmp_.file("a"), work / "a", fs::copy_options::recursive);
+    fs::copy(tmp_.file("b"), work / "b", fs::copy_options::recursive);
+    const fs::path a = work / "a", b = work / "b";
+    // The folder's state: as finished, a live lock, a stale lock, what a killed analysis left.
+    const std::size_t state = pick(4);
+    std::unique_ptr<FolderLock> live;
+    pid_t gone = 0;
+    if (state == 1) live = std::make_unique<FolderLock>(a.string(), "run", StaleLock::Refuse);
+    if (state == 2 || state == 3) {
+      gone = ::fork();
+      if (gone == 0) {
+        new FolderLock(a.string(), "seismicity", StaleLock::Refuse);  // killed: never released
+        ::_exit(0);
+      }
+      int status = 0;
+      ::waitpid(gone, &status, 0);
+    }
+    if (state == 3) {
+      const std::string tag = std::to_string(gone);
+      fs::create_directories(a / (".seismicity.new-" + tag));
+      std::ofstream(a / "b_scan.csv.bkquake-tmp-Xy12Zw") << "half";
+    }
+    // Where the output goes: a run's own file (its own or the other's), a link, a device, a
+    // folder, or a plain new file inside or outside the folder.
+    const auto target = [&]() -> fs::path {
+      switch (pick(6)) {
+        case 0:
+          return a / own[pick(own.size())];
+        case 1:
+          return b / own[pick(own.size())];
+        case 2: {
+          const fs::path link = a / "out.csv";
+          static const char* const to[] = {"../b/catalog.csv", "/dev/null", "missing/nothing",
+                                           "catalog.csv"};
+          fs::create_symlink(to[pick(4)], link);
+          return link;
+        }
+        case 3:  // (a device only through a link: a regression must not replace the device)
+          if (chance(0.5)) return b;
+          fs::create_symlink("/dev/null", work / "null");
+          return work / "null";
+        case 4:
+          return a / "derived.csv";
+        default:
+          return work / "elsewhere.csv";
+      }
+    }();
+    std::vector<std::string> args;
+    switch (pick(5)) {
+      case 0:
+        args = {"fit", a.string(), "--json", target.string()};
+        break;
+      case 1:
+        args = {"fit", (a / "catalog.csv").string(), "--scan", "--out",
+                chance(0.5) ? a.string() : target.string()};
+        break;
+      case 2:
+        args = {"fit", a.string(), "--scan", "--json", target.string()};
+        break;
+      case 3:
+        args = {"seismicity", a.string(), "--export", target.string()};
+        break;
+      default:
+        args = {"seismicity", a.string(), "--out", chance(0.5) ? target.string() : a.string()};
+    }
+    std::map<std::string, std::string> inputs = tree_bytes(b);
+    for (const auto& f : own)
+      if (fs::is_regular_file(a / f) && f != "bkquake.lock")
+        inputs[(a / f).string()] = read_file((a / f).string());
+    const auto before = tree_bytes(a);
+    const auto r = test::run_bkquake_until(kNever, args, kGuard);
+    // A lock is checked for only where none was left before the command.
+    check(n, args, r, inputs, state == 0 ? a : fs::path());
+    SCOPED_TRACE("case " + std::to_string(n) + " (state " + std::to_string(state) +
+                 "): " + joined(args));
+    if (state == 1) {  // nothing new in a live run's folder
+      live.reset();
+      for (const auto& [file, bytes] : tree_bytes(a))
+        EXPECT_TRUE(before.count(file)) << file << " written beside a live run";
+    }
+    if (state == 3 && r.status == 0 && args[0] == "seismicity" && args[2] != "--out") {
+      EXPECT_FALSE(fs::exists(a / (".seismicity.new-" + std::to_string(gone))));
+      EXPECT_FALSE(fs::exists(a / "bkquake.lock"));
+    }
     fs::remove_all(work);
     if (HasFailure()) return;
   }

@@ -175,25 +175,8 @@ TEST_F(SeismicityCli, ReplacesOnlyItsOwnFolderUnderTheLock) {
   EXPECT_FALSE(fs::exists(fs::path(run()) / FolderLock::kFileName));
 }
 
-TEST_F(SeismicityCli, SweepFolderGetsEachPointAnalysed) {
-  // A sweep folder as `bkquake sweep` leaves it: sweep.csv beside one run folder a point.
-  TempDir sweep;
-  sweep.write("sweep.csv", "point\n0\n1\n");
-  for (const char* point : {"p0", "p1"}) {
-    fs::create_directories(sweep.path() / point);
-    for (const char* f : {"catalog.csv", "scene.ini", "summary.json"})
-      fs::copy_file(fs::path(run()) / f, sweep.path() / point / f);
-  }
-  auto r = run_bkquake({"seismicity", sweep.path().string()});
-  ASSERT_EQ(r.status, 0) << r.err;
-  const std::string a = read_file(sweep.file("p0/seismicity/seismicity.json"));
-  const std::string b = read_file(sweep.file("p1/seismicity/seismicity.json"));
-  ASSERT_FALSE(a.empty());
-  EXPECT_EQ(without_provenance(a), without_provenance(b));
-  r = run_bkquake({"seismicity", sweep.path().string(), "--out", sweep.file("o")});
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("is a sweep folder (2 points)"), std::string::npos) << r.err;
-}
+// A sweep folder: tests/regression/test_analysis_reliability.cpp runs a real sweep
+// (SeismicityOfARealSweepAnalysesEveryReplica).
 
 TEST_F(SeismicityCli, ExportUsesSeismologyConventions) {
   TempDir t;
