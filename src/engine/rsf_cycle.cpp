@@ -137,7 +137,11 @@ double RsfCycle::step(double t_max) {
   while (true) {
     const bool clipped = t_ + h_ >= t_max;
     const double h = clipped ? t_max - t_ : h_;
-    if (!(h > 0)) throw Error("rsf: the step size fell to zero at t = " + std::to_string(t_));
+    // A step that no longer moves the clock: the scene's time scales are beyond double
+    // precision at this t (or the state left the range of exp).
+    if (!(h > 0) || t_ + h == t_)
+      throw Error("rsf: the step size fell below the clock's resolution at t = " +
+                  std::to_string(t_) + " s (rsf.dc, rsf.v_init or integrator.tolerance)");
     const auto stage = [&](std::vector<double>& out, double c, auto combine) {
       for (std::size_t i = 0; i < size; ++i) ytmp_[i] = y_[i] + h * combine(i);
       rhs(t_ + c * h, ytmp_.data(), out.data());
