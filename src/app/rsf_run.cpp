@@ -129,7 +129,7 @@ class RsfRun {
         out_(out),
         files_(out.dir()),
         cycle_(settings.rsf.chain, settings.rsf.tolerance, {settings.rsf.v_init},
-               {settings.rsf.theta_init}),
+               settings.rsf.theta_start()),
         detector_(settings.rsf.v_threshold),
         duration_(settings.run.duration) {
     if (resumed) {

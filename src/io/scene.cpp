@@ -258,6 +258,10 @@ std::vector<ParamSpec> make_table() {
       positive_or_auto("rsf.theta_init", 1e15, "s",
                        "state theta of every block at t = 0; auto: steady state at the plate "
                        "rate, rsf.dc/drive.speed"),
+      path("rsf.blocks",
+           "CSV file of per-block a, b and D_c (header block,a,b,dc, one row per block 0..N-1 in "
+           "order; docs/explanation/rate-and-state.md); relative to the scene file's folder; "
+           "none: every block has rsf.a, rsf.b, rsf.dc"),
 
       // --- drive: how the substrate moves ---
       choice("drive.mode", "events", {"events", "continuous"},
@@ -513,7 +517,7 @@ const std::vector<KeyDependency>& dependencies() {
       {{"integrator.tolerance"}, {{"integrator.scheme", {"adaptive"}}, {"friction.law", {"rsf"}}}},
       // Rate-and-state friction runs in SI units on its own integrator (engine/rsf_cycle.hpp).
       {{"rsf.a", "rsf.b", "rsf.dc", "rsf.mu0", "rsf.v0", "rsf.state_law", "rsf.form",
-        "rsf.normal_stress", "rsf.v_threshold", "rsf.v_init", "rsf.theta_init"},
+        "rsf.normal_stress", "rsf.v_threshold", "rsf.v_init", "rsf.theta_init", "rsf.blocks"},
        {{"friction.law", {"rsf"}}}},
       {{"model.stiffness", "model.coupling_stiffness", "model.dynamics", "model.shear_modulus",
         "model.shear_wave_speed", "model.mass_per_area"},

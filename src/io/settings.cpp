@@ -10,6 +10,7 @@
 #include "integrate/located.hpp"
 #include "integrate/theta.hpp"
 #include "io/friction_table.hpp"
+#include "io/rsf_blocks.hpp"
 #include "io/scene.hpp"
 #include "model/friction_laws.hpp"
 
@@ -105,6 +106,10 @@ RsfSettings rsf_from_scene(const Scene& scene, const ModelParams& chain) {
   p.v0 = scene.real("rsf.v0");
   RsfModel& m = r.chain;
   m.law.assign(static_cast<std::size_t>(chain.n), rsf::Law(p));
+  if (const std::string& file = scene.text("rsf.blocks"); !file.empty()) {
+    const std::vector<rsf::Params> blocks = read_rsf_blocks(file, chain.n, p);
+    for (int j = 0; j < chain.n; ++j) m.law[j] = rsf::Law(blocks[j]);
+  }
   m.state_law =
       scene.choice("rsf.state_law") == "slip" ? rsf::StateLaw::Slip : rsf::StateLaw::Aging;
   m.form = scene.choice("rsf.form") == "regularised" ? rsf::Form::Regularised : rsf::Form::Log;
@@ -121,7 +126,7 @@ RsfSettings rsf_from_scene(const Scene& scene, const ModelParams& chain) {
   r.tolerance = scene.real("integrator.tolerance");
   r.v_threshold = scene.real("rsf.v_threshold");
   r.v_init = scene.real("rsf.v_init");
-  r.theta_init = scene.real_or_auto("rsf.theta_init").value_or(p.dc / m.v_pl);
+  r.theta_init = scene.real_or_auto("rsf.theta_init").value_or(0.0);
   return r;
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/ofc.hpp"
 #include "engine/rsf_cycle.hpp"
@@ -111,7 +112,14 @@ struct RsfSettings {
   double tolerance = 1e-8;    // integrator.tolerance
   double v_threshold = 1e-3;  // rsf.v_threshold [m/s]
   double v_init = 2e-5;       // rsf.v_init [m/s]
-  double theta_init = 10;     // rsf.theta_init [s] (auto resolved)
+  double theta_init = 0;      // rsf.theta_init [s]; 0: auto, each block's D_c/V_pl
+  // The start state of every block: theta_init, or each block's steady state at V_pl.
+  std::vector<double> theta_start() const {
+    std::vector<double> theta;
+    for (const rsf::Law& law : chain.law)
+      theta.push_back(theta_init > 0 ? theta_init : law.params().dc / chain.v_pl);
+    return theta;
+  }
 };
 
 struct Settings {

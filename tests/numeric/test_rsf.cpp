@@ -210,6 +210,40 @@ TEST(RsfStability, PerturbationGrowsBelowAndDecaysAboveCriticalStiffness) {
   }
 }
 
+// The inertial block (Rice & Ruina 1983): a mass large enough to raise k_crit by half, so that
+// 0.9 and 1.1 of the corrected k_crit both lie above the quasi-static sigma (b - a)/D_c. The
+// quasi-static analysis would call both stable; the first grows, at the cubic's root.
+TEST(RsfStability, InertiaRaisesTheCriticalStiffnessAsPredicted) {
+  for (double ratio : {0.9, 1.1}) {
+    RsfModel m = qdyn_model();
+    m.eta = 0;
+    m.dynamics = RsfDynamics::Inertial;
+    m.mass = 2.5e11;  // m V_pl^2/(sigma a D_c) = 0.5
+    const double k_static = rsf::critical_stiffness(m.law[0].params(), m.sigma);
+    ASSERT_NEAR(rsf_critical_stiffness(m) / k_static, 1.5, 1e-12);
+    m.k = ratio * rsf_critical_stiffness(m);
+    ASSERT_GT(m.k, k_static);
+    const std::complex<double> lambda = rsf_eigenvalues(m, m.k)[0];
+    const double period = 2 * std::numbers::pi / std::fabs(lambda.imag());
+    RsfCycle c(m, 1e-10, {m.v_pl * (1 + 1e-5)}, {m.law[0].params().dc / m.v_pl});
+    std::vector<double> t, x;
+    for (int i = 1; i <= 4000; ++i) {
+      c.advance_to(i * period / 400);
+      t.push_back(c.t());
+      x.push_back(c.ln_v(0) - std::log(m.v_pl));
+    }
+    const GrowthFit fit = fit_growth(t, x);
+    const double f_lin = std::fabs(lambda.imag()) / (2 * std::numbers::pi);
+    std::printf(
+        "inertial, k = %.1f k_crit: growth %.6e (linear %.6e), frequency %.6e (linear "
+        "%.6e)\n",
+        ratio, fit.growth, lambda.real(), fit.frequency, f_lin);
+    EXPECT_EQ(fit.growth > 0, ratio < 1);
+    EXPECT_NEAR(fit.frequency / f_lin, 1, 0.01);
+    EXPECT_NEAR(fit.growth / lambda.real(), 1, 0.05);
+  }
+}
+
 TEST(RsfCycle, UncoupledChainReproducesTheSingleBlock) {
   // Same start on every block: every block takes the single block's steps, bit for bit.
   RsfCycle one(qdyn_model(1), 1e-8, {2e-5}, {10});

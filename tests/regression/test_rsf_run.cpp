@@ -11,6 +11,8 @@
 
 #include "../cli_helpers.hpp"
 #include "../refusal.hpp"
+#include "io/scene.hpp"
+#include "io/settings.hpp"
 
 namespace bkq {
 namespace {
@@ -120,6 +122,46 @@ TEST(RsfRun, KilledAndResumedRunGivesTheSameBytes) {
               read_file(tmp.file(std::string("whole/") + f)))
         << f;
   EXPECT_FALSE(std::filesystem::exists(checkpoint));
+}
+
+// rsf.blocks: per-block a, b and D_c. Two uncoupled blocks, one with QDYN's law and one with
+// another: each fails on its own period, QDYN's block on QDYN's.
+TEST(RsfRun, PerBlockParametersFromAFile) {
+  test::TempDir tmp;
+  tmp.write("blocks.csv", "# two blocks\nblock,a,b,dc\n0,0.01,0.025,1e-5\n1,0.01,0.02,2e-5\n");
+  std::string text = read_file(kScene);
+  text.replace(text.find("kind = 1dof"), 11, "kind = bk\nblocks = 2");
+  text.replace(text.find("v_init = 2e-5"), 13, "v_init = 2e-5\nblocks = blocks.csv");
+  const std::string scene = tmp.write("s.ini", text);
+  Scene s = Scene::from_file(scene);
+  s.validate();
+  const Settings st = settings_from_scene(s);
+  ASSERT_EQ(st.rsf.chain.n(), 2);
+  EXPECT_EQ(st.rsf.chain.law[0].params().b_rsf, 0.025);
+  EXPECT_EQ(st.rsf.chain.law[1].params().b_rsf, 0.02);
+  EXPECT_EQ(st.rsf.chain.law[1].params().dc, 2e-5);
+  EXPECT_EQ(st.rsf.theta_start()[1], 2e-5 / 1e-6);  // each block's own steady state
+  const auto r = run_bkquake({"run", scene, "--quiet", "--out", tmp.file("out")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream cat(read_file(tmp.file("out/catalog.csv")));
+  std::string line;
+  std::getline(cat, line);
+  std::vector<double> t0, t1;
+  while (std::getline(cat, line)) {
+    std::vector<double> f;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) f.push_back(std::stod(cell));
+    EXPECT_EQ(f[3], 1);  // uncoupled: one block an event
+    (f[2] == 0 ? t0 : t1).push_back(f[1] / 1e-6);
+  }
+  ASSERT_GE(t0.size(), 10u);
+  ASSERT_GE(t1.size(), 3u);
+  EXPECT_NEAR((t0.back() - t0[2]) / (t0.size() - 3), 585.48, 0.01);
+  EXPECT_GT(std::fabs((t1.back() - t1[1]) / (t1.size() - 2) - 585.48), 10);
+  // A bad row: one line naming the file, the line and the range.
+  tmp.write("blocks.csv", "block,a,b,dc\n0,0.01,0.025,1e-5\n1,0,0.02,2e-5\n");
+  expect_refused(run_bkquake({"run", scene, "--quiet", "--out", tmp.file("bad")}),
+                 {"blocks.csv line 3", "a: expected a value in (0, 10], got 0"});
 }
 
 TEST(RsfRun, StabilityReportsCriticalStiffness) {
