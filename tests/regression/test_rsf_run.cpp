@@ -3,6 +3,7 @@
 // summary, and `bkquake stability` reporting k_crit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -162,6 +163,37 @@ TEST(RsfRun, PerBlockParametersFromAFile) {
   tmp.write("blocks.csv", "block,a,b,dc\n0,0.01,0.025,1e-5\n1,0,0.02,2e-5\n");
   expect_refused(run_bkquake({"run", scene, "--quiet", "--out", tmp.file("bad")}),
                  {"blocks.csv line 3", "a: expected a value in (0, 10], got 0"});
+}
+
+// The shipped chain scene (32 blocks, asperities from its rsf.blocks file) runs through the
+// catalogue and `bkquake seismicity`: ruptures of one block and of several.
+TEST(RsfRun, ShippedChainSceneRunsThroughTheStatistics) {
+  test::TempDir tmp;
+  const std::string chain =
+      std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-asperities.ini";
+  const auto r =
+      run_bkquake({"run", chain, "--quiet", "--set", "run.duration=1e4", "--out", tmp.file("out")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream cat(read_file(tmp.file("out/catalog.csv")));
+  std::string line;
+  std::getline(cat, line);
+  int events = 0, single = 0, largest = 0;
+  while (std::getline(cat, line)) {
+    std::vector<double> f;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) f.push_back(std::stod(cell));
+    ++events;
+    single += f[3] == 1;
+    largest = std::max(largest, static_cast<int>(f[3]));
+    EXPECT_LE(f[9], f[2]);  // first_block <= trigger <= last_block
+    EXPECT_GE(f[10], f[2]);
+  }
+  EXPECT_GT(events, 100);
+  EXPECT_GT(single, 0);
+  EXPECT_GT(largest, 3);
+  const auto s = run_bkquake({"seismicity", tmp.file("out")});
+  ASSERT_EQ(s.status, 0) << s.err;
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "out" / "seismicity" / "seismicity.json"));
 }
 
 TEST(RsfRun, StabilityReportsCriticalStiffness) {
