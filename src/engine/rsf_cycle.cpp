@@ -56,6 +56,10 @@ RsfCycle::RsfCycle(RsfModel model, double tolerance, const std::vector<double>& 
     : m_(std::move(model)), tol_(tolerance) {
   const int n = m_.n();
   if (n < 1) throw Error("rsf: a chain needs at least one block");
+  for (const auto* x : {&v, &theta})
+    if (x->size() != 1 && x->size() != static_cast<std::size_t>(n))
+      throw Error("rsf: a start value per block or one for all, got " + std::to_string(x->size()) +
+                  " for " + std::to_string(n) + " blocks");
   const auto at = [](const std::vector<double>& x, int j) { return x.size() == 1 ? x[0] : x[j]; };
   y_.assign(3 * n, 0.0);
   tau0_.assign(n, 0.0);
