@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <optional>
+#include <string>
 
 #include "app/observers/catalog.hpp"
 #include "app/observers/checkpoint_timer.hpp"
@@ -119,6 +121,80 @@ double seconds_since(Clock::time_point t0) {
 
 // The run's own named state in a checkpoint: the integrator's and the detector's numbers.
 constexpr const char* kStateName = "rsf";
+constexpr const char* kBlocksState = "rsf.blocks_csv";
+
+// rsf_blocks.csv (output.blocks): every output.every seconds, for output.block_first and the
+// output.block_count blocks after it, the slip rate, state, frictional stress sigma f and slip,
+// read on the Hermite cubic of the step that holds the sample time (the samples never shorten
+// a step, so a run writes the same catalogue with and without them).
+class BlockSamples {
+ public:
+  static constexpr const char* kHeader = "t,block,slip_rate,theta,shear_stress,slip";
+
+  BlockSamples(std::string path, double every, int first, int count)
+      : path_(std::move(path)), every_(every), first_(first), count_(count) {}
+  BlockSamples(const BlockSamples&) = delete;
+  BlockSamples& operator=(const BlockSamples&) = delete;
+  ~BlockSamples() {
+    if (file_) std::fclose(file_);  // an unfinished run's file: its checkpoint says how much counts
+  }
+
+  // A fresh file, or the resumed one checked and cut back to its checkpoint's rows.
+  void open(const Checkpoint* resumed) {
+    if (resumed) {
+      std::uint64_t bytes = 0;
+      if (!find_state(*resumed, kBlocksState, bytes, rows_, next_))
+        throw Error("--resume: the checkpoint holds no rsf_blocks.csv state");
+      check_csv_prefix(path_, kHeader, rows_, bytes);
+      std::filesystem::resize_file(path_, bytes);
+      file_ = std::fopen(path_.c_str(), "ab");
+    } else {
+      file_ = std::fopen(path_.c_str(), "wb");
+      if (file_) std::fprintf(file_, "%s\n", kHeader);
+    }
+    if (!file_) throw Error("cannot write '" + path_ + "'");
+  }
+
+  void after_step(const RsfCycle& c) {
+    const int n = c.n();
+    const double t0 = c.t_prev(), t1 = c.t();
+    const auto& y0 = c.y_prev();
+    const auto& d0 = c.dy_prev();
+    const auto& y1 = c.y();
+    const auto& d1 = c.dy();
+    const RsfModel& m = c.model();
+    for (double t = static_cast<double>(next_) * every_; t <= t1;
+         t = static_cast<double>(++next_) * every_) {
+      const auto at = [&](int i) { return hermite_value(t0, y0[i], d0[i], t1, y1[i], d1[i], t); };
+      for (int j = first_; j < first_ + count_; ++j) {
+        const double ln_v = at(n + j), ln_theta = at(2 * n + j);
+        const double tau = m.sigma * m.law[j].friction(m.form, ln_v, ln_theta).f;
+        std::fprintf(file_, "%s,%d,%s,%s,%s,%s\n", format_real(t).c_str(), j,
+                     format_real(std::exp(ln_v)).c_str(), format_real(std::exp(ln_theta)).c_str(),
+                     format_real(tau).c_str(), format_real(at(j)).c_str());
+        ++rows_;
+      }
+    }
+  }
+
+  void checkpoint(Checkpoint& c) {
+    if (std::fflush(file_) != 0) throw Error("cannot write '" + path_ + "'");
+    const auto bytes = static_cast<std::uint64_t>(std::ftell(file_));
+    put_state(c, kBlocksState, bytes, rows_, next_);
+  }
+  void close() {
+    if (file_ && std::fclose(file_) != 0) throw Error("cannot write '" + path_ + "'");
+    file_ = nullptr;
+  }
+
+ private:
+  std::string path_;
+  double every_;
+  int first_, count_;
+  std::int64_t rows_ = 0;  // rows written after the header
+  std::int64_t next_ = 0;  // index k of the next sample time k * every
+  std::FILE* file_ = nullptr;
+};
 
 class RsfRun {
  public:
@@ -149,6 +225,11 @@ class RsfRun {
       ++prog_.resumes;
     }
     wall0_ = prog_.wall_total;
+    if (settings.output.blocks) {
+      samples_.emplace(out.path("rsf_blocks.csv"), settings.output.every,
+                       settings.output.block_first, settings.output.block_count);
+      samples_->open(resumed);
+    }
     attach_observers(resumed != nullptr);
     if (resumed) obs_.resume(*resumed);
   }
@@ -163,9 +244,11 @@ class RsfRun {
         throw Error("rsf: non-finite slip rate at t = " + format_real(cycle_.t()) +
                     " (lower integrator.tolerance)");
       if (auto e = detector_.observe(cycle_)) obs_.event(*e);
+      if (samples_) samples_->after_step(cycle_);
       obs_.advance({cycle_.t(), detector_.events()});
     }
     obs_.phase_end({cycle_.t(), detector_.events()});
+    if (samples_ && cycle_.t() >= duration_) samples_->close();
     if (const int sig = signals.received(); sig != 0 && cycle_.t() < duration_) {
       save();
       obs_.end(run_end(sig));
@@ -218,6 +301,7 @@ class RsfRun {
     w.f64s(cycle_.snapshot());
     w.f64s(detector_.snapshot());
     c.put(kStateName, std::move(w.bytes()));
+    if (samples_) samples_->checkpoint(c);
     obs_.checkpoint(c);
     files_.write(c);
   }
@@ -243,6 +327,7 @@ class RsfRun {
   RsfEventDetector detector_;
   const double duration_;
   RunProgress prog_;
+  std::optional<BlockSamples> samples_;
   Observers obs_;
   Clock::time_point session_t0_ = Clock::now();
   double wall0_ = 0;
