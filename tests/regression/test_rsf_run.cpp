@@ -199,6 +199,41 @@ TEST(RsfRun, ShippedChainSceneRunsThroughTheStatistics) {
   EXPECT_TRUE(std::filesystem::exists(tmp.path() / "out" / "seismicity" / "seismicity.json"));
 }
 
+// output.blocks writes rsf_blocks.csv for the chosen blocks, and analysis/plot_rsf.py draws it.
+TEST(RsfRun, BlockSamplesAndTheirPlot) {
+  test::TempDir tmp;
+  const std::string chain =
+      std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-asperities.ini";
+  const auto r = run_bkquake({"run", chain, "--quiet", "--set", "run.duration=2000", "--set",
+                              "output.blocks=true", "--set", "output.every=10", "--set",
+                              "output.block_first=4", "--set", "output.block_count=3", "--out",
+                              tmp.file("out")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream in(read_file(tmp.file("out/rsf_blocks.csv")));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "t,block,slip_rate,theta,shear_stress,slip");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<double> f;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) f.push_back(std::stod(cell));
+    ASSERT_EQ(f.size(), 6u);
+    EXPECT_EQ(f[0], 10.0 * (rows / 3));  // on the grid k * output.every
+    EXPECT_EQ(f[1], 4 + rows % 3);
+    EXPECT_GT(f[2], 0);
+    ++rows;
+  }
+  EXPECT_EQ(rows, 3 * 201);  // t = 0, 10, ..., 2000
+  if (test::run_process("/usr/bin/python3", {"-c", "import numpy, matplotlib"}).status != 0)
+    GTEST_SKIP() << "no numpy/matplotlib for /usr/bin/python3";
+  const auto p = test::run_process(
+      "/usr/bin/python3", {std::string(BKQUAKE_SOURCE_DIR) + "/analysis/plot_rsf.py",
+                           tmp.file("out"), "--blocks", "4", "6", "--out", tmp.file("rsf.png")});
+  ASSERT_EQ(p.status, 0) << p.out << p.err;
+  EXPECT_GT(std::filesystem::file_size(tmp.file("rsf.png")), 10000u);
+}
+
 TEST(RsfRun, StabilityReportsCriticalStiffness) {
   test::TempDir tmp;
   const auto r = run_bkquake({"stability", kScene, "--out", tmp.file("st")});
