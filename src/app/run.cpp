@@ -17,6 +17,7 @@
 #include "app/event_run.hpp"
 #include "app/observers/catalog.hpp"
 #include "app/observers/segments.hpp"
+#include "app/rsf_run.hpp"
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -84,6 +85,16 @@ int run_scene(const RunRequest& req) {
   const Settings settings = settings_from_scene(scene);
   const ModelParams& p = settings.model;
   const bool ofc = settings.ofc.on;
+  if (settings.rsf.on) {
+    // Rate-and-state friction runs on its own path (app/rsf_run.hpp).
+    if (settings.output.catalog == CatalogFormat::Hdf5 && !hdf5_available())
+      throw Error(
+          "output.catalog = hdf5: this bkquake was built without HDF5 (libhdf5-dev); "
+          "allowed: csv, none");
+    const OutputFolder out(req.out_dir, req.force, req.resume);
+    if (req.force) std::filesystem::remove(out.path("summary.json"));
+    return run_rsf(req, settings, out);
+  }
   const ChainForces forces(p);
   const std::unique_ptr<Stepper> stepper = stepper_of(settings.integrator, p.n);
   const bool events = settings.drive.mode == DriveMode::Events;

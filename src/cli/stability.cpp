@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "app/rsf_run.hpp"
 #include "app/stability.hpp"
 #include "cli/commands.hpp"
 #include "cli/scene_args.hpp"
@@ -58,6 +59,21 @@ int cmd_stability(const std::vector<std::string>& args) {
                 "analyses every scene so; remove --set drive.mode=" +
                 scene.choice("drive.mode"));
   scene.validate();
+  if (scene.choice("friction.law") == "rsf") {
+    // Rate-and-state steady sliding: k_crit and the chain's modes (app/rsf_run.hpp).
+    if (vm.count("sweep") || vm.count("dense") || vm.count("modes"))
+      throw Error(
+          "stability: friction.law = rsf: --sweep, --dense and --modes are not written "
+          "for rate-and-state yet");
+    const OutputFolder out(vm["out"].as<std::string>(), vm.count("force") > 0, false, "stability");
+    const RsfStabilityReport r = rsf_stability(settings_from_scene(scene));
+    write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
+    write_file_atomic(out.path("stability.csv"), r.modes_csv);
+    write_file_atomic(out.path("rsf_stability.csv"), r.summary_csv);
+    std::cout << r.text << "outputs in " << out.dir()
+              << "/ (stability.csv, rsf_stability.csv, scene.ini)\n";
+    return 0;
+  }
   StabilityOptions opt;
   if (vm.count("sweep")) opt.sweep = parse_sweep(vm["sweep"].as<std::string>(), vm.count("log"));
   if (vm.count("log") && !opt.sweep) throw Error("stability: --log needs --sweep");

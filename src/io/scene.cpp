@@ -42,6 +42,14 @@ constexpr double kLongTime = 1e15;
 constexpr double kMuLimit = 50;
 constexpr double kMaxSteps = 1e15;  // time steps of a continuous run
 
+// friction.law's keywords: the rate-only laws of model/law_list.hpp and rsf, the law with
+// state on its own path (model/laws/rsf.hpp).
+std::vector<std::string> rsf_and_law_names() {
+  std::vector<std::string> names = law_names();
+  names.emplace_back("rsf");
+  return names;
+}
+
 // The fields every row has.
 ParamSpec spec(const char* key, ParamType type, const char* def, const char* units,
                const char* doc) {
@@ -93,6 +101,13 @@ ParamSpec auto_real(const char* key, double limit, const char* units, const char
   return p;
 }
 
+// The same on (0, limit] (a state variable, a time).
+ParamSpec positive_or_auto(const char* key, double limit, const char* units, const char* doc) {
+  ParamSpec p = real(key, "auto", '(', 0, limit, ']', units, doc);
+  p.allow_auto = true;
+  return p;
+}
+
 // The same on [0, limit] (a stiffness).
 ParamSpec auto_stiffness(const char* key, double limit, const char* doc) {
   ParamSpec p = real(key, "auto", '[', 0, limit, ']', "", doc);
@@ -116,9 +131,9 @@ std::vector<ParamSpec> make_table() {
              "bk: plain Burridge-Knopoff chain, pad fixed; bkp: BK-Pad, the pad moves; "
              "1dof: one block with spring and damper (thesis eq. 2.11); ofc: the "
              "Olami-Feder-Christensen automaton on model.blocks x model.rows sites (1992)"),
-      choice("model.parameterisation", "carlson-langer", {"carlson-langer", "thesis"},
+      choice("model.parameterisation", "carlson-langer", {"carlson-langer", "thesis", "si"},
              "carlson-langer: dimensionless units of eq. 2.2 (m_u = k_p = F0 = 1); "
-             "thesis: Table 3.1 scalings"),
+             "thesis: Table 3.1 scalings; si: SI units per unit fault area (friction.law = rsf)"),
       integer("model.blocks", "100", 1, 1e7, "", "number of blocks N"),
       choice("model.boundary", "free", {"free", "periodic"},
              "chain ends: free (missing neighbour, no spring) or periodic (a ring); for ofc the "
@@ -171,6 +186,22 @@ std::vector<ParamSpec> make_table() {
            "row; continuous runs and bkquake stability, event runs refuse it): alpha_M"),
       real("model.rayleigh_beta", "0", '[', 0, kHuge, ']', "time",
            "Rayleigh damping alpha_M M + beta_K K: beta_K"),
+      // si parameterisation (rate-and-state friction): per unit fault area.
+      real("model.stiffness", "2e9", '(', 0, kHuge, ']', "Pa/m",
+           "loading spring k per unit area between block and plate (si; QDYN's spring-block: "
+           "G/L)"),
+      real("model.coupling_stiffness", "0", '[', 0, kHuge, ']', "Pa/m",
+           "nearest-neighbour spring k_c per unit area between blocks (si)"),
+      choice("model.dynamics", "quasi-dynamic", {"quasi-dynamic", "inertial"},
+             "quasi-dynamic: elastic stress minus radiation damping eta V balances friction "
+             "(Rice 1993); inertial: model.mass_per_area accelerates the block (si)"),
+      real("model.shear_modulus", "2e10", '(', 0, kHuge, ']', "Pa",
+           "shear modulus G of the radiation damping eta = G/(2 c_s) (si)"),
+      real("model.shear_wave_speed", "3000", '[', 0, kHuge, ']', "m/s",
+           "shear-wave speed c_s of the radiation damping eta = G/(2 c_s); 0: no radiation "
+           "damping (si)"),
+      real("model.mass_per_area", "1e6", '(', 0, kHuge, ']', "kg/m^2",
+           "block mass per unit fault area m (model.dynamics = inertial)"),
 
       // --- ofc: the automaton (Olami, Feder & Christensen 1992) ---
       real("ofc.alpha", "0.2", '(', 0, 0.25, ']', "",
@@ -189,11 +220,12 @@ std::vector<ParamSpec> make_table() {
 
       // --- friction: the law phi(y) (Ferre 2018 eq. 3.5; Carlson et al. 1991 eq. 2.9) ---
       choice(
-          "friction.law", "clst91", law_names(),
+          "friction.law", "clst91", rsf_and_law_names(),
           "thesis (eq. 3.5, backslip allowed), clst91 (Carlson et al. 1991 eq. 2.9, no "
           "backslip), cl89 (Carlson-Langer 1989 eq. 2.3; continuous runs only, event runs refuse "
           "it), none (frictionless, continuous verification runs only), table (tabulated, "
-          "friction.table; thesis Fig. 4.8)"),
+          "friction.table; thesis Fig. 4.8), rsf (Dieterich-Ruina rate-and-state friction, "
+          "[rsf]; model.parameterisation = si, drive.mode = continuous)"),
       real("friction.F0", "1", '(', 0, kHuge, ']', "force/mass",
            "static threshold per unit block mass F0 (thesis only)"),
       real("friction.sigma", "0.01", '[', 0, 1, ')', "",
@@ -205,6 +237,33 @@ std::vector<ParamSpec> make_table() {
       path("friction.table",
            "CSV file of the table law (friction.law = table): columns speed, friction "
            "(docs/reference/scenes.md); relative to the scene file's folder"),
+
+      // --- rsf: rate-and-state friction (Dieterich 1979; Ruina 1983), friction.law = rsf ---
+      real("rsf.a", "0.01", '(', 0, 10, ']', "", "direct-effect parameter a"),
+      real("rsf.b", "0.025", '[', 0, 10, ']', "",
+           "rate-and-state b (evolution effect; not the Gutenberg-Richter b)"),
+      real("rsf.dc", "1e-05", '(', 0, 1e6, ']', "m", "critical slip distance D_c"),
+      real("rsf.mu0", "0.6", '[', 0, 10, ']', "", "reference friction mu* at rsf.v0"),
+      real("rsf.v0", "1e-06", '(', 0, 1e6, ']', "m/s", "reference slip rate V*"),
+      choice("rsf.state_law", "aging", {"aging", "slip"},
+             "state evolution: aging (d theta/dt = 1 - V theta/D_c) or slip (d theta/dt = "
+             "-(V theta/D_c) ln(V theta/D_c))"),
+      choice("rsf.form", "log", {"log", "regularised"},
+             "log: mu* + a ln(V/V*) + b ln(V* theta/D_c); regularised: a asinh(V/(2V*) "
+             "exp((mu* + b ln(V* theta/D_c))/a)) (Rice & Ben-Zion 1996; Lapusta et al. 2000)"),
+      real("rsf.normal_stress", "5e6", '(', 0, kHuge, ']', "Pa",
+           "effective normal stress sigma (friction.sigma stays Carlson-Langer's drop)"),
+      real("rsf.v_threshold", "0.001", '(', 0, 1e6, ']', "m/s",
+           "seismic slip rate V_th: an event is an interval in which some block slips faster; "
+           "must exceed drive.speed (the plate rate)"),
+      real("rsf.v_init", "2e-05", '(', 0, 1e6, ']', "m/s", "slip rate of every block at t = 0"),
+      positive_or_auto("rsf.theta_init", 1e15, "s",
+                       "state theta of every block at t = 0; auto: steady state at the plate "
+                       "rate, rsf.dc/drive.speed"),
+      path("rsf.blocks",
+           "CSV file of per-block a, b and D_c (header block,a,b,dc, one row per block 0..N-1 in "
+           "order; docs/explanation/rate-and-state.md); relative to the scene file's folder; "
+           "none: every block has rsf.a, rsf.b, rsf.dc"),
 
       // --- drive: how the substrate moves ---
       choice("drive.mode", "events", {"events", "continuous"},
@@ -266,7 +325,8 @@ std::vector<ParamSpec> make_table() {
              "order) or located (inside the step, on its dense output: the scheme's order) "
              "(schemes rk2, rk4, verlet)"),
       real("integrator.tolerance", "1e-08", '[', 1e-14, 1e-2, ']', "",
-           "local error tolerance (scheme adaptive)"),
+           "local error tolerance (scheme adaptive; friction.law = rsf: of ln V, ln theta and "
+           "slip/(D_c + |slip|) per Dormand-Prince 5(4) step)"),
       real("integrator.theta", "0.5", '[', 0.5, 1, ']', "",
            "implicit weight theta of the theta-method: 1/2 trapezoidal (conserves), 1 backward "
            "Euler (damps) (scheme theta)"),
@@ -456,7 +516,21 @@ const std::vector<KeyDependency>& dependencies() {
        {{"drive.mode", {"events"}}}},
       {{"drive.step_increment", "drive.step_interval"}, {{"drive.schedule", {"steps"}}}},
       {{"drive.ramp_from", "drive.ramp_to", "drive.ramp_duration"}, {{"drive.schedule", {"ramp"}}}},
-      {{"integrator.tolerance"}, {{"integrator.scheme", {"adaptive"}}}},
+      {{"integrator.tolerance"}, {{"integrator.scheme", {"adaptive"}}, {"friction.law", {"rsf"}}}},
+      // Rate-and-state friction runs in SI units on its own integrator (engine/rsf_cycle.hpp).
+      {{"rsf.a", "rsf.b", "rsf.dc", "rsf.mu0", "rsf.v0", "rsf.state_law", "rsf.form",
+        "rsf.normal_stress", "rsf.v_threshold", "rsf.v_init", "rsf.theta_init", "rsf.blocks"},
+       {{"friction.law", {"rsf"}}}},
+      {{"model.stiffness", "model.coupling_stiffness", "model.dynamics", "model.shear_modulus",
+        "model.shear_wave_speed", "model.mass_per_area"},
+       {{"model.parameterisation", {"si"}}}},
+      {{"model.mass_per_area"}, {{"model.dynamics", {"inertial"}}}},
+      {{"integrator.scheme", "integrator.dt", "integrator.transitions", "friction.sigma",
+        "run.initial_disorder", "run.max_steps_per_event", "run.start", "model.viscosity",
+        "model.rayleigh_alpha", "model.rayleigh_beta", "model.damping_ratio", "model.coupling",
+        "output.status", "output.energy", "output.energy_window", "output.energy_tol",
+        "output.segment_blocks"},
+       {{"friction.law", law_names()}}},
       {{"integrator.theta"}, {{"integrator.scheme", {"theta"}}}},
       {{"integrator.transitions"}, {{"integrator.scheme", {"rk2", "rk4", "verlet"}}}},
       {{"output.energy_window", "output.energy_tol"}, {{"output.energy", {"true"}}}},
@@ -692,6 +766,47 @@ std::string Scene::where() const {
 
 namespace {
 void check_stencil_cost(const Scene& s, const std::string& where);
+
+// validate()'s checks of a rate-and-state scene (friction.law = rsf, model.parameterisation = si):
+// the two go together, continuous drive, a chain or one block, V_th above the plate rate.
+void check_rsf(const Scene& s, const std::string& where) {
+  const std::string& law = s.choice("friction.law");
+  if (law != "rsf")
+    throw Error("model.parameterisation = si is for friction.law = rsf, but friction.law = " + law +
+                "; allowed: friction.law = rsf, or model.parameterisation = carlson-langer " +
+                "or thesis" + where);
+  if (s.choice("model.parameterisation") != "si")
+    throw Error("friction.law = rsf runs in SI units, but model.parameterisation = " +
+                s.choice("model.parameterisation") + "; allowed: model.parameterisation = si" +
+                where);
+  if (s.choice("drive.mode") != "continuous")
+    throw Error("drive.mode = " + s.choice("drive.mode") +
+                " with friction.law = rsf: bkquake has no event-driven rate-and-state engine yet; "
+                "allowed: drive.mode = continuous (whole cycles, rsf.v_threshold defines events)" +
+                where);
+  const std::string& kind = s.choice("model.kind");
+  if (kind != "bk" && kind != "1dof")
+    throw Error("model.kind = " + kind +
+                " with friction.law = rsf: allowed model.kind = bk or 1dof" + where);
+  if (kind == "bk" && s.integer("model.rows") > 1)
+    throw Error("model.rows = " + s.text("model.rows") +
+                " with friction.law = rsf: lattices are not written for rate-and-state yet; "
+                "allowed: model.rows = 1" +
+                where);
+  if (s.choice("drive.schedule") != "constant")
+    throw Error("drive.schedule = " + s.choice("drive.schedule") +
+                " with friction.law = rsf: the plate moves at a constant rate; allowed: "
+                "drive.schedule = constant" +
+                where);
+  const double v_pl = s.real("drive.speed");
+  if (!(v_pl > 0))
+    throw Error("drive.speed = " + s.text("drive.speed") +
+                " with friction.law = rsf: the plate rate must be positive (m/s)" + where);
+  if (!(s.real("rsf.v_threshold") > v_pl))
+    throw Error("rsf.v_threshold = " + s.text("rsf.v_threshold") +
+                ": the seismic slip rate must exceed the plate rate drive.speed = " +
+                s.text("drive.speed") + "; allowed: (" + s.text("drive.speed") + ", 1e6]" + where);
+}
 }  // namespace
 
 void Scene::validate() const {
@@ -738,6 +853,8 @@ void Scene::validate() const {
   if (lo && hi && *lo >= *hi)
     throw Error("stats.mu_min = " + text("stats.mu_min") +
                 " must be below stats.mu_max = " + text("stats.mu_max") + where);
+  if (choice("friction.law") == "rsf" || choice("model.parameterisation") == "si")
+    check_rsf(*this, where);
   if (choice("drive.mode") == "continuous") check_continuous_run(where);
 }
 
@@ -986,9 +1103,14 @@ namespace {
 // before the key existed still resume and merge.
 bool added_later(const std::string& key) {
   static const std::set<std::string> keys{
-      "model.rows",          "model.boundary_y",        "ofc.alpha",       "model.coupling",
-      "model.range",         "model.coupling_exponent", "model.viscosity", "ofc.order",
-      "ofc.relaxation_time", "ofc.relaxation_alpha",    "model.l_y",       "model.s_c_y"};
+      "model.rows", "model.boundary_y", "ofc.alpha", "model.coupling", "model.range",
+      "model.coupling_exponent", "model.viscosity", "ofc.order", "ofc.relaxation_time",
+      "ofc.relaxation_alpha", "model.l_y", "model.s_c_y",
+      // Rate-and-state friction (issue 41).
+      "model.stiffness", "model.coupling_stiffness", "model.dynamics", "model.shear_modulus",
+      "model.shear_wave_speed", "model.mass_per_area", "rsf.a", "rsf.b", "rsf.dc", "rsf.mu0",
+      "rsf.v0", "rsf.state_law", "rsf.form", "rsf.normal_stress", "rsf.v_threshold", "rsf.v_init",
+      "rsf.theta_init"};
   return keys.count(key) != 0;
 }
 }  // namespace

@@ -10,6 +10,7 @@
 #include "integrate/located.hpp"
 #include "integrate/theta.hpp"
 #include "io/friction_table.hpp"
+#include "io/rsf_blocks.hpp"
 #include "io/scene.hpp"
 #include "model/friction_laws.hpp"
 
@@ -29,8 +30,10 @@ ModelParams model_from_scene(const Scene& scene) {
   p.boundary_y =
       scene.choice("model.boundary_y") == "periodic" ? Boundary::Periodic : Boundary::Free;
 
-  // The scene has checked the keyword against the registry's names.
-  p.law = law_named(scene.choice("friction.law")).value();
+  // The scene has checked the keyword against the registry's names; rsf is not among them
+  // (its own path, RsfSettings), and its chain keeps the default law.
+  if (scene.choice("friction.law") != "rsf")
+    p.law = law_named(scene.choice("friction.law")).value();
   if (p.law == law_id<law::Table>) p.table = read_friction_table(scene.text("friction.table"));
   p.sigma = scene.real("friction.sigma");
 
@@ -38,7 +41,10 @@ ModelParams model_from_scene(const Scene& scene) {
   const double s_p = scene.real("model.s_p");
   const double zeta = scene.real("model.damping_ratio");
   double m_x = 0, k_p0 = 0;
-  if (scene.choice("model.parameterisation") == "thesis") {
+  if (scene.choice("model.parameterisation") == "si") {
+    // Rate-and-state (RsfSettings): per unit area; the blocks' springs are read there.
+    p.k_c = 0;
+  } else if (scene.choice("model.parameterisation") == "thesis") {
     // Thesis Table 3.1: the blocks share the pad's mass and spring, the chain keeps the
     // axial stiffness of a single element (k_c grows with N).
     m_x = scene.real("model.pad_mass");
@@ -89,6 +95,41 @@ ModelParams model_from_scene(const Scene& scene) {
   return line_as_chain(p);
 }
 
+RsfSettings rsf_from_scene(const Scene& scene, const ModelParams& chain) {
+  RsfSettings r;
+  r.on = true;
+  rsf::Params p;
+  p.a = scene.real("rsf.a");
+  p.b_rsf = scene.real("rsf.b");
+  p.dc = scene.real("rsf.dc");
+  p.mu0 = scene.real("rsf.mu0");
+  p.v0 = scene.real("rsf.v0");
+  RsfModel& m = r.chain;
+  m.law.assign(static_cast<std::size_t>(chain.n), rsf::Law(p));
+  if (const std::string& file = scene.text("rsf.blocks"); !file.empty()) {
+    const std::vector<rsf::Params> blocks = read_rsf_blocks(file, chain.n, p);
+    for (int j = 0; j < chain.n; ++j) m.law[j] = rsf::Law(blocks[j]);
+  }
+  m.state_law =
+      scene.choice("rsf.state_law") == "slip" ? rsf::StateLaw::Slip : rsf::StateLaw::Aging;
+  m.form = scene.choice("rsf.form") == "regularised" ? rsf::Form::Regularised : rsf::Form::Log;
+  m.dynamics = scene.choice("model.dynamics") == "inertial" ? RsfDynamics::Inertial
+                                                            : RsfDynamics::QuasiDynamic;
+  m.sigma = scene.real("rsf.normal_stress");
+  m.k = scene.real("model.stiffness");
+  m.k_c = chain.n > 1 ? scene.real("model.coupling_stiffness") : 0.0;
+  m.periodic = chain.boundary == Boundary::Periodic;
+  m.v_pl = scene.real("drive.speed");
+  const double c_s = scene.real("model.shear_wave_speed");
+  m.eta = c_s > 0 ? scene.real("model.shear_modulus") / (2 * c_s) : 0.0;  // Rice 1993
+  m.mass = scene.real("model.mass_per_area");
+  r.tolerance = scene.real("integrator.tolerance");
+  r.v_threshold = scene.real("rsf.v_threshold");
+  r.v_init = scene.real("rsf.v_init");
+  r.theta_init = scene.real_or_auto("rsf.theta_init").value_or(0.0);
+  return r;
+}
+
 Settings settings_from_scene(const Scene& scene) {
   Settings s;
   s.model = model_from_scene(scene);
@@ -107,6 +148,11 @@ Settings settings_from_scene(const Scene& scene) {
     o.sequential = scene.choice("ofc.order") == "sequential";
     o.relaxation_time = scene.real("ofc.relaxation_time");
     o.relaxation_alpha = scene.real("ofc.relaxation_alpha");
+  }
+
+  if (scene.choice("friction.law") == "rsf") {
+    s.rsf = rsf_from_scene(scene, s.model);
+    s.model.kind = ModelKind::BK;  // one block (1dof) is a chain of one
   }
 
   DriveSettings& d = s.drive;

@@ -7,8 +7,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/ofc.hpp"
+#include "engine/rsf_cycle.hpp"
 #include "integrate/stepper.hpp"
 #include "model/parameters.hpp"
 #include "model/substrate.hpp"
@@ -101,8 +103,28 @@ struct LatticeShape {
   int nx = 1, ny = 1;
 };
 
+// friction.law = rsf (model.parameterisation = si): the rate-and-state chain, its start and
+// integration (engine/rsf_cycle.hpp), and the seismic threshold that makes events. `model`
+// then holds only the chain's size and boundary.
+struct RsfSettings {
+  bool on = false;
+  RsfModel chain;
+  double tolerance = 1e-8;    // integrator.tolerance
+  double v_threshold = 1e-3;  // rsf.v_threshold [m/s]
+  double v_init = 2e-5;       // rsf.v_init [m/s]
+  double theta_init = 0;      // rsf.theta_init [s]; 0: auto, each block's D_c/V_pl
+  // The start state of every block: theta_init, or each block's steady state at V_pl.
+  std::vector<double> theta_start() const {
+    std::vector<double> theta;
+    for (const rsf::Law& law : chain.law)
+      theta.push_back(theta_init > 0 ? theta_init : law.params().dc / chain.v_pl);
+    return theta;
+  }
+};
+
 struct Settings {
   ModelParams model;
+  RsfSettings rsf;
   LatticeShape lattice;
   OfcSettings ofc;
   DriveSettings drive;
@@ -116,6 +138,8 @@ struct Settings {
 Settings settings_from_scene(const Scene& scene);
 
 ModelParams model_from_scene(const Scene& scene);
+// friction.law = rsf: the rate-and-state chain of `chain`'s size and boundary.
+RsfSettings rsf_from_scene(const Scene& scene, const ModelParams& chain);
 
 // The objects the settings describe, built in one place: the substrate motion
 // (continuous mode) and the stepper for a chain of `blocks`.

@@ -151,7 +151,7 @@ TEST(Scene, BadIntegers) {
 TEST(Scene, BadChoice) {
   EXPECT_ERROR_HAS(
       from("[friction]\nlaw = coulomb\n"),
-      "friction.law: expected one of thesis|clst91|cl89|none|table, got 'coulomb' (in x.ini)");
+      "friction.law: expected one of thesis|clst91|cl89|none|table|rsf, got 'coulomb' (in x.ini)");
   Scene s;
   EXPECT_ERROR_HAS(s.set("integrator.scheme", "euler"), "rk2|rk4|verlet|theta|adaptive", "'euler'");
 }

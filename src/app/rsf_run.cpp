@@ -1,0 +1,379 @@
+// The rate-and-state run loop; see rsf_run.hpp. The loop owns the integrator and the event
+// detector and notifies the observers; summary.json gains an "rsf" object (the integrator's
+// steps, the critical stiffness, the event times of the last event).
+#include "app/rsf_run.hpp"
+
+#include <signal.h>
+
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include "app/observers/catalog.hpp"
+#include "app/observers/checkpoint_timer.hpp"
+#include "app/observers/histogram.hpp"
+#include "app/observers/progress.hpp"
+#include "app/observers/summary.hpp"
+#include "app/stop_signals.hpp"
+#include "bkquake_version.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "engine/rsf_events.hpp"
+#include "io/catalog.hpp"
+#include "io/catalog_file.hpp"
+#include "io/catalog_h5.hpp"
+#include "io/checkpoint.hpp"
+#include "io/json.hpp"
+#include "io/run_folder.hpp"
+#include "io/stability_csv.hpp"
+#include "stats/rsf_stability.hpp"
+
+namespace bkq {
+
+namespace {
+
+// The integrator's and the law's figures in summary.json.
+class RsfFigures : public RunObserver {
+ public:
+  RsfFigures(const RsfCycle& cycle, const RsfEventDetector& events)
+      : cycle_(cycle), events_(events) {}
+  void add_to_summary(Json& summary) const override {
+    const RsfModel& m = cycle_.model();
+    Json r = Json::object();
+    r.set("scheme", "dopri5");
+    r.set("tolerance", cycle_.tolerance());
+    r.set("steps", cycle_.accepted());
+    r.set("rejected_steps", cycle_.rejected());
+    r.set("k", m.k);
+    r.set("k_crit_quasi_static", rsf::critical_stiffness(m.law[0].params(), m.sigma));
+    r.set("k_crit", rsf_critical_stiffness(m));
+    r.set("eta", m.eta);
+    r.set("last_hypocentre_time", events_.events() > 0 ? events_.times().hypocentre : 0.0);
+    r.set("last_peak_time", events_.events() > 0 ? events_.times().peak : 0.0);
+    summary.set("rsf", std::move(r));
+  }
+
+ private:
+  const RsfCycle& cycle_;
+  const RsfEventDetector& events_;
+};
+
+}  // namespace
+
+RsfStabilityReport rsf_stability(const Settings& settings) {
+  const RsfModel& m = settings.rsf.chain;
+  const rsf::Params& law = m.law.at(0).params();
+  const double quasi_static = rsf::critical_stiffness(law, m.sigma);
+  RsfModel qd = m;
+  qd.dynamics = RsfDynamics::QuasiDynamic;
+  const double with_damping = rsf_critical_stiffness(qd);
+  const double k_crit = rsf_critical_stiffness(m);
+  const double f_crit = rsf_critical_frequency(m);
+  RsfStabilityReport r;
+  r.modes_csv = header_of(stability_schema()) + "\n";
+  int unstable = 0;
+  double top_growth = -HUGE_VAL, top_freq = 0;
+  const int n = m.n();
+  for (int q = 0; q < n; ++q) {
+    const double k_q = m.k + (n > 1 ? m.k_c * rsf_chain_laplacian(n, m.periodic, q) : 0.0);
+    const std::complex<double> s = rsf_eigenvalues(m, k_q)[0];
+    const double freq = std::fabs(s.imag()) / (2 * std::numbers::pi);
+    unstable += s.real() > 0 ? 1 : 0;
+    if (s.real() > top_growth) top_growth = s.real(), top_freq = freq;
+    r.modes_csv += format_real(m.v_pl) + ",chain " + std::to_string(q) + "," +
+                   format_real(s.real()) + "," + format_real(std::fabs(s.imag())) + "," +
+                   format_real(freq) + "," + (s.real() > 0 ? "1" : "0") + "\n";
+  }
+  r.summary_csv =
+      "v_pl,k,k_c,k_crit_quasi_static,k_crit_radiation_damping,k_crit,frequency_at_k_crit,"
+      "modes,unstable,max_growth,its_frequency\n" +
+      format_real(m.v_pl) + "," + format_real(m.k) + "," + format_real(m.k_c) + "," +
+      format_real(quasi_static) + "," + format_real(with_damping) + "," + format_real(k_crit) +
+      "," + format_real(f_crit) + "," + std::to_string(n) + "," + std::to_string(unstable) + "," +
+      format_real(top_growth) + "," + format_real(top_freq) + "\n";
+  char line[512];
+  std::snprintf(
+      line, sizeof line,
+      "rate-and-state steady sliding at V_pl = %g m/s, k = %g Pa/m:\n"
+      "  k_crit = sigma (b - a)/D_c = %g Pa/m (quasi-static, Ruina 1983)\n"
+      "  with radiation damping eta = %g Pa s/m: %g Pa/m\n"
+      "  %s: k_crit = %g Pa/m, frequency there %g Hz\n"
+      "  %d of %d modes unstable; largest growth rate %g 1/s at %g Hz\n",
+      m.v_pl, m.k, quasi_static, m.eta, with_damping,
+      m.dynamics == RsfDynamics::Inertial ? "with inertia (Rice & Ruina 1983)" : "quasi-dynamic",
+      k_crit, f_crit, unstable, n, top_growth, top_freq);
+  r.text = line;
+  return r;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// The run's own named state in a checkpoint: the integrator's and the detector's numbers.
+constexpr const char* kStateName = "rsf";
+constexpr const char* kBlocksState = "rsf.blocks_csv";
+
+// rsf_blocks.csv (output.blocks): every output.every seconds, for output.block_first and the
+// output.block_count blocks after it, the slip rate, state, frictional stress sigma f and slip,
+// read on the Hermite cubic of the step that holds the sample time (the samples never shorten
+// a step, so a run writes the same catalogue with and without them).
+class BlockSamples {
+ public:
+  static constexpr const char* kHeader = "t,block,slip_rate,theta,shear_stress,slip";
+
+  BlockSamples(std::string path, double every, int first, int count)
+      : path_(std::move(path)), every_(every), first_(first), count_(count) {}
+  BlockSamples(const BlockSamples&) = delete;
+  BlockSamples& operator=(const BlockSamples&) = delete;
+  ~BlockSamples() {
+    if (file_) std::fclose(file_);  // an unfinished run's file: its checkpoint says how much counts
+  }
+
+  // A fresh file, or the resumed one checked and cut back to its checkpoint's rows.
+  void open(const Checkpoint* resumed) {
+    if (resumed) {
+      std::uint64_t bytes = 0;
+      if (!find_state(*resumed, kBlocksState, bytes, rows_, next_))
+        throw Error("--resume: the checkpoint holds no rsf_blocks.csv state");
+      check_csv_prefix(path_, kHeader, rows_, bytes);
+      std::filesystem::resize_file(path_, bytes);
+      file_ = std::fopen(path_.c_str(), "ab");
+    } else {
+      file_ = std::fopen(path_.c_str(), "wb");
+      if (file_) std::fprintf(file_, "%s\n", kHeader);
+    }
+    if (!file_) throw Error("cannot write '" + path_ + "'");
+  }
+
+  void after_step(const RsfCycle& c) {
+    const int n = c.n();
+    const double t0 = c.t_prev(), t1 = c.t();
+    const auto& y0 = c.y_prev();
+    const auto& d0 = c.dy_prev();
+    const auto& y1 = c.y();
+    const auto& d1 = c.dy();
+    const RsfModel& m = c.model();
+    for (double t = static_cast<double>(next_) * every_; t <= t1;
+         t = static_cast<double>(++next_) * every_) {
+      const auto at = [&](int i) { return hermite_value(t0, y0[i], d0[i], t1, y1[i], d1[i], t); };
+      for (int j = first_; j < first_ + count_; ++j) {
+        const double ln_v = at(n + j), ln_theta = at(2 * n + j);
+        const double tau = m.sigma * m.law[j].friction(m.form, ln_v, ln_theta).f;
+        std::fprintf(file_, "%s,%d,%s,%s,%s,%s\n", format_real(t).c_str(), j,
+                     format_real(std::exp(ln_v)).c_str(), format_real(std::exp(ln_theta)).c_str(),
+                     format_real(tau).c_str(), format_real(at(j)).c_str());
+        ++rows_;
+      }
+    }
+  }
+
+  void checkpoint(Checkpoint& c) {
+    if (std::fflush(file_) != 0) throw Error("cannot write '" + path_ + "'");
+    const auto bytes = static_cast<std::uint64_t>(std::ftell(file_));
+    put_state(c, kBlocksState, bytes, rows_, next_);
+  }
+  void close() {
+    if (file_ && std::fclose(file_) != 0) throw Error("cannot write '" + path_ + "'");
+    file_ = nullptr;
+  }
+
+ private:
+  std::string path_;
+  double every_;
+  int first_, count_;
+  std::int64_t rows_ = 0;  // rows written after the header
+  std::int64_t next_ = 0;  // index k of the next sample time k * every
+  std::FILE* file_ = nullptr;
+};
+
+class RsfRun {
+ public:
+  RsfRun(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+         const Checkpoint* resumed)
+      : req_(req),
+        settings_(settings),
+        out_(out),
+        files_(out.dir()),
+        cycle_(settings.rsf.chain, settings.rsf.tolerance, {settings.rsf.v_init},
+               settings.rsf.theta_start()),
+        detector_(settings.rsf.v_threshold),
+        duration_(settings.run.duration) {
+    if (resumed) {
+      const std::string* bytes = resumed->find(kStateName);
+      if (!bytes)
+        throw Error("--resume: the checkpoint holds no rate-and-state state (it is another run's)");
+      StateReader r(*bytes, kStateName);
+      try {
+        cycle_.restore(r.f64s());
+        detector_.restore(r.f64s());
+      } catch (const std::exception& e) {
+        throw Error(std::string("--resume: the checkpoint's rate-and-state state is malformed: ") +
+                    e.what());
+      }
+      if (!r.done()) throw Error("--resume: the checkpoint's rate-and-state state is malformed");
+      prog_ = resumed->progress;
+      ++prog_.resumes;
+    }
+    wall0_ = prog_.wall_total;
+    if (settings.output.blocks) {
+      samples_.emplace(out.path("rsf_blocks.csv"), settings.output.every,
+                       settings.output.block_first, settings.output.block_count);
+      samples_->open(resumed);
+    }
+    attach_observers(resumed != nullptr);
+    if (resumed) obs_.resume(*resumed);
+  }
+
+  int run() {
+    StopSignals signals;
+    obs_.start();
+    obs_.phase({"time", cycle_.t(), duration_});
+    while (cycle_.t() < duration_ && !signals.received()) {
+      cycle_.step(duration_);
+      if (!std::isfinite(cycle_.ln_v(0)))
+        throw Error("rsf: non-finite slip rate at t = " + format_real(cycle_.t()) +
+                    " (lower integrator.tolerance)");
+      if (auto e = detector_.observe(cycle_)) obs_.event(*e);
+      if (samples_) samples_->after_step(cycle_);
+      obs_.advance({cycle_.t(), detector_.events()});
+    }
+    obs_.phase_end({cycle_.t(), detector_.events()});
+    if (samples_ && cycle_.t() >= duration_) samples_->close();
+    if (const int sig = signals.received(); sig != 0 && cycle_.t() < duration_) {
+      save();
+      obs_.end(run_end(sig));
+      std::fprintf(stderr,
+                   "bkquake: stopped by %s at t = %s of %s s; checkpoint in '%s'; to continue: "
+                   "bkquake run %s --out %s --resume\n",
+                   sig == SIGINT ? "SIGINT" : "SIGTERM", format_real(cycle_.t()).c_str(),
+                   format_real(duration_).c_str(), files_.current().c_str(),
+                   out_.path("scene.ini").c_str(), out_.dir().c_str());
+      return 128 + sig;
+    }
+    obs_.end(run_end(0));
+    files_.remove_interim();
+    return 0;
+  }
+
+ private:
+  void attach_observers(bool resumed) {
+    const RunSettings& r = settings_.run;
+    if (const char* catalog = catalog_file_name(settings_.output.catalog))
+      obs_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
+                                 resumed ? prog_.events_done : -1, settings_.output.catalog_deflate,
+                                 catalog_layout(settings_));
+    const auto& hist =
+        obs_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
+    obs_.attach<RsfFigures>(cycle_, detector_);
+    obs_.attach<ContinuousSummary>(req_.scene, settings_, out_, hist.histogram(), obs_);
+    if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
+      obs_.attach<CheckpointTimer>([this] { save(); }, r.checkpoint_events, r.checkpoint_seconds);
+    if (!req_.quiet) obs_.attach<ProgressLine>();
+    for (RunObserver* o : req_.observers) obs_.attach_ref(*o);
+  }
+
+  // A checkpoint between two steps: the integrator's state is exact (every double's bits),
+  // so a resumed run takes the same steps and writes the same bytes.
+  void save() {
+    prog_.wall_total = prog_.wall_events = wall0_ + seconds_since(session_t0_);
+    prog_.events_done = detector_.events();
+    prog_.transient_done = 0;
+    Checkpoint c;
+    c.version = kVersion;
+    c.git_revision = kGitRevision;
+    c.scene_hash = req_.scene.hash();
+    c.scene_ini = req_.scene.to_ini();
+    c.seed = settings_.run.seed;
+    c.progress = prog_;
+    c.engine.counters.steps = cycle_.accepted();
+    c.engine.counters.events = detector_.events();
+    StateWriter w;
+    w.f64s(cycle_.snapshot());
+    w.f64s(detector_.snapshot());
+    c.put(kStateName, std::move(w.bytes()));
+    if (samples_) samples_->checkpoint(c);
+    obs_.checkpoint(c);
+    files_.write(c);
+  }
+
+  RunEnd run_end(int signal) const {
+    RunEnd end;
+    end.signal = signal;
+    end.events = detector_.events();
+    end.steps = cycle_.accepted();
+    end.blocks = cycle_.n();
+    end.total_load = settings_.rsf.chain.v_pl * cycle_.t();
+    end.duration = cycle_.t();
+    end.wall_seconds = end.wall_seconds_total = wall0_ + seconds_since(session_t0_);
+    end.resumes = prog_.resumes;
+    return end;
+  }
+
+  const RunRequest& req_;
+  const Settings& settings_;
+  const OutputFolder& out_;
+  const CheckpointFiles files_;
+  RsfCycle cycle_;
+  RsfEventDetector detector_;
+  const double duration_;
+  RunProgress prog_;
+  std::optional<BlockSamples> samples_;
+  Observers obs_;
+  Clock::time_point session_t0_ = Clock::now();
+  double wall0_ = 0;
+};
+
+}  // namespace
+
+int run_rsf(const RunRequest& req, const Settings& settings, const OutputFolder& out) {
+  const CheckpointFiles checkpoints(out.dir());
+  if (!req.resume) {
+    if (checkpoints.exist() && !req.force)
+      throw Error("output folder '" + out.dir() + "' holds an interrupted run (" +
+                  checkpoints.current() +
+                  "); use --resume to continue it or --force to start over");
+    if (req.force) checkpoints.remove();
+    write_file_atomic(out.path("scene.ini"), req.scene.to_ini(provenance_lines(req.scene)));
+    return RsfRun(req, settings, out, nullptr).run();
+  }
+  // Everything is checked before anything is changed: a refused resume leaves the folder as it
+  // was.
+  if (run_status(out.dir()) == RunStatus::Finished)
+    throw Error("--resume: '" + out.dir() +
+                "' holds a finished rate-and-state run; extending one is not written yet");
+  std::string from;
+  const Checkpoint saved = checkpoints.read(&from);
+  check_checkpoint_matches(saved, req.scene, from);
+  validate_checkpoint(saved, 0, settings.stats.bin_width, from);
+  const CatalogFormat format = settings.output.catalog;
+  const std::string catalog =
+      format == CatalogFormat::None ? "" : out.path(catalog_file_name(format));
+  if (format == CatalogFormat::Csv)
+    check_csv_prefix(catalog, catalog_header(catalog_layout(settings)), saved.progress.events_done,
+                     saved.progress.catalog_bytes, saved_catalog_checksum(saved));
+  else if (format == CatalogFormat::Hdf5)
+    check_catalog_h5(catalog, saved.progress.events_done, saved_catalog_checksum(saved),
+                     catalog_layout(settings));
+  RsfRun run(req, settings, out, &saved);
+  if (format == CatalogFormat::Csv) {
+    std::error_code ec;
+    std::filesystem::resize_file(catalog, saved.progress.catalog_bytes, ec);
+    if (ec) throw Error("cannot truncate '" + catalog + "' to its checkpoint: " + ec.message());
+  }
+  std::printf("bkquake: resuming '%s' from %s (%lld events so far)\n", out.dir().c_str(),
+              from.c_str(), static_cast<long long>(saved.progress.events_done));
+  std::fflush(stdout);
+  return run.run();
+}
+
+}  // namespace bkq

@@ -1,0 +1,241 @@
+// The rate-and-state cycle integrator; see rsf_cycle.hpp for the equations and the scheme.
+#include "engine/rsf_cycle.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace bkq {
+
+namespace {
+
+// Dormand & Prince 1980, RK5(4)7FM: nodes, stages, 5th-order weights (= the last stage row,
+// FSAL) and e = b5 - b4 (the error estimate's weights).
+constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+constexpr double a21 = 1.0 / 5;
+constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
+constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
+constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
+                 a54 = -212.0 / 729;
+constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
+                 a65 = -5103.0 / 18656;
+constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192, b5 = -2187.0 / 6784,
+                 b6 = 11.0 / 84;
+constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
+                 e6 = 22.0 / 525, e7 = -1.0 / 40;
+
+}  // namespace
+
+double hermite_value(double t0, double x0, double d0, double t1, double x1, double d1, double t) {
+  const double h = t1 - t0, s = (t - t0) / h;
+  const double s2 = s * s, s3 = s2 * s;
+  return (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * h * d0 + (3 * s2 - 2 * s3) * x1 +
+         (s3 - s2) * h * d1;
+}
+
+Extremum hermite_extremum(double t0, double x0, double d0, double t1, double x1, double d1) {
+  // h dp/dt = A s^2 + B s + C, equal to h d0 at s = 0 and h d1 at s = 1; bisect its sign change.
+  const double h = t1 - t0;
+  const double A = 6 * x0 + 3 * h * d0 - 6 * x1 + 3 * h * d1;
+  const double B = -6 * x0 - 4 * h * d0 + 6 * x1 - 2 * h * d1;
+  const double C = h * d0;
+  const auto slope = [&](double s) { return (A * s + B) * s + C; };
+  double lo = 0, hi = 1;
+  const bool rising_at_lo = slope(0) > 0;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ((slope(mid) > 0) == rising_at_lo ? lo : hi) = mid;
+  }
+  const double t = t0 + 0.5 * (lo + hi) * h;
+  return {t, hermite_value(t0, x0, d0, t1, x1, d1, t)};
+}
+
+RsfCycle::RsfCycle(RsfModel model, double tolerance, const std::vector<double>& v,
+                   const std::vector<double>& theta)
+    : m_(std::move(model)), tol_(tolerance) {
+  const int n = m_.n();
+  if (n < 1) throw Error("rsf: a chain needs at least one block");
+  for (const auto* x : {&v, &theta})
+    if (x->size() != 1 && x->size() != static_cast<std::size_t>(n))
+      throw Error("rsf: a start value per block or one for all, got " + std::to_string(x->size()) +
+                  " for " + std::to_string(n) + " blocks");
+  const auto at = [](const std::vector<double>& x, int j) { return x.size() == 1 ? x[0] : x[j]; };
+  y_.assign(3 * n, 0.0);
+  tau0_.assign(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    y_[n + j] = std::log(at(v, j));
+    y_[2 * n + j] = std::log(at(theta, j));
+    tau0_[j] =
+        m_.sigma * m_.law[j].friction(m_.form, y_[n + j], y_[2 * n + j]).f + m_.eta * at(v, j);
+  }
+  for (auto& k : k_) k.assign(3 * n, 0.0);
+  ytmp_.assign(3 * n, 0.0);
+  err_.assign(3 * n, 0.0);
+  v_.assign(n, 0.0);
+  dy_.assign(3 * n, 0.0);
+  rhs(0, y_.data(), dy_.data());
+  y_prev_ = y_;
+  dy_prev_ = dy_;
+  // First step: a small share of the fastest time scale, D_c/V or theta; the control grows it.
+  double scale = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < n; ++j)
+    scale = std::min({scale, m_.law[j].params().dc / at(v, j), at(theta, j)});
+  h_ = 1e-3 * scale;
+}
+
+void RsfCycle::rhs(double t, const double* y, double* dy) {
+  const int n = m_.n();
+  const double* slip = y;
+  const double* ln_v = y + n;
+  const double* ln_th = y + 2 * n;
+  for (int j = 0; j < n; ++j) v_[j] = std::exp(ln_v[j]);
+  const bool coupled = m_.k_c != 0 && n > 1;
+  for (int j = 0; j < n; ++j) {
+    const rsf::Law& law = m_.law[j];
+    const double dlnth = law.dlntheta_dt(m_.state_law, ln_v[j], ln_th[j]);
+    const rsf::FrictionValue fr = law.friction(m_.form, ln_v[j], ln_th[j]);
+    // The neighbours' sum of (x_i - x_j): free ends drop the missing one.
+    const auto coupling = [&](const double* x) {
+      double s = 0;
+      const int l = j > 0 ? j - 1 : (m_.periodic ? n - 1 : -1);
+      const int r = j < n - 1 ? j + 1 : (m_.periodic ? 0 : -1);
+      if (l >= 0) s += x[l] - x[j];
+      if (r >= 0) s += x[r] - x[j];
+      return s;
+    };
+    double dlnv;
+    if (m_.dynamics == RsfDynamics::QuasiDynamic) {
+      double dtau = m_.k * (m_.v_pl - v_[j]);
+      if (coupled) dtau += m_.k_c * coupling(v_.data());
+      dlnv = (dtau - m_.sigma * fr.f_lntheta * dlnth) / (m_.sigma * fr.f_lnv + m_.eta * v_[j]);
+    } else if (m_.dynamics == RsfDynamics::ImposedRate) {
+      dlnv = 0;
+    } else {
+      double tau = tau0_[j] + m_.k * (m_.v_pl * t - slip[j]);
+      if (coupled) tau += m_.k_c * coupling(slip);
+      dlnv = (tau - m_.eta * v_[j] - m_.sigma * fr.f) / (m_.mass * v_[j]);
+    }
+    dy[j] = v_[j];
+    dy[n + j] = dlnv;
+    dy[2 * n + j] = dlnth;
+  }
+}
+
+double RsfCycle::error_norm(const std::vector<double>& err, const std::vector<double>& y) const {
+  const int n = m_.n();
+  double e = 0;
+  for (int j = 0; j < n; ++j) {
+    const double slip_scale = tol_ * (m_.law[j].params().dc + std::fabs(y[j]));
+    e = std::max(e, std::fabs(err[j]) / slip_scale);
+  }
+  for (int i = n; i < 3 * n; ++i) e = std::max(e, std::fabs(err[i]) / tol_);
+  return e;
+}
+
+double RsfCycle::step(double t_max) {
+  const std::size_t size = y_.size();
+  std::vector<double>& k1 = k_[0];
+  k1 = dy_;  // FSAL: the last stage of the previous step
+  bool rejected = false;
+  while (true) {
+    const bool clipped = t_ + h_ >= t_max;
+    const double h = clipped ? t_max - t_ : h_;
+    // A step that no longer moves the clock: the scene's time scales are beyond double
+    // precision at this t (or the state left the range of exp).
+    if (!(h > 0) || t_ + h == t_)
+      throw Error("rsf: the step size fell below the clock's resolution at t = " +
+                  std::to_string(t_) + " s (rsf.dc, rsf.v_init or integrator.tolerance)");
+    const auto stage = [&](std::vector<double>& out, double c, auto combine) {
+      for (std::size_t i = 0; i < size; ++i) ytmp_[i] = y_[i] + h * combine(i);
+      rhs(t_ + c * h, ytmp_.data(), out.data());
+    };
+    auto &k2 = k_[1], &k3 = k_[2], &k4 = k_[3], &k5 = k_[4], &k6 = k_[5], &k7 = k_[6];
+    stage(k2, c2, [&](std::size_t i) { return a21 * k1[i]; });
+    stage(k3, c3, [&](std::size_t i) { return a31 * k1[i] + a32 * k2[i]; });
+    stage(k4, c4, [&](std::size_t i) { return a41 * k1[i] + a42 * k2[i] + a43 * k3[i]; });
+    stage(k5, c5,
+          [&](std::size_t i) { return a51 * k1[i] + a52 * k2[i] + a53 * k3[i] + a54 * k4[i]; });
+    stage(k6, 1.0, [&](std::size_t i) {
+      return a61 * k1[i] + a62 * k2[i] + a63 * k3[i] + a64 * k4[i] + a65 * k5[i];
+    });
+    // The 5th-order solution (kept in ytmp_) and its derivative, the FSAL stage k7.
+    stage(k7, 1.0, [&](std::size_t i) {
+      return b1 * k1[i] + b3 * k3[i] + b4 * k4[i] + b5 * k5[i] + b6 * k6[i];
+    });
+    for (std::size_t i = 0; i < size; ++i)
+      err_[i] = h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
+    double err = error_norm(err_, ytmp_);
+    if (!std::isfinite(err)) err = 1e10;  // a stage left the range of exp: reject, shrink
+    const double grow = err > 0 ? 0.9 * std::pow(err, -0.2) : 5.0;
+    if (err <= 1) {
+      t_prev_ = t_;
+      y_prev_.swap(y_);
+      dy_prev_.swap(dy_);
+      y_.swap(ytmp_);
+      dy_ = k7;
+      t_ = clipped ? t_max : t_ + h;
+      ++accepted_;
+      // A clipped step says nothing about the step the error allows: keep h_ unless it
+      // was itself too large.
+      const double next = h * std::min(rejected ? 1.0 : 5.0, std::max(0.2, grow));
+      if (!clipped || next < h_) h_ = next;
+      return h;
+    }
+    ++rejected_;
+    rejected = true;
+    h_ = h * std::max(0.2, std::min(1.0, grow));
+  }
+}
+
+void RsfCycle::advance_to(double t_end) {
+  while (t_ < t_end) step(t_end);
+}
+
+double RsfCycle::friction_stress(int j) const {
+  return m_.sigma * m_.law[j].friction(m_.form, ln_v(j), ln_theta(j)).f;
+}
+
+double RsfCycle::friction_stress_rate(int j) const {
+  const rsf::FrictionValue fr = m_.law[j].friction(m_.form, ln_v(j), ln_theta(j));
+  const int n = m_.n();
+  return m_.sigma * (fr.f_lnv * dy_[n + j] + fr.f_lntheta * dy_[2 * n + j]);
+}
+
+double RsfCycle::elastic_stress(int j) const {
+  const int n = m_.n();
+  double tau = tau0_[j] + m_.k * (m_.v_pl * t_ - slip(j));
+  if (m_.k_c != 0 && n > 1) {
+    const int l = j > 0 ? j - 1 : (m_.periodic ? n - 1 : -1);
+    const int r = j < n - 1 ? j + 1 : (m_.periodic ? 0 : -1);
+    if (l >= 0) tau += m_.k_c * (slip(l) - slip(j));
+    if (r >= 0) tau += m_.k_c * (slip(r) - slip(j));
+  }
+  return tau;
+}
+
+std::vector<double> RsfCycle::snapshot() const {
+  std::vector<double> s = {t_, t_prev_, h_, static_cast<double>(accepted_),
+                           static_cast<double>(rejected_)};
+  for (const auto* v : {&tau0_, &y_, &dy_, &y_prev_, &dy_prev_})
+    s.insert(s.end(), v->begin(), v->end());
+  return s;
+}
+
+void RsfCycle::restore(const std::vector<double>& s) {
+  const std::size_t n = static_cast<std::size_t>(m_.n());
+  if (s.size() != 5 + n + 12 * n) throw Error("rsf: a checkpoint of another chain's size");
+  t_ = s[0];
+  t_prev_ = s[1];
+  h_ = s[2];
+  accepted_ = static_cast<std::int64_t>(s[3]);
+  rejected_ = static_cast<std::int64_t>(s[4]);
+  auto it = s.begin() + 5;
+  for (auto* v : {&tau0_, &y_, &dy_, &y_prev_, &dy_prev_}) {
+    const std::size_t len = v == &tau0_ ? n : 3 * n;
+    v->assign(it, it + static_cast<std::ptrdiff_t>(len));
+    it += static_cast<std::ptrdiff_t>(len);
+  }
+}
+
+}  // namespace bkq

@@ -1,0 +1,117 @@
+// Rate-and-state seismic cycles (model/laws/rsf.hpp) of a spring-slider or a chain of them,
+// through interseismic creep and ruptures alike, by one adaptive explicit integrator. A path
+// of its own beside the continuous driver: the event kernels never see this law's state.
+//
+// Model, per unit fault area (SI), block j = 0..N-1, slip delta_j, slip rate V_j, state theta_j:
+//   elastic stress  tau_j = tau0_j + k (V_pl t - delta_j) + k_c sum_{i nb j} (delta_i - delta_j)
+//   quasi-dynamic   tau_j - eta V_j = sigma f(V_j, theta_j)       (Rice 1993; eta = G/(2 c_s))
+//   inertial        m dV_j/dt = tau_j - eta V_j - sigma f(V_j, theta_j)
+// Free ends drop the missing neighbour's spring; periodic ends close the ring.
+// Variables y = (delta_j, ln V_j, ln theta_j): V spans 1e-12..10 m/s and theta many decades,
+// and in logarithms both stay O(1)-smooth (QDYN integrates the same way). The quasi-dynamic
+// balance differentiated in time gives ln V explicitly, with f_lnv = V df/dV, f_lntheta =
+// theta df/dtheta (a and b_rsf for the log form):
+//   d ln V_j/dt = [dtau_j/dt - sigma f_lntheta d ln theta_j/dt] / (sigma f_lnv + eta V_j),
+//   dtau_j/dt   = k (V_pl - V_j) + k_c sum_{i nb j} (V_i - V_j),
+// an O(N) right-hand side with no implicit solve; slip only feeds back in the inertial case,
+//   d ln V_j/dt = (tau_j - eta V_j - sigma f)/(m V_j).
+//
+// Scheme: Dormand-Prince 5(4) (Dormand & Prince 1980; Hairer, Norsett & Wanner, Solving ODEs I,
+// II.5), 7 stages, first same as last (6 right-hand sides per accepted step), order 5
+// propagated (local extrapolation). Error estimate: the difference of the embedded 5th- and
+// 4th-order solutions, err_i = h sum_s e_s k_s,i, in the max norm scaled by tol for ln V and
+// ln theta (absolute: a relative error of V and theta) and by tol (D_c + |delta_i|) for slip.
+// A step is accepted when that norm is <= 1; the next h = h min(5, max(0.2, 0.9 err^-1/5))
+// (no growth right after a rejection). Explicit, so its stability region bounds h by about
+// 3.3/|lambda| of the local Jacobian; the error control keeps h inside it (it shows as
+// rejected steps, counted).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "model/laws/rsf.hpp"
+
+namespace bkq {
+
+// ImposedRate holds every V_j at its start value (a lab velocity step: only the state evolves).
+enum class RsfDynamics { QuasiDynamic, Inertial, ImposedRate };
+
+struct RsfModel {
+  std::vector<rsf::Law> law;  // per block; its size is N
+  rsf::StateLaw state_law = rsf::StateLaw::Aging;
+  rsf::Form form = rsf::Form::Log;
+  RsfDynamics dynamics = RsfDynamics::QuasiDynamic;
+  double sigma = 5e6;     // normal stress [Pa]
+  double k = 2e9;         // loading spring per unit area [Pa/m]
+  double k_c = 0;         // nearest-neighbour coupling spring [Pa/m]
+  bool periodic = false;  // a ring instead of free ends
+  double v_pl = 1e-6;     // plate (loader) rate [m/s]
+  double eta = 0;         // radiation damping G/(2 c_s) [Pa s/m]; 0: off
+  double mass = 0;        // inertia per unit area [kg/m^2] (inertial dynamics only)
+  int n() const { return static_cast<int>(law.size()); }
+};
+
+// Hermite cubic through (t0, x0, x0') and (t1, x1, x1'): the time of its interior extremum
+// (where the derivative changes sign, x0' x1' <= 0) and the value there.
+struct Extremum {
+  double t = 0, x = 0;
+};
+Extremum hermite_extremum(double t0, double x0, double d0, double t1, double x1, double d1);
+// The Hermite cubic's value at t in [t0, t1].
+double hermite_value(double t0, double x0, double d0, double t1, double x1, double d1, double t);
+
+class RsfCycle {
+ public:
+  // Starts at t = 0, slip 0, slip rates v and states theta (one value each, or one per
+  // block), with the elastic stress in balance (tau0_j = sigma f + eta V_j).
+  RsfCycle(RsfModel model, double tolerance, const std::vector<double>& v,
+           const std::vector<double>& theta);
+
+  // One accepted step, ending at most at t_max. Returns the accepted step size.
+  double step(double t_max = std::numeric_limits<double>::infinity());
+  // Steps until t reaches t_end exactly.
+  void advance_to(double t_end);
+
+  const RsfModel& model() const { return m_; }
+  int n() const { return m_.n(); }
+  double t() const { return t_; }
+  double t_prev() const { return t_prev_; }
+  double slip(int j) const { return y_[j]; }
+  double ln_v(int j) const { return y_[n() + j]; }
+  double ln_theta(int j) const { return y_[2 * n() + j]; }
+  // The state and its time derivative now and at the start of the last step (y layout:
+  // slip, ln V, ln theta, each N long): what dense output and extremum location use.
+  const std::vector<double>& y() const { return y_; }
+  const std::vector<double>& dy() const { return dy_; }
+  const std::vector<double>& y_prev() const { return y_prev_; }
+  const std::vector<double>& dy_prev() const { return dy_prev_; }
+  // Frictional stress sigma f(V_j, theta_j) (QDYN's tau) and the elastic stress tau_j.
+  double friction_stress(int j) const;
+  double elastic_stress(int j) const;
+  // d(friction stress)/dt now, from the state's derivative.
+  double friction_stress_rate(int j) const;
+
+  double tolerance() const { return tol_; }
+  std::int64_t accepted() const { return accepted_; }
+  std::int64_t rejected() const { return rejected_; }
+
+  // Everything a resumed integration needs, as numbers (the run's checkpoint stores them).
+  std::vector<double> snapshot() const;
+  void restore(const std::vector<double>& s);
+
+ private:
+  void rhs(double t, const double* y, double* dy);
+  double error_norm(const std::vector<double>& err, const std::vector<double>& y) const;
+
+  RsfModel m_;
+  double tol_;
+  double t_ = 0, t_prev_ = 0, h_ = 0;
+  std::vector<double> tau0_;
+  std::vector<double> y_, dy_, y_prev_, dy_prev_;
+  std::vector<double> k_[7], ytmp_, err_, v_;
+  std::int64_t accepted_ = 0, rejected_ = 0;
+};
+
+}  // namespace bkq

@@ -1,0 +1,123 @@
+// The rate-and-state event detector; see rsf_events.hpp.
+#include "engine/rsf_events.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bkq {
+
+namespace {
+
+// Where the Hermite cubic of x over the step crosses `level` (x0 < level <= x1 or the
+// reverse), by bisection.
+double crossing(double t0, double x0, double d0, double t1, double x1, double d1, double level) {
+  double lo = t0, hi = t1;
+  const bool below_at_lo = x0 < level;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ((hermite_value(t0, x0, d0, t1, x1, d1, mid) < level) == below_at_lo ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
+  const int n = c.n();
+  const auto& y0 = c.y_prev();
+  const auto& d0 = c.dy_prev();
+  const auto& y1 = c.y();
+  const auto& d1 = c.dy();
+  const double t0 = c.t_prev(), t1 = c.t();
+  const auto slip_at = [&](int j, double t) {
+    return hermite_value(t0, y0[j], d0[j], t1, y1[j], d1[j], t);
+  };
+  // Block j's largest ln V in the step (inside it where ln V turns over) and when.
+  const auto peak_of = [&](int j) {
+    const double a = y0[n + j], b = y1[n + j];
+    Extremum p = a > b ? Extremum{t0, a} : Extremum{t1, b};
+    if (d0[n + j] > 0 && d1[n + j] <= 0) {
+      const Extremum e = hermite_extremum(t0, a, d0[n + j], t1, b, d1[n + j]);
+      if (e.x > p.x) p = e;
+    }
+    return p;
+  };
+  if (!in_event_) {
+    int first = -1;
+    double t_first = t1;
+    for (int j = 0; j < n; ++j) {
+      const double a = y0[n + j];
+      if (peak_of(j).x < ln_vth_) continue;
+      const double tc =
+          a >= ln_vth_ ? t0 : crossing(t0, a, d0[n + j], t1, y1[n + j], d1[n + j], ln_vth_);
+      if (first < 0 || tc < t_first) first = j, t_first = tc;
+    }
+    if (first < 0) return std::nullopt;
+    in_event_ = true;
+    times_.hypocentre = t_first;
+    trigger_ = first;
+    ln_peak_ = -HUGE_VAL;
+    seismic_.assign(n, 0);
+    slip0_.resize(n);
+    for (int j = 0; j < n; ++j) slip0_[j] = slip_at(j, t_first);
+  }
+  double top = -HUGE_VAL;
+  for (int j = 0; j < n; ++j) {
+    top = std::max(top, y1[n + j]);
+    const Extremum p = peak_of(j);
+    if (p.x < ln_vth_) continue;
+    seismic_[j] = 1;
+    if (p.x > ln_peak_) ln_peak_ = p.x, times_.peak = p.t;
+  }
+  if (top >= ln_vth_) return std::nullopt;
+  // Every block is below V_th again: the event ends at the last downward crossing.
+  double t_end = t0;
+  for (int j = 0; j < n; ++j)
+    if (seismic_[j] && y0[n + j] >= ln_vth_)
+      t_end =
+          std::max(t_end, crossing(t0, y0[n + j], d0[n + j], t1, y1[n + j], d1[n + j], ln_vth_));
+  EventRecord e;
+  e.event = ++events_;
+  e.load = c.model().v_pl * times_.hypocentre;
+  e.trigger = trigger_;
+  e.first_block = n;
+  e.last_block = -1;
+  for (int j = 0; j < n; ++j) {
+    if (!seismic_[j]) continue;
+    ++e.blocks;
+    e.moment += slip_at(j, t_end) - slip0_[j];
+    e.first_block = std::min(e.first_block, j);
+    e.last_block = std::max(e.last_block, j);
+  }
+  e.magnitude = std::log(e.moment);
+  e.duration = t_end - times_.hypocentre;
+  e.max_speed = std::exp(ln_peak_);
+  in_event_ = false;
+  return e;
+}
+
+std::vector<double> RsfEventDetector::snapshot() const {
+  std::vector<double> s = {in_event_ ? 1.0 : 0.0,
+                           static_cast<double>(events_),
+                           static_cast<double>(trigger_),
+                           times_.hypocentre,
+                           times_.peak,
+                           ln_peak_};
+  s.insert(s.end(), slip0_.begin(), slip0_.end());
+  for (char x : seismic_) s.push_back(x);
+  return s;
+}
+
+void RsfEventDetector::restore(const std::vector<double>& s) {
+  in_event_ = s.at(0) != 0;
+  events_ = static_cast<std::int64_t>(s.at(1));
+  trigger_ = static_cast<int>(s.at(2));
+  times_ = {s.at(3), s.at(4)};
+  ln_peak_ = s.at(5);
+  const std::size_t n = (s.size() - 6) / 2;
+  slip0_.assign(s.begin() + 6, s.begin() + 6 + static_cast<std::ptrdiff_t>(n));
+  seismic_.clear();
+  for (std::size_t i = 0; i < n; ++i) seismic_.push_back(s[6 + n + i] != 0 ? 1 : 0);
+}
+
+}  // namespace bkq

@@ -1,0 +1,53 @@
+// Events of a rate-and-state cycle run (engine/rsf_cycle.hpp): an event is an interval in
+// which some block slips faster than the seismic threshold V_th. The detector watches each
+// accepted step and returns the finished event's record (engine/event_record.hpp) with the
+// catalogue's common columns:
+//   load        plate displacement V_pl t at the hypocentre time (the first crossing of V_th,
+//               on the Hermite cubic of ln V over the step, so load/V_pl is that time)
+//   trigger     the block that crossed first; blocks, first_block, last_block: those above V_th
+//   moment      sum over those blocks of their slip from the event's start to its end [m]
+//   magnitude   ln moment; duration: from the first upward to the last downward crossing
+//   max_speed   the peak slip rate (located inside the step like the crossings) [m/s]
+// plus the hypocentre time and the time of the peak slip rate (RsfEventTimes).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "engine/event_record.hpp"
+#include "engine/rsf_cycle.hpp"
+
+namespace bkq {
+
+struct RsfEventTimes {
+  double hypocentre = 0;  // t at the first crossing of V_th
+  double peak = 0;        // t of the peak slip rate
+};
+
+class RsfEventDetector {
+ public:
+  explicit RsfEventDetector(double v_threshold) : ln_vth_(std::log(v_threshold)) {}
+  // After every accepted step of `c`: the record of an event that ended in it.
+  std::optional<EventRecord> observe(const RsfCycle& c);
+  bool in_event() const { return in_event_; }
+  const RsfEventTimes& times() const { return times_; }
+  std::int64_t events() const { return events_; }
+
+  // The detector's state as numbers (a checkpoint's), and back.
+  std::vector<double> snapshot() const;
+  void restore(const std::vector<double>& s);
+
+ private:
+  double ln_vth_;
+  bool in_event_ = false;
+  std::int64_t events_ = 0;
+  int trigger_ = 0;
+  RsfEventTimes times_;
+  double ln_peak_ = 0;
+  std::vector<double> slip0_;  // every block's slip at the event's start
+  std::vector<char> seismic_;  // blocks above V_th during the event
+};
+
+}  // namespace bkq

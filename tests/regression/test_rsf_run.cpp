@@ -1,0 +1,249 @@
+// Rate-and-state runs from the command line (issue 41): the refusals (a <= 0, D_c <= 0, V_th not
+// above V_pl, event-driven drive), the shipped QDYN scene through the catalogue, histogram and
+// summary, and `bkquake stability` reporting k_crit.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../cli_helpers.hpp"
+#include "../refusal.hpp"
+#include "io/scene.hpp"
+#include "io/settings.hpp"
+
+namespace bkq {
+namespace {
+
+using test::expect_refused;
+using test::read_file;
+using test::run_bkquake;
+
+const std::string kScene = std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/qdyn-stickslip.ini";
+
+// The built-in default turned into a rate-and-state scene by --set, then `more`.
+std::vector<std::string> rsf_args(const std::string& out, std::vector<std::string> more) {
+  std::vector<std::string> a = {"run",
+                                "--set",
+                                "model.parameterisation=si",
+                                "--set",
+                                "friction.law=rsf",
+                                "--set",
+                                "model.kind=1dof",
+                                "--quiet",
+                                "--out",
+                                out};
+  for (const auto& m : more) a.insert(a.end(), {"--set", m});
+  return a;
+}
+
+TEST(RsfRun, Refusals) {
+  test::TempDir tmp;
+  const std::string out = tmp.file("out");
+  const std::vector<std::string> cont = {"drive.mode=continuous", "drive.speed=1e-6",
+                                         "run.duration=10"};
+  auto with = [&](std::vector<std::string> v, const std::string& extra) {
+    v.push_back(extra);
+    return v;
+  };
+  expect_refused(run_bkquake(rsf_args(out, with(cont, "rsf.a=0"))), {"rsf.a", "0", "(0, 10]"});
+  expect_refused(run_bkquake(rsf_args(out, with(cont, "rsf.a=-0.01"))), {"rsf.a", "(0, 10]"});
+  expect_refused(run_bkquake(rsf_args(out, with(cont, "rsf.dc=0"))), {"rsf.dc", "(0, 1e+06]"});
+  expect_refused(run_bkquake(rsf_args(out, with(cont, "rsf.v_threshold=1e-6"))),
+                 {"rsf.v_threshold = 1e-06", "drive.speed", "allowed"});
+  expect_refused(run_bkquake(rsf_args(out, {})),
+                 {"drive.mode = events", "friction.law = rsf", "allowed: drive.mode = continuous"});
+  expect_refused(run_bkquake({"run", "--set", "model.parameterisation=si", "--out", out}),
+                 {"model.parameterisation = si", "friction.law = clst91"});
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out" / "catalog.csv"));
+}
+
+TEST(RsfRun, QdynSceneWritesCatalogueHistogramAndSummary) {
+  test::TempDir tmp;
+  const auto r = run_bkquake({"run", kScene, "--quiet", "--out", tmp.file("out")});
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  std::istringstream cat(read_file(tmp.file("out/catalog.csv")));
+  std::string line;
+  std::getline(cat, line);
+  EXPECT_EQ(line.rfind("event,load,trigger,blocks,moment,magnitude,duration,max_speed", 0), 0u);
+  std::vector<double> loads, moments;
+  while (std::getline(cat, line)) {
+    std::vector<double> f;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) f.push_back(std::stod(cell));
+    loads.push_back(f[1]);
+    moments.push_back(f[4]);
+    EXPECT_NEAR(f[5], std::log(f[4]), 1e-12);  // magnitude = ln moment
+    EXPECT_GT(f[7], 1e-3);                     // peak slip rate above V_th
+    EXPECT_GT(f[6], 0);                        // duration
+  }
+  // 1e4 s of QDYN's stick-slip at 585.48 s a cycle: 17 events after the first.
+  ASSERT_EQ(loads.size(), 18u);
+  // Every limit-cycle event slips the same; they recur at QDYN's period (load/V_pl is time).
+  EXPECT_NEAR((loads.back() - loads[2]) / 1e-6 / (loads.size() - 3), 585.48, 0.01);
+  EXPECT_NEAR(moments.back() / moments[5], 1, 1e-6);
+  const std::string summary = read_file(tmp.file("out/summary.json"));
+  EXPECT_NE(summary.find("\"events\": 18"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"k_crit\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"scheme\": \"dopri5\""), std::string::npos) << summary;
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "out" / "histogram.csv"));
+  // The effective scene reads back to the same run.
+  const auto again =
+      run_bkquake({"run", tmp.file("out/scene.ini"), "--quiet", "--out", tmp.file("again")});
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(read_file(tmp.file("again/catalog.csv")), read_file(tmp.file("out/catalog.csv")));
+}
+
+// A run stopped by SIGTERM after its first checkpoint and resumed writes the catalogue,
+// histogram and block samples of the run that was never stopped, byte for byte.
+TEST(RsfRun, KilledAndResumedRunGivesTheSameBytes) {
+  test::TempDir tmp;
+  const std::vector<std::string> scene = {kScene,  "--quiet",
+                                          "--set", "run.duration=2e6",
+                                          "--set", "run.checkpoint_events=200",
+                                          "--set", "output.blocks=true",
+                                          "--set", "output.every=1000"};
+  auto args = [&](const std::string& out, std::vector<std::string> more) {
+    std::vector<std::string> a = {"run"};
+    a.insert(a.end(), scene.begin(), scene.end());
+    a.insert(a.end(), {"--out", out});
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  const auto whole = run_bkquake(args(tmp.file("whole"), {}));
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  const std::string checkpoint = tmp.file("cut/checkpoint.bin");
+  const auto cut = test::run_bkquake_until([&] { return std::filesystem::exists(checkpoint); },
+                                           args(tmp.file("cut"), {}));
+  ASSERT_EQ(cut.status, 143) << cut.err;
+  const auto resumed = run_bkquake(args(tmp.file("cut"), {"--resume"}));
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  for (const char* f : {"catalog.csv", "histogram.csv", "rsf_blocks.csv"})
+    EXPECT_EQ(read_file(tmp.file(std::string("cut/") + f)),
+              read_file(tmp.file(std::string("whole/") + f)))
+        << f;
+  EXPECT_FALSE(std::filesystem::exists(checkpoint));
+}
+
+// rsf.blocks: per-block a, b and D_c. Two uncoupled blocks, one with QDYN's law and one with
+// another: each fails on its own period, QDYN's block on QDYN's.
+TEST(RsfRun, PerBlockParametersFromAFile) {
+  test::TempDir tmp;
+  tmp.write("blocks.csv", "# two blocks\nblock,a,b,dc\n0,0.01,0.025,1e-5\n1,0.01,0.02,2e-5\n");
+  std::string text = read_file(kScene);
+  text.replace(text.find("kind = 1dof"), 11, "kind = bk\nblocks = 2");
+  text.replace(text.find("v_init = 2e-5"), 13, "v_init = 2e-5\nblocks = blocks.csv");
+  const std::string scene = tmp.write("s.ini", text);
+  Scene s = Scene::from_file(scene);
+  s.validate();
+  const Settings st = settings_from_scene(s);
+  ASSERT_EQ(st.rsf.chain.n(), 2);
+  EXPECT_EQ(st.rsf.chain.law[0].params().b_rsf, 0.025);
+  EXPECT_EQ(st.rsf.chain.law[1].params().b_rsf, 0.02);
+  EXPECT_EQ(st.rsf.chain.law[1].params().dc, 2e-5);
+  EXPECT_EQ(st.rsf.theta_start()[1], 2e-5 / 1e-6);  // each block's own steady state
+  const auto r = run_bkquake({"run", scene, "--quiet", "--out", tmp.file("out")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream cat(read_file(tmp.file("out/catalog.csv")));
+  std::string line;
+  std::getline(cat, line);
+  std::vector<double> t0, t1;
+  while (std::getline(cat, line)) {
+    std::vector<double> f;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) f.push_back(std::stod(cell));
+    EXPECT_EQ(f[3], 1);  // uncoupled: one block an event
+    (f[2] == 0 ? t0 : t1).push_back(f[1] / 1e-6);
+  }
+  ASSERT_GE(t0.size(), 10u);
+  ASSERT_GE(t1.size(), 3u);
+  EXPECT_NEAR((t0.back() - t0[2]) / (t0.size() - 3), 585.48, 0.01);
+  EXPECT_GT(std::fabs((t1.back() - t1[1]) / (t1.size() - 2) - 585.48), 10);
+  // A bad row: one line naming the file, the line and the range.
+  tmp.write("blocks.csv", "block,a,b,dc\n0,0.01,0.025,1e-5\n1,0,0.02,2e-5\n");
+  expect_refused(run_bkquake({"run", scene, "--quiet", "--out", tmp.file("bad")}),
+                 {"blocks.csv line 3", "a: expected a value in (0, 10], got 0"});
+}
+
+// The shipped chain scene (32 blocks, asperities from its rsf.blocks file) runs through the
+// catalogue and `bkquake seismicity`: ruptures of one block and of several.
+TEST(RsfRun, ShippedChainSceneRunsThroughTheStatistics) {
+  test::TempDir tmp;
+  const std::string chain =
+      std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-asperities.ini";
+  const auto r =
+      run_bkquake({"run", chain, "--quiet", "--set", "run.duration=1e4", "--out", tmp.file("out")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream cat(read_file(tmp.file("out/catalog.csv")));
+  std::string line;
+  std::getline(cat, line);
+  int events = 0, single = 0, largest = 0;
+  while (std::getline(cat, line)) {
+    std::vector<double> f;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) f.push_back(std::stod(cell));
+    ++events;
+    single += f[3] == 1;
+    largest = std::max(largest, static_cast<int>(f[3]));
+    EXPECT_LE(f[9], f[2]);  // first_block <= trigger <= last_block
+    EXPECT_GE(f[10], f[2]);
+  }
+  EXPECT_GT(events, 100);
+  EXPECT_GT(single, 0);
+  EXPECT_GT(largest, 3);
+  const auto s = run_bkquake({"seismicity", tmp.file("out")});
+  ASSERT_EQ(s.status, 0) << s.err;
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "out" / "seismicity" / "seismicity.json"));
+}
+
+// output.blocks writes rsf_blocks.csv for the chosen blocks, and analysis/plot_rsf.py draws it.
+TEST(RsfRun, BlockSamplesAndTheirPlot) {
+  test::TempDir tmp;
+  const std::string chain =
+      std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-asperities.ini";
+  const auto r = run_bkquake({"run", chain, "--quiet", "--set", "run.duration=2000", "--set",
+                              "output.blocks=true", "--set", "output.every=10", "--set",
+                              "output.block_first=4", "--set", "output.block_count=3", "--out",
+                              tmp.file("out")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream in(read_file(tmp.file("out/rsf_blocks.csv")));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "t,block,slip_rate,theta,shear_stress,slip");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<double> f;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) f.push_back(std::stod(cell));
+    ASSERT_EQ(f.size(), 6u);
+    EXPECT_EQ(f[0], 10.0 * (rows / 3));  // on the grid k * output.every
+    EXPECT_EQ(f[1], 4 + rows % 3);
+    EXPECT_GT(f[2], 0);
+    ++rows;
+  }
+  EXPECT_EQ(rows, 3 * 201);  // t = 0, 10, ..., 2000
+  if (test::run_process("/usr/bin/python3", {"-c", "import numpy, matplotlib"}).status != 0)
+    GTEST_SKIP() << "no numpy/matplotlib for /usr/bin/python3";
+  const auto p = test::run_process(
+      "/usr/bin/python3", {std::string(BKQUAKE_SOURCE_DIR) + "/analysis/plot_rsf.py",
+                           tmp.file("out"), "--blocks", "4", "6", "--out", tmp.file("rsf.png")});
+  ASSERT_EQ(p.status, 0) << p.out << p.err;
+  EXPECT_GT(std::filesystem::file_size(tmp.file("rsf.png")), 10000u);
+}
+
+TEST(RsfRun, StabilityReportsCriticalStiffness) {
+  test::TempDir tmp;
+  const auto r = run_bkquake({"stability", kScene, "--out", tmp.file("st")});
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("k_crit = sigma (b - a)/D_c = 7.5e+09 Pa/m"), std::string::npos) << r.out;
+  const std::string csv = read_file(tmp.file("st/rsf_stability.csv"));
+  EXPECT_EQ(csv.rfind("v_pl,k,k_c,k_crit_quasi_static,k_crit_radiation_damping,k_crit,", 0), 0u);
+  // QDYN's k = 2e9 is below k_crit: its one mode grows.
+  EXPECT_NE(read_file(tmp.file("st/stability.csv")).find("chain 0,0.0549930"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace bkq
