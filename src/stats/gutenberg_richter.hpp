@@ -3,15 +3,17 @@
 // eq. 2.6), so the law is R(mu) = A e^{-b mu} with no ln 10 factors anywhere.
 //
 // The estimators (Aki, Tinti & Mulargia, Shi & Bolt, weighted least squares, two power
-// laws), the automatic window (a ceiling below any rise of the distribution, the lower cut
-// by b-value stability, the upper cut by a departure test of the events above), the
-// systematic error of b and the large-event excess are described in
-// docs/how-to/fit-window.md.
+// laws), the automatic window (a ceiling below the first gap of empty bins and any rise of
+// the distribution, the lower cut by b-value stability, the upper cut by a departure test
+// of the events above, a goodness-of-fit test of the result), the systematic error of b,
+// the block-bootstrap error of b on a catalogue and the large-event excess are described
+// in docs/explanation/b-fit.md and docs/how-to/fit-window.md.
 #pragma once
 
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -46,6 +48,13 @@ struct GrFitOptions {
   double smooth_width = 1.0;
   double rise_factor = 2.0;
   double rise_sigma = 3.0;
+  // Gap: a run of empty bins at least gap_width long (in mu; 5 bins of 0.2, a factor e in
+  // moment) with at least gap_min_above events above it. The automatic window's top stays
+  // below the first gap above its lower end. Integer sizes (OFC, few-block events) leave
+  // runs of at most ln 2 = 0.69 in mu; in the sparse tail of a power law, runs of empty
+  // bins have only a handful of events above them.
+  double gap_width = 1.0;
+  std::int64_t gap_min_above = 10;
   // Lower cut, b-value stability (Cao & Gao 2002; Woessner & Wiemer 2005) adapted to
   // mu = ln M: mu_min is the lowest populated bin edge from which b (binned MLE up to the
   // upper cut) changes by at most max(stability_db, stability_sigma * sigma_b) from each
@@ -75,6 +84,15 @@ struct GrFitOptions {
   // window is a fit when d <= ks_systematic + ks_tolerance / sqrt(n_window).
   double ks_systematic = 0.03;
   double ks_tolerance = 0.5;
+  // Block bootstrap of b over contiguous stretches of the catalogue (block_bootstrap_b):
+  // boot_resamples resamples from a generator seeded with boot_seed; the block length is
+  // the larger of n^(1/3) (n events) and boot_block_factor times the integrated
+  // autocorrelation time of the events' offsets in the window (Sokal's window,
+  // boot_window_factor).
+  std::int64_t boot_resamples = 200;
+  std::uint64_t boot_seed = 20261128;
+  double boot_block_factor = 5.0;
+  double boot_window_factor = 5.0;
   // Polled between the steps of the fit (well under a millisecond apart at <= kMaxScanBins
   // bins); when it returns true the fit throws FitCancelled. Empty: never cancelled.
   std::function<bool()> cancelled;
@@ -97,9 +115,26 @@ struct GrFit {
   // largest populated bin.
   bool truncated = false;
   std::int64_t n_in_window = 0;
-  // Binned MLE (Tinti & Mulargia 1987) and its error.
+  // Why the window's top is where it is: "given", "end of data" (the largest event),
+  // "gap" (below a run of empty bins), "rise" (below a rise of the distribution),
+  // "departure" (the events above depart from the law), "goodness of fit" (lowered until
+  // the window passes the KS test). Empty when there is no window.
+  std::string mu_max_reason;
+  // A window (or an end) given by the user that crosses a gap, takes in a rise or fails
+  // the goodness-of-fit test is fitted all the same, and each of these says so.
+  std::vector<std::string> warnings;
+  // Binned MLE (Tinti & Mulargia 1987) and its error (Shi & Bolt: independent events).
   double b_mle = 0;
   double b_mle_err = 0;
+  // Statistical error of b_mle from a block bootstrap over the catalogue in its order
+  // (block_bootstrap_b; accounts for correlated events), with the block length (events),
+  // the integrated autocorrelation time it was chosen from and the number of resamples.
+  // NaN/0 from a histogram alone (no order of events), with boot_note saying so.
+  double b_mle_boot_err = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t boot_block = 0;
+  double boot_tau_int = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t boot_resamples = 0;
+  std::string boot_note = "no catalogue order (a histogram): no bootstrap error";
   // Systematic error of b_mle: half the range of b over the windows of
   // GrFitOptions::sys_width around this one (sys_windows of them); NaN when no b.
   double b_mle_sys_err = 0;
@@ -183,7 +218,39 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
 // the same window.
 GrFit fit_magnitudes(std::span<const double> mu, double bin_width, std::optional<double> mu_min,
                      std::optional<double> mu_max, const GrFitOptions& opt = {});
-// Adds the unbinned Aki estimate on fit's window.
-void add_unbinned(GrFit& fit, std::span<const double> mu);
+// Adds the unbinned Aki estimate on fit's window, and the block-bootstrap error of b_mle
+// (mu in the catalogue's order).
+void add_unbinned(GrFit& fit, std::span<const double> mu, const GrFitOptions& opt = {});
+
+// Block bootstrap of the binned MLE on a fixed window (Kuensch 1989, circular blocks of
+// Politis & Romano 1992): the catalogue mu (in its order) is cut into blocks of `block`
+// consecutive events (chosen from the data when 0: the larger of n^(1/3) and
+// boot_block_factor times the integrated autocorrelation time of the in-window offsets,
+// Sokal's window), opt.boot_resamples
+// catalogues are drawn from them with a generator seeded by opt.boot_seed, and b's error is
+// the standard deviation of b_mle over them. Events outside the window count towards a
+// block's length but not its fit.
+struct BootstrapError {
+  double err = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t block = 0;
+  double tau_int = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t resamples = 0;
+};
+BootstrapError block_bootstrap_b(std::span<const double> mu, double bin_width, double mu_min,
+                                 double mu_max, bool truncated, const GrFitOptions& opt = {},
+                                 std::int64_t block = 0);
+// The top of a scaling region that starts at mu_start (as the automatic window's ceiling):
+// the upper edge of the highest populated bin below the first gap (GrFitOptions::gap_width)
+// and below the first rise above mu_start; reason "gap", "rise" or "end of data".
+struct ScalingCeiling {
+  double mu_max = 0;
+  std::string reason;
+};
+ScalingCeiling scaling_ceiling(const MagnitudeHistogram& h, double mu_start,
+                               const GrFitOptions& opt = {});
+
+// The integrated autocorrelation time 1 + 2 sum_t rho(t) of a series, summed up to the
+// first lag M >= window_factor * tau(M) (Sokal 1997); 1 for an uncorrelated series.
+double integrated_autocorrelation_time(std::span<const double> x, double window_factor = 5.0);
 
 }  // namespace bkq
