@@ -98,6 +98,33 @@ void SummaryOfEvents::fit() {
     if (!fit_->b_ok) {  // no b rather than a meaningless one (docs/explanation/b-fit.md)
       fit_error_ = "no acceptable fit window: " + fit_->no_b_reason;
       fit_.reset();
+    } else if (ordered_note().empty()) {
+      const BootstrapError boot = block_bootstrap_b(mu_seq_, fit_->bin_width, fit_->mu_min,
+                                                    fit_->mu_max, fit_->truncated, opt);
+      fit_->b_mle_boot_err = boot.err;
+      fit_->boot_block = boot.block;
+      fit_->boot_tau_int = boot.tau_int;
+      fit_->boot_resamples = boot.resamples;
+    } else {
+      fit_->boot_note = ordered_note();
+    }
+    // tau of the avalanche sizes: topplings of an OFC run, blocks of a lattice's events.
+    const bool lattice = settings_.lattice.nx > 1 && settings_.lattice.ny > 1;
+    if (settings_.ofc.on || lattice) {
+      tau_measure_ = settings_.ofc.on ? "topplings" : "blocks";
+      if (ordered_note().empty()) {
+        PowerLawOptions po;
+        po.discrete = true;
+        po.cancelled = stop_requested_;
+        tau_ = fit_power_law(size_seq_, po);
+        if (!tau_->ok) {
+          tau_error_ = tau_->no_fit_reason;
+          tau_.reset();
+        }
+      } else {
+        tau_error_ =
+            ordered_note() + "; bkquake fit --measure " + tau_measure_ + " fits its catalogue";
+      }
     }
     fitted_ = true;
   } catch (const FitCancelled&) {
@@ -111,6 +138,24 @@ void SummaryOfEvents::fit() {
 void SummaryOfEvents::on_resume(const Checkpoint& c) {
   moment_sum_ = c.progress.moment_sum;
   nonpositive_ = c.progress.nonpositive;
+  // The events before the checkpoint are in the catalogue, not here.
+  if (c.progress.moment_sum != 0 || hist_.events() > 0) {
+    ordered_ok_ = false;
+    mu_seq_ = {};
+    size_seq_ = {};
+  }
+}
+
+std::string SummaryOfEvents::ordered_note() const {
+  if (!ordered_ok_)
+    return mu_seq_.empty() && hist_.events() > kMaxOrderedEvents
+               ? "more than " + std::to_string(kMaxOrderedEvents) +
+                     " events: their order is not kept in memory"
+               : "a resumed run: the order of the events before its resume is in its catalogue "
+                 "only";
+  if (static_cast<std::int64_t>(mu_seq_.size()) != hist_.events())
+    return "the events in order do not match the histogram";
+  return {};
 }
 
 void SummaryOfEvents::on_checkpoint(Checkpoint& c) {
@@ -122,6 +167,16 @@ void SummaryOfEvents::add_moments(Json& summary) const {
   summary.set("moment_sum", moment_sum_);
   summary.set("nonpositive_moments", nonpositive_);
   summary.set("bin_width", hist_.bin_width());
+}
+
+void SummaryOfEvents::add_tau(Json& summary) const {
+  if (tau_measure_.empty()) return;
+  if (tau_) {
+    summary.set("tau", power_law_json(*tau_, tau_measure_));
+  } else {
+    summary.set("tau", Json::null());
+    summary.set("tau_error", tau_error_);
+  }
 }
 
 std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
@@ -136,6 +191,7 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
     return std::string("b: not fitted (") + kTooFewToFit + ")";
   }
   fit();
+  add_tau(summary);
   if (!fit_) {
     summary.set("b_mle", Json::null());
     summary.set("fit_error", fit_error_);
@@ -145,6 +201,12 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
   summary.set("b_mle", fit.b_mle);
   summary.set("b_mle_err", fit.b_mle_err);
   summary.set("b_mle_sys_err", fit.b_mle_sys_err);
+  // The statistical error of correlated events (block bootstrap), beside Shi & Bolt's.
+  summary.set("b_mle_boot_err", fit_number(fit.b_mle_boot_err));
+  if (std::isfinite(fit.b_mle_boot_err))
+    summary.set("boot_block", fit.boot_block);
+  else
+    summary.set("boot_note", fit.boot_note);
   // The same slope per unit of moment magnitude Mw (b_mw = 1.5 b_mle; b_mle is per mu = ln M).
   summary.set("b_mw", b_moment_magnitude(fit.b_mle));
   summary.set("b_mw_err", b_moment_magnitude(fit.b_mle_err));
@@ -156,7 +218,9 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
   window.set("automatic", fit.window_auto);
   window.set("events", fit.n_in_window);
   window.set("ks_distance", fit.ks_distance);
+  window.set("mu_max_reason", fit.mu_max_reason);
   summary.set("fit_window", std::move(window));
+  if (!fit.warnings.empty()) summary.set("fit_warnings", Json::strings(fit.warnings));
   char line[200];
   std::snprintf(line, sizeof line, " (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.mu_min,
                 fit.mu_max, static_cast<long long>(fit.n_in_window));

@@ -11,10 +11,12 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/observers/observer.hpp"
 #include "io/settings.hpp"
 #include "stats/gutenberg_richter.hpp"
+#include "stats/power_law.hpp"
 
 namespace bkq {
 
@@ -41,6 +43,17 @@ class SummaryOfEvents : public RunObserver {
   void on_event(const EventRecord& e) override {
     moment_sum_ += e.moment;
     if (!(e.moment > 0)) ++nonpositive_;
+    // The events in their order, for b's block-bootstrap error and tau (up to a bound).
+    if (e.moment > 0 && ordered_ok_) {
+      if (static_cast<std::int64_t>(mu_seq_.size()) >= kMaxOrderedEvents) {
+        ordered_ok_ = false;
+        mu_seq_ = {};
+        size_seq_ = {};
+        return;
+      }
+      mu_seq_.push_back(e.magnitude);
+      size_seq_.push_back(settings_.ofc.on ? static_cast<double>(e.topplings) : e.blocks);
+    }
   }
   void on_checkpoint(Checkpoint& c) override;
 
@@ -50,6 +63,8 @@ class SummaryOfEvents : public RunObserver {
   // Sets the fit's fields (or fit_error; an interrupted run: no fit); returns the line
   // printed about it.
   std::string add_fit(Json& summary, const RunEnd& end);
+  // An OFC run's or a lattice's "tau" (or null and "tau_error").
+  void add_tau(Json& summary) const;
   static constexpr const char* kInterruptedFit =
       "no fit: interrupted (the resumed run fits when it finishes)";
   void fit();
@@ -66,6 +81,15 @@ class SummaryOfEvents : public RunObserver {
   bool fitted_ = false;
   std::optional<GrFit> fit_;
   std::string fit_error_;
+  // The recorded events in order (magnitude, and the size of tau: topplings for OFC, blocks
+  // for a lattice): kept up to kMaxOrderedEvents and when the run was not resumed (a
+  // resumed run's earlier events are in its catalogue only).
+  static constexpr std::int64_t kMaxOrderedEvents = 20'000'000;
+  bool ordered_ok_ = true;
+  std::vector<double> mu_seq_, size_seq_;
+  std::string ordered_note() const;
+  std::optional<PowerLawFit> tau_;
+  std::string tau_measure_, tau_error_;
 };
 
 // Event runs: counts, load, moment sum, work, wall time and the fit.
