@@ -221,7 +221,10 @@ struct AutoWindow {
 };
 
 // Gaps (GrFitOptions::gap_width): runs [begin, end] of at least gap_width of empty bins
-// within bins lo..hi, with at least gap_min_above events above them up to hi.
+// within bins lo..hi that a density not rising above them would have filled: with m events
+// in the B bins from the run's end to the last populated bin up to hi, a non-increasing
+// density puts at least m / B expected events in each bin of the run, so the run is a gap
+// when its length times m / B is at least gap_expected.
 std::vector<std::pair<std::int64_t, std::int64_t>> find_gaps(const MagnitudeHistogram& h,
                                                              std::int64_t lo, std::int64_t hi,
                                                              const GrFitOptions& opt) {
@@ -236,8 +239,14 @@ std::vector<std::pair<std::int64_t, std::int64_t>> find_gaps(const MagnitudeHist
     }
     std::int64_t e = k;
     while (e + 1 <= hi && h.count(e + 1) == 0) ++e;
-    if (e - k + 1 >= G && e < hi && h.count_range(e + 1, hi) >= opt.gap_min_above)
-      gaps.emplace_back(k, e);
+    if (e - k + 1 >= G && e < hi) {
+      std::int64_t top = hi;
+      while (top > e && h.count(top) == 0) --top;
+      const auto m = static_cast<double>(h.count_range(e + 1, top));
+      if (top > e &&
+          static_cast<double>(e - k + 1) * m / static_cast<double>(top - e) >= opt.gap_expected)
+        gaps.emplace_back(k, e);
+    }
     k = e + 1;
   }
   return gaps;
@@ -331,6 +340,12 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
   // How far the last lower_cut got, for the reason when it found no edge: a candidate window
   // large enough, one of those with a finite b > 0.
   bool any_sized = false, any_positive = false;
+  // The second try of the lower cut (when no edge passes with the ceiling as each window's
+  // top): each candidate's top is where the events above still follow its law (upper_cut,
+  // below). A kink below the bump (the dip's shallower slope) makes b drift over windows up
+  // to the ceiling from every edge; up to the departure it does not.
+  bool by_departure = false;
+  std::function<std::optional<std::int64_t>(std::int64_t)> departure_top;
   const auto lower_cut = [&](std::int64_t hi_cap) -> std::optional<std::int64_t> {
     if (lo_given) return lo_given;
     std::optional<std::int64_t> best;
@@ -339,7 +354,13 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
     for (std::int64_t lo = first; lo + L <= hi_cap; ++lo) {
       if (h.count(lo) == 0) continue;
       poll();
-      const std::int64_t hi = std::min(hi_cap, ceiling(lo));
+      std::int64_t top = ceiling(lo);
+      if (by_departure) {
+        const auto t = departure_top(lo);
+        if (!t) continue;
+        top = *t;
+      }
+      const std::int64_t hi = std::min(hi_cap, top);
       if (hi < lo + L || !big_enough(lo, hi)) continue;
       any_sized = true;
       const BEstimate b0 = mle_or_nan(h, lo, hi, truncated(hi));
@@ -355,7 +376,8 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
                     : kInf;
         prev = bj.b;
       }
-      if (worst <= 1) return lo;
+      if (worst <= 1 || (by_departure && worst <= opt.stability_relaxed && fits(lo, hi, b0.b)))
+        return lo;
       if (worst < best_ratio && fits(lo, hi, b0.b)) {
         best_ratio = worst;
         best = lo;
@@ -392,7 +414,23 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
     return std::nullopt;
   };
 
+  departure_top = upper_cut;
   std::optional<std::int64_t> lo = lower_cut(hi_given.value_or(last));
+  if (!lo && !hi_given) {
+    const bool sized = any_sized, positive = any_positive;
+    by_departure = true;  // for the rest of the search
+    lo = lower_cut(last);
+    if (lo)
+      r.notes.push_back("no lower cut keeps b stable on the windows up to the ceiling; mu_min = " +
+                        fmt(h.mu_low(*lo)) + " is the lowest edge stable to within " +
+                        fmt(opt.stability_relaxed) +
+                        " times the tolerance on the windows up to where the events above "
+                        "depart from the power law, and its window passes the KS test");
+    else {
+      any_sized = sized;
+      any_positive = positive;
+    }
+  }
   if (!lo) {
     // Which of the lower cut's tests no candidate passed, in the order they are applied.
     const std::string window = "no window with >= " + std::to_string(opt.min_tail) +

@@ -49,12 +49,15 @@ struct GrFitOptions {
   double rise_factor = 2.0;
   double rise_sigma = 3.0;
   // Gap: a run of empty bins at least gap_width long (in mu; 5 bins of 0.2, a factor e in
-  // moment) with at least gap_min_above events above it. The automatic window's top stays
-  // below the first gap above its lower end. Integer sizes (OFC, few-block events) leave
-  // runs of at most ln 2 = 0.69 in mu; in the sparse tail of a power law, runs of empty
-  // bins have only a handful of events above them.
+  // moment) that a density not rising above it would have filled: with m events in the B
+  // bins above it (up to the largest event), each of its bins would expect at least m / B
+  // events, and the run is a gap when its bins would expect gap_expected events together
+  // (ln 100: an empty run has probability <= 1 %). The automatic window's top stays below
+  // the first gap above its lower end. Integer sizes (OFC, few-block events) leave runs of
+  // at most ln 2 = 0.69 in mu; in the sparse tail of a power law, runs of empty bins have
+  // too few events above them.
   double gap_width = 1.0;
-  std::int64_t gap_min_above = 10;
+  double gap_expected = 4.605170185988091;
   // Lower cut, b-value stability (Cao & Gao 2002; Woessner & Wiemer 2005) adapted to
   // mu = ln M: mu_min is the lowest populated bin edge from which b (binned MLE up to the
   // upper cut) changes by at most max(stability_db, stability_sigma * sigma_b) from each
@@ -65,6 +68,12 @@ struct GrFitOptions {
   double stability_width = 1.6;
   double stability_db = 0.03;
   double stability_sigma = 2.0;
+  // When no edge is stable on the windows up to the ceiling (a kink between the scaling
+  // region and the bump makes b drift on all of them), the search is made again with each
+  // edge's window ending where the events above depart from its law (the upper cut), and
+  // an edge is taken when its steps stay within stability_relaxed times the tolerance and
+  // its window passes the goodness-of-fit test.
+  double stability_relaxed = 1.5;
   // Upper cut, departure from the power law: the events in the departure_width units of
   // mu above the window are fitted alone (truncated binned MLE); the law holds on when
   // that slope lies within [b / departure_ratio, b * departure_ratio] widened by
