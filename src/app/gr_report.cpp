@@ -103,6 +103,7 @@ std::string power_law_table(const PowerLawFit& f, const std::string& measure) {
 Json gr_fit_json(const GrFit& f) {
   Json two = Json::object(), excess = Json::object(), o = Json::object();
   two.set("ok", f.two_law_ok);
+  if (!f.two_law_ok && !f.two_law_reason.empty()) two.set("reason", f.two_law_reason);
   set_fit_numbers(two, {{"b1", f.two_law_b1},
                         {"b2", f.two_law_b2},
                         {"mu_cross", f.two_law_mu_cross},
@@ -143,9 +144,9 @@ Json gr_fit_json(const GrFit& f) {
   set_fit_numbers(o, {{"b_aki", f.b_aki},
                       {"b_aki_err", f.b_aki_err},
                       {"b_lsq", f.b_lsq},
-                      {"b_lsq_err", f.b_lsq_err},
-                      {"ln_A", f.ln_A},
-                      {"ks_distance", f.ks_distance}})
+                      {"b_lsq_err", f.b_lsq_err}});
+  if (!f.b_lsq_reason.empty()) o.set("b_lsq_reason", f.b_lsq_reason);
+  set_fit_numbers(o, {{"ln_A", f.ln_A}, {"ks_distance", f.ks_distance}})
       .set("two_power_law", two)
       .set("excess", excess)
       .set("notes", Json::strings(f.notes));
@@ -198,7 +199,10 @@ std::string gr_fit_table(const GrFit& f) {
     t += "b  unbinned MLE   n/a (needs the magnitudes themselves, not a histogram)\n";
   else
     t += "b  unbinned MLE   " + pm(f.b_aki, f.b_aki_err) + "   (Aki 1965)\n";
-  t += "b  least squares  " + pm(f.b_lsq, f.b_lsq_err) + "   (slope of ln R, weights R)\n";
+  if (std::isfinite(f.b_lsq))
+    t += "b  least squares  " + pm(f.b_lsq, f.b_lsq_err) + "   (slope of ln R, weights R)\n";
+  else
+    t += "b  least squares  none: " + f.b_lsq_reason + "\n";
   t += "KS distance       " + fixed(f.ks_distance) + "\n";
   return t + two_laws_and_notes(f);
 }
@@ -211,7 +215,8 @@ static std::string two_laws_and_notes(const GrFit& f) {
          ", crossover mu~ = " + fixed(f.two_law_mu_cross, 3) +
          " (M~ = " + fixed(f.two_law_moment_cross, 3) + ")   (thesis eq. 2.10)\n";
   else
-    t += "two power laws    not fitted\n";
+    t += "two power laws    none: " +
+         (f.two_law_reason.empty() ? std::string("not fitted") : f.two_law_reason) + "\n";
   if (!f.b_ok)
     t += "large-event excess not tested (no fitted line)\n";
   else if (f.excess_found)

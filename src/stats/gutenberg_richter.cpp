@@ -119,6 +119,11 @@ Line weighted_line(const std::vector<double>& x, const std::vector<double>& y,
 std::string fmt(double x) {
   return format_real(x);
 }
+std::string fmt3(double x) {  // 3 significant digits (a p-value)
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 std::string fmt_short(double x) {  // 3 decimals, for a value in a sentence
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3f", x);
@@ -482,7 +487,10 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
                                ") fails the goodness-of-fit test (KS distance " + fmt_short(d) +
                                " > " + fmt_short(ks_limit(h.count_range(*lo, *hi), opt)) + ")";
     std::optional<std::int64_t> passing;
-    for (std::int64_t top = *hi - 1; !hi_given && top >= *lo + opt.min_window_bins - 1; --top) {
+    // At least min_window_bins and the stability test's span (in mu, whatever the bin
+    // width): a window a few narrow bins wide passes any test.
+    const std::int64_t min_bins = std::max(opt.min_window_bins, L);
+    for (std::int64_t top = *hi - 1; !hi_given && top >= *lo + min_bins - 1; --top) {
       poll();
       if (h.count(top) == 0 || !big_enough(*lo, top)) continue;
       const double b = b_of(top);
@@ -495,7 +503,8 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
       r.reason =
           failed +
           ", and so does every shorter window from mu_min with >= " + std::to_string(opt.min_tail) +
-          " events and >= " + std::to_string(opt.min_window_bins) + " bins (KS distance " +
+          " events, >= " + std::to_string(opt.min_window_bins) +
+          " bins and >= " + fmt(opt.stability_width) + " in mu (KS distance " +
           format_real(opt.ks_systematic) + " + " + format_real(opt.ks_tolerance) + "/sqrt(n))";
       return r;
     }
@@ -695,6 +704,30 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     const Line l = weighted_line(x, y, wt, 0, x.size());
     f.b_lsq = -l.slope;
     f.b_lsq_err = l.slope_err;
+    // Its own test: the counts the line implies in each bin, R(k) - R(k + 1), against the
+    // observed ones (Pearson chi^2 over the bins expecting >= 5 events, 2 parameters).
+    double chi2 = 0;
+    std::int64_t used = 0;
+    for (std::int64_t k = k_lo; k <= k_hi && std::isfinite(l.slope); ++k) {
+      const double e = std::exp(l.intercept + l.slope * h.mu_low(k)) -
+                       std::exp(l.intercept + l.slope * h.mu_high(k));
+      if (!(e >= 5)) continue;
+      const double d = static_cast<double>(h.count(k)) - e;
+      chi2 += d * d / e;
+      ++used;
+    }
+    const double p =
+        used > 2 ? boost::math::gamma_q(0.5 * static_cast<double>(used - 2), 0.5 * chi2) : kNaN;
+    if (!(p >= opt.secondary_p)) {
+      f.b_lsq_reason =
+          used > 2
+              ? "the least-squares line of ln R fails its own test: the counts it implies "
+                "differ from the window's by chi^2 = " +
+                    fmt_short(chi2) + " over " + std::to_string(used) + " bins (p = " + fmt3(p) +
+                    " < " + fmt_short(opt.secondary_p) + ")"
+              : "fewer than 3 bins expecting >= 5 events: the least-squares line is not tested";
+      f.b_lsq = f.b_lsq_err = kNaN;
+    }
   }
 
   // Two power laws on ln D (Ferre 2018 eq. 2.10), crossover scanned over the bin edges.
@@ -710,6 +743,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     }
     constexpr std::size_t kMinSide = 3;
     double best = kInf;
+    std::size_t best_split = 0;
+    std::pair<Line, Line> best_lines;
     const bool scan = x.size() <= static_cast<std::size_t>(kMaxScanBins);
     for (std::size_t s = kMinSide; scan && x.size() >= 2 * kMinSide && s + kMinSide <= x.size();
          ++s) {
@@ -719,6 +754,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       if (!std::isfinite(a.slope) || !std::isfinite(b.slope)) continue;
       if (a.ssr + b.ssr < best) {
         best = a.ssr + b.ssr;
+        best_split = s;
+        best_lines = {a, b};
         f.two_law_ok = true;
         f.two_law_b1 = -a.slope;
         f.two_law_b2 = -b.slope;
@@ -731,10 +768,33 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       }
     }
     if (!scan)
-      f.notes.push_back("two-power-law fit skipped: more than " + std::to_string(kMaxScanBins) +
-                        " populated bins above mu_min");
+      f.two_law_reason = "two-power-law fit skipped: more than " + std::to_string(kMaxScanBins) +
+                         " populated bins above mu_min";
     else if (!f.two_law_ok)
-      f.notes.push_back("two-power-law fit skipped: fewer than 6 populated bins above mu_min");
+      f.two_law_reason = "two-power-law fit skipped: fewer than 6 populated bins above mu_min";
+    // Its own test: the Poisson deviance of the bins' counts against the counts the two
+    // lines imply, chi^2 with (bins - 4) degrees of freedom.
+    if (f.two_law_ok) {
+      const double dof = static_cast<double>(x.size()) - 4;
+      double dev = 0;
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const Line& l = i < best_split ? best_lines.first : best_lines.second;
+        const double r = y[i] - (l.intercept + l.slope * x[i]);  // ln(c / expected)
+        const double c = wt[i], expected = c * std::exp(-r);
+        dev += 2 * (c * r - (c - expected));
+      }
+      best = dev;
+      const double p = dof > 0 ? boost::math::gamma_q(0.5 * dof, 0.5 * dev) : kNaN;
+      if (!(p >= opt.secondary_p)) {
+        f.two_law_ok = false;
+        f.two_law_reason =
+            "two power laws fail their own test: Poisson deviance " + fmt_short(best) + " for " +
+            std::to_string(static_cast<std::int64_t>(dof)) + " degrees of freedom (p = " + fmt3(p) +
+            " < " + fmt_short(opt.secondary_p) + ")";
+        f.two_law_b1 = f.two_law_b2 = f.two_law_mu_cross = f.two_law_moment_cross = kNaN;
+        f.two_law_ln_A1 = f.two_law_ln_A2 = f.two_law_mu_low = f.two_law_mu_high = kNaN;
+      }
+    }
   }
 
   // Large-event excess over the fitted line R = A e^{-b mu}. Inside a truncated window
@@ -801,7 +861,8 @@ void add_unbinned(GrFit& fit, std::span<const double> mu, const GrFitOptions& op
   fit.boot_resamples = boot.resamples;
   fit.boot_note = std::isfinite(boot.err)
                       ? "block bootstrap over the catalogue: " + std::to_string(boot.resamples) +
-                            " resamples of blocks of " + std::to_string(boot.block) + " events (" +
+                            " resamples of blocks of " + std::to_string(boot.block) +
+                            " events (the larger of n^(1/3) and " +
                             fmt_short(opt.boot_block_factor) +
                             " x the integrated autocorrelation time " + fmt_short(boot.tau_int) +
                             "), seed " + std::to_string(opt.boot_seed)

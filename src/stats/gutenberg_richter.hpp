@@ -93,6 +93,9 @@ struct GrFitOptions {
   // window is a fit when d <= ks_systematic + ks_tolerance / sqrt(n_window).
   double ks_systematic = 0.03;
   double ks_tolerance = 0.5;
+  // The secondary estimates (b_lsq, the two power laws) are given only where their own
+  // chi^2 test gives p >= secondary_p.
+  double secondary_p = 0.001;
   // Block bootstrap of b over contiguous stretches of the catalogue (block_bootstrap_b):
   // boot_resamples resamples from a generator seeded with boot_seed; the block length is
   // the larger of n^(1/3) (n events) and boot_block_factor times the integrated
@@ -152,14 +155,20 @@ struct GrFit {
   // themselves are not available.
   double b_aki = 0;
   double b_aki_err = 0;
-  // Least squares slope of ln R.
+  // Least squares slope of ln R; NaN with b_lsq_reason when the line fails its own test
+  // (Pearson chi^2 of the window's counts against the counts the line implies, bins
+  // expecting >= 5 events, p < secondary_p).
   double b_lsq = 0;
   double b_lsq_err = 0;
+  std::string b_lsq_reason;
   // R(mu) = A e^{-b_mle mu}, normalised so the window holds n_in_window events.
   double ln_A = 0;
   double ks_distance = 0;
-  // Two power laws (Ferre 2018 eq. 2.10).
+  // Two power laws (Ferre 2018 eq. 2.10); not ok, with two_law_reason, when not fitted or
+  // when the two lines fail their own test (chi^2 of ln D with Poisson weights, p <
+  // secondary_p).
   bool two_law_ok = false;
+  std::string two_law_reason;
   double two_law_b1 = 0;            // slope below the crossover (localised events)
   double two_law_b2 = 0;            // slope above the crossover (delocalised events)
   double two_law_mu_cross = 0;      // crossover magnitude mu~ = ln M~ (a bin edge)

@@ -15,6 +15,7 @@
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "io/catalog_reader.hpp"
 #include "io/checkpoint.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
@@ -98,32 +99,34 @@ void SummaryOfEvents::fit() {
     if (!fit_->b_ok) {  // no b rather than a meaningless one (docs/explanation/b-fit.md)
       fit_error_ = "no acceptable fit window: " + fit_->no_b_reason;
       fit_.reset();
-    } else if (ordered_note().empty()) {
-      const BootstrapError boot = block_bootstrap_b(mu_seq_, fit_->bin_width, fit_->mu_min,
+    }
+    const bool lattice = settings_.lattice.nx > 1 && settings_.lattice.ny > 1;
+    if (settings_.ofc.on || lattice) tau_measure_ = settings_.ofc.on ? "topplings" : "blocks";
+    Ordered ordered;
+    if (fit_ || !tau_measure_.empty()) ordered = read_ordered();
+    if (fit_ && ordered.note.empty()) {
+      const BootstrapError boot = block_bootstrap_b(ordered.mu, fit_->bin_width, fit_->mu_min,
                                                     fit_->mu_max, fit_->truncated, opt);
       fit_->b_mle_boot_err = boot.err;
       fit_->boot_block = boot.block;
       fit_->boot_tau_int = boot.tau_int;
       fit_->boot_resamples = boot.resamples;
-    } else {
-      fit_->boot_note = ordered_note();
+    } else if (fit_) {
+      fit_->boot_note = ordered.note;
     }
     // tau of the avalanche sizes: topplings of an OFC run, blocks of a lattice's events.
-    const bool lattice = settings_.lattice.nx > 1 && settings_.lattice.ny > 1;
-    if (settings_.ofc.on || lattice) {
-      tau_measure_ = settings_.ofc.on ? "topplings" : "blocks";
-      if (ordered_note().empty()) {
+    if (!tau_measure_.empty()) {
+      if (ordered.note.empty()) {
         PowerLawOptions po;
         po.discrete = true;
         po.cancelled = stop_requested_;
-        tau_ = fit_power_law(size_seq_, po);
+        tau_ = fit_power_law(ordered.size, po);
         if (!tau_->ok) {
           tau_error_ = tau_->no_fit_reason;
           tau_.reset();
         }
       } else {
-        tau_error_ =
-            ordered_note() + "; bkquake fit --measure " + tau_measure_ + " fits its catalogue";
+        tau_error_ = ordered.note;
       }
     }
     fitted_ = true;
@@ -138,24 +141,43 @@ void SummaryOfEvents::fit() {
 void SummaryOfEvents::on_resume(const Checkpoint& c) {
   moment_sum_ = c.progress.moment_sum;
   nonpositive_ = c.progress.nonpositive;
-  // The events before the checkpoint are in the catalogue, not here.
-  if (c.progress.moment_sum != 0 || hist_.events() > 0) {
-    ordered_ok_ = false;
-    mu_seq_ = {};
-    size_seq_ = {};
-  }
 }
 
-std::string SummaryOfEvents::ordered_note() const {
-  if (!ordered_ok_)
-    return mu_seq_.empty() && hist_.events() > kMaxOrderedEvents
-               ? "more than " + std::to_string(kMaxOrderedEvents) +
-                     " events: their order is not kept in memory"
-               : "a resumed run: the order of the events before its resume is in its catalogue "
-                 "only";
-  if (static_cast<std::int64_t>(mu_seq_.size()) != hist_.events())
-    return "the events in order do not match the histogram";
-  return {};
+SummaryOfEvents::Ordered SummaryOfEvents::read_ordered() const {
+  Ordered o;
+  std::string file;
+  for (const char* name : {"catalog.csv", "catalog.h5"})
+    if (std::filesystem::exists(out_.path(name))) file = out_.path(name);
+  if (file.empty()) {
+    o.note = "no catalogue written (output.catalog = none): no order of events";
+    return o;
+  }
+  if (hist_.events() > kMaxOrderedEvents) {
+    o.note = "more than " + std::to_string(kMaxOrderedEvents) +
+             " events: fit the catalogue with bkquake fit";
+    return o;
+  }
+  try {
+    CatalogReader reader(file);
+    CatalogEvent e;
+    while (reader.next(e)) {
+      if (!(e.moment > 0)) continue;  // as the histogram
+      o.mu.push_back(e.magnitude);
+      o.size.push_back(settings_.ofc.on ? static_cast<double>(e.topplings) : e.blocks);
+    }
+  } catch (const Error& err) {
+    o.mu.clear();
+    o.size.clear();
+    o.note = std::string("the catalogue does not read: ") + err.what();
+    return o;
+  }
+  if (static_cast<std::int64_t>(o.mu.size()) != hist_.events()) {
+    o.note = "the catalogue holds " + std::to_string(o.mu.size()) + " events, the histogram " +
+             std::to_string(hist_.events());
+    o.mu.clear();
+    o.size.clear();
+  }
+  return o;
 }
 
 void SummaryOfEvents::on_checkpoint(Checkpoint& c) {
@@ -210,8 +232,13 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
   // The same slope per unit of moment magnitude Mw (b_mw = 1.5 b_mle; b_mle is per mu = ln M).
   summary.set("b_mw", b_moment_magnitude(fit.b_mle));
   summary.set("b_mw_err", b_moment_magnitude(fit.b_mle_err));
-  summary.set("b_lsq", fit.b_lsq);
-  summary.set("b_lsq_err", fit.b_lsq_err);
+  if (std::isfinite(fit.b_lsq)) {
+    summary.set("b_lsq", fit.b_lsq);
+    summary.set("b_lsq_err", fit.b_lsq_err);
+  } else {
+    summary.set("b_lsq", Json::null());
+  }
+  if (!fit.b_lsq_reason.empty()) summary.set("b_lsq_reason", fit.b_lsq_reason);
   Json window = Json::object();
   window.set("mu_min", fit.mu_min);
   window.set("mu_max", fit.mu_max);

@@ -43,17 +43,6 @@ class SummaryOfEvents : public RunObserver {
   void on_event(const EventRecord& e) override {
     moment_sum_ += e.moment;
     if (!(e.moment > 0)) ++nonpositive_;
-    // The events in their order, for b's block-bootstrap error and tau (up to a bound).
-    if (e.moment > 0 && ordered_ok_) {
-      if (static_cast<std::int64_t>(mu_seq_.size()) >= kMaxOrderedEvents) {
-        ordered_ok_ = false;
-        mu_seq_ = {};
-        size_seq_ = {};
-        return;
-      }
-      mu_seq_.push_back(e.magnitude);
-      size_seq_.push_back(settings_.ofc.on ? static_cast<double>(e.topplings) : e.blocks);
-    }
   }
   void on_checkpoint(Checkpoint& c) override;
 
@@ -81,13 +70,16 @@ class SummaryOfEvents : public RunObserver {
   bool fitted_ = false;
   std::optional<GrFit> fit_;
   std::string fit_error_;
-  // The recorded events in order (magnitude, and the size of tau: topplings for OFC, blocks
-  // for a lattice): kept up to kMaxOrderedEvents and when the run was not resumed (a
-  // resumed run's earlier events are in its catalogue only).
   static constexpr std::int64_t kMaxOrderedEvents = 20'000'000;
-  bool ordered_ok_ = true;
-  std::vector<double> mu_seq_, size_seq_;
-  std::string ordered_note() const;
+  // The recorded events in their order, read back from the run's catalogue when the fit is
+  // made (the same for a resumed run as for one run straight through): magnitudes for b's
+  // block-bootstrap error, sizes for tau (topplings for OFC, blocks for a lattice). Empty,
+  // with the reason, when the run writes no catalogue or it does not read.
+  struct Ordered {
+    std::vector<double> mu, size;
+    std::string note;  // why there are none
+  };
+  Ordered read_ordered() const;
   std::optional<PowerLawFit> tau_;
   std::string tau_measure_, tau_error_;
 };
