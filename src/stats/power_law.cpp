@@ -285,9 +285,12 @@ double ks_tail(const Sample& s, const Tail& t, double alpha, double a, double b,
 // x_max, at most `grid` of them evenly spaced in ln x.
 std::vector<double> x_min_grid(const Sample& s, double x_max, const PowerLawOptions& opt) {
   const Tail all = s.tail(0, x_max);
-  if (all.n() < opt.min_tail) return {};
+  const auto need = std::max<std::int64_t>(
+      opt.min_tail,
+      static_cast<std::int64_t>(std::ceil(opt.min_tail_share * static_cast<double>(all.n()))));
+  if (all.n() < need) return {};
   const double lo = s.x[all.i0];
-  const double hi = s.x[all.i1 - static_cast<std::size_t>(opt.min_tail)];
+  const double hi = s.x[all.i1 - static_cast<std::size_t>(need)];
   std::vector<double> out;
   const auto add = [&](double v) {
     auto it = std::lower_bound(s.x.begin() + static_cast<std::ptrdiff_t>(all.i0),

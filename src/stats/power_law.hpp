@@ -21,11 +21,14 @@
 namespace bkq {
 
 struct PowerLawOptions {
-  bool discrete = false;         // the measure is an integer (blocks, topplings, area)
-  std::optional<double> x_min;   // given; else the KS scan over the grid below
-  std::optional<double> x_max;   // given; else x_max_auto decides
-  bool x_max_auto = true;        // below the first gap or rise of ln x (GrFitOptions' tests)
-  std::int64_t min_tail = 50;    // fewest events in [x_min, x_max]
+  bool discrete = false;        // the measure is an integer (blocks, topplings, area)
+  std::optional<double> x_min;  // given; else the KS scan over the grid below
+  std::optional<double> x_max;  // given; else x_max_auto decides
+  bool x_max_auto = true;       // below the first gap or rise of ln x (GrFitOptions' tests)
+  std::int64_t min_tail = 50;   // fewest events in [x_min, x_max]
+  // and at least this share of the values up to x_max: a tail of a few dozen events beyond
+  // a cut-off (the finite size of a lattice) looks like a steep power law to the KS scan.
+  double min_tail_share = 0.01;
   std::int64_t x_min_grid = 30;  // at most this many x_min candidates, even in ln x
   std::int64_t gof_sets = 100;   // synthetic sets of the goodness-of-fit p-value (0: none)
   std::int64_t boot_resamples = 200;
