@@ -6,7 +6,9 @@
 For each run folder (an event run or a merge; any folder with histogram.csv) it reads
 histogram.csv and summary.json and draws D(mu) (events per unit magnitude) and R(mu)
 (events with magnitude >= mu) on logarithmic y-axes, in two panels, with the fit of
-summary.json (b = b_mle on the window [mu_min, mu_max), thesis eqs. 2.7-2.8;
+summary.json (b = b_mle on the window [mu_min, mu_max), thesis eqs. 2.7-2.8; the legend
+says why the automatic window ends where it does (gap, rise, departure, goodness of fit) and
+gives b's block-bootstrap error where the run has it;
 docs/explanation/b-fit.md): the window is shaded (several runs: a strip per run at the bottom), and the fitted law is drawn where it applies, over the
 window, so that it passes through the data there:
   D(mu): the expected counts per unit magnitude of the window's (truncated) geometric law;
@@ -39,6 +41,16 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bkquake_io  # noqa: E402
+
+
+# Why the automatic window ends where it does (summary.json's fit_window.mu_max_reason).
+STOP_TEXT = {
+    "gap": "; ends below a gap of empty bins",
+    "rise": "; ends below the rise into the bump",
+    "departure": "; ends where the events above depart from the law",
+    "goodness of fit": "; lowered until it passes the goodness-of-fit test",
+    "end of data": "; ends at the largest event",
+}
 
 
 def fitted_law(h, b, lo, hi):
@@ -135,10 +147,14 @@ def plot_run(run, i, args, ax_d, ax_r, dcol, rcol):
     ax_d.plot(centre[keep], d[keep], "o", ms=3, color=colour, label=name)
     ax_r.plot(h["mu_low"][r > 0], r[r > 0], "o", ms=3, color=colour, label=name)
     fit = bkquake_io.fit_window(summary)
-    err = summary.get("b_mle_err", float("nan"))
+    # The statistical error of correlated events (block bootstrap) where the run has it.
+    err = summary.get("b_mle_boot_err") or summary.get("b_mle_err", float("nan"))
+    window_info = summary.get("fit_window") or summary.get("fit") or {}
+    stop = STOP_TEXT.get(window_info.get("mu_max_reason", ""), "")
     sys_err = summary.get("b_mle_sys_err", float("nan"))
     if args.mu_min is not None:
         lo, hi = args.mu_min, args.mu_max
+        stop = ""
         b, err = binned_mle(h, lo, hi)
         sys_err = systematic(h, lo, hi)
         fit = (b, lo, hi) if np.isfinite(b) else None
@@ -160,7 +176,7 @@ def plot_run(run, i, args, ax_d, ax_r, dcol, rcol):
     mark = "shaded" if len(args.runs) == 1 else "strip at the bottom"
     given = " given" if args.mu_min is not None else ""
     text = (f"b = {b:.3f} ± {err:.3f} (stat.) ± {sys_err:.3f} (sys.), b_mw = 1.5 b = "
-            f"{1.5 * b:.3f}, on{given} [{lo:.1f}, {hi:.1f}) ({mark})")
+            f"{1.5 * b:.3f}, on{given} [{lo:.1f}, {hi:.1f}) ({mark}{stop})")
     ax_d.plot(centres, d_fit * scale, "-", color=colour, lw=1.5, label=text)
     ax_r.plot(edges, r_fit * scale, "-", color=colour, lw=1.5, label=text)
     # b's systematic band: the law with b -/+ sys, normalised alike.

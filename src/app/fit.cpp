@@ -26,6 +26,7 @@
 #include "io/sweep_file.hpp"
 #include "stats/event_classes.hpp"
 #include "stats/gutenberg_richter.hpp"
+#include "stats/power_law.hpp"
 
 namespace bkq {
 
@@ -204,7 +205,18 @@ void write_json(const Json& o, const DerivedOutput& target) {
   }
 }
 
+// The size measures of `fit --measure` (moment: the Gutenberg-Richter fit alone).
+bool measure_is_integer(const std::string& m) {
+  return m == "blocks" || m == "topplings" || m == "area";
+}
+void require_catalogue_for(const FitRequest& r) {
+  if (r.measure != "moment")
+    throw Error("fit: --measure " + r.measure +
+                " needs a catalogue (a histogram or a sweep holds magnitudes only)");
+}
+
 void fit_one_histogram(const FitRequest& request, const Resolved& in, std::ostream& out) {
+  require_catalogue_for(request);
   // The folder rule (io/run_folder.hpp): --json never over the histogram or a run's files.
   std::unique_ptr<DerivedOutput> json_out;
   if (request.json)
@@ -303,8 +315,21 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
     class_note = "event classes skipped: a lattice of " + std::to_string(rows) +
                  " rows, and the catalogue lacks trigger_row/first_row/last_row";
 
+  // The size measure's column (checked before the catalogue is read through).
+  const std::string& measure = request.measure;
+  if (measure == "topplings" && !reader.has_topplings())
+    throw Error("fit: --measure topplings: " + reader.file() +
+                " has no topplings column (an OFC catalogue has)");
+  if (measure == "duration" && !reader.has_duration())
+    throw Error("fit: --measure duration: " + reader.file() + " has no duration column");
+  if ((measure == "blocks" || measure == "area") && !reader.has_extent())
+    throw Error("fit: --measure " + measure + ": " + reader.file() + " has no blocks column");
+  if (measure == "area" && rows <= 1 && !reader.has_topplings())
+    throw Error(
+        "fit: --measure area: the area of the slip map is the number of sites of a "
+        "lattice or an OFC run; this catalogue is of a chain (use --measure blocks)");
   MagnitudeHistogram hist(request.bin_width);
-  std::vector<double> magnitudes;
+  std::vector<double> magnitudes, sizes;
   EventClassCounts classes;
   CatalogEvent e;
   const std::string blocks_from = request.blocks ? "--blocks" : scene.string();
@@ -312,6 +337,12 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
     if (classes_on) check_extent(e, reader, *blocks, rows, lattice, blocks_from);
     add_magnitude(hist, e.magnitude, magnitudes, request, reader);
     magnitudes.push_back(e.magnitude);
+    if (measure == "blocks" || measure == "area")
+      sizes.push_back(e.blocks);
+    else if (measure == "topplings")
+      sizes.push_back(static_cast<double>(e.topplings));
+    else if (measure == "duration")
+      sizes.push_back(e.duration);
     if (classes_on)
       classes.add(lattice ? classify_lattice_event(e.blocks, e.first_block, e.last_block,
                                                    e.first_row, e.last_row, *blocks, rows)
@@ -355,11 +386,19 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
         << class_counts_table(classes);
   else
     out << "note: " << class_note << "\n";
+  std::optional<PowerLawFit> tau;
+  if (measure != "moment") {
+    PowerLawOptions po;
+    po.discrete = measure_is_integer(measure);
+    tau = fit_power_law(sizes, po);
+    out << power_law_table(*tau, measure);
+  }
   if (request.scan) write_scan(hist, fit, request.out.value_or(in.folder), in.file, out);
 
   if (request.json) {
     Json o = Json::object();
     o.set("catalog", catalog.string()).set("fit", gr_fit_json(fit));
+    if (tau) o.set("tau", power_law_json(*tau, measure));
     if (interrupted || killed) o.set("run_status", status_text(RunStatus::Interrupted));
     if (writer) o.set("run_status", "running");
     if (classes_on) {
@@ -414,6 +453,7 @@ std::string csv_quoted(const std::string& s) {
 
 // Each point of a sweep folder refitted from its merged histogram.csv into sweep_fit.csv.
 void refit_sweep(const FitRequest& request, const fs::path& dir, std::ostream& out) {
+  require_catalogue_for(request);
   if (request.scan)
     throw Error("fit: --scan applies to one run, catalogue or histogram, not a sweep");
   const std::string csv_path = (dir / "sweep.csv").string();

@@ -9,9 +9,10 @@
 //     event classes or another bin width: it holds the counts of its own bins only;
 //   - a sweep folder (sweep.ini and sweep.csv): each point's merged histogram refitted on
 //     the request's window, written to sweep_fit.csv beside sweep.csv.
-// With `scan`, b_scan.csv (io/b_scan_csv.hpp) goes into the folder fitted (or `out`). Files
-// written into a folder are written under its lock (io/folder_lock.hpp) and replace only
-// their own earlier versions.
+// With a measure other than moment, a catalogue's sizes are also fitted by a power law
+// (tau, printed and in the JSON's "tau"). With `scan`, b_scan.csv (io/b_scan_csv.hpp) goes into the
+// folder fitted (or `out`). Files written into a folder are written under its lock
+// (io/folder_lock.hpp) and replace only their own earlier versions.
 #pragma once
 
 #include <filesystem>
@@ -34,6 +35,10 @@ struct FitRequest {
   std::optional<std::filesystem::path> json;  // also write the result here
   bool scan = false;                          // write b_scan.csv
   std::optional<std::filesystem::path> out;   // folder for b_scan.csv (default: the input's)
+  // The size measure: "moment" (the Gutenberg-Richter b of mu = ln moment), or "blocks",
+  // "topplings", "area", "duration" (a power law p(x) ~ x^-tau, stats/power_law.hpp; a
+  // catalogue only).
+  std::string measure = "moment";
 };
 
 // Prints the fit table (and the class counts) to `out` and writes the JSON, b_scan.csv or

@@ -8,6 +8,7 @@
 #include "io/json.hpp"
 #include "stats/event_classes.hpp"
 #include "stats/gutenberg_richter.hpp"
+#include "stats/power_law.hpp"
 
 namespace bkq {
 
@@ -15,6 +16,10 @@ namespace bkq {
 // non-finite ones as null.
 Json gr_fit_json(const GrFit& f);
 Json class_counts_json(const EventClassCounts& c);
+// A power-law fit of a size measure as summary.json's and fit --json's "tau": measure,
+// value (tau), err (block bootstrap), x_min, x_max (null: none), p, and the rest.
+Json power_law_json(const PowerLawFit& f, const std::string& measure);
+std::string power_law_table(const PowerLawFit& f, const std::string& measure);
 // A real written as the fit reports write it (Json::Real::shortest).
 inline Json fit_number(double x) {
   return Json::number(x, Json::Real::shortest);

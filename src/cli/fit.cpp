@@ -42,7 +42,11 @@ int cmd_fit(const std::vector<std::string>& args) {
     ("json", po::value<std::string>(), "also write the result as JSON to this file")
     ("scan", "also write b_scan.csv: b on every window, and the windows of its systematic "
              "error (into the folder fitted, or --out)")
-    ("out", po::value<std::string>(), "folder for b_scan.csv (default: the folder fitted)");
+    ("out", po::value<std::string>(), "folder for b_scan.csv (default: the folder fitted)")
+    ("measure", po::value<std::string>()->default_value("moment"),
+                "size measure: moment (the b of mu = ln moment) | blocks | topplings | area | "
+                "duration (a catalogue's sizes also fitted by a power law x^-tau: Clauset et "
+                "al. 2009)");
   // clang-format on
   const po::variables_map vm = parse_command_line("fit", args, opts, "catalog", 1);
   if (printed_help(vm, opts)) return 0;
@@ -79,6 +83,11 @@ int cmd_fit(const std::vector<std::string>& args) {
   if (vm.count("boundary")) request.boundary = vm["boundary"].as<std::string>();
   if (vm.count("json")) request.json = vm["json"].as<std::string>();
   request.scan = vm.count("scan") > 0;
+  request.measure = vm["measure"].as<std::string>();
+  if (request.measure != "moment" && request.measure != "blocks" &&
+      request.measure != "topplings" && request.measure != "area" && request.measure != "duration")
+    throw Error("fit: --measure: expected one of moment, blocks, topplings, area, duration, got '" +
+                request.measure + "'");
   if (vm.count("out")) request.out = vm["out"].as<std::string>();
   fit_catalog(request, std::cout);
   return 0;

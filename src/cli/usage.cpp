@@ -11,6 +11,7 @@ Usage:
   bkquake run [SCENE] [--set section.key=value]... [--out DIR] [--resume] [--force]
   bkquake run --dump-defaults      print a commented scene with every key at its default
   bkquake fit CATALOG|HISTOGRAM|RUN_DIR|MERGED_DIR|SWEEP_DIR [--mu-min A] [--mu-max B] [--scan]
+              [--measure moment|blocks|topplings|area|duration]
               [--bin-width W] [--blocks N] [--json OUT]
   bkquake merge RUN_DIR... --out DIR [--mu-min A] [--mu-max B] [--force]
   bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]
@@ -27,6 +28,7 @@ Commands:
   run     simulate a scene (event-driven or continuously driven) and write
           scene.ini, catalog.csv, histogram.csv, summary.json (+ timeseries.csv)
   fit     fit the Gutenberg-Richter law R = A exp(-b mu) to an event catalogue
+          (--measure: also a power law x^-tau of another size of the events)
   merge   merge the histograms of runs of the same scene and fit the result
   accuracy  work-precision study: error against time per event for every scheme and dt
   spectrum  amplitude spectrum of a continuous run's signal, peaks beside the natural

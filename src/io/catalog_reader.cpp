@@ -18,8 +18,9 @@ namespace {
 
 // The columns an HDF5 catalogue is read with, in the order of h5 below.
 const std::vector<std::string> kH5Columns = {
-    col::event,     col::load,    col::blocks,   col::first_block, col::last_block, col::moment,
-    col::magnitude, col::trigger, col::duration, col::trigger_row, col::first_row,  col::last_row};
+    col::event,     col::load,      col::blocks,   col::first_block, col::last_block,
+    col::moment,    col::magnitude, col::trigger,  col::duration,    col::trigger_row,
+    col::first_row, col::last_row,  col::topplings};
 
 // The largest block or row index a catalogue may hold (far above any chain or lattice).
 constexpr std::int64_t kMaxIndex = 1'000'000'000;
@@ -53,9 +54,9 @@ void CatalogReader::check_row(const CatalogEvent& e, const std::string& where) c
 CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.string()) {
   if (is_hdf5_file(file_)) {
     h5_ = std::make_unique<CatalogH5Reader>(file_, kH5Columns);
-    int* c[] = {&c_event_,    &c_load_,        &c_blocks_,    &c_first_,
-                &c_last_,     &c_moment_,      &c_magnitude_, &c_trigger_,
-                &c_duration_, &c_trigger_row_, &c_first_row_, &c_last_row_};
+    int* c[] = {&c_event_,     &c_load_,      &c_blocks_,   &c_first_,    &c_last_,
+                &c_moment_,    &c_magnitude_, &c_trigger_,  &c_duration_, &c_trigger_row_,
+                &c_first_row_, &c_last_row_,  &c_topplings_};
     for (std::size_t k = 0; k < kH5Columns.size(); ++k)
       *c[k] = h5_->has(k) ? static_cast<int>(k) : -1;
     if (c_moment_ < 0 && c_magnitude_ < 0)
@@ -84,6 +85,7 @@ CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.str
   c_trigger_row_ = csv::find_column(header, schema, col::trigger_row);
   c_first_row_ = csv::find_column(header, schema, col::first_row);
   c_last_row_ = csv::find_column(header, schema, col::last_row);
+  c_topplings_ = csv::find_column(header, schema, col::topplings);
   if (c_moment_ < 0 && c_magnitude_ < 0)
     throw Error(file_ + ": missing column '" + col::moment + "' (header: " + header_line + ")");
 }
@@ -113,6 +115,7 @@ bool CatalogReader::next_h5(CatalogEvent& e) {
   if (c_first_row_ >= 0) e.first_row = as_int(c_first_row_, col::first_row);
   if (c_last_row_ >= 0) e.last_row = as_int(c_last_row_, col::last_row);
   if (c_duration_ >= 0) e.duration = v[c_duration_];
+  if (c_topplings_ >= 0) e.topplings = as_int(c_topplings_, col::topplings);
   if (c_moment_ >= 0) {
     e.moment = v[c_moment_];
     if (!(e.moment > 0) || !std::isfinite(e.moment))
@@ -168,6 +171,7 @@ bool CatalogReader::next(CatalogEvent& e) {
     if (c_last_row_ >= 0) e.last_row = as_int(c_last_row_, col::last_row);
     if (c_duration_ >= 0)
       e.duration = csv::parse_double(field(c_duration_), file_, lineno_, col::duration);
+    if (c_topplings_ >= 0) e.topplings = as_int(c_topplings_, col::topplings);
     if (c_moment_ >= 0) {
       e.moment = csv::parse_double(field(c_moment_), file_, lineno_, col::moment);
       if (!(e.moment > 0) || !std::isfinite(e.moment))

@@ -6,7 +6,7 @@
 // Required: a header line and the column `moment` (or, failing that, `magnitude`).
 // Optional: event, load, trigger, blocks, duration, first_block, last_block (the event
 // classes need blocks and the extent; bkquake seismicity the others), and a lattice's
-// trigger_row, first_row, last_row. The magnitude used is
+// trigger_row, first_row, last_row; an OFC catalogue's topplings. The magnitude used is
 // ln(moment) (Ferre 2018 eq. 2.6). A row is refused when a time (load) or duration is not
 // finite, an index is not in [0, 1e9], or first_block > last_block (first_row > last_row):
 // bkquake writes the lowest and highest block that slipped.
@@ -39,6 +39,7 @@ class CatalogReader {
   bool has_load() const { return c_load_ >= 0; }
   bool has_trigger() const { return c_trigger_ >= 0; }
   bool has_duration() const { return c_duration_ >= 0; }
+  bool has_topplings() const { return c_topplings_ >= 0; }  // an OFC catalogue
   // A lattice's catalogue (model.rows > 1): trigger_row, first_row and last_row.
   bool has_rows() const { return c_trigger_row_ >= 0 && c_first_row_ >= 0 && c_last_row_ >= 0; }
   std::int64_t events_read() const { return events_; }
@@ -59,7 +60,7 @@ class CatalogReader {
   std::size_t n_fields_ = 0;
   int c_event_ = -1, c_load_ = -1, c_blocks_ = -1, c_first_ = -1, c_last_ = -1;
   int c_moment_ = -1, c_magnitude_ = -1, c_trigger_ = -1, c_duration_ = -1;
-  int c_trigger_row_ = -1, c_first_row_ = -1, c_last_row_ = -1;
+  int c_trigger_row_ = -1, c_first_row_ = -1, c_last_row_ = -1, c_topplings_ = -1;
   // Refuses a row no run writes (see the file comment), naming `where`.
   void check_row(const CatalogEvent& e, const std::string& where) const;
   // catalog.h5: the columns in the order of the c_ indices above, read a block at a time.

@@ -218,7 +218,8 @@ PYBIND11_MODULE(_bkquake, m) {
   m.def(
       "fit_catalog",
       [](const std::string& catalog, const std::string& json_out, std::optional<double> mu_min,
-         std::optional<double> mu_max, std::optional<double> bin_width) {
+         std::optional<double> mu_max, std::optional<double> bin_width,
+         const std::string& measure) {
         // Each argument checked against the scene key it stands for, as bkquake fit does.
         const auto check = [](const char* name, const char* key, std::optional<double> v) {
           if (v) option_value(std::string("fit: ") + name, key, format_real(*v));
@@ -232,6 +233,13 @@ PYBIND11_MODULE(_bkquake, m) {
           throw Error("fit: mu_max must be greater than mu_min");
         if (bin_width) r.bin_width = *check("bin_width", "stats.bin_width", bin_width);
         r.json = json_out;
+        if (measure != "moment" && measure != "blocks" && measure != "topplings" &&
+            measure != "area" && measure != "duration")
+          throw Error(
+              "fit: measure: expected one of moment, blocks, topplings, area, duration, "
+              "got '" +
+              measure + "'");
+        r.measure = measure;
         py::gil_scoped_release release;
         NullBuffer null;
         std::ostream discard(&null);
@@ -239,6 +247,7 @@ PYBIND11_MODULE(_bkquake, m) {
       },
       py::arg("catalog"), py::arg("json_out"), py::arg("mu_min") = py::none(),
       py::arg("mu_max") = py::none(), py::arg("bin_width") = py::none(),
+      py::arg("measure") = "moment",
       "bkquake fit CATALOG --json JSON_OUT [--mu-min A] [--mu-max B] [--bin-width W].");
 
   m.def(

@@ -6,10 +6,12 @@
 #include "core/format.hpp"
 
 #include <algorithm>
+#include <array>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <random>
 #include <tuple>
 #include <utility>
 
@@ -117,6 +119,11 @@ Line weighted_line(const std::vector<double>& x, const std::vector<double>& y,
 std::string fmt(double x) {
   return format_real(x);
 }
+std::string fmt3(double x) {  // 3 significant digits (a p-value)
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 std::string fmt_short(double x) {  // 3 decimals, for a value in a sentence
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3f", x);
@@ -213,9 +220,68 @@ BEstimate mle_or_nan(const MagnitudeHistogram& h, std::int64_t lo, std::int64_t 
 struct AutoWindow {
   bool ok = false;
   std::int64_t lo = 0, hi = 0;
-  std::string reason;  // why no window, when !ok
+  std::string reason;      // why no window, when !ok
+  std::string top_reason;  // GrFit::mu_max_reason
   std::vector<std::string> notes;
 };
+
+// Gaps (GrFitOptions::gap_width): runs [begin, end] of at least gap_width of empty bins
+// within bins lo..hi that a density not rising above them would have filled: with m events
+// in the B bins from the run's end to the last populated bin up to hi, a non-increasing
+// density puts at least m / B expected events in each bin of the run, so the run is a gap
+// when its length times m / B is at least gap_expected.
+std::vector<std::pair<std::int64_t, std::int64_t>> find_gaps(const MagnitudeHistogram& h,
+                                                             std::int64_t lo, std::int64_t hi,
+                                                             const GrFitOptions& opt) {
+  std::vector<std::pair<std::int64_t, std::int64_t>> gaps;
+  const std::int64_t G = std::max<std::int64_t>(1, std::llround(opt.gap_width / h.bin_width()));
+  lo = std::max(lo, h.first_bin());
+  hi = std::min(hi, h.last_bin());
+  for (std::int64_t k = lo; k <= hi;) {
+    if (h.count(k) != 0) {
+      ++k;
+      continue;
+    }
+    std::int64_t e = k;
+    while (e + 1 <= hi && h.count(e + 1) == 0) ++e;
+    if (e - k + 1 >= G && e < hi) {
+      std::int64_t top = hi;
+      while (top > e && h.count(top) == 0) --top;
+      const auto m = static_cast<double>(h.count_range(e + 1, top));
+      if (top > e &&
+          static_cast<double>(e - k + 1) * m / static_cast<double>(top - e) >= opt.gap_expected)
+        gaps.emplace_back(k, e);
+    }
+    k = e + 1;
+  }
+  return gaps;
+}
+
+// The first bin k in start..end at which the running sum S of the counts over
+// smooth_width climbs to rise_factor times its lowest value from start on, by rise_sigma
+// Poisson standard deviations (GrFitOptions::rise_factor); nullopt when none does.
+std::optional<std::int64_t> first_rise(const MagnitudeHistogram& h, std::int64_t start,
+                                       std::int64_t end, const GrFitOptions& opt) {
+  const double w = h.bin_width();
+  const std::int64_t first = h.first_bin(), last = h.last_bin();
+  const std::int64_t half =
+      std::max<std::int64_t>(1, std::llround(0.5 * (opt.smooth_width / w - 1)));
+  const auto S = [&](std::int64_t k) {
+    return static_cast<double>(h.count_range(std::max(first, k - half), std::min(last, k + half)));
+  };
+  double s_min = S(start);
+  for (std::int64_t k = start; k <= std::min(end, last); ++k) {
+    const double s = S(k);
+    if (s > opt.rise_factor * s_min && s - s_min > opt.rise_sigma * std::sqrt(s + s_min)) return k;
+    s_min = std::min(s_min, s);
+  }
+  return std::nullopt;
+}
+
+// The goodness-of-fit tolerance of a window of n events (GrFitOptions::ks_tolerance).
+double ks_limit(std::int64_t n, const GrFitOptions& opt) {
+  return opt.ks_systematic + opt.ks_tolerance / std::sqrt(static_cast<double>(n));
+}
 
 // The automatic window (docs/how-to/fit-window.md): a ceiling below any rise of D(mu)
 // (the dip and bump of large events), the lower cut by b-value stability, the upper cut
@@ -239,35 +305,35 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
   // functions): a share ks_systematic of the window's events plus the statistical
   // ks_tolerance / sqrt(n).
   const auto fits = [&](std::int64_t lo, std::int64_t hi, double b) {
-    const double n = static_cast<double>(h.count_range(lo, hi));
-    return ks_distance_binned(h, lo, hi, b, truncated(hi)) <=
-           opt.ks_systematic + opt.ks_tolerance / std::sqrt(n);
+    return ks_distance_binned(h, lo, hi, b, truncated(hi)) <= ks_limit(h.count_range(lo, hi), opt);
   };
 
-  // Ceiling of a window starting at `start`: the running sum S of the counts over
-  // smooth_width, walked up from there, must not climb to rise_factor times its lowest
-  // value below, by rise_sigma Poisson standard deviations; the highest populated bin
-  // before such a rise.
-  const std::int64_t half =
-      std::max<std::int64_t>(1, std::llround(0.5 * (opt.smooth_width / w - 1)));
-  const auto S = [&](std::int64_t k) {
-    return static_cast<double>(h.count_range(std::max(first, k - half), std::min(last, k + half)));
+  // Ceiling of a window starting at `start`: below the first gap above it (find_gaps),
+  // and below the first rise (first_rise) of the running sum of the counts from there;
+  // the highest populated bin before either, with the reason.
+  const std::vector<std::pair<std::int64_t, std::int64_t>> gaps = find_gaps(h, first, last, opt);
+  struct Ceiling {
+    std::int64_t top;
+    const char* reason;
   };
-  const auto ceiling = [&](std::int64_t start) {
-    if (hi_given) return *hi_given;
+  const auto ceiling_of = [&](std::int64_t start) -> Ceiling {
+    if (hi_given) return {*hi_given, "given"};
     std::int64_t top = last;
-    double s_min = S(start);
-    for (std::int64_t k = start; k <= last; ++k) {
-      const double s = S(k);
-      if (s > opt.rise_factor * s_min && s - s_min > opt.rise_sigma * std::sqrt(s + s_min)) {
-        top = k - 1;
+    const char* reason = "end of data";
+    for (const auto& g : gaps)
+      if (g.first > start) {
+        top = g.first - 1;
+        reason = "gap";
         break;
       }
-      s_min = std::min(s_min, s);
+    if (const auto k = first_rise(h, start, top, opt)) {
+      top = *k - 1;
+      reason = "rise";
     }
     while (top > start && h.count(top) == 0) --top;
-    return top;
+    return {top, reason};
   };
+  const auto ceiling = [&](std::int64_t start) { return ceiling_of(start).top; };
 
   // Lower cut: for each populated bin edge lo, b from lo + j up to hi (the upper cut, at
   // most lo's ceiling) for j = 0..L; lo is stable when b moves by at most
@@ -279,6 +345,12 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
   // How far the last lower_cut got, for the reason when it found no edge: a candidate window
   // large enough, one of those with a finite b > 0.
   bool any_sized = false, any_positive = false;
+  // The second try of the lower cut (when no edge passes with the ceiling as each window's
+  // top): each candidate's top is where the events above still follow its law (upper_cut,
+  // below). A kink below the bump (the dip's shallower slope) makes b drift over windows up
+  // to the ceiling from every edge; up to the departure it does not.
+  bool by_departure = false;
+  std::function<std::optional<std::int64_t>(std::int64_t)> departure_top;
   const auto lower_cut = [&](std::int64_t hi_cap) -> std::optional<std::int64_t> {
     if (lo_given) return lo_given;
     std::optional<std::int64_t> best;
@@ -287,7 +359,13 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
     for (std::int64_t lo = first; lo + L <= hi_cap; ++lo) {
       if (h.count(lo) == 0) continue;
       poll();
-      const std::int64_t hi = std::min(hi_cap, ceiling(lo));
+      std::int64_t top = ceiling(lo);
+      if (by_departure) {
+        const auto t = departure_top(lo);
+        if (!t) continue;
+        top = *t;
+      }
+      const std::int64_t hi = std::min(hi_cap, top);
       if (hi < lo + L || !big_enough(lo, hi)) continue;
       any_sized = true;
       const BEstimate b0 = mle_or_nan(h, lo, hi, truncated(hi));
@@ -303,7 +381,8 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
                     : kInf;
         prev = bj.b;
       }
-      if (worst <= 1) return lo;
+      if (worst <= 1 || (by_departure && worst <= opt.stability_relaxed && fits(lo, hi, b0.b)))
+        return lo;
       if (worst < best_ratio && fits(lo, hi, b0.b)) {
         best_ratio = worst;
         best = lo;
@@ -340,7 +419,23 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
     return std::nullopt;
   };
 
+  departure_top = upper_cut;
   std::optional<std::int64_t> lo = lower_cut(hi_given.value_or(last));
+  if (!lo && !hi_given) {
+    const bool sized = any_sized, positive = any_positive;
+    by_departure = true;  // for the rest of the search
+    lo = lower_cut(last);
+    if (lo)
+      r.notes.push_back("no lower cut keeps b stable on the windows up to the ceiling; mu_min = " +
+                        fmt(h.mu_low(*lo)) + " is the lowest edge stable to within " +
+                        fmt(opt.stability_relaxed) +
+                        " times the tolerance on the windows up to where the events above "
+                        "depart from the power law, and its window passes the KS test");
+    else {
+      any_sized = sized;
+      any_positive = positive;
+    }
+  }
   if (!lo) {
     // Which of the lower cut's tests no candidate passed, in the order they are applied.
     const std::string window = "no window with >= " + std::to_string(opt.min_tail) +
@@ -380,6 +475,43 @@ AutoWindow automatic_window(const MagnitudeHistogram& h, std::optional<std::int6
     }
     r.notes.push_back("the events above depart from the power law at every top from mu_min = " +
                       fmt(h.mu_low(*lo)) + "; mu_max is the top of the shortest window");
+  }
+  const Ceiling c = ceiling_of(*lo);
+  r.top_reason = hi_given ? "given" : *hi == c.top ? c.reason : "departure";
+  // Goodness of fit of the window found: when it fails, the highest lower top from mu_min
+  // whose window passes; when none does, no b.
+  const auto b_of = [&](std::int64_t top) { return mle_or_nan(h, *lo, top, truncated(top)).b; };
+  if (!hi_given && !fits(*lo, *hi, b_of(*hi))) {
+    const double d = ks_distance_binned(h, *lo, *hi, b_of(*hi), truncated(*hi));
+    const std::string failed = "the window [" + fmt(h.mu_low(*lo)) + ", " + fmt(h.mu_high(*hi)) +
+                               ") fails the goodness-of-fit test (KS distance " + fmt_short(d) +
+                               " > " + fmt_short(ks_limit(h.count_range(*lo, *hi), opt)) + ")";
+    std::optional<std::int64_t> passing;
+    // At least min_window_bins and the stability test's span (in mu, whatever the bin
+    // width): a window a few narrow bins wide passes any test.
+    const std::int64_t min_bins = std::max(opt.min_window_bins, L);
+    for (std::int64_t top = *hi - 1; !hi_given && top >= *lo + min_bins - 1; --top) {
+      poll();
+      if (h.count(top) == 0 || !big_enough(*lo, top)) continue;
+      const double b = b_of(top);
+      if (b > 0 && std::isfinite(b) && fits(*lo, top, b)) {
+        passing = top;
+        break;
+      }
+    }
+    if (!passing) {
+      r.reason =
+          failed +
+          ", and so does every shorter window from mu_min with >= " + std::to_string(opt.min_tail) +
+          " events, >= " + std::to_string(opt.min_window_bins) +
+          " bins and >= " + fmt(opt.stability_width) + " in mu (KS distance " +
+          format_real(opt.ks_systematic) + " + " + format_real(opt.ks_tolerance) + "/sqrt(n))";
+      return r;
+    }
+    r.notes.push_back(failed + "; mu_max lowered to " + fmt(h.mu_high(*passing)) +
+                      ", the highest top whose window passes");
+    hi = passing;
+    r.top_reason = "goodness of fit";
   }
   r.ok = true;
   r.lo = *lo;
@@ -492,6 +624,7 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     if (win.ok) {
       k_lo = win.lo;
       k_hi = win.hi;
+      f.mu_max_reason = win.top_reason;
       f.notes.insert(f.notes.end(), win.notes.begin(), win.notes.end());
     } else {
       no_window = win.reason;
@@ -519,6 +652,26 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     no_window =
         "b_mle = " + fmt_short(e.b) + " on the window: the events do not decrease with magnitude";
   f.ks_distance = ks_distance_binned(h, k_lo, k_hi, e.b, f.truncated);
+  if (mu_min && mu_max) f.mu_max_reason = "given";
+  // A window given by the user is fitted whatever it crosses, and warned about.
+  if ((mu_min || mu_max) && no_window.empty()) {
+    for (const auto& g : find_gaps(h, k_lo, k_hi, opt))
+      f.warnings.push_back("the window crosses a gap: no events in [" + fmt(h.mu_low(g.first)) +
+                           ", " + fmt(h.mu_high(g.second)) + "), " +
+                           std::to_string(g.second - g.first + 1) + " empty bins with " +
+                           std::to_string(h.count_range(g.second + 1, k_hi)) +
+                           " events above them in the window");
+    if (const auto k = first_rise(h, std::max(k_lo, h.first_bin()), k_hi, opt))
+      f.warnings.push_back(
+          "the window takes in a rise of the distribution at mu = " + fmt(h.mu_low(*k)) +
+          " (the counts over " + fmt(opt.smooth_width) + " in mu climb to more than " +
+          fmt(opt.rise_factor) + " times their lowest value below)");
+    const double limit = ks_limit(f.n_in_window, opt);
+    if (std::isfinite(f.ks_distance) && f.ks_distance > limit)
+      f.warnings.push_back("the window fails the goodness-of-fit test: KS distance " +
+                           fmt_short(f.ks_distance) + " > " + fmt_short(limit) + " (" +
+                           fmt(opt.ks_systematic) + " + " + fmt(opt.ks_tolerance) + "/sqrt(n))");
+  }
   const double nw = static_cast<double>(f.n_in_window);
   f.ln_A = std::log(nw) + f.b_mle * f.mu_min;
   if (f.truncated) f.ln_A -= std::log(-std::expm1(-f.b_mle * (f.mu_max - f.mu_min)));
@@ -551,6 +704,30 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     const Line l = weighted_line(x, y, wt, 0, x.size());
     f.b_lsq = -l.slope;
     f.b_lsq_err = l.slope_err;
+    // Its own test: the counts the line implies in each bin, R(k) - R(k + 1), against the
+    // observed ones (Pearson chi^2 over the bins expecting >= 5 events, 2 parameters).
+    double chi2 = 0;
+    std::int64_t used = 0;
+    for (std::int64_t k = k_lo; k <= k_hi && std::isfinite(l.slope); ++k) {
+      const double e = std::exp(l.intercept + l.slope * h.mu_low(k)) -
+                       std::exp(l.intercept + l.slope * h.mu_high(k));
+      if (!(e >= 5)) continue;
+      const double d = static_cast<double>(h.count(k)) - e;
+      chi2 += d * d / e;
+      ++used;
+    }
+    const double p =
+        used > 2 ? boost::math::gamma_q(0.5 * static_cast<double>(used - 2), 0.5 * chi2) : kNaN;
+    if (!(p >= opt.secondary_p)) {
+      f.b_lsq_reason =
+          used > 2
+              ? "the least-squares line of ln R fails its own test: the counts it implies "
+                "differ from the window's by chi^2 = " +
+                    fmt_short(chi2) + " over " + std::to_string(used) + " bins (p = " + fmt3(p) +
+                    " < " + fmt_short(opt.secondary_p) + ")"
+              : "fewer than 3 bins expecting >= 5 events: the least-squares line is not tested";
+      f.b_lsq = f.b_lsq_err = kNaN;
+    }
   }
 
   // Two power laws on ln D (Ferre 2018 eq. 2.10), crossover scanned over the bin edges.
@@ -566,6 +743,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
     }
     constexpr std::size_t kMinSide = 3;
     double best = kInf;
+    std::size_t best_split = 0;
+    std::pair<Line, Line> best_lines;
     const bool scan = x.size() <= static_cast<std::size_t>(kMaxScanBins);
     for (std::size_t s = kMinSide; scan && x.size() >= 2 * kMinSide && s + kMinSide <= x.size();
          ++s) {
@@ -575,6 +754,8 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       if (!std::isfinite(a.slope) || !std::isfinite(b.slope)) continue;
       if (a.ssr + b.ssr < best) {
         best = a.ssr + b.ssr;
+        best_split = s;
+        best_lines = {a, b};
         f.two_law_ok = true;
         f.two_law_b1 = -a.slope;
         f.two_law_b2 = -b.slope;
@@ -587,10 +768,33 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
       }
     }
     if (!scan)
-      f.notes.push_back("two-power-law fit skipped: more than " + std::to_string(kMaxScanBins) +
-                        " populated bins above mu_min");
+      f.two_law_reason = "two-power-law fit skipped: more than " + std::to_string(kMaxScanBins) +
+                         " populated bins above mu_min";
     else if (!f.two_law_ok)
-      f.notes.push_back("two-power-law fit skipped: fewer than 6 populated bins above mu_min");
+      f.two_law_reason = "two-power-law fit skipped: fewer than 6 populated bins above mu_min";
+    // Its own test: the Poisson deviance of the bins' counts against the counts the two
+    // lines imply, chi^2 with (bins - 4) degrees of freedom.
+    if (f.two_law_ok) {
+      const double dof = static_cast<double>(x.size()) - 4;
+      double dev = 0;
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const Line& l = i < best_split ? best_lines.first : best_lines.second;
+        const double r = y[i] - (l.intercept + l.slope * x[i]);  // ln(c / expected)
+        const double c = wt[i], expected = c * std::exp(-r);
+        dev += 2 * (c * r - (c - expected));
+      }
+      best = dev;
+      const double p = dof > 0 ? boost::math::gamma_q(0.5 * dof, 0.5 * dev) : kNaN;
+      if (!(p >= opt.secondary_p)) {
+        f.two_law_ok = false;
+        f.two_law_reason =
+            "two power laws fail their own test: Poisson deviance " + fmt_short(best) + " for " +
+            std::to_string(static_cast<std::int64_t>(dof)) + " degrees of freedom (p = " + fmt3(p) +
+            " < " + fmt_short(opt.secondary_p) + ")";
+        f.two_law_b1 = f.two_law_b2 = f.two_law_mu_cross = f.two_law_moment_cross = kNaN;
+        f.two_law_ln_A1 = f.two_law_ln_A2 = f.two_law_mu_low = f.two_law_mu_high = kNaN;
+      }
+    }
   }
 
   // Large-event excess over the fitted line R = A e^{-b mu}. Inside a truncated window
@@ -640,12 +844,147 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
   return f;
 }
 
-void add_unbinned(GrFit& fit, std::span<const double> mu) {
-  if (!fit.b_ok) return;
+void add_unbinned(GrFit& fit, std::span<const double> mu, const GrFitOptions& opt) {
+  if (!fit.b_ok) {
+    fit.boot_note = "no b, no bootstrap error";
+    return;
+  }
   const BEstimate a =
       aki_mle(mu, fit.mu_min, fit.truncated ? std::optional<double>(fit.mu_max) : std::nullopt);
   fit.b_aki = a.b;
   fit.b_aki_err = a.err;
+  const BootstrapError boot =
+      block_bootstrap_b(mu, fit.bin_width, fit.mu_min, fit.mu_max, fit.truncated, opt);
+  fit.b_mle_boot_err = boot.err;
+  fit.boot_block = boot.block;
+  fit.boot_tau_int = boot.tau_int;
+  fit.boot_resamples = boot.resamples;
+  fit.boot_note = std::isfinite(boot.err)
+                      ? "block bootstrap over the catalogue: " + std::to_string(boot.resamples) +
+                            " resamples of blocks of " + std::to_string(boot.block) +
+                            " events (the larger of n^(1/3) and " +
+                            fmt_short(opt.boot_block_factor) +
+                            " x the integrated autocorrelation time " + fmt_short(boot.tau_int) +
+                            "), seed " + std::to_string(opt.boot_seed)
+                      : "block bootstrap: too few events in the window";
+}
+
+ScalingCeiling scaling_ceiling(const MagnitudeHistogram& h, double mu_start,
+                               const GrFitOptions& opt) {
+  ScalingCeiling c;
+  if (h.events() == 0) throw Error("scaling ceiling: no events");
+  const std::int64_t start = std::max(h.first_bin(), h.bin_of(mu_start));
+  std::int64_t top = h.last_bin();
+  c.reason = "end of data";
+  for (const auto& g : find_gaps(h, start, h.last_bin(), opt))
+    if (g.first > start) {
+      top = g.first - 1;
+      c.reason = "gap";
+      break;
+    }
+  if (const auto k = first_rise(h, start, top, opt)) {
+    top = *k - 1;
+    c.reason = "rise";
+  }
+  while (top > start && h.count(top) == 0) --top;
+  c.mu_max = h.mu_high(top);
+  return c;
+}
+
+double integrated_autocorrelation_time(std::span<const double> x, double window_factor) {
+  const std::size_t n = x.size();
+  if (n < 4) return 1;
+  double mean = 0;
+  for (double v : x) mean += v;
+  mean /= static_cast<double>(n);
+  const auto C = [&](std::size_t t) {
+    double c = 0;
+    for (std::size_t i = 0; i + t < n; ++i) c += (x[i] - mean) * (x[i + t] - mean);
+    return c / static_cast<double>(n - t);
+  };
+  const double c0 = C(0);
+  if (!(c0 > 0)) return 1;
+  double tau = 1;
+  // Lags up to a tenth of the series at most: beyond, the estimate is noise.
+  for (std::size_t t = 1; t < n / 10; ++t) {
+    tau += 2 * C(t) / c0;
+    if (static_cast<double>(t) >= window_factor * tau) break;
+  }
+  return std::max(tau, 1.0);
+}
+
+BootstrapError block_bootstrap_b(std::span<const double> mu, double bin_width, double mu_min,
+                                 double mu_max, bool truncated, const GrFitOptions& opt,
+                                 std::int64_t block) {
+  BootstrapError r;
+  const std::size_t n = mu.size();
+  const MagnitudeHistogram binner(bin_width);
+  const std::int64_t k_lo = std::llround(mu_min / bin_width);
+  const std::int64_t k_hi = std::llround(mu_max / bin_width) - 1;
+  // Per event: in the window, and its offset (bin - first bin) * w, as binned_mle sums it.
+  std::vector<double> in(n, 0), off(n, 0);
+  std::int64_t n_in = 0;
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int64_t k = binner.bin_of(mu[i]);
+    if (k < k_lo || k > k_hi) continue;
+    in[i] = 1;
+    off[i] = static_cast<double>(k - k_lo) * bin_width;
+    ++n_in;
+    sum += off[i];
+  }
+  if (n_in < 2 || opt.boot_resamples < 2) return r;
+  // The influence of each event on the window's mean offset: zero outside the window.
+  {
+    const double mean = sum / static_cast<double>(n_in);
+    std::vector<double> z(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      if (in[i] != 0) z[i] = off[i] - mean;
+    r.tau_int = integrated_autocorrelation_time(z, opt.boot_window_factor);
+  }
+  // The larger of boot_block_factor tau_int and n^(1/3) (the rate of the optimal block
+  // length for a variance, Hall, Horowitz & Jing 1995).
+  r.block =
+      block > 0
+          ? block
+          : static_cast<std::int64_t>(std::ceil(std::max(
+                {1.0, opt.boot_block_factor * r.tau_int, std::cbrt(static_cast<double>(n))})));
+  r.block = std::min<std::int64_t>(r.block, static_cast<std::int64_t>(n));
+  // Prefix sums over the series and its first `block` events again (circular blocks).
+  const std::size_t L = static_cast<std::size_t>(r.block);
+  // (count, sum of offsets) side by side: one cache line per block end.
+  std::vector<std::array<double, 2>> cum(n + L + 1, {0, 0});
+  for (std::size_t i = 0; i < n + L; ++i)
+    cum[i + 1] = {cum[i][0] + in[i % n], cum[i][1] + off[i % n]};
+  const double w = bin_width;
+  const Model model{truncated ? static_cast<double>(k_hi - k_lo + 1) * w : kInf, w};
+  // A portable generator (the standard distributions are not): blocks start at
+  // (rng() >> 11) * n / 2^53.
+  std::mt19937_64 rng(opt.boot_seed);
+  double s1 = 0, s2 = 0;
+  std::int64_t m = 0;
+  for (std::int64_t b = 0; b < opt.boot_resamples; ++b) {
+    double cnt = 0, tot = 0;
+    for (std::size_t filled = 0; filled < n; filled += L) {
+      const auto start = static_cast<std::size_t>(static_cast<double>(rng() >> 11) * 0x1.0p-53 *
+                                                  static_cast<double>(n));
+      const std::size_t len = std::min(L, n - filled);
+      cnt += cum[start + len][0] - cum[start][0];
+      tot += cum[start + len][1] - cum[start][1];
+    }
+    if (cnt < 2) continue;
+    const double bb = solve_b(model, tot / cnt);
+    if (!std::isfinite(bb)) continue;
+    s1 += bb;
+    s2 += bb * bb;
+    ++m;
+  }
+  r.resamples = m;
+  if (m < 2) return r;
+  const double mean_b = s1 / static_cast<double>(m);
+  r.err = std::sqrt(
+      std::max(0.0, (s2 - static_cast<double>(m) * mean_b * mean_b) / static_cast<double>(m - 1)));
+  return r;
 }
 
 GrFit fit_magnitudes(std::span<const double> mu, double bin_width, std::optional<double> mu_min,
@@ -653,7 +992,7 @@ GrFit fit_magnitudes(std::span<const double> mu, double bin_width, std::optional
   MagnitudeHistogram h(bin_width);
   for (double m : mu) h.add(m);
   GrFit f = fit_histogram(h, mu_min, mu_max, opt);
-  add_unbinned(f, mu);
+  add_unbinned(f, mu, opt);
   return f;
 }
 

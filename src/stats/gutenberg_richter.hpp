@@ -3,15 +3,17 @@
 // eq. 2.6), so the law is R(mu) = A e^{-b mu} with no ln 10 factors anywhere.
 //
 // The estimators (Aki, Tinti & Mulargia, Shi & Bolt, weighted least squares, two power
-// laws), the automatic window (a ceiling below any rise of the distribution, the lower cut
-// by b-value stability, the upper cut by a departure test of the events above), the
-// systematic error of b and the large-event excess are described in
-// docs/how-to/fit-window.md.
+// laws), the automatic window (a ceiling below the first gap of empty bins and any rise of
+// the distribution, the lower cut by b-value stability, the upper cut by a departure test
+// of the events above, a goodness-of-fit test of the result), the systematic error of b,
+// the block-bootstrap error of b on a catalogue and the large-event excess are described
+// in docs/explanation/b-fit.md and docs/how-to/fit-window.md.
 #pragma once
 
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -46,6 +48,16 @@ struct GrFitOptions {
   double smooth_width = 1.0;
   double rise_factor = 2.0;
   double rise_sigma = 3.0;
+  // Gap: a run of empty bins at least gap_width long (in mu; 5 bins of 0.2, a factor e in
+  // moment) that a density not rising above it would have filled: with m events in the B
+  // bins above it (up to the largest event), each of its bins would expect at least m / B
+  // events, and the run is a gap when its bins would expect gap_expected events together
+  // (ln 100: an empty run has probability <= 1 %). The automatic window's top stays below
+  // the first gap above its lower end. Integer sizes (OFC, few-block events) leave runs of
+  // at most ln 2 = 0.69 in mu; in the sparse tail of a power law, runs of empty bins have
+  // too few events above them.
+  double gap_width = 1.0;
+  double gap_expected = 4.605170185988091;
   // Lower cut, b-value stability (Cao & Gao 2002; Woessner & Wiemer 2005) adapted to
   // mu = ln M: mu_min is the lowest populated bin edge from which b (binned MLE up to the
   // upper cut) changes by at most max(stability_db, stability_sigma * sigma_b) from each
@@ -56,6 +68,12 @@ struct GrFitOptions {
   double stability_width = 1.6;
   double stability_db = 0.03;
   double stability_sigma = 2.0;
+  // When no edge is stable on the windows up to the ceiling (a kink between the scaling
+  // region and the bump makes b drift on all of them), the search is made again with each
+  // edge's window ending where the events above depart from its law (the upper cut), and
+  // an edge is taken when its steps stay within stability_relaxed times the tolerance and
+  // its window passes the goodness-of-fit test.
+  double stability_relaxed = 1.5;
   // Upper cut, departure from the power law: the events in the departure_width units of
   // mu above the window are fitted alone (truncated binned MLE); the law holds on when
   // that slope lies within [b / departure_ratio, b * departure_ratio] widened by
@@ -75,6 +93,18 @@ struct GrFitOptions {
   // window is a fit when d <= ks_systematic + ks_tolerance / sqrt(n_window).
   double ks_systematic = 0.03;
   double ks_tolerance = 0.5;
+  // The secondary estimates (b_lsq, the two power laws) are given only where their own
+  // chi^2 test gives p >= secondary_p.
+  double secondary_p = 0.001;
+  // Block bootstrap of b over contiguous stretches of the catalogue (block_bootstrap_b):
+  // boot_resamples resamples from a generator seeded with boot_seed; the block length is
+  // the larger of n^(1/3) (n events) and boot_block_factor times the integrated
+  // autocorrelation time of the events' offsets in the window (Sokal's window,
+  // boot_window_factor).
+  std::int64_t boot_resamples = 200;
+  std::uint64_t boot_seed = 20261128;
+  double boot_block_factor = 5.0;
+  double boot_window_factor = 5.0;
   // Polled between the steps of the fit (well under a millisecond apart at <= kMaxScanBins
   // bins); when it returns true the fit throws FitCancelled. Empty: never cancelled.
   std::function<bool()> cancelled;
@@ -97,9 +127,26 @@ struct GrFit {
   // largest populated bin.
   bool truncated = false;
   std::int64_t n_in_window = 0;
-  // Binned MLE (Tinti & Mulargia 1987) and its error.
+  // Why the window's top is where it is: "given", "end of data" (the largest event),
+  // "gap" (below a run of empty bins), "rise" (below a rise of the distribution),
+  // "departure" (the events above depart from the law), "goodness of fit" (lowered until
+  // the window passes the KS test). Empty when there is no window.
+  std::string mu_max_reason;
+  // A window (or an end) given by the user that crosses a gap, takes in a rise or fails
+  // the goodness-of-fit test is fitted all the same, and each of these says so.
+  std::vector<std::string> warnings;
+  // Binned MLE (Tinti & Mulargia 1987) and its error (Shi & Bolt: independent events).
   double b_mle = 0;
   double b_mle_err = 0;
+  // Statistical error of b_mle from a block bootstrap over the catalogue in its order
+  // (block_bootstrap_b; accounts for correlated events), with the block length (events),
+  // the integrated autocorrelation time it was chosen from and the number of resamples.
+  // NaN/0 from a histogram alone (no order of events), with boot_note saying so.
+  double b_mle_boot_err = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t boot_block = 0;
+  double boot_tau_int = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t boot_resamples = 0;
+  std::string boot_note = "no catalogue order (a histogram): no bootstrap error";
   // Systematic error of b_mle: half the range of b over the windows of
   // GrFitOptions::sys_width around this one (sys_windows of them); NaN when no b.
   double b_mle_sys_err = 0;
@@ -108,14 +155,20 @@ struct GrFit {
   // themselves are not available.
   double b_aki = 0;
   double b_aki_err = 0;
-  // Least squares slope of ln R.
+  // Least squares slope of ln R; NaN with b_lsq_reason when the line fails its own test
+  // (Pearson chi^2 of the window's counts against the counts the line implies, bins
+  // expecting >= 5 events, p < secondary_p).
   double b_lsq = 0;
   double b_lsq_err = 0;
+  std::string b_lsq_reason;
   // R(mu) = A e^{-b_mle mu}, normalised so the window holds n_in_window events.
   double ln_A = 0;
   double ks_distance = 0;
-  // Two power laws (Ferre 2018 eq. 2.10).
+  // Two power laws (Ferre 2018 eq. 2.10); not ok, with two_law_reason, when not fitted or
+  // when the two lines fail their own test (chi^2 of ln D with Poisson weights, p <
+  // secondary_p).
   bool two_law_ok = false;
+  std::string two_law_reason;
   double two_law_b1 = 0;            // slope below the crossover (localised events)
   double two_law_b2 = 0;            // slope above the crossover (delocalised events)
   double two_law_mu_cross = 0;      // crossover magnitude mu~ = ln M~ (a bin edge)
@@ -183,7 +236,39 @@ GrFit fit_histogram(const MagnitudeHistogram& h, std::optional<double> mu_min,
 // the same window.
 GrFit fit_magnitudes(std::span<const double> mu, double bin_width, std::optional<double> mu_min,
                      std::optional<double> mu_max, const GrFitOptions& opt = {});
-// Adds the unbinned Aki estimate on fit's window.
-void add_unbinned(GrFit& fit, std::span<const double> mu);
+// Adds the unbinned Aki estimate on fit's window, and the block-bootstrap error of b_mle
+// (mu in the catalogue's order).
+void add_unbinned(GrFit& fit, std::span<const double> mu, const GrFitOptions& opt = {});
+
+// Block bootstrap of the binned MLE on a fixed window (Kuensch 1989, circular blocks of
+// Politis & Romano 1992): the catalogue mu (in its order) is cut into blocks of `block`
+// consecutive events (chosen from the data when 0: the larger of n^(1/3) and
+// boot_block_factor times the integrated autocorrelation time of the in-window offsets,
+// Sokal's window), opt.boot_resamples
+// catalogues are drawn from them with a generator seeded by opt.boot_seed, and b's error is
+// the standard deviation of b_mle over them. Events outside the window count towards a
+// block's length but not its fit.
+struct BootstrapError {
+  double err = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t block = 0;
+  double tau_int = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t resamples = 0;
+};
+BootstrapError block_bootstrap_b(std::span<const double> mu, double bin_width, double mu_min,
+                                 double mu_max, bool truncated, const GrFitOptions& opt = {},
+                                 std::int64_t block = 0);
+// The top of a scaling region that starts at mu_start (as the automatic window's ceiling):
+// the upper edge of the highest populated bin below the first gap (GrFitOptions::gap_width)
+// and below the first rise above mu_start; reason "gap", "rise" or "end of data".
+struct ScalingCeiling {
+  double mu_max = 0;
+  std::string reason;
+};
+ScalingCeiling scaling_ceiling(const MagnitudeHistogram& h, double mu_start,
+                               const GrFitOptions& opt = {});
+
+// The integrated autocorrelation time 1 + 2 sum_t rho(t) of a series, summed up to the
+// first lag M >= window_factor * tau(M) (Sokal 1997); 1 for an uncorrelated series.
+double integrated_autocorrelation_time(std::span<const double> x, double window_factor = 5.0);
 
 }  // namespace bkq

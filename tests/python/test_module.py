@@ -88,6 +88,26 @@ def test_fit_is_bkquake_fit(cli_run, tmp_path):
         bkquake.load(cli_run).fit(mu_min=-2, mu_max=1)
 
 
+def test_fit_measure_and_errors(cli_run, tmp_path):
+    """fit(measure=...) carries the power law of that size ("tau"), the fit its bootstrap
+    error beside Shi & Bolt's, and the catalogue's size apart from the window's count."""
+    run = bkquake.load(cli_run)
+    res = run.fit(measure="blocks")
+    out = tmp_path / "fit.json"
+    cli("fit", str(cli_run / "catalog.csv"), "--measure", "blocks", "--json", str(out))
+    assert res["tau"] == json.loads(out.read_text())["tau"]
+    tau = res["tau"]
+    assert tau["measure"] == "blocks" and tau["discrete"] is True
+    assert tau["ok"] is False or (tau["value"] > 1 and tau["err"] > 0 and tau["x_min"] >= 1)
+    f = res["fit"]
+    assert f["events"] == SMALL["run.events"]
+    assert f["n_in_window"] <= f["events"]
+    assert "b_mle_boot_err" in f and "mu_max_reason" in f
+    assert "tau" not in run.fit()
+    with pytest.raises(ValueError, match="expected one of moment, blocks"):
+        run.fit(measure="energy")
+
+
 def cli_error(*overrides):
     """The CLI's one-line message for these --set overrides (without 'bkquake: error: ')."""
     r = cli("run", *sum((["--set", o] for o in overrides), []), "--dump-defaults", check=False)

@@ -23,6 +23,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A finished run's fit: a b, or the reason no window passes (at bin width 0.01 the
+// few-block moments leave no window that passes the goodness-of-fit test).
+bool fitted(const std::string& summary) {
+  return summary.find("\"b_mle\": 0.") != std::string::npos ||
+         summary.find("\"fit_error\": \"no acceptable fit window: ") != std::string::npos;
+}
+
 TEST(FitStop, SigtermAfterTheLastEventStopsResumablyOrFinishes) {
   int stopped_runs = 0;
   for (int attempt = 0; attempt < 4 && stopped_runs == 0; ++attempt) {
@@ -64,7 +71,7 @@ TEST(FitStop, SigtermAfterTheLastEventStopsResumablyOrFinishes) {
     if (status == 0) {
       // The signal came after the last stop check: a finished run with its fit.
       EXPECT_EQ(run_status(out), RunStatus::Finished);
-      EXPECT_NE(test::read_file(out + "/summary.json").find("\"b_mle\": 0."), std::string::npos);
+      EXPECT_TRUE(fitted(test::read_file(out + "/summary.json")));
       continue;
     }
     ++stopped_runs;
@@ -82,7 +89,7 @@ TEST(FitStop, SigtermAfterTheLastEventStopsResumablyOrFinishes) {
     ASSERT_EQ(r.status, 0) << r.err;
     const std::string summary = test::read_file(out + "/summary.json");
     EXPECT_NE(summary.find("\"resumes\": 1"), std::string::npos) << summary;
-    EXPECT_NE(summary.find("\"b_mle\": 0."), std::string::npos) << summary;
+    EXPECT_TRUE(fitted(summary)) << summary;
     EXPECT_EQ(run_status(out), RunStatus::Finished);
   }
   RecordProperty("stopped_runs", stopped_runs);

@@ -130,7 +130,7 @@ TEST(GrFit, TwoPowerLawsFindTheCrossover) {
     if (uniform(rng) < d4 * std::exp(-0.3 * (m - 4.0)) * 20) mu.push_back(m);
   }
   const GrFit f = fit_magnitudes(mu, 0.2, 0.0, std::nullopt);
-  ASSERT_TRUE(f.two_law_ok);
+  ASSERT_TRUE(f.two_law_ok) << f.two_law_reason;
   EXPECT_NEAR(f.two_law_mu_cross, 4.0, 0.2 + 1e-9);
   EXPECT_NEAR(f.two_law_b1, 1.0, 0.1);
   EXPECT_NEAR(f.two_law_b2, 0.3, 0.15);

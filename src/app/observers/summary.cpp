@@ -15,6 +15,7 @@
 #include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "io/catalog_reader.hpp"
 #include "io/checkpoint.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
@@ -99,6 +100,35 @@ void SummaryOfEvents::fit() {
       fit_error_ = "no acceptable fit window: " + fit_->no_b_reason;
       fit_.reset();
     }
+    const bool lattice = settings_.lattice.nx > 1 && settings_.lattice.ny > 1;
+    if (settings_.ofc.on || lattice) tau_measure_ = settings_.ofc.on ? "topplings" : "blocks";
+    Ordered ordered;
+    if (fit_ || !tau_measure_.empty()) ordered = read_ordered();
+    if (fit_ && ordered.note.empty()) {
+      const BootstrapError boot = block_bootstrap_b(ordered.mu, fit_->bin_width, fit_->mu_min,
+                                                    fit_->mu_max, fit_->truncated, opt);
+      fit_->b_mle_boot_err = boot.err;
+      fit_->boot_block = boot.block;
+      fit_->boot_tau_int = boot.tau_int;
+      fit_->boot_resamples = boot.resamples;
+    } else if (fit_) {
+      fit_->boot_note = ordered.note;
+    }
+    // tau of the avalanche sizes: topplings of an OFC run, blocks of a lattice's events.
+    if (!tau_measure_.empty()) {
+      if (ordered.note.empty()) {
+        PowerLawOptions po;
+        po.discrete = true;
+        po.cancelled = stop_requested_;
+        tau_ = fit_power_law(ordered.size, po);
+        if (!tau_->ok) {
+          tau_error_ = tau_->no_fit_reason;
+          tau_.reset();
+        }
+      } else {
+        tau_error_ = ordered.note;
+      }
+    }
     fitted_ = true;
   } catch (const FitCancelled&) {
     // The run stops after this phase (a checkpoint, no summary); a resume fits again.
@@ -113,6 +143,43 @@ void SummaryOfEvents::on_resume(const Checkpoint& c) {
   nonpositive_ = c.progress.nonpositive;
 }
 
+SummaryOfEvents::Ordered SummaryOfEvents::read_ordered() const {
+  Ordered o;
+  std::string file;
+  for (const char* name : {"catalog.csv", "catalog.h5"})
+    if (std::filesystem::exists(out_.path(name))) file = out_.path(name);
+  if (file.empty()) {
+    o.note = "no catalogue written (output.catalog = none): no order of events";
+    return o;
+  }
+  if (hist_.events() > kMaxOrderedEvents) {
+    o.note = "more than " + std::to_string(kMaxOrderedEvents) +
+             " events: fit the catalogue with bkquake fit";
+    return o;
+  }
+  try {
+    CatalogReader reader(file);
+    CatalogEvent e;
+    while (reader.next(e)) {
+      if (!(e.moment > 0)) continue;  // as the histogram
+      o.mu.push_back(e.magnitude);
+      o.size.push_back(settings_.ofc.on ? static_cast<double>(e.topplings) : e.blocks);
+    }
+  } catch (const Error& err) {
+    o.mu.clear();
+    o.size.clear();
+    o.note = std::string("the catalogue does not read: ") + err.what();
+    return o;
+  }
+  if (static_cast<std::int64_t>(o.mu.size()) != hist_.events()) {
+    o.note = "the catalogue holds " + std::to_string(o.mu.size()) + " events, the histogram " +
+             std::to_string(hist_.events());
+    o.mu.clear();
+    o.size.clear();
+  }
+  return o;
+}
+
 void SummaryOfEvents::on_checkpoint(Checkpoint& c) {
   c.progress.moment_sum = moment_sum_;
   c.progress.nonpositive = nonpositive_;
@@ -122,6 +189,16 @@ void SummaryOfEvents::add_moments(Json& summary) const {
   summary.set("moment_sum", moment_sum_);
   summary.set("nonpositive_moments", nonpositive_);
   summary.set("bin_width", hist_.bin_width());
+}
+
+void SummaryOfEvents::add_tau(Json& summary) const {
+  if (tau_measure_.empty()) return;
+  if (tau_) {
+    summary.set("tau", power_law_json(*tau_, tau_measure_));
+  } else {
+    summary.set("tau", Json::null());
+    summary.set("tau_error", tau_error_);
+  }
 }
 
 std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
@@ -136,6 +213,7 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
     return std::string("b: not fitted (") + kTooFewToFit + ")";
   }
   fit();
+  add_tau(summary);
   if (!fit_) {
     summary.set("b_mle", Json::null());
     summary.set("fit_error", fit_error_);
@@ -145,18 +223,31 @@ std::string SummaryOfEvents::add_fit(Json& summary, const RunEnd& end) {
   summary.set("b_mle", fit.b_mle);
   summary.set("b_mle_err", fit.b_mle_err);
   summary.set("b_mle_sys_err", fit.b_mle_sys_err);
+  // The statistical error of correlated events (block bootstrap), beside Shi & Bolt's.
+  summary.set("b_mle_boot_err", fit_number(fit.b_mle_boot_err));
+  if (std::isfinite(fit.b_mle_boot_err))
+    summary.set("boot_block", fit.boot_block);
+  else
+    summary.set("boot_note", fit.boot_note);
   // The same slope per unit of moment magnitude Mw (b_mw = 1.5 b_mle; b_mle is per mu = ln M).
   summary.set("b_mw", b_moment_magnitude(fit.b_mle));
   summary.set("b_mw_err", b_moment_magnitude(fit.b_mle_err));
-  summary.set("b_lsq", fit.b_lsq);
-  summary.set("b_lsq_err", fit.b_lsq_err);
+  if (std::isfinite(fit.b_lsq)) {
+    summary.set("b_lsq", fit.b_lsq);
+    summary.set("b_lsq_err", fit.b_lsq_err);
+  } else {
+    summary.set("b_lsq", Json::null());
+  }
+  if (!fit.b_lsq_reason.empty()) summary.set("b_lsq_reason", fit.b_lsq_reason);
   Json window = Json::object();
   window.set("mu_min", fit.mu_min);
   window.set("mu_max", fit.mu_max);
   window.set("automatic", fit.window_auto);
   window.set("events", fit.n_in_window);
   window.set("ks_distance", fit.ks_distance);
+  window.set("mu_max_reason", fit.mu_max_reason);
   summary.set("fit_window", std::move(window));
+  if (!fit.warnings.empty()) summary.set("fit_warnings", Json::strings(fit.warnings));
   char line[200];
   std::snprintf(line, sizeof line, " (binned MLE) on mu in [%.2f, %.2f], %lld events", fit.mu_min,
                 fit.mu_max, static_cast<long long>(fit.n_in_window));

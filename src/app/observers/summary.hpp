@@ -11,10 +11,12 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/observers/observer.hpp"
 #include "io/settings.hpp"
 #include "stats/gutenberg_richter.hpp"
+#include "stats/power_law.hpp"
 
 namespace bkq {
 
@@ -50,6 +52,8 @@ class SummaryOfEvents : public RunObserver {
   // Sets the fit's fields (or fit_error; an interrupted run: no fit); returns the line
   // printed about it.
   std::string add_fit(Json& summary, const RunEnd& end);
+  // An OFC run's or a lattice's "tau" (or null and "tau_error").
+  void add_tau(Json& summary) const;
   static constexpr const char* kInterruptedFit =
       "no fit: interrupted (the resumed run fits when it finishes)";
   void fit();
@@ -66,6 +70,18 @@ class SummaryOfEvents : public RunObserver {
   bool fitted_ = false;
   std::optional<GrFit> fit_;
   std::string fit_error_;
+  static constexpr std::int64_t kMaxOrderedEvents = 20'000'000;
+  // The recorded events in their order, read back from the run's catalogue when the fit is
+  // made (the same for a resumed run as for one run straight through): magnitudes for b's
+  // block-bootstrap error, sizes for tau (topplings for OFC, blocks for a lattice). Empty,
+  // with the reason, when the run writes no catalogue or it does not read.
+  struct Ordered {
+    std::vector<double> mu, size;
+    std::string note;  // why there are none
+  };
+  Ordered read_ordered() const;
+  std::optional<PowerLawFit> tau_;
+  std::string tau_measure_, tau_error_;
 };
 
 // Event runs: counts, load, moment sum, work, wall time and the fit.

@@ -278,10 +278,14 @@ class Run:
             )
         return scene
 
-    def fit(self, mu_min=None, mu_max=None, bin_width=None):
-        """`bkquake fit` on the catalogue: the dict its --json writes ("fit" holds b_mle,
-        b_err, the window, ...). mu_min, mu_max: the fit window (None: automatic);
-        bin_width: None for the run's stats.bin_width."""
+    def fit(self, mu_min=None, mu_max=None, bin_width=None, measure="moment"):
+        """`bkquake fit` on the catalogue: the dict its --json writes. "fit" holds b_mle,
+        its errors (b_mle_err: Shi & Bolt; b_mle_boot_err: block bootstrap), the window,
+        why it ends (mu_max_reason), warnings about a given window, ... Its "events" is the
+        catalogue's size, "n_in_window" the events the window holds. mu_min, mu_max: the fit
+        window (None: automatic); bin_width: None for the run's stats.bin_width; measure:
+        moment, or blocks, topplings, area, duration: then "tau" holds the power-law fit of
+        that size (value, err, x_min, x_max, p, the likelihood-ratio tests)."""
         f = self.catalog_file
         if f is None:
             raise FileNotFoundError(f"{self.path}: no catalogue to fit")
@@ -289,7 +293,7 @@ class Run:
             bin_width = self.scene["stats.bin_width"]
         with tempfile.TemporaryDirectory(prefix="bkquake-fit-") as tmp:
             out = os.path.join(tmp, "fit.json")
-            _bkquake.fit_catalog(f, out, mu_min, mu_max, bin_width)
+            _bkquake.fit_catalog(f, out, mu_min, mu_max, bin_width, measure)
             with open(out) as j:
                 return json.load(j)
 
