@@ -152,9 +152,9 @@ TEST(Tutorials, TheTestOptionsGoAfterThePagesOwnOptionsAndBeforeRedirections) {
   EXPECT_EQ(with_test_options(blocks[1]), "build/bkquake run\n");
 }
 
-TEST(Tutorials, ThereAreTheThreeTutorials) {
+TEST(Tutorials, ThereAreTheFourTutorials) {
   const auto pages = tutorial_pages();
-  for (const char* page : {"first-run", "brake-study", "stability"})
+  for (const char* page : {"first-run", "brake-study", "stability", "rate-and-state"})
     EXPECT_NE(std::find(pages.begin(), pages.end(), page), pages.end()) << page;
 }
 
