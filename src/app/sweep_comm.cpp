@@ -241,6 +241,10 @@ int launcher_world_size() {
   return 0;
 }
 
+bool mpi_available() {
+  return BKQUAKE_HAVE_MPI != 0;
+}
+
 std::unique_ptr<SweepComm> make_sweep_comm(std::string& note) {
   const int launched = launcher_world_size();
 #if BKQUAKE_HAVE_MPI

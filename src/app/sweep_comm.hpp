@@ -48,6 +48,9 @@ class SweepComm {
 // without MPI started as several ranks throws bkq::Error (exit 2).
 std::unique_ptr<SweepComm> make_sweep_comm(std::string& note);
 
+// Whether this build has MPI (Boost.MPI over Open MPI): otherwise a sweep runs as one rank.
+bool mpi_available();
+
 // The number of ranks the launcher announced in the environment (Open MPI, PMI, PMIx,
 // SLURM's srun), 0 when not started by one.
 int launcher_world_size();

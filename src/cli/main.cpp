@@ -11,12 +11,23 @@
 #include <string_view>
 #include <vector>
 
+#include "app/sweep_comm.hpp"
 #include "bkquake_version.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "core/terminal_text.hpp"
+#include "io/catalog_h5.hpp"
 
 namespace {
+
+// The optional parts this build has, as --version prints them: what the configure found
+// (CMakeLists.txt: BKQUAKE_HAVE_PYTHON is set on this file alone).
+std::string optional_parts() {
+  auto part = [](const char* name, bool in) { return std::string(name) + (in ? " yes" : " no"); };
+  return "optional parts: " + part("HDF5 catalogues", bkq::hdf5_available()) + ", " +
+         part("MPI sweeps", bkq::mpi_available()) + ", " +
+         part("Python module", BKQUAKE_HAVE_PYTHON != 0);
+}
 
 #if defined(__x86_64__) && defined(__AVX2__) && defined(__FMA__)
 // A binary built for x86-64-v3 (or native) on a CPU without AVX2 or FMA would die with
@@ -69,7 +80,8 @@ int main(int argc, char** argv) {
     }
     if (command == "--version") {
       std::cout << "bkquake " << bkq::kVersion << " (git " << bkq::kGitRevision << ", built for "
-                << bkq::kBuildArch << ")\n";
+                << bkq::kBuildArch << ")\n"
+                << optional_parts() << "\n";
       return 0;
     }
     if (command == "run") return bkq::cmd_run(args);

@@ -29,6 +29,28 @@ TEST(Cli, Version) {
   EXPECT_TRUE(r.err.empty());
 }
 
+// --version's second line names the optional parts and whether this build has each; its
+// HDF5 answer is what a run asking for an HDF5 catalogue finds.
+TEST(Cli, VersionNamesTheOptionalParts) {
+  const auto r = run_bkquake({"--version"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto second = r.out.find('\n');
+  ASSERT_NE(second, std::string::npos) << r.out;
+  const std::string line = r.out.substr(second + 1);
+  EXPECT_EQ(line.rfind("optional parts: ", 0), 0u) << line;
+  for (const char* part : {"HDF5 catalogues", "MPI sweeps", "Python module"}) {
+    const bool yes = line.find(std::string(part) + " yes") != std::string::npos;
+    const bool no = line.find(std::string(part) + " no") != std::string::npos;
+    EXPECT_NE(yes, no) << part << " in: " << line;
+  }
+  test::TempDir dir;
+  const auto h5 =
+      run_bkquake({"run", "--set", "run.events=20", "--set", "run.transient_events=0", "--set",
+                   "output.catalog=hdf5", "--out", (dir.path() / "r").string()});
+  EXPECT_EQ(h5.status == 0, line.find("HDF5 catalogues yes") != std::string::npos)
+      << line << h5.err;
+}
+
 TEST(Cli, Help) {
   for (const char* h : {"--help", "-h", "help"}) {
     const auto r = run_bkquake({h});
