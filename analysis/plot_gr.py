@@ -225,10 +225,14 @@ def main(argv=None):
              title="R(μ): events with magnitude ≥ μ")
     for ax in (ax_d, ax_r):
         ax.grid(True, which="both", alpha=0.3)
-    # One legend, where R(mu) leaves room: above the curves on the right.
-    ax_r.legend(fontsize=7, loc="upper right")
     fig.tight_layout()
-    bkquake_io.save_figure(fig, out, inputs, "plot_gr.py", dpi=120)
+    # One legend, below both panels, outside the axes: it never covers a point or a line
+    # (the saved figure is cropped to include it).
+    handles, labels = ax_r.get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                   frameon=False)
+    bkquake_io.save_figure(fig, out, inputs, "plot_gr.py", dpi=120, bbox_inches="tight")
     print(out)
     return 0
 

@@ -3,6 +3,8 @@
 // both window edges exactly: the window's law plus the events above it; D's expected
 // counts adding up to the window's events) and writes its PNG; every script answers a
 // folder of the wrong kind with one line and exit 2, not a traceback.
+// plot_sweep.py draws total errors, the refit of sweep_fit.csv and published values, with
+// legends that cover no data.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -344,6 +346,86 @@ TEST_F(Plots, CouplingFrontsMeasureTheSpeedAndWidthOfASyntheticFront) {
       "    assert abs(edge - c * 0.03) < 0.05 * c * 0.03, fr\n";
   const auto p = test::run_process(kPython, {"-c", check});
   EXPECT_EQ(p.status, 0) << p.err;
+}
+
+// plot_sweep.py draws sweep_fit.csv's b where `bkquake fit SWEEP_DIR` wrote it, with error
+// bars whose half-length is the total error sqrt(b_err^2 + b_sys_err^2) of that file (the
+// drawn bars themselves are measured, and --dump writes the same numbers); the point that
+// sweep.csv's own fit left without b but the refit gave one is drawn; the published values
+// of --reference are drawn on their key's panel; and no legend's box contains a point or
+// an error bar's end in display coordinates.
+TEST_F(Plots, SweepDrawsTheRefitWithTotalErrorsAndPublishedValuesAndLegendsOffTheData) {
+  const std::string ini = dir_.write(
+      "sw.ini", "[sweep]\nscene = " + std::string(BKQUAKE_SOURCE_DIR) +
+                    "/data/scenes/cl-l10-a2.5-n100.ini\ncombine = product\nreplicas = 1\n"
+                    "[vary]\nfriction.alpha = 2.5, 3\nmodel.blocks = 30, 50\n"
+                    "[set]\nrun.events = 3000\nrun.transient_events = 300\n");
+  const std::string sw = dir_.file("sw");
+  auto r = test::run_bkquake({"sweep", ini, "--out", sw});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = test::run_bkquake({"fit", sw, "--mu-min", "-7.6", "--mu-max", "-2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(fs::exists(sw + "/sweep_fit.csv"));
+  const std::string ref = std::string(BKQUAKE_SOURCE_DIR) +
+                          "/data/reference/carlson-langer-published.csv";
+  const std::string png = dir_.file("sweep_b.png");
+  const std::string dump = dir_.file("drawn.csv");
+  const auto p = test::run_process(
+      kPython, {script("plot_sweep.py"), sw, "--out", png, "--reference", ref, "--dump", dump});
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_NE(p.out.find("sweep_fit.csv"), std::string::npos) << p.out;
+  EXPECT_GT(fs::file_size(png), 10000u);
+  const std::string check =
+      "import sys, csv, math; sys.path.insert(0, '" + script("") +
+      "')\n"
+      "import numpy as np, plot_sweep\n"
+      "sw, ref, dump = sys.argv[1:4]\n"
+      "fit = {r['point']: r for r in csv.DictReader(open(sw + '/sweep_fit.csv'))}\n"
+      "tot = lambda r: math.hypot(float(r['b_err']), float(r['b_sys_err']))\n"
+      "want = sorted((round(float(r['b']), 9), round(tot(r), 9)) for r in fit.values() if r['b'])\n"
+      "assert len(want) == 4, want\n"
+      "old = [r for r in csv.DictReader(open(sw + '/sweep.csv')) if r['b']]\n"
+      "assert len(old) < 4 or any(abs(float(o['b']) - float(fit[o['point']]['b'])) > 1e-9 "
+      "for o in old), 'the refit changes b'\n"
+      "fig, drawn, source = plot_sweep.make_figure(sw, True, ref)\n"
+      "assert source == 'sweep_fit.csv', source\n"
+      "fig.canvas.draw(); rend = fig.canvas.get_renderer()\n"
+      "n_ref = 0\n"
+      "for ax in fig.axes:\n"
+      "    got, pts = [], []\n"
+      "    for c in ax.containers:\n"
+      "        line, caps, bars = c.lines\n"
+      "        x, y = line.get_data()\n"
+      "        if line.get_marker() == 'D':\n"
+      "            n_ref += len(x); assert np.allclose(np.asarray(y, float), 1.0), y\n"
+      "        else:\n"
+      "            for seg in bars[0].get_segments():\n"
+      "                (x0, y0), (x1, y1) = seg\n"
+      "                got.append((round((y0 + y1) / 2, 9), round(abs(y1 - y0) / 2, 9)))\n"
+      "        xy = np.array([x, y], dtype=float).T\n"
+      "        for a, b in zip(xy[:-1], xy[1:]):\n"
+      "            if line.get_linestyle() != 'None':\n"
+      "                pts.extend(a + (b - a) * t for t in np.linspace(0, 1, 41))\n"
+      "        pts.extend(xy)\n"
+      "        for seg in bars[0].get_segments() if bars else []:\n"
+      "            pts.extend(tuple(q) for q in seg)\n"
+      "    assert sorted(got) == want, (sorted(got), want)\n"
+      "    leg = ax.get_legend(); assert leg is not None\n"
+      "    box = leg.get_window_extent(rend)\n"
+      "    disp = ax.transData.transform(np.array(pts, dtype=float))\n"
+      "    inside = [q for q in disp if box.x0 <= q[0] <= box.x1 and box.y0 <= q[1] <= box.y1]\n"
+      "    assert not inside, ('legend covers data', inside)\n"
+      "assert n_ref == 2, n_ref\n"
+      "rows = list(csv.DictReader(open(dump)))\n"
+      "assert len(rows) == 8 and all(r['source'] == 'sweep_fit.csv' for r in rows)\n"
+      "for r in rows: assert abs(float(r['total_err']) - tot(r)) < 1e-12, r\n";
+  const auto c = test::run_process(kPython, {"-c", check, sw, ref, dump});
+  EXPECT_EQ(c.status, 0) << c.out << c.err;
+  // --sweep-csv draws sweep.csv's own fit instead.
+  const auto q = test::run_process(
+      kPython, {script("plot_sweep.py"), sw, "--out", dir_.file("own.png"), "--sweep-csv"});
+  ASSERT_EQ(q.status, 0) << q.err;
+  EXPECT_NE(q.out.find("b from sweep.csv"), std::string::npos) << q.out;
 }
 
 }  // namespace
