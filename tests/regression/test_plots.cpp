@@ -366,8 +366,8 @@ TEST_F(Plots, SweepDrawsTheRefitWithTotalErrorsAndPublishedValuesAndLegendsOffTh
   r = test::run_bkquake({"fit", sw, "--mu-min", "-7.6", "--mu-max", "-2"});
   ASSERT_EQ(r.status, 0) << r.err;
   ASSERT_TRUE(fs::exists(sw + "/sweep_fit.csv"));
-  const std::string ref = std::string(BKQUAKE_SOURCE_DIR) +
-                          "/data/reference/carlson-langer-published.csv";
+  const std::string ref =
+      std::string(BKQUAKE_SOURCE_DIR) + "/data/reference/carlson-langer-published.csv";
   const std::string png = dir_.file("sweep_b.png");
   const std::string dump = dir_.file("drawn.csv");
   const auto p = test::run_process(
