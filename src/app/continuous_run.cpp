@@ -24,7 +24,6 @@
 #include "app/observers/timeseries.hpp"
 #include "app/stability.hpp"
 #include "app/stop_signals.hpp"
-#include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/continuous.hpp"
@@ -244,13 +243,8 @@ class ContinuousRun {
     prog_.events_done = episodes_;
     prog_.transient_done = 0;
     ContinuousSnapshot d = driver_->snapshot();
-    Checkpoint c;
-    c.version = kVersion;
-    c.git_revision = kGitRevision;
-    c.scene_hash = req_.scene.hash();
-    c.scene_ini = req_.scene.to_ini();
-    c.seed = settings_.run.seed;
-    c.progress = prog_;
+    Checkpoint c =
+        Checkpoint::of_run(req_.scene.hash(), req_.scene.to_ini(), settings_.run.seed, prog_);
     c.engine.counters.steps = done_;
     c.engine.counters.events = episodes_;
     c.put(kStateName, encode_state(d, next_out_));

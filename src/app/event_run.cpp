@@ -17,7 +17,6 @@
 #include "app/observers/progress.hpp"
 #include "app/observers/summary.hpp"
 #include "app/stop_signals.hpp"
-#include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
@@ -283,13 +282,7 @@ class EventRun {
     prog_.wall_total = wall_total0_ + seconds_since(session_t0_);
     if (prog_.transient_done == transient_)
       prog_.wall_events = wall_events0_ + seconds_since(recording_t0_);
-    Checkpoint c;
-    c.version = kVersion;
-    c.git_revision = kGitRevision;
-    c.scene_hash = req_.scene.hash();
-    c.scene_ini = scene_ini_;
-    c.seed = settings_.run.seed;
-    c.progress = prog_;
+    Checkpoint c = Checkpoint::of_run(req_.scene.hash(), scene_ini_, settings_.run.seed, prog_);
     engine.lend(c);
     struct GiveBack {
       LoopEngine& engine;

@@ -20,7 +20,6 @@
 #include "app/observers/progress.hpp"
 #include "app/observers/summary.hpp"
 #include "app/stop_signals.hpp"
-#include "bkquake_version.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/rsf_events.hpp"
@@ -288,13 +287,8 @@ class RsfRun {
     prog_.wall_total = prog_.wall_events = wall0_ + seconds_since(session_t0_);
     prog_.events_done = detector_.events();
     prog_.transient_done = 0;
-    Checkpoint c;
-    c.version = kVersion;
-    c.git_revision = kGitRevision;
-    c.scene_hash = req_.scene.hash();
-    c.scene_ini = req_.scene.to_ini();
-    c.seed = settings_.run.seed;
-    c.progress = prog_;
+    Checkpoint c =
+        Checkpoint::of_run(req_.scene.hash(), req_.scene.to_ini(), settings_.run.seed, prog_);
     c.engine.counters.steps = cycle_.accepted();
     c.engine.counters.events = detector_.events();
     StateWriter w;

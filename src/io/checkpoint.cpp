@@ -1,6 +1,8 @@
 // Checkpoint encoding, validation and the two-file rotation (see checkpoint.hpp).
 #include "io/checkpoint.hpp"
 
+#include "bkquake_version.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cerrno>
@@ -475,6 +477,18 @@ Checkpoint CheckpointFiles::read_final() const {
 bool CheckpointFiles::exist() const {
   std::error_code ec;
   return fs::exists(current(), ec) || fs::exists(previous(), ec);
+}
+
+Checkpoint Checkpoint::of_run(std::uint64_t scene_hash, std::string scene_ini, std::uint64_t seed,
+                              const RunProgress& progress) {
+  Checkpoint c;
+  c.version = kVersion;
+  c.git_revision = kGitRevision;
+  c.scene_hash = scene_hash;
+  c.scene_ini = std::move(scene_ini);
+  c.seed = seed;
+  c.progress = progress;
+  return c;
 }
 
 void Checkpoint::put(const std::string& name, std::string bytes) {

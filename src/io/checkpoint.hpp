@@ -79,6 +79,12 @@ struct Checkpoint {
   MagnitudeHistogram::State histogram;
   std::vector<ObserverState> observers;
 
+  // A run's checkpoint with its provenance filled in: this program's version and revision,
+  // the scene (hash and effective text), the seed and the progress; the engine's state and
+  // the observers' are the caller's to add.
+  static Checkpoint of_run(std::uint64_t scene_hash, std::string scene_ini, std::uint64_t seed,
+                           const RunProgress& progress);
+
   // Sets (or replaces) the named observer state; find returns nullptr when there is none
   // (a checkpoint from before the observer existed).
   void put(const std::string& name, std::string bytes);
