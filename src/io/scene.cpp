@@ -1106,7 +1106,7 @@ bool added_later(const std::string& key) {
       "model.rows", "model.boundary_y", "ofc.alpha", "model.coupling", "model.range",
       "model.coupling_exponent", "model.viscosity", "ofc.order", "ofc.relaxation_time",
       "ofc.relaxation_alpha", "model.l_y", "model.s_c_y",
-      // Rate-and-state friction (issue 41).
+      // Rate-and-state friction.
       "model.stiffness", "model.coupling_stiffness", "model.dynamics", "model.shear_modulus",
       "model.shear_wave_speed", "model.mass_per_area", "rsf.a", "rsf.b", "rsf.dc", "rsf.mu0",
       "rsf.v0", "rsf.state_law", "rsf.form", "rsf.normal_stress", "rsf.v_threshold", "rsf.v_init",

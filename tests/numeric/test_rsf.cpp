@@ -1,4 +1,4 @@
-// Rate-and-state friction (issue 41): the law (model/laws/rsf.hpp), the cycle integrator
+// Rate-and-state friction: the law (model/laws/rsf.hpp), the cycle integrator
 // (engine/rsf_cycle.hpp) and the linear stability (stats/rsf_stability.hpp) against QDYN's
 // stick-slip case, the velocity step's closed forms, the steady-state fixed point, the
 // linearisation's eigenvalues, the single block in an uncoupled chain, and the two forms.

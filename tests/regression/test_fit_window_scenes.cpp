@@ -97,7 +97,7 @@ TEST(NoAcceptableWindow, ARunOfOneEventSaysWhyItHasNoB) {
   EXPECT_NE(r.out.find("b: not fitted (fewer than 2 events)"), std::string::npos) << r.out;
 }
 
-// Issue 38, item 1: on the shipped scenes at the sizes a user runs first, the automatic
+// On the shipped scenes at the sizes a user runs first, the automatic
 // window never takes in a gap of empty bins or the rise into the bump, and passes the
 // goodness-of-fit test; or there is no b, with the reason. The window is checked by
 // fitting it again as a given window, which warns of a gap, a rise or a failed test.
@@ -158,10 +158,10 @@ INSTANTIATE_TEST_SUITE_P(
         SceneCase{"ofc64", "lattice/ofc-relaxation-64.ini", "30000", "200000", {}}),
     [](const auto& info) { return std::string(info.param.name); });
 
-// The issue's 64 x 64 lattice (2 * 10^4 events after 2 * 10^4 transient): D(mu) has 27
-// empty bins between its scaling region and the bump. The window stopped at 7.6, across
-// the gap and the bump (b = 1.305 at 3 * 10^4 events); it now ends below the gap.
-TEST(IssueScenes, LatticeWindowEndsBelowTheGap) {
+// The 64 x 64 nearest-neighbour lattice scene (2 * 10^4 events after 2 * 10^4 transient): D(mu) has
+// 27 empty bins between its scaling region and the bump. The window stopped at 7.6, across the gap
+// and the bump (b = 1.305 at 3 * 10^4 events); it now ends below the gap.
+TEST(WindowOnScenesItOnceFailed, LatticeWindowEndsBelowTheGap) {
   test::TempDir dir;
   const std::string out = dir.file("lattice");
   const auto r = test::run_bkquake({"run", scene("lattice/bk-nearest-l3-a2-64x64.ini"), "--set",
@@ -184,7 +184,7 @@ TEST(IssueScenes, LatticeWindowEndsBelowTheGap) {
   EXPECT_NE(summary.find("\"measure\": \"blocks\""), std::string::npos) << summary;
 }
 
-// fit --measure (issue 38, item 3): an OFC run's topplings get tau with its error, range and
+// fit --measure: an OFC run's topplings get tau with its error, range and
 // goodness of fit, printed and in the JSON; a measure the catalogue lacks, or an unknown
 // one, is refused with what is allowed.
 TEST(FitMeasure, TopplingsOfAnOfcRunHaveTau) {
@@ -220,11 +220,11 @@ TEST(FitMeasure, TopplingsOfAnOfcRunHaveTau) {
   EXPECT_NE(none.err.find("has no topplings column"), std::string::npos) << none.err;
 }
 
-// The issue's Mori-Kawamura ring at 2 * 10^5 events (about 5 s): D(mu) falls as one power
+// The Mori-Kawamura ring scene at 2 * 10^5 events (about 5 s): D(mu) falls as one power
 // law from about -3.8 to -1 before the dip and bump. The automatic fit gave no b ("no lower
 // cut keeps b stable"); the lower cut found on windows up to the departure gives it, in
 // 0.75-1.0 (0.88 on [-3.8, -1) by hand; 0.80 in earlier versions).
-TEST(IssueScenes, MoriKawamuraRingHasItsB) {
+TEST(WindowOnScenesItOnceFailed, MoriKawamuraRingHasItsB) {
   test::TempDir dir;
   const MagnitudeHistogram h = run_scene(dir, "mori-kawamura-l3-n800-periodic.ini", "200000");
   const GrFit f = fit_histogram(h, std::nullopt, std::nullopt);
@@ -235,10 +235,10 @@ TEST(IssueScenes, MoriKawamuraRingHasItsB) {
   EXPECT_LE(f.mu_min, -3.0 + 1e-9);
 }
 
-// The issue's chain of 1000 blocks with range-10 coupling (2 * 10^4 events after 2 * 10^4
+// A chain of 1000 blocks with range-10 coupling (2 * 10^4 events after 2 * 10^4
 // transient): the window was [-7.4, 7.0), through the characteristic events above 4.8; it
 // now ends below the gap that separates them.
-TEST(IssueScenes, RangeCoupledChainStopsBelowTheCharacteristicEvents) {
+TEST(WindowOnScenesItOnceFailed, RangeCoupledChainStopsBelowTheCharacteristicEvents) {
   test::TempDir dir;
   const std::string out = dir.file("r10");
   const auto r =

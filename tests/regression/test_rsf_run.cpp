@@ -1,4 +1,4 @@
-// Rate-and-state runs from the command line (issue 41): the refusals (a <= 0, D_c <= 0, V_th not
+// Rate-and-state runs from the command line: the refusals (a <= 0, D_c <= 0, V_th not
 // above V_pl, event-driven drive), the shipped QDYN scene through the catalogue, histogram and
 // summary, and `bkquake stability` reporting k_crit.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Power-law fits of any size measure (issue 38, item 3; Clauset, Shalizi & Newman 2009):
+// Power-law fits of any size measure (Clauset, Shalizi & Newman 2009):
 // synthetic continuous and discrete power laws, with and without an upper cut-off, give a
 // mean exponent over 5 fixed seeds within 2 sigma / sqrt(5) of the truth (sigma the mean
 // reported error) and a goodness-of-fit p > 0.1 in at least 4 of 5; a lognormal sample is

@@ -1,4 +1,4 @@
-// The automatic window never takes in a gap or a bump (issue 38, item 1): synthetic
+// The automatic window never takes in a gap or a bump: synthetic
 // catalogues with a known b and, above the scaling region, a gap of empty bins or a bump of
 // large events, at 10^4 and 10^6 events. The window ends below the gap or the bump and the
 // mean b over 5 fixed seeds lies within 2 sigma / sqrt(5) of the truth (sigma the mean
