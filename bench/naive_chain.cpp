@@ -19,31 +19,41 @@
 #include "io/settings.hpp"
 #include "model/chain.hpp"
 
+namespace {
+
+int run_naive_chain(const bkq::Args& args) {
+  bkq::Scene scene = bkq::scene_from_command_line(args);
+  scene.validate();
+  const bkq::Settings settings = bkq::settings_from_scene(scene);
+  const bkq::ChainForces forces(settings.model);
+  const auto stepper = bkq::stepper_of(settings.integrator, settings.model.n);
+  bkq::check_time_step(*stepper, settings.model, settings.integrator.dt);
+  bkq::ReferenceEventEngine engine(
+      forces, *stepper, settings.integrator.dt,
+      bkq::initial_state(forces, settings.run.seed, settings.run.initial_disorder, true));
+  engine.max_steps_per_event = settings.run.max_steps_per_event;
+  for (std::int64_t i = 0; i < settings.run.transient_events; ++i) engine.next_event();
+  const std::int64_t block_steps0 = engine.block_steps;
+  double moments = 0;
+  for (std::int64_t i = 0; i < settings.run.events; ++i) moments += engine.next_event().moment;
+  std::printf("naive_chain: %lld events, %lld block-steps recorded, sum of moments %.17g\n",
+              static_cast<long long>(settings.run.events),
+              static_cast<long long>(engine.block_steps - block_steps0), moments);
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  namespace po = boost::program_options;
   try {
-    po::options_description opts("naive_chain [SCENE] [options]");
-    bkq::add_scene_options(opts);
-    const std::vector<std::string> args(argv + 1, argv + argc);
-    const po::variables_map vm = bkq::parse_scene_command_line("naive_chain", args, opts);
-    bkq::Scene scene = bkq::scene_from_command_line("naive_chain", vm);
-    scene.validate();
-    const bkq::Settings settings = bkq::settings_from_scene(scene);
-    const bkq::ChainForces forces(settings.model);
-    const auto stepper = bkq::stepper_of(settings.integrator, settings.model.n);
-    bkq::check_time_step(*stepper, settings.model, settings.integrator.dt);
-    bkq::ReferenceEventEngine engine(
-        forces, *stepper, settings.integrator.dt,
-        bkq::initial_state(forces, settings.run.seed, settings.run.initial_disorder, true));
-    engine.max_steps_per_event = settings.run.max_steps_per_event;
-    for (std::int64_t i = 0; i < settings.run.transient_events; ++i) engine.next_event();
-    const std::int64_t block_steps0 = engine.block_steps;
-    double moments = 0;
-    for (std::int64_t i = 0; i < settings.run.events; ++i) moments += engine.next_event().moment;
-    std::printf("naive_chain: %lld events, %lld block-steps recorded, sum of moments %.17g\n",
-                static_cast<long long>(settings.run.events),
-                static_cast<long long>(engine.block_steps - block_steps0), moments);
-    return 0;
+    const bkq::Command naive{"naive_chain",
+                             "the naive full-chain integration",
+                             "[SCENE]",
+                             -1,
+                             "Runs the scene's events stepping every block of the chain.\n",
+                             {bkq::scene_set_option()},
+                             run_naive_chain};
+    return bkq::run_command(naive, std::vector<std::string>(argv + 1, argv + argc));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "naive_chain: %s\n", e.what());
     return 2;

@@ -4,7 +4,6 @@
 // orders) into --out, and prints the table.
 // Thin: the study itself lives in the engine.
 #include <algorithm>
-#include <boost/program_options.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +11,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <type_traits>
 
 #include "app/accuracy.hpp"
 #include "cli/commands.hpp"
@@ -23,8 +23,6 @@
 #include "io/scene.hpp"
 
 namespace bkq {
-
-namespace po = boost::program_options;
 
 namespace {
 
@@ -39,9 +37,9 @@ std::vector<double> parse_list(const std::string& option, const std::string& key
   return out;
 }
 
-double real_option(const po::variables_map& vm, const std::string& option, const std::string& key) {
+double real_option(const Args& args, const std::string& option, const std::string& key) {
   std::ostringstream text;
-  text << std::setprecision(17) << vm[option].as<double>();
+  text << std::setprecision(17) << args.real(option);
   return std::strtod(option_value("accuracy: --" + option, key, text.str()).c_str(), nullptr);
 }
 
@@ -75,72 +73,35 @@ std::vector<std::string> parse_transitions(const std::string& text) {
   return out;
 }
 
-}  // namespace
-
-// What --help prints above the options.
-constexpr const char* kUsage =
-    "Usage: bkquake accuracy [SCENE] [--set section.key=value]... [--out DIR]\n"
-    "Work-precision study of the scene's model, driven event by event: per-event errors\n"
-    "against an event-located adaptive reference, the distance of the magnitude\n"
-    "distribution from the reference's, and the time per event, for each scheme and dt.\n\n";
-
-int cmd_accuracy(const std::vector<std::string>& args) {
-  const AccuracyOptions defaults;
-  po::options_description opts("bkquake accuracy [SCENE] [options]");
-  // clang-format off
-  add_scene_options(opts);
-  opts.add_options()
-    ("out", po::value<std::string>()->default_value("accuracy"), "output folder")
-    ("force", "overwrite an accuracy.csv already in the output folder")
-    ("quiet", "no progress lines")
-    ("schemes", po::value<std::string>()->default_value("rk2,rk4,verlet,theta,adaptive"), "schemes to compare")
-    ("dt", po::value<std::string>()->default_value("0.05,0.02,0.01,0.005,0.002,0.001"),
-           "time steps of the fixed-step schemes")
-    ("tolerances", po::value<std::string>()->default_value("1e-3,1e-5,1e-7,1e-9"),
-                   "tolerances of the adaptive scheme (macro step: the scene's integrator.dt)")
-    ("transitions", po::value<std::string>()->default_value("step,located"),
-                    "transition modes of rk2, rk4 and verlet (integrator.transitions)")
-    ("samples", po::value<int>()->default_value(defaults.samples), ("pre-event states for the per-event errors, in [1, " + std::to_string(kMaxAccuracySamples) + "]").c_str())
-    ("spacing", po::value<int>()->default_value(defaults.sample_spacing), ("events between sampled states, in [1, " + std::to_string(kMaxAccuracySpacing) + "]").c_str())
-    ("long-events", po::value<std::int64_t>()->default_value(defaults.long_events),
-                    "events per long run (magnitude statistics and cost)")
-    ("reference-tolerance", po::value<double>()->default_value(defaults.reference_tolerance),
-                            "tolerance of the per-event reference (adaptive, event-located)")
-    ("long-reference-tolerance", po::value<double>()->default_value(defaults.long_reference_tolerance),
-                                 "tolerance of the reference long runs")
-    ("help,h", "this help");
-  // clang-format on
-  const po::variables_map vm = parse_scene_command_line("accuracy", args, opts);
-  if (printed_help(vm, opts, kUsage)) return 0;
-  Scene scene = scene_from_command_line("accuracy", vm);
+int cmd_accuracy(const Args& args) {
+  Scene scene = scene_from_command_line(args);
   // The study relaxes events one at a time, whatever mode the scene runs in.
   scene.set("drive.mode", "events", "bkquake accuracy");
   drop_inapplicable_keys(scene);
   scene.validate();
 
   AccuracyOptions opt;
-  opt.schemes = parse_schemes(vm["schemes"].as<std::string>());
-  opt.dts = parse_list("dt", "integrator.dt", vm["dt"].as<std::string>());
-  opt.tolerances =
-      parse_list("tolerances", "integrator.tolerance", vm["tolerances"].as<std::string>());
-  opt.transitions = parse_transitions(vm["transitions"].as<std::string>());
-  opt.samples = vm["samples"].as<int>();
-  opt.sample_spacing = vm["spacing"].as<int>();
-  opt.long_events = vm["long-events"].as<std::int64_t>();
-  opt.reference_tolerance = real_option(vm, "reference-tolerance", "integrator.tolerance");
+  opt.schemes = parse_schemes(args.text("schemes"));
+  opt.dts = parse_list("dt", "integrator.dt", args.text("dt"));
+  opt.tolerances = parse_list("tolerances", "integrator.tolerance", args.text("tolerances"));
+  opt.transitions = parse_transitions(args.text("transitions"));
+  opt.samples = args.integer("samples");
+  opt.sample_spacing = args.integer("spacing");
+  opt.long_events = args.integer64("long-events");
+  opt.reference_tolerance = real_option(args, "reference-tolerance", "integrator.tolerance");
   opt.long_reference_tolerance =
-      real_option(vm, "long-reference-tolerance", "integrator.tolerance");
+      real_option(args, "long-reference-tolerance", "integrator.tolerance");
   check_accuracy_options(opt);  // before the output folder is touched
 
-  const std::string dir = vm["out"].as<std::string>();
-  const bool force = vm.count("force") > 0;
+  const std::string dir = args.text("out");
+  const bool force = args.has("force");
   const OutputFolder out(dir, force, false, "accuracy");
   if (!force && std::filesystem::exists(out.path("accuracy.csv")))
     throw Error("accuracy: " + out.path("accuracy.csv") +
                 " already exists; use --force to overwrite it");
   write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
 
-  const bool quiet = vm.count("quiet") > 0;
+  const bool quiet = args.has("quiet");
   const AccuracyStudy study = run_accuracy(scene, opt, [&](const AccuracyPoint& p) {
     if (quiet) return;
     std::fprintf(stderr, "accuracy: %-11s dt %-7g %s%s\n", p.scheme.c_str(), p.dt,
@@ -152,6 +113,57 @@ int cmd_accuracy(const std::vector<std::string>& args) {
   std::cout << accuracy_table(study) << "outputs in " << dir
             << "/ (accuracy.csv, accuracy_orders.csv, scene.ini)\n";
   return 0;
+}
+
+}  // namespace
+
+Command accuracy_command_row() {
+  const AccuracyOptions d;
+  const auto joined = [](const auto& items) {
+    std::string text;
+    for (const auto& x : items) {
+      if (!text.empty()) text += ',';
+      if constexpr (std::is_same_v<std::decay_t<decltype(x)>, double>)
+        text += format_real(x);
+      else
+        text += x;
+    }
+    return text;
+  };
+  return {"accuracy",
+          "work-precision study: error against cost for every scheme and dt",
+          "[SCENE]",
+          -1,
+          "Work-precision study of the scene's model, driven event by event: per-event errors\n"
+          "against an event-located adaptive reference, the distance of the magnitude\n"
+          "distribution from the reference's, and the time per event, for each scheme and dt.\n",
+          {scene_set_option(), opt::text("out", "DIR", "output folder", "accuracy"),
+           opt::flag("force", "overwrite an accuracy.csv already in the output folder"),
+           opt::flag("quiet", "no progress lines"),
+           opt::text("schemes", "LIST", "schemes to compare", joined(d.schemes)),
+           opt::text("dt", "LIST", "time steps of the fixed-step schemes", joined(d.dts)),
+           opt::text("tolerances", "LIST",
+                     "tolerances of the adaptive scheme (macro step: the scene's integrator.dt)",
+                     joined(d.tolerances)),
+           opt::text("transitions", "LIST",
+                     "transition modes of rk2, rk4 and verlet (integrator.transitions)",
+                     joined(d.transitions)),
+           opt::integer("samples", "N",
+                        "pre-event states for the per-event errors, in [1, " +
+                            std::to_string(kMaxAccuracySamples) + "]",
+                        std::to_string(d.samples)),
+           opt::integer(
+               "spacing", "N",
+               "events between sampled states, in [1, " + std::to_string(kMaxAccuracySpacing) + "]",
+               std::to_string(d.sample_spacing)),
+           opt::integer64("long-events", "N", "events per long run (magnitude statistics and cost)",
+                          std::to_string(d.long_events)),
+           opt::real("reference-tolerance", "TOL",
+                     "tolerance of the per-event reference (adaptive, event-located)",
+                     format_real(d.reference_tolerance)),
+           opt::real("long-reference-tolerance", "TOL", "tolerance of the reference long runs",
+                     format_real(d.long_reference_tolerance))},
+          cmd_accuracy};
 }
 
 }  // namespace bkq

@@ -1,4 +1,4 @@
-// The bkquake program: dispatches on the first word to a subcommand (commands.hpp) and
+// The bkquake program: dispatches on the first word to a command of the table (commands.hpp) and
 // turns errors into one line on stderr and an exit status: bad input (bkq::Error) exits 2,
 // anything else is a bug and exits 1.
 #include <unistd.h>
@@ -28,6 +28,12 @@ std::string optional_parts() {
          part("MPI sweeps", bkq::mpi_available()) + ", " +
          part("Python module", BKQUAKE_HAVE_PYTHON != 0);
 }
+
+// The platform and compiler this binary was built for and with, as the configure saw them
+// (CMakeLists.txt sets BKQUAKE_TARGET on this file alone).
+#ifndef BKQUAKE_TARGET
+#define BKQUAKE_TARGET "unknown"
+#endif
 
 #if defined(__x86_64__) && defined(__AVX2__) && defined(__FMA__)
 // A binary built for x86-64-v3 (or native) on a CPU without AVX2 or FMA would die with
@@ -81,22 +87,13 @@ int main(int argc, char** argv) {
     if (command == "--version") {
       std::cout << "bkquake " << bkq::kVersion << " (git " << bkq::kGitRevision << ", built for "
                 << bkq::kBuildArch << ")\n"
-                << optional_parts() << "\n";
+                << optional_parts() << "\n"
+                << "target: " << BKQUAKE_TARGET << "\n";
       return 0;
     }
-    if (command == "run") return bkq::cmd_run(args);
-    if (command == "fit") return bkq::cmd_fit(args);
-    if (command == "merge") return bkq::cmd_merge(args);
-    if (command == "accuracy") return bkq::cmd_accuracy(args);
-    if (command == "spectrum") return bkq::cmd_spectrum(args);
-    if (command == "special-speed") return bkq::cmd_special_speed(args);
-    if (command == "special-law") return bkq::cmd_special_law(args);
-    if (command == "sweep") return bkq::cmd_sweep(args);
-    if (command == "friction-study") return bkq::cmd_friction_study(args);
-    if (command == "stability") return bkq::cmd_stability(args);
-    if (command == "seismicity") return bkq::cmd_seismicity(args);
-    if (command == "readme-tables") return bkq::cmd_readme_tables(args);
-    throw bkq::Error("unknown command '" + command + "'; try 'bkquake --help'");
+    if (const bkq::Command* c = bkq::find_command(command)) return bkq::run_command(*c, args);
+    throw bkq::Error("unknown command '" + command + "'; the commands are " + bkq::command_names() +
+                     "; try 'bkquake --help'");
   } catch (const bkq::Error& e) {
     // One line of printable text, whatever file content or value the message quotes.
     std::cerr << "bkquake: error: " << bkq::printable_text(e.what()) << "\n";

@@ -4,10 +4,9 @@
 // that holds its markers), or in one markdown file that holds the tables
 // (io/readme_tables.hpp). Besides io's tables of scene keys and output columns, the docs
 // get the text `bkquake --help` prints (block "help") and each listed command's `--help`
-// (blocks "help run", "help fit", ...), captured from the commands themselves.
+// (blocks "help run", "help fit", ...), all made from the command table.
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -27,41 +26,23 @@ std::string fenced(std::string text) {
   return "```text\n" + text + "\n```\n";
 }
 
-// What `bkquake COMMAND --help` prints, captured from the command itself.
-std::string help_of(const CommandEntry& command) {
-  std::ostringstream captured;
-  std::streambuf* const saved = std::cout.rdbuf(captured.rdbuf());
-  try {
-    command.run({"--help"});
-  } catch (...) {
-    std::cout.rdbuf(saved);
-    throw;
-  }
-  std::cout.rdbuf(saved);
-  return captured.str();
-}
-
 // io's tables, then the help texts.
 std::vector<ReadmeTable> doc_blocks() {
   auto blocks = readme_tables();
   blocks.push_back({"help", fenced(usage_text())});
-  for (const auto& command : listed_commands())
-    blocks.push_back({std::string("help ") + command.name, fenced(help_of(command))});
+  for (const Command& command : command_table())
+    if (command.listed) blocks.push_back({"help " + command.name, fenced(help_text(command))});
   return blocks;
 }
 
-}  // namespace
-
-int cmd_readme_tables(const std::vector<std::string>& args) {
-  if (args.empty()) {
+int cmd_readme_tables(const Args& args) {
+  if (!args.has("update")) {
     for (const auto& t : doc_blocks())
       std::cout << readme_begin_marker(t.name) << "\n"
                 << t.markdown << readme_end_marker(t.name) << "\n\n";
     return 0;
   }
-  if (args.size() != 2 || args[0] != "--update")
-    throw Error("readme-tables: usage: bkquake readme-tables [--update DOCS_DIR | PAGE.md]");
-  const std::string& path = args[1];
+  const std::string path = args.text("update");
   if (std::filesystem::is_directory(path)) {
     const auto before = read_doc_pages(path);
     const auto after = update_doc_pages(before, doc_blocks());
@@ -80,6 +61,22 @@ int cmd_readme_tables(const std::vector<std::string>& args) {
   if (after != before) write_file_atomic(path, after);
   std::cout << path << (after != before ? ": tables updated\n" : ": tables already up to date\n");
   return 0;
+}
+
+}  // namespace
+
+Command readme_tables_command_row() {
+  Command c{"readme-tables",
+            "regenerate the documentation's generated blocks",
+            "",
+            0,
+            "Prints the documentation's generated blocks (scene keys, output columns, every\n"
+            "command's --help) with their markers, or rewrites them in place.\n",
+            {opt::text("update", "DOCS_DIR|PAGE.md",
+                       "rewrite the blocks in every page under DOCS_DIR, or in one page")},
+            cmd_readme_tables};
+  c.listed = false;
+  return c;
 }
 
 }  // namespace bkq

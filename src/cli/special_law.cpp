@@ -1,5 +1,4 @@
 // `bkquake special-law BK_RUN_DIR... > law.csv` (app/special_law.hpp).
-#include <boost/program_options.hpp>
 #include <iostream>
 
 #include "app/special_law.hpp"
@@ -10,16 +9,11 @@
 
 namespace bkq {
 
-int cmd_special_law(const std::vector<std::string>& args) {
-  boost::program_options::options_description opts(
-      "bkquake special-law BK_RUN_DIR... > law.csv\n"
-      "Tabulates the friction the held pad feels in continuous bk runs: per segment speed,\n"
-      "-pad_friction_mean / (N m_u) from segments.csv (Ferre 2018 Fig. 4.8); CSV on stdout");
-  opts.add_options()("help,h", "show this help");
-  const auto vm = parse_command_line("special-law", args, opts, "runs", -1);
-  if (printed_help(vm, opts)) return 0;
-  if (!vm.count("runs")) throw Error("special-law: give at least one BK run folder");
-  const auto runs = vm["runs"].as<std::vector<std::string>>();
+namespace {
+
+int cmd_special_law(const Args& args) {
+  if (args.operands().empty()) throw Error("special-law: give at least one BK run folder");
+  const auto runs = args.operands();
   const auto law = special_law(runs);
   std::vector<std::string> comments = {std::string("bkquake ") + kVersion + " (git " +
                                        kGitRevision +
@@ -30,6 +24,20 @@ int cmd_special_law(const std::vector<std::string>& args) {
   std::cerr << "special-law: " << law.size() << " speeds from " << law.front().speed << " to "
             << law.back().speed << "\n";
   return 0;
+}
+
+}  // namespace
+
+Command special_law_command_row() {
+  return {"special-law",
+          "the friction a held pad feels in BK runs (Ferre 2018 Fig. 4.8)",
+          "BK_RUN_DIR...",
+          -1,
+          "Tabulates the friction the held pad feels in continuous bk runs: per segment speed,\n"
+          "-pad_friction_mean / (N m_u) from segments.csv (Ferre 2018 Fig. 4.8); CSV on stdout\n"
+          "(bkquake special-law BK_RUN_DIR... > law.csv).\n",
+          {},
+          cmd_special_law};
 }
 
 }  // namespace bkq

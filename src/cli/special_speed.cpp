@@ -1,6 +1,6 @@
 // `bkquake special-speed [SCENE]`: Ferre (2018, MSc thesis, NTNU) eq. 4.8 for a scene
 // (app/special_speed.hpp).
-#include <boost/program_options.hpp>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -11,17 +11,10 @@
 
 namespace bkq {
 
-int cmd_special_speed(const std::vector<std::string>& args) {
-  boost::program_options::options_description opts(
-      "bkquake special-speed [SCENE] [--set section.key=value]...\n"
-      "Releases the equally spaced chain from the slip threshold (substrate at rest, pad\n"
-      "held) and prints t_death, the time until it is again at rest relative to the\n"
-      "substrate, and v_special = F0 m_u / (k_p t_death) (Ferre 2018 eq. 4.8)");
-  opts.add_options()("help,h", "show this help");
-  add_scene_options(opts);
-  const auto vm = parse_scene_command_line("special-speed", args, opts);
-  if (printed_help(vm, opts)) return 0;
-  const Scene scene = scene_from_command_line("special-speed", vm);
+namespace {
+
+int cmd_special_speed(const Args& args) {
+  const Scene scene = scene_from_command_line(args);
   scene.validate();
   const ModelParams p = model_from_scene(scene);
   const SpecialSpeed s = special_speed(p);
@@ -32,6 +25,20 @@ int cmd_special_speed(const std::vector<std::string>& args) {
       scene.origin.c_str(), p.m_u, p.k_p, p.threshold(), s.dt,
       3.14159265358979 * std::sqrt(p.m_u / p.k_p));
   return 0;
+}
+
+}  // namespace
+
+Command special_speed_command_row() {
+  return {"special-speed",
+          "t_death and v_special = F0/(k_p t_death) of Ferre 2018 eq. 4.8",
+          "[SCENE]",
+          -1,
+          "Releases the equally spaced chain from the slip threshold (substrate at rest, pad\n"
+          "held) and prints t_death, the time until it is again at rest relative to the\n"
+          "substrate, and v_special = F0 m_u / (k_p t_death) (Ferre 2018 eq. 4.8).\n",
+          {scene_set_option()},
+          cmd_special_speed};
 }
 
 }  // namespace bkq

@@ -2,7 +2,6 @@
 // linearisation, optionally over a sweep of one key (app/stability.hpp). Writes scene.ini
 // (the effective scene with provenance), stability.csv, stability_summary.csv and, with
 // --modes, modes.csv into --out, and prints the summary.
-#include <boost/program_options.hpp>
 #include <cstdio>
 #include <iostream>
 
@@ -17,38 +16,13 @@
 
 namespace bkq {
 
-namespace po = boost::program_options;
+namespace {
 
-// What --help prints above the options.
-constexpr const char* kUsage =
-    "Usage: bkquake stability [SCENE] [--set section.key=value]... "
-    "[--sweep KEY=FROM:TO:COUNT] [--out DIR] [--force]\n"
-    "Steady sliding at the disc speed drive.speed and the complex eigenvalues of its\n"
-    "linearisation: each mode's growth rate Re lambda, frequency Im lambda / 2 pi and\n"
-    "whether it is unstable (docs/tutorials/stability.md, docs/validation/stability.md).\n"
-    "Every scene is analysed as continuously driven (drive.mode = continuous), so\n"
-    "drive.speed applies to an event-driven scene too.\n\n";
-
-int cmd_stability(const std::vector<std::string>& args) {
-  po::options_description opts("bkquake stability [SCENE] [options]");
-  // clang-format off
-  add_scene_options(opts);
-  opts.add_options()
-    ("sweep", po::value<std::string>(), "KEY=FROM:TO:COUNT: analyse at COUNT values of one real or integer key")
-    ("log", "space the sweep's values geometrically")
-    ("dense", "use the dense state matrix (N <= 1000) instead of the exact modal reduction")
-    ("modes", po::value<std::vector<std::string>>()->composing(),
-              "FAMILY,INDEX: write this mode's shape to modes.csv (repeatable)")
-    ("out", po::value<std::string>()->default_value("stability"), "output folder (new or empty)")
-    ("force", "write over the files of an existing output folder")
-    ("help,h", "this help");
-  // clang-format on
-  const po::variables_map vm = parse_scene_command_line("stability", args, opts);
-  if (printed_help(vm, opts, kUsage)) return 0;
+int cmd_stability(const Args& args) {
   // Steady sliding is a continuously driven state: every scene is analysed as driven
   // continuously, so drive.speed applies (and --set drive.speed is accepted) whatever the
   // scene's drive.mode; event-only keys of a scene file are dropped with a warning.
-  Scene scene = scene_from_command_line("stability", vm, {{"drive.mode", "continuous"}});
+  Scene scene = scene_from_command_line(args, {{"drive.mode", "continuous"}});
   if (scene.choice("model.kind") == "ofc")
     throw Error(
         "stability: model.kind = ofc: the automaton has no steady sliding to "
@@ -61,11 +35,11 @@ int cmd_stability(const std::vector<std::string>& args) {
   scene.validate();
   if (scene.choice("friction.law") == "rsf") {
     // Rate-and-state steady sliding: k_crit and the chain's modes (app/rsf_run.hpp).
-    if (vm.count("sweep") || vm.count("dense") || vm.count("modes"))
+    if (args.has("sweep") || args.has("dense") || args.has("modes"))
       throw Error(
           "stability: friction.law = rsf: --sweep, --dense and --modes are not written "
           "for rate-and-state yet");
-    const OutputFolder out(vm["out"].as<std::string>(), vm.count("force") > 0, false, "stability");
+    const OutputFolder out(args.text("out"), args.has("force"), false, "stability");
     const RsfStabilityReport r = rsf_stability(settings_from_scene(scene));
     write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
     write_file_atomic(out.path("stability.csv"), r.modes_csv);
@@ -75,16 +49,15 @@ int cmd_stability(const std::vector<std::string>& args) {
     return 0;
   }
   StabilityOptions opt;
-  if (vm.count("sweep")) opt.sweep = parse_sweep(vm["sweep"].as<std::string>(), vm.count("log"));
-  if (vm.count("log") && !opt.sweep) throw Error("stability: --log needs --sweep");
-  opt.dense = vm.count("dense") > 0;
-  if (vm.count("modes"))
-    for (const auto& m : vm["modes"].as<std::vector<std::string>>())
-      opt.shapes.push_back(parse_mode(m, "stability: --modes"));
+  if (args.has("sweep")) opt.sweep = parse_sweep(args.text("sweep"), args.has("log"));
+  if (args.has("log") && !opt.sweep) throw Error("stability: --log needs --sweep");
+  opt.dense = args.has("dense");
+  for (const auto& m : args.texts("modes"))
+    opt.shapes.push_back(parse_mode(m, "stability: --modes"));
 
   // The folder rule of every command that writes a folder (io/output.hpp): a new or empty
   // folder, or --force; its lock while the analysis runs.
-  const OutputFolder out(vm["out"].as<std::string>(), vm.count("force") > 0, false, "stability");
+  const OutputFolder out(args.text("out"), args.has("force"), false, "stability");
   const std::vector<StabilityPoint> points = run_stability(scene, opt);
   write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
   write_file_atomic(out.path("stability.csv"), stability_csv(points));
@@ -108,6 +81,31 @@ int cmd_stability(const std::vector<std::string>& args) {
   std::cout << "outputs in " << out.dir() << "/ (stability.csv, stability_summary.csv"
             << (opt.shapes.empty() ? "" : ", modes.csv") << ", scene.ini)\n";
   return 0;
+}
+
+}  // namespace
+
+Command stability_command_row() {
+  return {"stability",
+          "steady sliding and the complex eigenvalues of its linearisation",
+          "[SCENE]",
+          -1,
+          "Steady sliding at the disc speed drive.speed and the complex eigenvalues of its\n"
+          "linearisation: each mode's growth rate Re lambda, frequency Im lambda / 2 pi and\n"
+          "whether it is unstable (docs/tutorials/stability.md, docs/validation/stability.md).\n"
+          "Every scene is analysed as continuously driven (drive.mode = continuous), so\n"
+          "drive.speed applies to an event-driven scene too.\n",
+          {scene_set_option(),
+           opt::text("sweep", "KEY=FROM:TO:COUNT",
+                     "analyse at COUNT values of one real or integer key"),
+           opt::flag("log", "space the sweep's values geometrically"),
+           opt::flag("dense",
+                     "use the dense state matrix (N <= 1000) instead of the exact modal "
+                     "reduction"),
+           opt::repeated("modes", "FAMILY,INDEX", "write this mode's shape to modes.csv"),
+           opt::text("out", "DIR", "output folder (new or empty)", "stability"),
+           opt::flag("force", "write over the files of an existing output folder")},
+          cmd_stability};
 }
 
 }  // namespace bkq

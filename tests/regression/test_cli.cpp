@@ -3,7 +3,10 @@
 // output-folder guards. Runs the built binary as a subprocess.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "../cli_helpers.hpp"
+#include "cli/commands.hpp"
 #include "io/scene.hpp"
 
 namespace bkq {
@@ -51,6 +54,20 @@ TEST(Cli, VersionNamesTheOptionalParts) {
       << line << h5.err;
 }
 
+// --version's third line names the platform and compiler the binary was built for.
+TEST(Cli, VersionNamesThePlatform) {
+  const auto r = run_bkquake({"--version"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream in(r.out);
+  std::string line;
+  for (int k = 0; k < 3; ++k) std::getline(in, line);
+  ASSERT_EQ(line.rfind("target: ", 0), 0u) << r.out;
+  EXPECT_EQ(line.find("unknown"), std::string::npos) << line;
+#if defined(__x86_64__)
+  EXPECT_EQ(line.rfind("target: x86_64", 0), 0u) << line;
+#endif
+}
+
 TEST(Cli, Help) {
   for (const char* h : {"--help", "-h", "help"}) {
     const auto r = run_bkquake({h});
@@ -67,6 +84,39 @@ TEST(Cli, UnknownCommandAndOption) {
   expect_one_error_line(run_bkquake({"frobnicate"}), {"unknown command 'frobnicate'"});
   expect_one_error_line(run_bkquake({"run", "--frobnicate"}), {"--frobnicate"});
   expect_one_error_line(run_bkquake({"run", "--set"}), {"--set"});
+}
+
+// The error for an unknown command lists every command there is.
+TEST(Cli, UnknownCommandListsTheCommands) {
+  const auto r = run_bkquake({"frobnicate"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  ASSERT_EQ(r.err_lines().size(), 1u) << r.err;
+  const std::string line = r.err_lines()[0];
+  EXPECT_NE(line.find("unknown command 'frobnicate'"), std::string::npos) << line;
+  EXPECT_NE(line.find("try 'bkquake --help'"), std::string::npos) << line;
+  const std::string head = "the commands are ";
+  const auto from = line.find(head);
+  ASSERT_NE(from, std::string::npos) << line;
+  std::string names = line.substr(from + head.size());
+  names = names.substr(0, names.find(';'));
+  std::string expected;
+  for (const Command& c : command_table())
+    if (c.listed) expected += (expected.empty() ? "" : ", ") + c.name;
+  EXPECT_EQ(names, expected) << line;
+}
+
+// Every command of the table is dispatched: its --help exits 0 and prints its synopsis;
+// an option it does not have is refused in one line naming the option and the command.
+TEST(Cli, EveryCommandOfTheTableIsDispatched) {
+  for (const Command& c : command_table()) {
+    const auto help = run_bkquake({c.name, "--help"});
+    EXPECT_EQ(help.status, 0) << c.name << ": " << help.err;
+    EXPECT_EQ(help.out, help_text(c)) << c.name;
+    EXPECT_EQ(help.out.rfind("Usage: bkquake " + c.name, 0), 0u) << help.out;
+    EXPECT_TRUE(help.err.empty()) << c.name << ": " << help.err;
+    expect_one_error_line(run_bkquake({c.name, "--frobnicate"}),
+                          {c.name + ": ", "'--frobnicate'", "bkquake " + c.name + " --help"});
+  }
 }
 
 TEST(Cli, NoCommandPrintsUsageAndFails) {
