@@ -24,6 +24,7 @@
 #include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
+#include "io/scene_values.hpp"
 #include "io/seismicity_csv.hpp"
 
 namespace bkq {
@@ -412,7 +413,7 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   std::optional<Scene> scene;
   const fs::path scene_ini = folder / "scene.ini";
   if (fs::is_regular_file(scene_ini)) scene = read_run_scene(scene_ini);
-  const bool continuous = scene && scene->choice("drive.mode") == "continuous";
+  const bool continuous = scene && scene_values(*scene).drive.mode == DriveMode::Continuous;
   rep.clock = continuous ? "load at the start of each slip episode (continuous run: the "
                            "substrate displacement v t at the episode's start)"
                          : "load (substrate displacement at the trigger; event-driven run)";
@@ -453,8 +454,8 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     geometry.nx = blocks;
     if (scene) {
       geometry.ny = static_cast<int>(scene->integer("model.rows"));
-      geometry.periodic_x = scene->choice("model.boundary") == "periodic";
-      geometry.periodic_y = scene->choice("model.boundary_y") == "periodic";
+      geometry.periodic_x = scene_values(*scene).model.boundary == Boundary::Periodic;
+      geometry.periodic_y = scene_values(*scene).model.boundary_y == Boundary::Periodic;
       rows_from = "scene.ini";
     } else {
       for (CatalogEvent e; probe.next(e);) geometry.ny = std::max(geometry.ny, e.last_row + 1);

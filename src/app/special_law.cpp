@@ -22,9 +22,10 @@ std::vector<LawPoint> special_law(const std::vector<std::string>& run_dirs) {
     if (!fs::exists(scene_file))
       throw Error("special-law: " + dir + " is not a run folder (no scene.ini)");
     const Scene scene = Scene::from_file(scene_file.string());
-    if (scene.choice("drive.mode") != "continuous" || scene.choice("model.kind") != "bk")
-      throw Error("special-law: " + dir + " is a " + scene.choice("model.kind") + " run in " +
-                  scene.choice("drive.mode") +
+    const SceneValues v = scene_values(scene);
+    if (v.drive.mode != DriveMode::Continuous || v.model.kind != ModelChoice::Bk)
+      throw Error("special-law: " + dir + " is a " + scene.text(key::model_kind) + " run in " +
+                  scene.text(key::drive_mode) +
                   " mode; the special law needs continuous runs of model.kind = bk");
     const ModelParams p = model_from_scene(scene);
     for (const SegmentRow& r : read_segments_csv(fs::path(dir) / "segments.csv")) {

@@ -50,7 +50,7 @@ SpectrumReport spectrum_of_run(const SpectrumRequest& req) {
   if (!fs::exists(scene_file))
     throw Error("spectrum: " + req.run_dir + " is not a run folder (no scene.ini)");
   const Scene scene = Scene::from_file(scene_file.string());
-  if (scene.choice("drive.mode") != "continuous")
+  if (scene_values(scene).drive.mode != DriveMode::Continuous)
     throw Error("spectrum: " + req.run_dir +
                 " is an event-driven run (drive.mode = events); spectra need a continuous run "
                 "(drive.mode = continuous)");

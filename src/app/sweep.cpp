@@ -315,7 +315,7 @@ class Sweep {
     // A lattice's cost grows with its sites, blocks times rows.
     const double blocks = static_cast<double>(s.integer("model.blocks")) *
                           static_cast<double>(s.integer("model.rows"));
-    if (s.choice("drive.mode") == "events")
+    if (scene_values(s).drive.mode == DriveMode::Events)
       return blocks *
              static_cast<double>(s.integer("run.events") + s.integer("run.transient_events"));
     return blocks * s.real("run.duration") / s.real("integrator.dt");

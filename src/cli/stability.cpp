@@ -23,17 +23,17 @@ int cmd_stability(const Args& args) {
   // continuously, so drive.speed applies (and --set drive.speed is accepted) whatever the
   // scene's drive.mode; event-only keys of a scene file are dropped with a warning.
   Scene scene = scene_from_command_line(args, {{"drive.mode", "continuous"}});
-  if (scene.choice("model.kind") == "ofc")
+  if (scene_values(scene).model.kind == ModelChoice::Ofc)
     throw Error(
         "stability: model.kind = ofc: the automaton has no steady sliding to "
         "linearise; allowed: model.kind = bk, bkp or 1dof");
-  if (scene.choice("drive.mode") != "continuous")
+  if (scene_values(scene).drive.mode != DriveMode::Continuous)
     throw Error("stability: drive.mode = " + scene.choice("drive.mode") +
                 ": steady sliding at drive.speed is a continuously driven state, and stability "
                 "analyses every scene so; remove --set drive.mode=" +
                 scene.choice("drive.mode"));
   scene.validate();
-  if (scene.choice("friction.law") == "rsf") {
+  if (scene_values(scene).friction.law.rsf) {
     // Rate-and-state steady sliding: k_crit and the chain's modes (app/rsf_run.hpp).
     if (args.has("sweep") || args.has("dense") || args.has("modes"))
       throw Error(

@@ -6,10 +6,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "io/scene_keys.hpp"
 
 namespace bkq {
 
@@ -17,7 +20,25 @@ namespace bkq {
 // it (from the working directory on the command line) and kept absolute.
 enum class ParamType { Real, Integer, Choice, Boolean, Path };
 
-struct KeyDependency;  // an applies-when row of the table (io/scene.cpp)
+class Scene;
+struct SceneValues;
+
+// One condition of an applies-when rule: the controlling key holds one of these values.
+struct KeyCondition {
+  std::string controller;
+  std::vector<std::string> values;
+};
+
+// One applies-when rule of a key: it holds when any of its conditions does. A rule that is
+// not a list of controller values (model.rows > 1, ...) gives `holds`, the reason it does
+// not ("needs model.rows > 1, but model.rows = 1") and validate()'s refusal of the key
+// given anyway (without the scene's origin; empty: accepted, only written as a comment).
+struct Requirement {
+  std::vector<KeyCondition> any_of;
+  std::function<bool(const Scene&)> holds;
+  std::function<std::string(const Scene&)> why_not;
+  std::function<std::string(const Scene&, const std::string& key)> refusal;
+};
 
 // One row of the parameter table. Ranges are inclusive unless the *_open flag is set.
 struct ParamSpec {
@@ -32,10 +53,29 @@ struct ParamSpec {
   std::string doc;                   // one line
   bool allow_auto = false;           // Real only: the word `keyword` is accepted too
   std::string keyword = "auto";      // `auto` (chosen for you) or `none` (the output is off)
+  // When the key applies: every rule holds (in this order: the first that fails says why).
+  std::vector<Requirement> applies_when;
+  // Given in a scene file where it does not apply, it is not dropped with a warning but
+  // left to validate() (model.blocks and model.rows with model.kind = 1dof: a contradiction).
+  bool kept_when_inapplicable = false;
+  // Added after scenes were first hashed: at its default, left out of Scene::hash() so that
+  // the checkpoints and results made before the key existed keep their hash.
+  bool added_later = false;
+  // The member the key fills: from the normalised text, and back to it.
+  std::function<void(SceneValues&, const std::string&)> fill;
+  std::function<std::string(const SceneValues&)> text_of;
 };
 
-// The parameter table (the single place a key is declared).
+// The cross-key checks of validate() (contradictory combinations), in the order they run,
+// each written beside the rows it joins (io/scene_table.cpp); each throws bkq::Error ending
+// with `where`.
+using CrossKeyRule = void (*)(const Scene&, const std::string& where);
+const std::vector<CrossKeyRule>& cross_key_rules();
+
+// The parameter table (the single place a key is declared: io/scene_table.cpp).
 const std::vector<ParamSpec>& parameter_table();
+// Builds it (parameter_table() keeps the one copy).
+std::vector<ParamSpec> make_parameter_table();
 const ParamSpec* find_param(const std::string& key);
 // For a key that is not in the table: "; did you mean '<nearest key>'?" when one is a few
 // edits away, else a pointer to --dump-defaults (the tail of an unknown-key message).
@@ -88,6 +128,9 @@ class Scene {
   // drive.step_* without the steps schedule, ...): validate() rejects such a key when it is
   // given, and to_ini() writes it as a comment so the effective scene reads back cleanly.
   bool applies(const std::string& key) const;
+  // Why `key` does not apply: "needs drive.schedule = steps, but drive.schedule = constant";
+  // empty when it applies.
+  std::string why_not(const std::string& key) const;
 
   // Scenes are equal when every effective value is equal (origin and which keys were
   // given explicitly do not count): from_text(s.to_ini(), ...) == s.
@@ -101,18 +144,8 @@ class Scene {
   std::string where() const;
 
  private:
-  // validate()'s checks of a continuous run: its step count, its speed schedule.
-  void check_continuous_run(const std::string& where) const;
-  // validate()'s checks of an OFC scene: events only, its catalogue format, its lattice.
-  void check_ofc(const std::string& where) const;
-  void check_lattice(const std::string& where) const;
-  // model.range against one axis: count_key's sites with boundary_key's ends.
-  void check_range(const std::string& count_key, const std::string& boundary_key,
-                   const std::string& where) const;
-  // The first applies-when row of `key` that does not hold (nullptr when it applies), and
-  // why in words ("needs drive.schedule = steps, but drive.schedule = constant").
-  const KeyDependency* failing_dependency(const std::string& key) const;
-  std::string why_not(const std::string& key) const;
+  // The first applies-when rule of `p` that does not hold in this scene, or nullptr.
+  const Requirement* failing_requirement(const ParamSpec& p) const;
   // Makes the relative Path values absolute, taken from `folder`.
   void resolve_paths(const std::filesystem::path& folder);
 
