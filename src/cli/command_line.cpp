@@ -4,6 +4,7 @@
 #include <boost/program_options.hpp>
 #include <cstdlib>
 #include <iostream>
+#include <stdexcept>
 #include <utility>
 
 #include "cli/commands.hpp"
@@ -67,10 +68,21 @@ struct Args::Values {
   po::variables_map vm;
 };
 
-Args::Args(std::string command, std::shared_ptr<const Values> values)
-    : command_(std::move(command)), values_(std::move(values)) {}
+Args::Args(const Command& command, std::shared_ptr<const Values> values)
+    : command_(&command), values_(std::move(values)) {}
+
+const std::string& Args::command() const {
+  return command_->name;
+}
+
+const Option& Args::declared(const std::string& name) const {
+  for (const Option& o : command_->options)
+    if (o.name == name) return o;
+  throw std::logic_error(command_->name + " asks for --" + name + ", which it does not declare");
+}
 
 bool Args::has(const std::string& name) const {
+  declared(name);
   return values_->vm.count(name) > 0;
 }
 
@@ -79,15 +91,19 @@ bool Args::given(const std::string& name) const {
 }
 
 std::string Args::text(const std::string& name) const {
+  declared(name);
   return values_->vm[name].as<std::string>();
 }
 int Args::integer(const std::string& name) const {
+  declared(name);
   return values_->vm[name].as<int>();
 }
 std::int64_t Args::integer64(const std::string& name) const {
+  declared(name);
   return values_->vm[name].as<std::int64_t>();
 }
 double Args::real(const std::string& name) const {
+  declared(name);
   return values_->vm[name].as<double>();
 }
 std::vector<std::string> Args::texts(const std::string& name) const {
@@ -103,7 +119,7 @@ constexpr const char* kOperands = "operands";
 }  // namespace
 
 std::vector<std::string> Args::operands() const {
-  if (!has(kOperands)) return {};
+  if (!values_->vm.count(kOperands)) return {};
   const auto& v = values_->vm[kOperands].value();
   if (const auto* one = boost::any_cast<std::string>(&v)) return {*one};
   return boost::any_cast<std::vector<std::string>>(v);
@@ -273,7 +289,7 @@ int run_command(const Command& command, const std::vector<std::string>& args) {
     std::cout << help_text(command);
     return 0;
   }
-  return command.run(Args(command.name, std::move(values)));
+  return command.run(Args(command, std::move(values)));
 }
 
 }  // namespace bkq

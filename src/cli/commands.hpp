@@ -39,13 +39,16 @@ Option real(std::string name, std::string value, std::string help, std::string d
 Option repeated(std::string name, std::string value, std::string help);
 }  // namespace opt
 
-// A parsed command line: the options given (or defaulted) and the operands.
+struct Command;
+
+// A parsed command line: the options given (or defaulted) and the operands. Asking for an
+// option the command does not declare is a bug (std::logic_error), not an absent option.
 class Args {
  public:
   struct Values;  // command_line.cpp
-  Args(std::string command, std::shared_ptr<const Values> values);
+  Args(const Command& command, std::shared_ptr<const Values> values);
 
-  const std::string& command() const { return command_; }
+  const std::string& command() const;
   // Given, or absent with a default value.
   bool has(const std::string& name) const;
   // Given on the command line (not its default).
@@ -58,7 +61,8 @@ class Args {
   std::vector<std::string> operands() const;                      // in order
 
  private:
-  std::string command_;
+  const Option& declared(const std::string& name) const;
+  const Command* command_;
   std::shared_ptr<const Values> values_;
 };
 

@@ -57,7 +57,7 @@ Command run_command_row() {
            opt::flag("resume",
                      "continue the run in the output folder from its checkpoint, or extend a "
                      "finished run to a larger run.events or run.duration"),
-           opt::flag("force", "overwrite a finished run in the output folder"),
+           opt::flag("force", "overwrite a finished run in the output folder (not with --resume)"),
            opt::flag("quiet", "no progress output"),
            opt::flag("dump-defaults",
                      "print a commented scene with every key (at its default, or as SCENE and "

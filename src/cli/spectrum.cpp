@@ -47,7 +47,9 @@ Command spectrum_command_row() {
       "(Ferre 2018 §4.3).\n",
       {opt::text("signal", "pad_position|pad_velocity|pad_friction|block:J",
                  "the signal; block:J needs blocks.csv", "pad_position"),
-       opt::integer64("segment", "K", "the last half of this segment of segments.csv (0-based)"),
+       opt::integer64(
+           "segment", "K",
+           "the last half of this segment of segments.csv (0-based; not with --from/--to)"),
        opt::real("from", "T0", "start of the time span (default: the run's start)"),
        opt::real("to", "T1", "end of the time span (default: the run's end)"),
        opt::text("window", "hann|rectangular", "the window", "hann"),

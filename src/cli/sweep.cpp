@@ -40,7 +40,9 @@ Command sweep_command_row() {
        opt::flag("resume",
                  "finish the sweep in the output folder: only points not done run (with a "
                  "larger run.events or run.duration: every point is extended)"),
-       opt::flag("force", "write over the output folder (an earlier sweep's points and files go)")},
+       opt::flag("force",
+                 "write over the output folder (an earlier sweep's points and files go; not with "
+                 "--resume)")},
       cmd_sweep};
 }
 

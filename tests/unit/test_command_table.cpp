@@ -7,9 +7,11 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "cli/commands.hpp"
+#include "core/error.hpp"
 #include "io/readme_tables.hpp"
 
 namespace bkq {
@@ -128,6 +130,36 @@ TEST(CommandTable, DefaultsWorkedOutByTheCommandSaySo) {
   const Option b = row("seismicity", "b-mu-min");
   EXPECT_NE(b.help.find("summary.json"), std::string::npos) << b.help;
   EXPECT_LT(b.help.find("summary.json"), b.help.find("else maximum curvature")) << b.help;
+}
+
+// The parser a row makes: defaults typed as declared, repeated options in order, operands,
+// no abbreviations, and a command asking for an option it never declared is a bug.
+TEST(CommandTable, ARowParsesItsOptions) {
+  static std::vector<std::string> seen;
+  Command c;
+  c.name = "probe";
+  c.max_operands = -1;
+  c.options = {opt::text("out", "DIR", "folder", "here"), opt::integer("jobs", "J", "jobs", "3"),
+               opt::real("x", "X", "a real", "0.25"), opt::repeated("set", "K=V", "keys"),
+               opt::flag("force", "force")};
+  c.run = [](const Args& a) {
+    seen = {a.text("out"), std::to_string(a.integer("jobs")), std::to_string(a.real("x")),
+            a.given("out") ? "given" : "default", a.has("force") ? "force" : "-"};
+    for (const auto& s : a.texts("set")) seen.push_back(s);
+    for (const auto& s : a.operands()) seen.push_back(s);
+    return 7;
+  };
+  EXPECT_EQ(run_command(c, {"A", "--set", "k=1", "B", "--set", "k=2", "--jobs", "5"}), 7);
+  EXPECT_EQ(seen, (std::vector<std::string>{"here", "5", "0.250000", "default", "-", "k=1", "k=2",
+                                            "A", "B"}));
+  EXPECT_EQ(run_command(c, {"--out", "there", "--force"}), 7);
+  EXPECT_EQ(seen[0], "there");
+  EXPECT_EQ(seen[3], "given");
+  EXPECT_EQ(seen[4], "force");
+  EXPECT_THROW(run_command(c, {"--for"}), Error);           // not --force
+  EXPECT_THROW(run_command(c, {"--jobs", "many"}), Error);  // not an integer
+  c.run = [](const Args& a) { return a.has("forse") ? 1 : 0; };
+  EXPECT_THROW(run_command(c, {}), std::logic_error);
 }
 
 }  // namespace
