@@ -28,10 +28,10 @@ int cmd_stability(const Args& args) {
         "stability: model.kind = ofc: the automaton has no steady sliding to "
         "linearise; allowed: model.kind = bk, bkp or 1dof");
   if (scene_values(scene).drive.mode != DriveMode::Continuous)
-    throw Error("stability: drive.mode = " + scene.choice("drive.mode") +
+    throw Error("stability: drive.mode = " + scene.text(key::drive_mode) +
                 ": steady sliding at drive.speed is a continuously driven state, and stability "
                 "analyses every scene so; remove --set drive.mode=" +
-                scene.choice("drive.mode"));
+                scene.text(key::drive_mode));
   scene.validate();
   if (scene_values(scene).friction.law.rsf) {
     // Rate-and-state steady sliding: k_crit and the chain's modes (app/rsf_run.hpp).

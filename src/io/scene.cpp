@@ -1,9 +1,8 @@
 // The Scene that reads, checks and writes bkquake's parameter table. Every key is declared
-// exactly once in io/scene_table.cpp (type, default, range, units, doc, member, when it
-// applies); reading
-// (INI files through io/ini.hpp, the one INI parser, and --set overrides), validation,
-// --dump-defaults and the effective scene.ini of each run are all driven by that table,
-// so a new parameter is one new row. Values are stored as normalised text (shortest
+// exactly once, as a row of io/scene_table.cpp (type, default, range, units, doc, member,
+// when it applies); reading (INI files through io/ini.hpp, the one INI parser, and --set
+// overrides), validation, --dump-defaults and the effective scene.ini of each run are all
+// driven by those rows. Values are stored as normalised text (shortest
 // round-trip reals, true/false booleans) so equal scenes hash equally.
 #include "io/scene.hpp"
 
@@ -22,11 +21,8 @@
 #include "core/fnv1a.hpp"
 #include "core/format.hpp"
 #include "core/terminal_text.hpp"
-#include "engine/ofc.hpp"
-#include "integrate/stepper.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
-#include "model/friction_laws.hpp"
 
 namespace bkq {
 

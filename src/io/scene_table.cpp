@@ -781,7 +781,8 @@ std::vector<ParamSpec> friction_rows() {
 }
 
 void table_file(const Scene& s, const std::string& where) {
-  if (s.text(key::friction_law) == "table" && s.text(key::friction_table).empty())
+  const SceneValues v = read(s, key::friction_law, key::friction_table);
+  if (!v.friction.law.rsf && v.friction.law.law == law_id<law::Table> && v.friction.table.empty())
     throw Error("friction.table: friction.law = table needs the table's file, got none" + where);
 }
 
