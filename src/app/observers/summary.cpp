@@ -28,16 +28,12 @@ namespace bkq {
 
 namespace {
 
-// Where the scene came from. The built-in default's origin names the scene it starts as;
-// once --set has changed it (model.kind = ofc, drive.mode = continuous) that name would
-// describe another model, so the overridden default says what it now is.
+// Where the scene came from. The built-in default's origin names the chain it starts as; an
+// OFC run made from it with --set says so instead. (Chain runs keep the origin as it is: the
+// golden outputs record it.)
 std::string origin_text(const Scene& scene, const Settings& settings) {
-  if (scene.origin != Scene::kBuiltInOrigin || scene.where().find("--set") == std::string::npos)
-    return scene.origin;
-  const std::string model = settings.ofc.on ? "ofc" : scene.text("model.kind");
-  const bool events = scene.text("drive.mode") == "events";
-  return "built-in default with --set overrides (" + model + ", " +
-         (events ? "event-driven" : "continuous") + ")";
+  if (!settings.ofc.on || scene.origin != Scene::kBuiltInOrigin) return scene.origin;
+  return "built-in default with --set overrides (ofc, event-driven)";
 }
 
 // The provenance, then "status" (io/run_folder.hpp): finished, or interrupted with what
