@@ -6,6 +6,7 @@
 #include <signal.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -109,7 +110,16 @@ class OfcLoopEngine : public LoopEngine {
         engine_(from ? OfcEngine(settings.ofc.lattice, saved(settings, *from))
                      : OfcEngine(settings.ofc.lattice,
                                  ofc_initial_field(settings.ofc.lattice, settings.run.seed))) {}
-  EventRecord next_event() override { return engine_.next_event(); }
+  // Each toppling releases at least the threshold F_th = 1; the drive stops the trigger one
+  // rounding step short of it, so an event's moment is made at least its topplings.
+  EventRecord next_event() override {
+    EventRecord e = engine_.next_event();
+    if (e.moment < static_cast<double>(e.topplings)) {
+      e.moment = static_cast<double>(e.topplings);
+      e.magnitude = std::log(e.moment);
+    }
+    return e;
+  }
   // steps: topplings (the automaton's unit of work).
   EngineCounters counters() const override {
     EngineCounters c;

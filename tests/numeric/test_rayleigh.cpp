@@ -1,4 +1,4 @@
-// Rayleigh block damping in the simulations (issue 18 item 4): the force kernels apply the
+// Rayleigh block damping in the simulations: the force kernels apply the
 // same damping matrix alpha_M M + beta_K K as the stability analysis (blocks and pad, K with
 // k_c, the k_p coupling and the pad row, lab-frame velocities); every scheme's energy
 // balance books the damper's work; the explicit schemes' stability limit with damping

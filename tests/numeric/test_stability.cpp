@@ -1,4 +1,4 @@
-// Steady sliding and its linear stability (issue 18): the equilibrium against its closed
+// Steady sliding and its linear stability: the equilibrium against its closed
 // form, the eigenvalues against the closed forms of thesis eqs. 2.15-2.17 (1DOF) and of the
 // chain modes with and without Rayleigh damping, and the exact modal reduction against the
 // dense state matrix (eigenvalues one by one, and the bkp pad-mode speed threshold).

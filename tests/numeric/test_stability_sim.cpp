@@ -1,4 +1,4 @@
-// The analysis agrees with the simulation (issue 18 item 5): a continuous run started at
+// The analysis agrees with the simulation: a continuous run started at
 // the sliding equilibrium plus a small perturbation along one mode (run.start =
 // equilibrium, app/stability.hpp) grows or decays at Re lambda of that mode (within 5 %)
 // and oscillates at its frequency (within 2 %), measured on the mode's coordinate before

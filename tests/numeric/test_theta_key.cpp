@@ -1,4 +1,4 @@
-// integrator.theta (issue 18 item 8): on a frictionless (friction.law = none), undamped
+// integrator.theta: on a frictionless (friction.law = none), undamped
 // (zeta = 0, no Rayleigh damping) BK-Pad chain the theta-method at theta = 1/2 conserves
 // the energy at any dt (the trapezoidal rule), while theta > 1/2 dissipates it, every step
 // and more the larger theta; the stability limit under weakening friction scales as 1/theta.

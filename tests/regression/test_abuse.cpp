@@ -1,4 +1,4 @@
-// The abuse test (issue 19): bkquake run with randomised scenes (keys from the declared set
+// The abuse test: bkquake run with randomised scenes (keys from the declared set
 // with random, extreme, non-finite and mistyped values, unknown keys, in a scene file or as
 // --set), fit with random options, and run --resume, fit and merge on truncated and
 // byte-flipped scene, catalog, histogram, summary and checkpoint files, and (third round)

@@ -1,4 +1,4 @@
-// Every number that enters bkquake is checked where it enters (issue 19, items 1 and 4):
+// Every number that enters bkquake is checked where it enters:
 // a scene key or a command-line option that is not finite, outside its declared sane range,
 // or that would overflow a step counter or drive the substrate backwards exits 2 with one
 // line naming it, before any work (the fit used to loop for ever on stats.mu_min = -1e300,
@@ -132,7 +132,7 @@ TEST(Boundaries, AccuracyOptionsAreCheckedLikeTheirSceneKeys) {
                           {"accuracy: --reference-tolerance", "nan", "integrator.tolerance"});
 }
 
-// Issue 19 item 9: numbers in messages and summaries with enough digits to mean something.
+// Numbers in messages and summaries with enough digits to mean something.
 TEST(Boundaries, ADtJustAboveTheStabilityLimitReadsAsAbove) {
   const Settings settings = settings_from_scene(Scene());
   const auto stepper = stepper_of(settings.integrator, settings.model.n);

@@ -1,4 +1,4 @@
-// SIGTERM once an event run's last event is written (issue 19, item 1): the run is then in its
+// SIGTERM once an event run's last event is written: the run is then in its
 // closing phase (the fit, the histogram, the summary). Either the signal lands before the last
 // stop check, and the run stops as after an event: exit 143, a checkpoint with every event
 // done, a summary marked interrupted without a fit, and --resume fits and finishes; or it

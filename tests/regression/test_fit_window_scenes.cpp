@@ -1,4 +1,4 @@
-// The automatic fit window on real catalogues (issue 19, item 10), 10^5 events each (under a
+// The automatic fit window on real catalogues, 10^5 events each (under a
 // second per scene): on the Carlson-Langer scenes alpha = 2, 2.5, 3 the automatic b agrees
 // with the b on the window read off by eye, [-7.6, -2.0), on the same catalogue within two
 // combined errors (statistical, and the automatic b's systematic one); on the

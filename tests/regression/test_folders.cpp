@@ -1,4 +1,4 @@
-// Output folders as concurrent and interrupted users meet them (issue 19, item 2): two runs
+// Output folders as concurrent and interrupted users meet them: two runs
 // on one --out (the second refuses naming the first), a run killed by SIGKILL (its stale
 // lock is refused without --resume and taken over with it), a stray file in an otherwise
 // empty folder (refused without --force), and merge, which writes nothing into its inputs.
@@ -123,7 +123,7 @@ TEST(Folders, MergeWritesNothingIntoItsInputs) {
 namespace bkq {
 namespace {
 
-// Issue 19, item 3: merge accepts only runs of one scene (the physics and the bins; seeds,
+// Merge accepts only runs of one scene (the physics and the bins; seeds,
 // lengths, checkpoints, outputs and fit windows may differ) and never the same run twice.
 class MergeUnlike : public ::testing::Test {
  protected:
@@ -234,7 +234,7 @@ TEST_F(MergeUnlike, AcceptsOtherSeedsLengthsAndFitWindows) {
 namespace bkq {
 namespace {
 
-// Issue 19 item 9: a row of catalog.csv edited after the checkpoint, keeping its length,
+// A row of catalog.csv edited after the checkpoint, keeping its length,
 // passed the resume check (it counted bytes and lines); the checkpoint now keeps a checksum.
 TEST(Folders, ResumeFindsAnEditedCatalogRowOfTheSameLength) {
   test::TempDir tmp;

@@ -1,4 +1,4 @@
-// Keys that do not apply to the scene (issue 19, item 8): read and silently ignored before.
+// Keys that do not apply to the scene are never used without a word.
 // The rule (docs/reference/scenes.md): a key given by --set where it does not apply is an error
 // naming the key and why; one from a scene file, which may be shared between scenes, is ignored
 // with a one-line warning per key. The effective scene.ini comments such keys out, so a run's

@@ -1,4 +1,4 @@
-// The plot scripts (issue 19, item 12), run with Debian's /usr/bin/python3 as users do:
+// The plot scripts, run with Debian's /usr/bin/python3 as users do:
 // plot_gr.py draws the fitted law so that it passes through the data in the window (R at
 // both window edges exactly: the window's law plus the events above it; D's expected
 // counts adding up to the window's events) and writes its PNG; every script answers a

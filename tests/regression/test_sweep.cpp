@@ -163,7 +163,7 @@ TEST_F(SweepMpi, TwoAndFourRanksWriteTheBytesOfOne) {
   EXPECT_FALSE(fs::exists(dir.path() / "two/bkquake.lock"));
 }
 
-// Done-when of the sweep issue: the Carlson-Langer table from the shipped sweep file, the
+// The Carlson-Langer table from the shipped sweep file, the
 // same for 1 and 2 ranks (shortened here; the full table is one command, docs/how-to/sweeps.md).
 TEST_F(SweepMpi, CarlsonLangerTableIsTheSameOnOneAndTwoRanks) {
   TempDir dir;

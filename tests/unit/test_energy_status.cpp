@@ -1,4 +1,4 @@
-// Energy diagnostics and node status (issue 18 items 6-7): the windowed mean of a constant
+// Energy diagnostics and node status: the windowed mean of a constant
 // is that constant and of a sine over whole windows its offset; the settle time; and a
 // continuous run with output.status and output.energy: node counts add up to N on every
 // row and agree with the sliding column, energy.csv and the settle time are written.

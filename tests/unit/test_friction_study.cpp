@@ -1,5 +1,5 @@
 // The friction study (thesis Fig. 4.6) on a short segment length: every configuration asked
-// for gets one row per speed of the grid, the grid holds the speeds the issue names, and
+// for gets one row per speed of the grid, the grid holds the thesis's speeds, and
 // an unknown configuration is refused.
 #include <gtest/gtest.h>
 

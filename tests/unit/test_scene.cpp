@@ -221,7 +221,7 @@ TEST(SceneValidate, ScheduleOnlyKeys) {
 }
 
 TEST(SceneValidate, KindModeAndSchemeOnlyKeys) {
-  // Issue 19, item 8: these were read and silently ignored.
+  // Keys of another model kind, drive mode or scheme are refused, not silently ignored.
   EXPECT_ERROR_HAS(from("[model]\ndamping_ratio = 0.2\n").validate(), "model.damping_ratio",
                    "model.kind = bkp|1dof", "model.kind = bk");
   EXPECT_NO_THROW(from("[model]\nkind = bkp\ndamping_ratio = 0.2\n").validate());

@@ -1,4 +1,4 @@
-// The fit ends on any input (issue 19, item 1): window limits that are not finite or lie
+// The fit ends on any input: window limits that are not finite or lie
 // absurdly far from the magnitudes are errors, not loops over 10^300 bins; a histogram
 // too wide for the window search is an error; and a fit asked to stop (a run got SIGTERM)
 // stops with FitCancelled instead of finishing. Each case would hang or run for minutes

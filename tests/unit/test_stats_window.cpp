@@ -93,7 +93,7 @@ TEST(Window, GivenMuMaxIsKept) {
   EXPECT_LT(f.b_mle, 1.0);  // the bump is inside the given window and pulls b down
 }
 
-// The shape of a Burridge-Knopoff D(mu) (issue 19, item 10): an atom of one-block events and
+// The shape of a Burridge-Knopoff D(mu): an atom of one-block events and
 // a few uneven few-block bins at the bottom, a power law with b = 0.9 over six units, a
 // flat dip, then a bump of large events. The automatic window starts above the uneven bins,
 // ends below the bump, keeps the power law's events and recovers b. Before the rules of

@@ -28,6 +28,14 @@ namespace bkq {
 
 namespace {
 
+// Where the scene came from. The built-in default's origin names the chain it starts as; an
+// OFC run made from it with --set says so instead. (Chain runs keep the origin as it is: the
+// golden outputs record it.)
+std::string origin_text(const Scene& scene, const Settings& settings) {
+  if (!settings.ofc.on || scene.origin != Scene::kBuiltInOrigin) return scene.origin;
+  return "built-in default with --set overrides (ofc, event-driven)";
+}
+
 // The provenance, then "status" (io/run_folder.hpp): finished, or interrupted with what
 // the run needs to go on ("interrupted": the signal, the checkpoint, the command, and how
 // far it was meant to go; the figures after it are those reached so far).
@@ -37,7 +45,7 @@ Json provenance_json(const Scene& scene, const Settings& settings, const std::st
   j.set("version", kVersion);
   j.set("git_revision", kGitRevision);
   j.set("seed", static_cast<std::int64_t>(settings.run.seed));
-  j.set("scene", scene.origin);
+  j.set("scene", origin_text(scene, settings));
   j.set("scene_hash", std::to_string(scene.hash()));
   j.set("mode", mode);
   j.set("written", utc_now_iso());
@@ -287,8 +295,10 @@ void EventSummary::on_end(const RunEnd& end) {
   std::printf("bkquake %s: %lld events (after %lld transient) in %.3g s, %.4g events/s\n", kVersion,
               static_cast<long long>(end.events), static_cast<long long>(end.transient_events),
               wall, wall > 0 ? end.events / wall : 0.0);
-  std::printf("  total substrate displacement %.6g, magnitudes %.3g..%.3g\n", end.total_load,
-              hist_.min_mu(), hist_.max_mu());
+  // An OFC run's load is the uniform stress added to every site, in thresholds.
+  std::printf("  total %s %.6g, magnitudes %.3g..%.3g\n",
+              settings_.ofc.on ? "drive (stress per site)" : "substrate displacement",
+              end.total_load, hist_.min_mu(), hist_.max_mu());
   std::printf("  %s\n  outputs in %s/\n", fit_line.c_str(), out_.dir().c_str());
 }
 
