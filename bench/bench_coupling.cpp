@@ -2,7 +2,7 @@
 // alpha = 2.5, sigma = 0.01, clst91, rk4 at dt = 0.01) at N blocks with model.coupling =
 // nearest, range R for each R asked for, and the power kernel (p = 3) at the largest R. For
 // each, after a transient of T events, the event engine (which integrates only the blocks
-// within R of a sliding block) and the straightforward engine (engine/reference_events.hpp:
+// within R of a sliding block) and the straightforward engine (tests/support/reference_events.hpp:
 // every block of the chain stepped through every event, the loader scanning every block)
 // each run the same F events from the same state, and then the event engine E more; all
 // timed in this thread's CPU time. One row per coupling: the engine's events per CPU second
@@ -23,11 +23,11 @@
 
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
-#include "engine/reference_events.hpp"
 #include "integrate/stepper.hpp"
 #include "io/scene.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
+#include "support/reference_events.hpp"
 #include "thread_clock.hpp"
 
 namespace {

@@ -2,7 +2,7 @@
 // sigma = 0.01, clst91, RK4 at dt = 0.01) at N = 100, 1000 and 10^4: events per second,
 // block-steps and sliding-block-steps per second, and nanoseconds per sliding-block-step
 // (the engine's work should scale with the event, not the chain). BM_Straightforward
-// runs the straightforward engine (engine/reference_events.hpp: every block, every step)
+// runs the straightforward engine (tests/support/reference_events.hpp: every block, every step)
 // from the same state, so that the speed-up is a ratio measured in one run: issue 3's
 // goals are 10x such an engine at N = 100 (3.5e5 against 3.5e4 events/s) and 30x at
 // N = 1000 (1.3e5 against 4.4e3). The bk_located and bkp_located rows run the same scene
@@ -11,7 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include "carlson_langer_events.hpp"
-#include "engine/reference_events.hpp"
+#include "support/reference_events.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // Events per second on the BK lattice (model.rows > 1, Carlson 1991): the event engine, which
 // steps only the sliding sites and their stencil partners and loads from a force tree, beside
-// the straightforward engine (engine/reference_events.hpp: every site stepped through every
+// the straightforward engine (tests/support/reference_events.hpp: every site stepped through every
 // event, every site scanned to load), on the carlson-langer scene (l = l_y = 10, alpha = 2.5,
 // sigma = 0.01, clst91, rk4 at dt = 0.01) on L x L sites, free edges.
 //
@@ -30,11 +30,11 @@
 
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
-#include "engine/reference_events.hpp"
 #include "integrate/stepper.hpp"
 #include "io/scene.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
+#include "support/reference_events.hpp"
 #include "thread_clock.hpp"
 
 namespace {

@@ -1,7 +1,7 @@
 // The naive full-chain integration, as a program of its own: the yardstick that a whole
 // `bkquake run` is timed against (bench/whole_run.sh). It reads a scene exactly as
 // `bkquake run` does (the built-in default without SCENE, then --set overrides) and runs
-// the same transient and recorded events with engine/reference_events: the loader scans
+// the same transient and recorded events with tests/support/reference_events: the loader scans
 // every block for the next failure and each event steps every block of the chain with the
 // scene's stepper (rk4 at dt = 0.01 by default) until all are stuck. It writes no files;
 // it prints the events, the block-steps and the sum of the recorded moments, so a run that
@@ -15,9 +15,9 @@
 
 #include "cli/scene_args.hpp"
 #include "engine/initial_state.hpp"
-#include "engine/reference_events.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
+#include "support/reference_events.hpp"
 
 namespace {
 

@@ -22,10 +22,12 @@ class Adaptive final : public Stepper {
   // tolerance: the local error tolerance, in (0, 1); throws bkq::Error otherwise.
   Adaptive(int n_blocks, double tolerance);
 
+  // Transitions located on its own dense output, its step size under error control.
+  static constexpr SchemeTraits kTraits{.stick_rule = StickRule::Located, .error_control = true};
   std::string_view name() const override { return "adaptive"; }
+  const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return 5; }
   double stability_constant() const override { return HUGE_VAL; }
-  StickRule stick_rule() const override { return StickRule::Located; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override;
   // The next step size, where the last call ended and the last located re-stick.

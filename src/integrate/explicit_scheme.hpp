@@ -17,7 +17,15 @@ template <class Method>
 class ExplicitScheme final : public Stepper {
  public:
   explicit ExplicitScheme(int) {}
+  // Transitions at the step (the Crossing rule), locatable, on every force kernel, with the
+  // cluster form; fused over held ranges where the Method's stages allow it.
+  static constexpr SchemeTraits kTraits{.stick_rule = StickRule::Crossing,
+                                        .locatable = true,
+                                        .general_kernels = true,
+                                        .cluster_kernels = true,
+                                        .fused_kernels = Method::fusable};
   std::string_view name() const override { return Method::name; }
+  const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return Method::order; }
   double stability_constant() const override { return Method::stability_constant; }
   double damped_stability_constant() const override {
@@ -51,11 +59,8 @@ class ExplicitScheme final : public Stepper {
   }
 
   bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override {
-    return run_cluster<Method, false>(forces, r);
-  }
-
-  bool relax_pad_cluster(const ChainForces& forces, ClusterRelaxation& r) const override {
-    return run_cluster<Method, true>(forces, r);
+    return forces.params().pad_moves() ? run_cluster<Method, true>(forces, r)
+                                       : run_cluster<Method, false>(forces, r);
   }
 
  private:

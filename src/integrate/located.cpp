@@ -29,8 +29,8 @@ double hermite(double y0, double d0, double y1, double d1, double h, double s) {
 }  // namespace
 
 LocatedTransitions::LocatedTransitions(std::unique_ptr<Stepper> scheme, int n_blocks)
-    : scheme_(std::move(scheme)), n_(n_blocks) {
-  if (scheme_->stick_rule() != StickRule::Crossing)
+    : scheme_(std::move(scheme)), traits_(located_traits(scheme_->traits())), n_(n_blocks) {
+  if (!scheme_->traits().locatable)
     throw Error("integrator.transitions = located: the scheme " + std::string(scheme_->name()) +
                 " resolves its transitions itself; located applies to rk2, rk4 and verlet "
                 "(use integrator.transitions = step)");
@@ -50,11 +50,6 @@ void LocatedTransitions::restore_carried_state(std::span<const double> s) {
 bool LocatedTransitions::relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const {
   r.located = true;
   return scheme_->relax_cluster(forces, r);
-}
-
-bool LocatedTransitions::relax_pad_cluster(const ChainForces& forces, ClusterRelaxation& r) const {
-  r.located = true;
-  return scheme_->relax_pad_cluster(forces, r);
 }
 
 void LocatedTransitions::save_start(const ChainState& st, Ranges ranges) {

@@ -64,13 +64,13 @@ class LocatedTransitions final : public Stepper {
   LocatedTransitions(std::unique_ptr<Stepper> scheme, int n_blocks);
 
   std::string_view name() const override { return scheme_->name(); }
+  const SchemeTraits& traits() const override { return traits_; }
   int order() const override { return scheme_->order(); }
   double stability_constant() const override { return scheme_->stability_constant(); }
   double damped_stability_constant() const override { return scheme_->damped_stability_constant(); }
   TimeStepLimit time_step_limit(const ModelParams& p) const override {
     return scheme_->time_step_limit(p);
   }
-  StickRule stick_rule() const override { return StickRule::Located; }
   std::span<const Release> releases_in_step() const override { return releases_; }
   double located_stick_time() const override { return last_stick_time_; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
@@ -78,14 +78,13 @@ class LocatedTransitions final : public Stepper {
   // The scheme's cluster form with located transitions (integrate/cluster.hpp): it stops
   // before a step with a transition, which the caller then takes with step().
   bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
-  bool relax_pad_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
   std::vector<double> carried_state() const override { return {last_stick_time_}; }
   void restore_carried_state(std::span<const double> s) override;
 
   // The work done against friction and the block dampers over the last step(): the
   // trapezoidal rule on each piece between two located transitions, with the flags of that
   // piece (the event engine's ledger; over the whole step the rule would straddle them).
-  double step_work() const { return work_; }
+  double step_work() const override { return work_; }
 
   // Counters since construction: transitions located inside a step (each one cut), and
   // scheme steps taken (the attempted steps that found a transition included).
@@ -144,6 +143,7 @@ class LocatedTransitions final : public Stepper {
   double dense_wd(int j, double theta) const;
 
   std::unique_ptr<Stepper> scheme_;
+  SchemeTraits traits_;  // the scheme's, located (located_traits)
   int n_;
   // The attempted step: its start (w0_, v0_, a0_, pad), end (w1_, v1_, a1_, pad) and length.
   std::vector<double> w0_, v0_, a0_, w1_, v1_, a1_, wq_;

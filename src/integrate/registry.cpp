@@ -1,6 +1,7 @@
-// integrator.scheme keyword -> stepper type (one line per scheme in kSchemes), and the
-// time-step stability check.
+// integrator.scheme keyword -> stepper type and traits (one line per scheme in schemes()),
+// and the time-step stability check.
 #include <cstdio>
+#include <string_view>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -15,43 +16,76 @@ namespace bkq {
 
 namespace {
 
-// One line per scheme: its keyword and how to make it.
+// One line per scheme: its keyword, its traits (the class's own, declared there once) and
+// how to make it.
 struct Entry {
-  const char* keyword;
-  std::unique_ptr<Stepper> (*make)(int n, double tolerance);
+  std::string keyword;
+  SchemeTraits traits;
+  StepperMaker make;
+  bool shipped = true;
 };
 template <class S>
 std::unique_ptr<Stepper> make(int n, double) {
   return std::make_unique<S>(n);
 }
-const Entry kSchemes[] = {
-    {"rk2", &make<Rk2>},
-    {"rk4", &make<Rk4>},
-    {"verlet", &make<Verlet>},
-    {"theta", &make<Theta>},
-    {"adaptive",
-     [](int n, double tolerance) -> std::unique_ptr<Stepper> {
-       return std::make_unique<Adaptive>(n, tolerance);
-     }},
-};
-
-}  // namespace
-
-const std::vector<std::string>& stepper_keywords() {
-  static const std::vector<std::string> k = [] {
+std::vector<Entry>& schemes() {
+  static std::vector<Entry> s = {
+      {"rk2", Rk2::kTraits, &make<Rk2>},
+      {"rk4", Rk4::kTraits, &make<Rk4>},
+      {"verlet", Verlet::kTraits, &make<Verlet>},
+      {"theta", Theta::kTraits, &make<Theta>},
+      {"adaptive", Adaptive::kTraits,
+       [](int n, double tolerance) -> std::unique_ptr<Stepper> {
+         return std::make_unique<Adaptive>(n, tolerance);
+       }},
+  };
+  return s;
+}
+// The keywords, in registry order (kept beside the entries: callers hold a reference).
+std::vector<std::string>& keywords() {
+  static std::vector<std::string> k = [] {
     std::vector<std::string> v;
-    for (const Entry& e : kSchemes) v.emplace_back(e.keyword);
+    for (const Entry& e : schemes()) v.push_back(e.keyword);
     return v;
   }();
   return k;
 }
 
+}  // namespace
+
+const std::vector<std::string>& stepper_keywords() {
+  return keywords();
+}
+
+const SchemeTraits* scheme_traits(std::string_view keyword) {
+  for (const Entry& e : schemes())
+    if (e.keyword == keyword) return &e.traits;
+  return nullptr;
+}
+
 std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n, double tolerance) {
-  for (const Entry& e : kSchemes)
+  for (const Entry& e : schemes())
     if (scheme == e.keyword) return e.make(n, tolerance);
   std::string valid;
   for (const auto& k : stepper_keywords()) valid += (valid.empty() ? "" : "|") + k;
   throw Error("integrator.scheme: '" + scheme + "' is not available; expected one of " + valid);
+}
+
+void register_scheme(const std::string& keyword, const SchemeTraits& traits, StepperMaker make) {
+  if (scheme_traits(keyword) != nullptr)
+    throw Error("integrator.scheme: '" + keyword + "' is registered already");
+  schemes().push_back(Entry{keyword, traits, make, false});
+  keywords().push_back(keyword);
+}
+
+void unregister_scheme(const std::string& keyword) {
+  auto& s = schemes();
+  for (auto it = s.begin(); it != s.end(); ++it)
+    if (it->keyword == keyword && !it->shipped) {
+      s.erase(it);
+      std::erase(keywords(), keyword);
+      return;
+    }
 }
 
 Stepper::TimeStepLimit Stepper::time_step_limit(const ModelParams& p) const {

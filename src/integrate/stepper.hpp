@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "integrate/scheme_traits.hpp"
 #include "model/chain.hpp"
 #include "model/substrate.hpp"
 
@@ -31,12 +32,13 @@ namespace bkq {
 
 struct ClusterRelaxation;
 
-enum class StickRule { Crossing, Projection, Located };
-
 class Stepper {
  public:
   virtual ~Stepper() = default;
   virtual std::string_view name() const = 0;
+  // What this stepper supports (integrate/scheme_traits.hpp), declared once by its scheme.
+  virtual const SchemeTraits& traits() const = 0;
+  StickRule stick_rule() const { return traits().stick_rule; }
   // Global order of accuracy in smooth phases (no transition inside the step).
   virtual int order() const = 0;
   // Largest omega*dt accepted for an undamped linear mode of angular frequency omega
@@ -54,7 +56,6 @@ class Stepper {
     std::string why;
   };
   virtual TimeStepLimit time_step_limit(const ModelParams& p) const;
-  virtual StickRule stick_rule() const { return StickRule::Crossing; }
   // Steppers that resolve transitions themselves (Projection, Located) may report what
   // happened inside their last step(), which the driver cannot see from the flags after it:
   // the blocks that broke loose (each once, with its position then; a block may have
@@ -66,6 +67,9 @@ class Stepper {
   };
   virtual std::span<const Release> releases_in_step() const { return {}; }
   virtual double located_stick_time() const { return std::nan(""); }
+  // With traits().located_on_fixed_steps: the work done against friction and the block
+  // dampers over the last step(), summed piece by piece between located transitions.
+  virtual double step_work() const { return 0.0; }
   virtual void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                     Ranges ranges) = 0;
   // step() in the event engine's common situation: the substrate frozen and the two end
@@ -77,12 +81,10 @@ class Stepper {
     step(forces, sub, st, dt, ranges);
   }
   // Steps of a few blocks between two stuck ones (or a stuck one and a free chain end),
-  // the pad held, with this scheme's step written for a fixed-size cluster
-  // (integrate/cluster.hpp); false when the stepper has no such form for that cluster
-  // (the event engine then uses step()).
+  // with this scheme's step written for a fixed-size cluster (integrate/cluster.hpp; with
+  // the pad moving, ClusterRelaxation's pad fields set); false when the stepper has no such
+  // form for that cluster (traits().cluster_kernels; the event engine then uses step()).
   virtual bool relax_cluster(const ChainForces&, ClusterRelaxation&) const { return false; }
-  // The same with the pad moving (ClusterRelaxation's pad fields set).
-  virtual bool relax_pad_cluster(const ChainForces&, ClusterRelaxation&) const { return false; }
   // What the stepper carries from one step() to the next besides the chain state (the
   // adaptive scheme's next step size, the theta-method's reused factorisation), as plain
   // numbers: a continuous run keeps it in its checkpoint and restores it into a fresh
@@ -97,6 +99,13 @@ class Stepper {
 std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n_blocks,
                                       double tolerance = 1e-8);
 const std::vector<std::string>& stepper_keywords();
+
+// A scheme the program does not ship (a test's): its keyword, its traits (which its
+// stepper's traits() must return) and how to make it. bkq::Error when the keyword is
+// taken. unregister_scheme removes one registered so; the shipped ones stay.
+using StepperMaker = std::unique_ptr<Stepper> (*)(int n_blocks, double tolerance);
+void register_scheme(const std::string& keyword, const SchemeTraits& traits, StepperMaker make);
+void unregister_scheme(const std::string& keyword);
 
 // Largest stable dt for this stepper on this model: stability_constant / omega_max.
 double stability_limit(const Stepper& stepper, const ModelParams& p);

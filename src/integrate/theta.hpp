@@ -20,10 +20,12 @@ namespace bkq {
 class Theta final : public Stepper {
  public:
   explicit Theta(int n_blocks);
+  // Transitions projected inside its step, on chains of nearest-neighbour springs.
+  static constexpr SchemeTraits kTraits{.stick_rule = StickRule::Projection};
   std::string_view name() const override { return "theta"; }
+  const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return theta_ == 0.5 ? 2 : 1; }
   double stability_constant() const override { return HUGE_VAL; }
-  StickRule stick_rule() const override { return StickRule::Projection; }
   // No linear limit; under velocity-weakening friction dt must stay below 2 v_c/F0.
   TimeStepLimit time_step_limit(const ModelParams& p) const override;
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,

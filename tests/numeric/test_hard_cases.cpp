@@ -330,6 +330,8 @@ class PoisonedRk4 : public Stepper {
  public:
   explicit PoisonedRk4(int n, int victim) : inner_(n), victim_(victim) {}
   std::string_view name() const override { return "poisoned-rk4"; }
+  static constexpr SchemeTraits kTraits{.locatable = true, .general_kernels = true};
+  const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return inner_.order(); }
   double stability_constant() const override { return inner_.stability_constant(); }
   void step(const ChainForces& f, const Substrate& sub, ChainState& st, double dt,

@@ -26,9 +26,9 @@
 #include "core/error.hpp"
 #include "engine/contacts.hpp"
 #include "engine/continuous.hpp"
-#include "engine/reference_events.hpp"
 #include "model/coupling.hpp"
 #include "stats/stability.hpp"
+#include "support/reference_events.hpp"
 
 namespace bkq {
 namespace {

@@ -1,4 +1,4 @@
-// The event engine against the straightforward one (engine/reference_events.hpp), which
+// The event engine against the straightforward one (tests/support/reference_events.hpp), which
 // scans every block to load and steps the whole chain through every event. Stepping only
 // the event's blocks must change nothing: with the lone-slip replay off the two give the
 // same catalogue, state and work counters bit for bit over thousands of events (and so
@@ -18,7 +18,7 @@
 
 #include "../scene_sim.hpp"
 #include "core/error.hpp"
-#include "engine/reference_events.hpp"
+#include "support/reference_events.hpp"
 
 namespace bkq {
 namespace {

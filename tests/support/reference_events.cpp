@@ -1,5 +1,5 @@
 // The straightforward event engine (see reference_events.hpp).
-#include "engine/reference_events.hpp"
+#include "support/reference_events.hpp"
 
 #include <algorithm>
 #include <cmath>
