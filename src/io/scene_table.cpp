@@ -21,6 +21,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/ofc.hpp"
+#include "integrate/scheme_traits.hpp"
 #include "integrate/stepper.hpp"
 #include "io/scene.hpp"
 #include "io/scene_values.hpp"
@@ -1179,7 +1180,8 @@ void check_table(const std::vector<ParamSpec>& table) {
 }  // namespace
 
 bool scheme_supports_located(const std::string& scheme) {
-  return scheme == "rk2" || scheme == "rk4" || scheme == "verlet";
+  const SchemeTraits* traits = scheme_traits(scheme);  // the scheme's own declaration
+  return traits != nullptr && traits->locatable;
 }
 
 std::vector<ParamSpec> make_parameter_table() {

@@ -156,7 +156,7 @@ SceneValues scene_values(const Scene& scene);
 
 // Whether integrator.scheme `scheme` locates stick and slip inside its step
 // (integrator.transitions = located) and runs the general kernels (long-range, viscous,
-// lattice): the one place io states a scheme's capability.
+// lattice), as the scheme's traits declare it (integrate/scheme_traits.hpp).
 bool scheme_supports_located(const std::string& scheme);
 
 }  // namespace bkq

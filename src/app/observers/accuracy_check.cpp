@@ -7,7 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
-#include "integrate/adaptive.hpp"
+#include "integrate/stepper.hpp"
 #include "io/checkpoint.hpp"
 #include "io/json.hpp"
 
@@ -29,8 +29,8 @@ std::string shown(double value, double limit) {
 AccuracyCheck::AccuracyCheck(const Settings& settings, const Stepper& stepper)
     : events_mode_(settings.drive.mode == DriveMode::Events),
       error_mode_(settings.run.accuracy_error),
-      // The adaptive scheme chooses its own steps; every other scheme steps at dt.
-      fixed_step_(dynamic_cast<const Adaptive*>(&stepper) == nullptr),
+      // A scheme with error control chooses its own steps; every other scheme steps at dt.
+      fixed_step_(!stepper.traits().error_control),
       dt_(settings.integrator.dt),
       omega_dt_(settings.model.max_angular_frequency() * settings.integrator.dt),
       dt_over_limit_(settings.integrator.dt / stepper.time_step_limit(settings.model).dt),
