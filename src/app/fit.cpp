@@ -390,6 +390,8 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
   if (measure != "moment") {
     PowerLawOptions po;
     po.discrete = measure_is_integer(measure);
+    po.x_min = request.x_min;
+    po.x_max = request.x_max;
     tau = fit_power_law(sizes, po);
     out << power_law_table(*tau, measure);
   }

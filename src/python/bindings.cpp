@@ -12,10 +12,12 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cmath>
 #include <optional>
 #include <ostream>
 #include <streambuf>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/fit.hpp"
@@ -218,8 +220,8 @@ PYBIND11_MODULE(_bkquake, m) {
   m.def(
       "fit_catalog",
       [](const std::string& catalog, const std::string& json_out, std::optional<double> mu_min,
-         std::optional<double> mu_max, std::optional<double> bin_width,
-         const std::string& measure) {
+         std::optional<double> mu_max, std::optional<double> bin_width, const std::string& measure,
+         std::optional<double> x_min, std::optional<double> x_max) {
         // Each argument checked against the scene key it stands for, as bkquake fit does.
         const auto check = [](const char* name, const char* key, std::optional<double> v) {
           if (v) option_value(std::string("fit: ") + name, key, format_real(*v));
@@ -240,6 +242,22 @@ PYBIND11_MODULE(_bkquake, m) {
               "got '" +
               measure + "'");
         r.measure = measure;
+        // A power law's range: sizes > 0, x_max above x_min, for a measure other than moment.
+        for (const auto& [name, v] : {std::pair{"x_min", x_min}, std::pair{"x_max", x_max}}) {
+          if (!v) continue;
+          if (measure == "moment")
+            throw Error(std::string("fit: ") + name + " = " + format_real(*v) +
+                        ": a power law's range, for measure blocks, topplings, area or "
+                        "duration (the moment's window is mu_min, mu_max)");
+          if (!(std::isfinite(*v) && *v > 0))
+            throw Error(std::string("fit: ") + name + " = " + format_real(*v) +
+                        ": allowed: a finite size > 0");
+        }
+        if (x_min && x_max && !(*x_max > *x_min))
+          throw Error("fit: x_max = " + format_real(*x_max) +
+                      ": allowed: greater than x_min = " + format_real(*x_min));
+        r.x_min = x_min;
+        r.x_max = x_max;
         py::gil_scoped_release release;
         NullBuffer null;
         std::ostream discard(&null);
@@ -247,8 +265,9 @@ PYBIND11_MODULE(_bkquake, m) {
       },
       py::arg("catalog"), py::arg("json_out"), py::arg("mu_min") = py::none(),
       py::arg("mu_max") = py::none(), py::arg("bin_width") = py::none(),
-      py::arg("measure") = "moment",
-      "bkquake fit CATALOG --json JSON_OUT [--mu-min A] [--mu-max B] [--bin-width W].");
+      py::arg("measure") = "moment", py::arg("x_min") = py::none(), py::arg("x_max") = py::none(),
+      "bkquake fit CATALOG --json JSON_OUT [--mu-min A] [--mu-max B] [--bin-width W] "
+      "[--measure M], with a power law's range [x_min, x_max] given.");
 
   m.def(
       "spectrum",

@@ -528,9 +528,12 @@ PowerLawFit fit_power_law(std::span<const double> x_in, const PowerLawOptions& o
     for (std::size_t i = 0; i < n; ++i)
       if (in[i] != 0) z[i] = lnx[i] - sum / static_cast<double>(cnt);
     f.boot_tau_int = integrated_autocorrelation_time(z);
-    const auto L = static_cast<std::size_t>(std::min<double>(
-        static_cast<double>(n), std::ceil(std::max({1.0, opt.boot_block_factor * f.boot_tau_int,
-                                                    std::cbrt(static_cast<double>(n))}))));
+    // As b's (block_bootstrap_b): where the batch-means error levels off.
+    const auto first = static_cast<std::int64_t>(std::ceil(std::max(
+        {1.0, opt.boot_block_factor * f.boot_tau_int, std::cbrt(static_cast<double>(n))})));
+    const auto L = static_cast<std::size_t>(std::min<std::int64_t>(
+        static_cast<std::int64_t>(n),
+        plateau_block_length(z, first, opt.boot_plateau, opt.boot_min_blocks)));
     f.boot_block = static_cast<std::int64_t>(L);
     std::vector<double> c_in(n + L + 1, 0), c_ln(n + L + 1, 0);
     for (std::size_t i = 0; i < n + L; ++i) {
