@@ -212,7 +212,7 @@ bool measure_is_integer(const std::string& m) {
 void require_catalogue_for(const FitRequest& r) {
   if (r.measure != "moment")
     throw Error("fit: --measure " + r.measure +
-                " needs a catalogue (a histogram or a sweep holds magnitudes only)");
+                " needs a catalogue (a histogram holds magnitudes only)");
 }
 
 void fit_one_histogram(const FitRequest& request, const Resolved& in, std::ostream& out) {
@@ -453,9 +453,84 @@ std::string csv_quoted(const std::string& s) {
   return q;
 }
 
-// Each point of a sweep folder refitted from its merged histogram.csv into sweep_fit.csv.
+// tau of a sweep point: the size measure (the request's, else topplings for an OFC
+// catalogue, blocks for a lattice's; none for a chain) over its replicas' catalogues, in
+// replica order. Empty measure: none applies.
+struct PointTau {
+  std::string measure;
+  std::optional<PowerLawFit> fit;
+  std::string error;
+};
+PointTau point_tau(const FitRequest& request, const fs::path& point) {
+  PointTau t;
+  std::vector<fs::path> catalogues;
+  std::error_code ec;
+  if (fs::is_directory(point, ec))
+    for (const auto& entry : fs::directory_iterator(point, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.size() < 2 || name[0] != 'r' ||
+          name.find_first_not_of("0123456789", 1) != std::string::npos)
+        continue;
+      for (const char* file : {"catalog.csv", "catalog.h5"})
+        if (fs::exists(entry.path() / file)) {
+          catalogues.push_back(entry.path() / file);
+          break;
+        }
+    }
+  std::sort(catalogues.begin(), catalogues.end());
+  if (catalogues.empty()) {
+    if (request.measure != "moment") {
+      t.measure = request.measure;
+      t.error = "no replica catalogue in " + point.string();
+    }
+    return t;
+  }
+  try {
+    std::vector<double> sizes;
+    for (const fs::path& file : catalogues) {
+      CatalogReader reader(file);
+      if (t.measure.empty()) {
+        if (request.measure != "moment")
+          t.measure = request.measure;
+        else if (reader.has_topplings())
+          t.measure = "topplings";
+        else if (fs::exists(file.parent_path() / "scene.ini") &&
+                 read_scene_model(file.parent_path() / "scene.ini").rows.value_or(1) > 1)
+          t.measure = "blocks";
+        else
+          return t;  // a chain: no tau unless asked for
+      }
+      if (t.measure == "topplings" && !reader.has_topplings())
+        throw Error(file.string() + " has no topplings column (an OFC catalogue has)");
+      if (t.measure == "duration" && !reader.has_duration())
+        throw Error(file.string() + " has no duration column");
+      if ((t.measure == "blocks" || t.measure == "area") && !reader.has_extent())
+        throw Error(file.string() + " has no blocks column");
+      CatalogEvent e;
+      while (reader.next(e))
+        sizes.push_back(t.measure == "topplings"  ? static_cast<double>(e.topplings)
+                        : t.measure == "duration" ? e.duration
+                                                  : static_cast<double>(e.blocks));
+    }
+    PowerLawOptions po;
+    po.discrete = measure_is_integer(t.measure);
+    po.x_min = request.x_min;
+    po.x_max = request.x_max;
+    t.fit = fit_power_law(sizes, po);
+    if (!t.fit->ok) {
+      t.error = t.fit->no_fit_reason;
+      t.fit.reset();
+    }
+  } catch (const Error& e) {
+    t.error = e.what();
+    t.fit.reset();
+  }
+  return t;
+}
+
+// Each point of a sweep folder refitted from its merged histogram.csv into sweep_fit.csv,
+// with tau from its replicas' catalogues.
 void refit_sweep(const FitRequest& request, const fs::path& dir, std::ostream& out) {
-  require_catalogue_for(request);
   if (request.scan)
     throw Error("fit: --scan applies to one run, catalogue or histogram, not a sweep");
   const std::string csv_path = (dir / "sweep.csv").string();
@@ -536,11 +611,17 @@ void refit_sweep(const FitRequest& request, const fs::path& dir, std::ostream& o
     }
     const bool b = fit.b_ok;
     const bool window = fit.n_total >= 2;
+    const PointTau tau = folder == folders.end() ? PointTau{} : point_tau(request, folder->second);
+    const PowerLawFit* pl = tau.fit ? &*tau.fit : nullptr;
     for (const std::string& field :
          {std::to_string(events), b ? num(fit.b_mle) : std::string(),
           b ? num(fit.b_mle_err) : std::string(), b ? num(fit.b_mle_sys_err) : std::string(),
           b ? num(b_moment_magnitude(fit.b_mle)) : std::string(),
           window ? num(fit.mu_min) : std::string(), window ? num(fit.mu_max) : std::string(),
+          tau.measure, pl ? num(pl->alpha) : std::string(),
+          pl ? num(pl->alpha_boot_err) : std::string(), pl ? num(pl->x_min) : std::string(),
+          pl ? num(pl->x_max) : std::string(), pl ? num(pl->p) : std::string(),
+          tau.error.empty() ? std::string() : csv_quoted(tau.error),
           error.empty() ? std::string() : csv_quoted(error)}) {
       line.push_back(',');
       line.append(field);
