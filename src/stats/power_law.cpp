@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -561,6 +562,10 @@ PowerLawFit fit_power_law(std::span<const double> x_in, const PowerLawOptions& o
       const double mean = s1 / static_cast<double>(m);
       f.alpha_boot_err = std::sqrt(
           std::max(0.0, (s2 - static_cast<double>(m) * mean * mean) / static_cast<double>(m - 1)));
+      // Six significant digits, as b's: the same with every libm variant.
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.6g", f.alpha_boot_err);
+      f.alpha_boot_err = std::strtod(buf, nullptr);
     }
   }
 
