@@ -212,7 +212,7 @@ bool measure_is_integer(const std::string& m) {
 void require_catalogue_for(const FitRequest& r) {
   if (r.measure != "moment")
     throw Error("fit: --measure " + r.measure +
-                " needs a catalogue (a histogram or a sweep holds magnitudes only)");
+                " needs a catalogue (a histogram holds magnitudes only)");
 }
 
 void fit_one_histogram(const FitRequest& request, const Resolved& in, std::ostream& out) {
@@ -242,81 +242,75 @@ void fit_one_histogram(const FitRequest& request, const Resolved& in, std::ostre
   }
 }
 
-void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream& out) {
-  const fs::path& catalog = in.file;
-  // Chain length and boundary for the event classes.
+// The chain length (or lattice shape) and boundary for the event classes: scene.ini beside
+// the catalogue, overridden by --blocks and --boundary.
+struct ClassShape {
+  fs::path scene;  // scene.ini beside the catalogue (may not exist)
   std::optional<int> blocks;
   int rows = 1;  // a lattice's rows (event classes by sites and bounding box when above 1)
   std::string boundary = "free";
-  const auto scene = catalog.parent_path() / "scene.ini";
+};
+ClassShape class_shape(const FitRequest& request, const fs::path& catalog) {
+  ClassShape c;
+  c.scene = catalog.parent_path() / "scene.ini";
   std::optional<SceneModelInfo> scene_info;
-  if (fs::exists(scene)) {
-    const SceneModelInfo info = read_scene_model(scene);
+  if (fs::exists(c.scene)) {
+    const SceneModelInfo info = read_scene_model(c.scene);
     scene_info = info;
-    blocks = info.blocks;
-    if (info.rows) rows = *info.rows;
-    if (info.boundary) boundary = *info.boundary;
+    c.blocks = info.blocks;
+    if (info.rows) c.rows = *info.rows;
+    if (info.boundary) c.boundary = *info.boundary;
   }
   if (request.blocks) {
-    check_blocks_option(request, scene, scene_info);
-    blocks = request.blocks;
-    rows = request.rows.value_or(1);
+    check_blocks_option(request, c.scene, scene_info);
+    c.blocks = request.blocks;
+    c.rows = request.rows.value_or(1);
   }
-  if (request.boundary) boundary = *request.boundary;
-  const Boundary bnd = parse_boundary(boundary);
+  if (request.boundary) c.boundary = *request.boundary;
+  return c;
+}
 
-  // The catalogue of an interrupted run holds the events recorded so far (whole rows, up to
-  // its checkpoint or beyond): they are fitted, and the report says so. A run's own catalogue
-  // is checked against its summary's event count. A summary that does not read is named in a
-  // warning and the catalogue speaks for itself.
-  const std::filesystem::path dir = catalog.parent_path();
-  const std::string name = catalog.filename().string();
-  const bool own = name == "catalog.csv" || name == "catalog.h5";
+// The state of the run whose own catalogue this is. The catalogue of an interrupted run
+// holds the events recorded so far (whole rows, up to its checkpoint or beyond): they are
+// fitted, and the report says so. A run's own catalogue is checked against its summary's
+// event count. A summary that does not read is named in a warning and the catalogue speaks
+// for itself.
+struct RunState {
+  fs::path dir;
   RunStatus status = RunStatus::None;
   std::optional<double> summary_events;
-  if (own && std::filesystem::exists(dir / "summary.json")) {
+  std::optional<LockHolder> writer;  // a run writing the folder now: a growing prefix
+  bool interrupted = false;
+  bool killed = false;  // SIGKILL, a crash: checkpoints and no summary
+};
+RunState run_state_of(const fs::path& catalog) {
+  RunState r;
+  r.dir = catalog.parent_path();
+  const std::string name = catalog.filename().string();
+  const bool own = name == "catalog.csv" || name == "catalog.h5";
+  if (own && std::filesystem::exists(r.dir / "summary.json")) {
     try {
-      status = run_status(dir);
-      summary_events = read_json_number(dir / "summary.json", "events");
+      r.status = run_status(r.dir);
+      r.summary_events = read_json_number(r.dir / "summary.json", "events");
     } catch (const Error& e) {
       std::fprintf(stderr, "bkquake: warning: %s; the catalogue is fitted without it\n",
                    escape_unprintable(e.what()).c_str());
-      status = RunStatus::None;
-      summary_events.reset();
+      r.status = RunStatus::None;
+      r.summary_events.reset();
     }
   }
   // A run writing the folder now (its lock held): its catalogue is a prefix that grows.
-  const std::optional<LockHolder> writer =
-      own ? live_lock_holder(dir.empty() ? fs::path(".") : dir) : std::nullopt;
-  const bool interrupted = status == RunStatus::Interrupted && !writer;
+  r.writer = own ? live_lock_holder(r.dir.empty() ? fs::path(".") : r.dir) : std::nullopt;
+  r.interrupted = r.status == RunStatus::Interrupted && !r.writer;
   // A run killed (SIGKILL, a crash) before its first summary leaves only its checkpoints.
-  const bool killed = own && !writer && status == RunStatus::None &&
-                      (std::filesystem::exists(dir / "checkpoint.bin") ||
-                       std::filesystem::exists(dir / "checkpoint.prev.bin"));
+  r.killed = own && !r.writer && r.status == RunStatus::None &&
+             (std::filesystem::exists(r.dir / "checkpoint.bin") ||
+              std::filesystem::exists(r.dir / "checkpoint.prev.bin"));
+  return r;
+}
 
-  // The folder rule (io/run_folder.hpp): --json never over the catalogue or a run's files.
-  std::unique_ptr<DerivedOutput> json_out;
-  if (request.json)
-    json_out = std::make_unique<DerivedOutput>(
-        *request.json, std::vector<std::filesystem::path>{catalog, dir / "summary.json", scene},
-        "fit --json");
-
-  CatalogReader reader(catalog);
-  if (writer) reader.set_growing();
-  const bool lattice = rows > 1;
-  const bool classes_on =
-      blocks.has_value() && reader.has_extent() && (!lattice || reader.has_rows());
-  std::string class_note;
-  if (!blocks)
-    class_note = "event classes skipped: no --blocks and no scene.ini beside the catalogue";
-  else if (!reader.has_extent())
-    class_note = "event classes skipped: the catalogue lacks blocks/first_block/last_block";
-  else if (!classes_on)
-    class_note = "event classes skipped: a lattice of " + std::to_string(rows) +
-                 " rows, and the catalogue lacks trigger_row/first_row/last_row";
-
-  // The size measure's column (checked before the catalogue is read through).
-  const std::string& measure = request.measure;
+// The size measure's column, checked before the catalogue is read through.
+void require_measure_column(const CatalogReader& reader, const std::string& measure, int rows) {
   if (measure == "topplings" && !reader.has_topplings())
     throw Error("fit: --measure topplings: " + reader.file() +
                 " has no topplings column (an OFC catalogue has)");
@@ -328,88 +322,161 @@ void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream
     throw Error(
         "fit: --measure area: the area of the slip map is the number of sites of a "
         "lattice or an OFC run; this catalogue is of a chain (use --measure blocks)");
-  MagnitudeHistogram hist(request.bin_width);
+}
+
+// Whether the event classes can be counted, and why not when not.
+struct ClassesPlan {
+  bool on = false;
+  bool lattice = false;
+  std::string note;
+};
+ClassesPlan classes_plan(const ClassShape& shape, const CatalogReader& reader) {
+  ClassesPlan c;
+  c.lattice = shape.rows > 1;
+  c.on = shape.blocks.has_value() && reader.has_extent() && (!c.lattice || reader.has_rows());
+  if (!shape.blocks)
+    c.note = "event classes skipped: no --blocks and no scene.ini beside the catalogue";
+  else if (!reader.has_extent())
+    c.note = "event classes skipped: the catalogue lacks blocks/first_block/last_block";
+  else if (!c.on)
+    c.note = "event classes skipped: a lattice of " + std::to_string(shape.rows) +
+             " rows, and the catalogue lacks trigger_row/first_row/last_row";
+  return c;
+}
+
+// What one pass over the catalogue gathers: the magnitudes (binned and in order), the
+// sizes of the measure and the event classes.
+struct CatalogueData {
+  MagnitudeHistogram hist;
   std::vector<double> magnitudes, sizes;
   EventClassCounts classes;
+};
+CatalogueData read_catalogue(CatalogReader& reader, const FitRequest& request,
+                             const ClassShape& shape, const ClassesPlan& plan) {
+  CatalogueData d{MagnitudeHistogram(request.bin_width), {}, {}, {}};
+  const std::string& measure = request.measure;
+  const Boundary bnd = parse_boundary(shape.boundary);
   CatalogEvent e;
-  const std::string blocks_from = request.blocks ? "--blocks" : scene.string();
+  const std::string blocks_from = request.blocks ? "--blocks" : shape.scene.string();
   while (reader.next(e)) {
-    if (classes_on) check_extent(e, reader, *blocks, rows, lattice, blocks_from);
-    add_magnitude(hist, e.magnitude, magnitudes, request, reader);
-    magnitudes.push_back(e.magnitude);
+    if (plan.on) check_extent(e, reader, *shape.blocks, shape.rows, plan.lattice, blocks_from);
+    add_magnitude(d.hist, e.magnitude, d.magnitudes, request, reader);
+    d.magnitudes.push_back(e.magnitude);
     if (measure == "blocks" || measure == "area")
-      sizes.push_back(e.blocks);
+      d.sizes.push_back(e.blocks);
     else if (measure == "topplings")
-      sizes.push_back(static_cast<double>(e.topplings));
+      d.sizes.push_back(static_cast<double>(e.topplings));
     else if (measure == "duration")
-      sizes.push_back(e.duration);
-    if (classes_on)
-      classes.add(lattice ? classify_lattice_event(e.blocks, e.first_block, e.last_block,
-                                                   e.first_row, e.last_row, *blocks, rows)
-                          : classify_event(e.blocks, e.first_block, e.last_block, *blocks, bnd));
+      d.sizes.push_back(e.duration);
+    if (plan.on)
+      d.classes.add(
+          plan.lattice ? classify_lattice_event(e.blocks, e.first_block, e.last_block, e.first_row,
+                                                e.last_row, *shape.blocks, shape.rows)
+                       : classify_event(e.blocks, e.first_block, e.last_block, *shape.blocks, bnd));
   }
-  // (Only a finished run's count is final: a resumed run cuts its catalogue back to the
-  // checkpoint while the summary of its last stop still counts the events past it.)
-  if (summary_events && status == RunStatus::Finished) {
-    const auto expected = static_cast<std::int64_t>(*summary_events);
-    const std::int64_t found = reader.events_read();
-    if (found != expected)
-      throw Error(reader.file() + ": holds " + std::to_string(found) + " rows, its run's " +
-                  (dir / "summary.json").string() + " counts " + std::to_string(expected) +
-                  " events: the catalogue is truncated or was changed");
-  }
+  return d;
+}
+
+// (Only a finished run's count is final: a resumed run cuts its catalogue back to the
+// checkpoint while the summary of its last stop still counts the events past it.)
+void require_summary_count(const RunState& run, const CatalogReader& reader) {
+  if (!run.summary_events || run.status != RunStatus::Finished) return;
+  const auto expected = static_cast<std::int64_t>(*run.summary_events);
+  const std::int64_t found = reader.events_read();
+  if (found != expected)
+    throw Error(reader.file() + ": holds " + std::to_string(found) + " rows, its run's " +
+                (run.dir / "summary.json").string() + " counts " + std::to_string(expected) +
+                " events: the catalogue is truncated or was changed");
+}
+
+// The notes on a run that is not finished, the fit table and the classes.
+void print_catalogue_report(std::ostream& out, const fs::path& catalog, const RunState& run,
+                            std::int64_t events, const GrFit& fit, const ClassShape& shape,
+                            const ClassesPlan& plan, const EventClassCounts& classes) {
+  out << "catalogue         " << catalog.string() << "\n";
+  if (run.interrupted)
+    out << "note: an interrupted run (summary.json: \"status\": \"interrupted\"): these are its "
+        << events << " events so far; --resume finishes it\n";
+  if (run.writer)
+    out << "note: " << run.writer->describe() << " is writing this folder: these are the " << events
+        << " events written so far, and more follow until it ends\n";
+  if (run.killed)
+    out << "note: an interrupted run (checkpoints beside it, no summary.json: killed?): these "
+           "are its "
+        << events << " events so far; --resume finishes it\n";
+  out << gr_fit_table(fit);
+  if (plan.on && plan.lattice)
+    out << "classes (a lattice of " << *shape.blocks << " x " << shape.rows << " = "
+        << static_cast<std::int64_t>(*shape.blocks) * shape.rows
+        << " sites; delocalised: at least half the sites, or edge to edge along an axis)\n"
+        << class_counts_table(classes);
+  else if (plan.on)
+    out << "classes (N = " << *shape.blocks << ", " << shape.boundary << " ends)\n"
+        << class_counts_table(classes);
+  else
+    out << "note: " << plan.note << "\n";
+}
+
+// The fit --json object of a catalogue.
+Json catalogue_fit_json(const fs::path& catalog, const RunState& run, const GrFit& fit,
+                        const std::optional<PowerLawFit>& tau, const std::string& measure,
+                        const ClassShape& shape, const ClassesPlan& plan,
+                        const EventClassCounts& classes) {
+  Json o = Json::object();
+  o.set("catalog", catalog.string()).set("fit", gr_fit_json(fit));
+  if (tau) o.set("tau", power_law_json(*tau, measure));
+  if (run.interrupted || run.killed) o.set("run_status", status_text(RunStatus::Interrupted));
+  if (run.writer) o.set("run_status", "running");
+  if (plan.on) {
+    o.set("blocks", static_cast<std::int64_t>(*shape.blocks))
+        .set("boundary", shape.boundary)
+        .set("classes", class_counts_json(classes));
+    if (plan.lattice) o.set("rows", static_cast<std::int64_t>(shape.rows));
+  } else
+    o.set("classes_note", plan.note);
+  return o;
+}
+
+void fit_one_catalog(const FitRequest& request, const Resolved& in, std::ostream& out) {
+  const fs::path& catalog = in.file;
+  const ClassShape shape = class_shape(request, catalog);
+  parse_boundary(shape.boundary);  // refused before anything is read
+  const RunState run = run_state_of(catalog);
+
+  // The folder rule (io/run_folder.hpp): --json never over the catalogue or a run's files.
+  std::unique_ptr<DerivedOutput> json_out;
+  if (request.json)
+    json_out = std::make_unique<DerivedOutput>(
+        *request.json,
+        std::vector<std::filesystem::path>{catalog, run.dir / "summary.json", shape.scene},
+        "fit --json");
+
+  CatalogReader reader(catalog);
+  if (run.writer) reader.set_growing();
+  const ClassesPlan plan = classes_plan(shape, reader);
+  require_measure_column(reader, request.measure, shape.rows);
+  const CatalogueData data = read_catalogue(reader, request, shape, plan);
+  require_summary_count(run, reader);
   require_events_to_fit(reader.file(), reader.events_read());
   require_window_holds_a_bin(request.bin_width, request);
 
-  GrFit fit = fit_histogram(hist, request.mu_min, request.mu_max);
-  add_unbinned(fit, magnitudes);
-
-  out << "catalogue         " << catalog.string() << "\n";
-  if (interrupted)
-    out << "note: an interrupted run (summary.json: \"status\": \"interrupted\"): these are its "
-        << reader.events_read() << " events so far; --resume finishes it\n";
-  if (writer)
-    out << "note: " << writer->describe() << " is writing this folder: these are the "
-        << reader.events_read() << " events written so far, and more follow until it ends\n";
-  if (killed)
-    out << "note: an interrupted run (checkpoints beside it, no summary.json: killed?): these "
-           "are its "
-        << reader.events_read() << " events so far; --resume finishes it\n";
-  out << gr_fit_table(fit);
-  if (classes_on && lattice)
-    out << "classes (a lattice of " << *blocks << " x " << rows << " = "
-        << static_cast<std::int64_t>(*blocks) * rows
-        << " sites; delocalised: at least half the sites, or edge to edge along an axis)\n"
-        << class_counts_table(classes);
-  else if (classes_on)
-    out << "classes (N = " << *blocks << ", " << boundary << " ends)\n"
-        << class_counts_table(classes);
-  else
-    out << "note: " << class_note << "\n";
+  GrFit fit = fit_histogram(data.hist, request.mu_min, request.mu_max);
+  add_unbinned(fit, data.magnitudes);
+  print_catalogue_report(out, catalog, run, reader.events_read(), fit, shape, plan, data.classes);
   std::optional<PowerLawFit> tau;
-  if (measure != "moment") {
+  if (request.measure != "moment") {
     PowerLawOptions po;
-    po.discrete = measure_is_integer(measure);
-    tau = fit_power_law(sizes, po);
-    out << power_law_table(*tau, measure);
+    po.discrete = measure_is_integer(request.measure);
+    po.x_min = request.x_min;
+    po.x_max = request.x_max;
+    tau = fit_power_law(data.sizes, po);
+    out << power_law_table(*tau, request.measure);
   }
-  if (request.scan) write_scan(hist, fit, request.out.value_or(in.folder), in.file, out);
-
-  if (request.json) {
-    Json o = Json::object();
-    o.set("catalog", catalog.string()).set("fit", gr_fit_json(fit));
-    if (tau) o.set("tau", power_law_json(*tau, measure));
-    if (interrupted || killed) o.set("run_status", status_text(RunStatus::Interrupted));
-    if (writer) o.set("run_status", "running");
-    if (classes_on) {
-      o.set("blocks", static_cast<std::int64_t>(*blocks))
-          .set("boundary", boundary)
-          .set("classes", class_counts_json(classes));
-      if (lattice) o.set("rows", static_cast<std::int64_t>(rows));
-    } else
-      o.set("classes_note", class_note);
-    write_json(o, *json_out);
-  }
+  if (request.scan) write_scan(data.hist, fit, request.out.value_or(in.folder), in.file, out);
+  if (request.json)
+    write_json(
+        catalogue_fit_json(catalog, run, fit, tau, request.measure, shape, plan, data.classes),
+        *json_out);
 }
 
 // Splits a sweep.csv line, keeping double-quoted fields (with "" inside) whole.
@@ -451,9 +518,84 @@ std::string csv_quoted(const std::string& s) {
   return q;
 }
 
-// Each point of a sweep folder refitted from its merged histogram.csv into sweep_fit.csv.
+// tau of a sweep point: the size measure (the request's, else topplings for an OFC
+// catalogue, blocks for a lattice's; none for a chain) over its replicas' catalogues, in
+// replica order. Empty measure: none applies.
+struct PointTau {
+  std::string measure;
+  std::optional<PowerLawFit> fit;
+  std::string error;
+};
+PointTau point_tau(const FitRequest& request, const fs::path& point) {
+  PointTau t;
+  std::vector<fs::path> catalogues;
+  std::error_code ec;
+  if (fs::is_directory(point, ec))
+    for (const auto& entry : fs::directory_iterator(point, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.size() < 2 || name[0] != 'r' ||
+          name.find_first_not_of("0123456789", 1) != std::string::npos)
+        continue;
+      for (const char* file : {"catalog.csv", "catalog.h5"})
+        if (fs::exists(entry.path() / file)) {
+          catalogues.push_back(entry.path() / file);
+          break;
+        }
+    }
+  std::sort(catalogues.begin(), catalogues.end());
+  if (catalogues.empty()) {
+    if (request.measure != "moment") {
+      t.measure = request.measure;
+      t.error = "no replica catalogue in " + point.string();
+    }
+    return t;
+  }
+  try {
+    std::vector<double> sizes;
+    for (const fs::path& file : catalogues) {
+      CatalogReader reader(file);
+      if (t.measure.empty()) {
+        if (request.measure != "moment")
+          t.measure = request.measure;
+        else if (reader.has_topplings())
+          t.measure = "topplings";
+        else if (fs::exists(file.parent_path() / "scene.ini") &&
+                 read_scene_model(file.parent_path() / "scene.ini").rows.value_or(1) > 1)
+          t.measure = "blocks";
+        else
+          return t;  // a chain: no tau unless asked for
+      }
+      if (t.measure == "topplings" && !reader.has_topplings())
+        throw Error(file.string() + " has no topplings column (an OFC catalogue has)");
+      if (t.measure == "duration" && !reader.has_duration())
+        throw Error(file.string() + " has no duration column");
+      if ((t.measure == "blocks" || t.measure == "area") && !reader.has_extent())
+        throw Error(file.string() + " has no blocks column");
+      CatalogEvent e;
+      while (reader.next(e))
+        sizes.push_back(t.measure == "topplings"  ? static_cast<double>(e.topplings)
+                        : t.measure == "duration" ? e.duration
+                                                  : static_cast<double>(e.blocks));
+    }
+    PowerLawOptions po;
+    po.discrete = measure_is_integer(t.measure);
+    po.x_min = request.x_min;
+    po.x_max = request.x_max;
+    t.fit = fit_power_law(sizes, po);
+    if (!t.fit->ok) {
+      t.error = t.fit->no_fit_reason;
+      t.fit.reset();
+    }
+  } catch (const Error& e) {
+    t.error = e.what();
+    t.fit.reset();
+  }
+  return t;
+}
+
+// Each point of a sweep folder refitted from its merged histogram.csv into sweep_fit.csv,
+// with tau from its replicas' catalogues.
 void refit_sweep(const FitRequest& request, const fs::path& dir, std::ostream& out) {
-  require_catalogue_for(request);
   if (request.scan)
     throw Error("fit: --scan applies to one run, catalogue or histogram, not a sweep");
   const std::string csv_path = (dir / "sweep.csv").string();
@@ -534,11 +676,17 @@ void refit_sweep(const FitRequest& request, const fs::path& dir, std::ostream& o
     }
     const bool b = fit.b_ok;
     const bool window = fit.n_total >= 2;
+    const PointTau tau = folder == folders.end() ? PointTau{} : point_tau(request, folder->second);
+    const PowerLawFit* pl = tau.fit ? &*tau.fit : nullptr;
     for (const std::string& field :
          {std::to_string(events), b ? num(fit.b_mle) : std::string(),
           b ? num(fit.b_mle_err) : std::string(), b ? num(fit.b_mle_sys_err) : std::string(),
           b ? num(b_moment_magnitude(fit.b_mle)) : std::string(),
           window ? num(fit.mu_min) : std::string(), window ? num(fit.mu_max) : std::string(),
+          tau.measure, pl ? num(pl->alpha) : std::string(),
+          pl ? num(pl->alpha_boot_err) : std::string(), pl ? num(pl->x_min) : std::string(),
+          pl ? num(pl->x_max) : std::string(), pl ? num(pl->p) : std::string(),
+          tau.error.empty() ? std::string() : csv_quoted(tau.error),
           error.empty() ? std::string() : csv_quoted(error)}) {
       line.push_back(',');
       line.append(field);

@@ -39,6 +39,9 @@ struct FitRequest {
   // "topplings", "area", "duration" (a power law p(x) ~ x^-tau, stats/power_law.hpp; a
   // catalogue only).
   std::string measure = "moment";
+  // The power law's range [x_min, x_max] for such a measure, else chosen from the data
+  // (x_min by the KS distance, x_max below a gap or a rise); Python's fit() only.
+  std::optional<double> x_min, x_max;
 };
 
 // Prints the fit table (and the class counts) to `out` and writes the JSON, b_scan.csv or

@@ -82,6 +82,7 @@ std::vector<ReadmeTable> readme_tables() {
       {"spectrum.csv", column_table(spectrum_schema())},
       {"special_law.csv", column_table(special_law_schema())},
       {"sweep.csv", column_table(sweep_csv_schema())},
+      {"sweep_fit.csv", column_table(sweep_fit_schema())},
       {"friction_study.csv", column_table(friction_study_schema())},
       {"stability.csv", column_table(stability_schema())},
       {"stability_summary.csv", column_table(stability_summary_schema())},

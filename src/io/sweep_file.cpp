@@ -308,6 +308,21 @@ const Schema& sweep_fit_schema() {
       {"b_mw", "", "1.5 b: per unit of moment magnitude Mw"},
       {"mu_min", "", "lower end of the window (given, or automatic)"},
       {"mu_max", "", "upper end of the window"},
+      {"tau_measure", "",
+       "the size measure of tau: fit's --measure, else topplings (OFC) or blocks (a lattice); "
+       "empty for a chain",
+       kText},
+      {"tau", "",
+       "power-law exponent of that size over the point's replicas' catalogues (maximum "
+       "likelihood, x_min by the KS distance); empty when none"},
+      {"tau_err", "", "its block-bootstrap error"},
+      {"tau_x_min", "", "lower end of tau's range"},
+      {"tau_x_max", "", "upper end of tau's range; empty when none"},
+      {"tau_p", "", "goodness-of-fit p of the power law (p > 0.1: plausible)"},
+      {"tau_error", "",
+       "why the point has no tau (double-quoted), empty when it has one or "
+       "no measure applies",
+       kText},
       {"error", "", "why the point has no b (double-quoted), empty when it has one", kText},
   };
   return schema;

@@ -12,10 +12,12 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cmath>
 #include <optional>
 #include <ostream>
 #include <streambuf>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/fit.hpp"
@@ -84,15 +86,8 @@ struct NullBuffer : std::streambuf {
   int overflow(int c) override { return c; }
 };
 
-}  // namespace
-}  // namespace bkq
-
-PYBIND11_MODULE(_bkquake, m) {
-  using namespace bkq;
-  m.doc() = "bkquake's compiled core; use the bkquake package (bkquake.run, bkquake.load).";
-  m.attr("__version__") = kVersion;
-  m.attr("git_revision") = kGitRevision;
-
+// bkq::Error as ValueError, with its message.
+void bind_errors() {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -102,7 +97,10 @@ PYBIND11_MODULE(_bkquake, m) {
       PyErr_SetString(PyExc_ValueError, printable_text(e.what()).c_str());
     }
   });
+}
 
+// The scene keys' declarations.
+void bind_parameters(py::module_& m) {
   py::class_<ParamSpec>(m, "ParamSpec")
       .def_readonly("key", &ParamSpec::key)
       .def_readonly("default", &ParamSpec::default_value)
@@ -129,7 +127,10 @@ PYBIND11_MODULE(_bkquake, m) {
   m.def(
       "parameter_table", [] { return parameter_table(); },
       "Every scene key's declaration (the table --dump-defaults prints).");
+}
 
+// A scene: built, overridden and checked as bkquake run does.
+void bind_scene(py::module_& m) {
   py::class_<Scene>(m, "SceneCore")
       .def(py::init<>())
       .def_static("from_file", &Scene::from_file, py::arg("path"))
@@ -159,7 +160,10 @@ PYBIND11_MODULE(_bkquake, m) {
       .def("to_ini", [](const Scene& s) { return s.to_ini(); })
       .def_readwrite("origin", &Scene::origin)
       .def("__eq__", [](const Scene& a, const Scene& b) { return a == b; });
+}
 
+// bkquake run.
+void bind_run(py::module_& m) {
   m.def(
       "run_scene",
       [](const Scene& scene, const std::string& out, bool resume, bool force, bool quiet) {
@@ -176,7 +180,10 @@ PYBIND11_MODULE(_bkquake, m) {
       py::arg("quiet") = false,
       "Runs a checked scene into the folder `out` (app/run_scene); returns the exit status: 0 "
       "finished, 130 or 143 stopped by SIGINT or SIGTERM after a checkpoint.");
+}
 
+// The readers of a run folder's files.
+void bind_readers(py::module_& m) {
   m.def(
       "read_catalog",
       [](const std::string& path) { return table_to_python(read_catalog_released(path)); },
@@ -214,12 +221,15 @@ PYBIND11_MODULE(_bkquake, m) {
         return unknown;
       },
       py::arg("scene_ini"), "The keys of a scene file that read_run_scene skips.");
+}
 
+// bkquake fit.
+void bind_fit(py::module_& m) {
   m.def(
       "fit_catalog",
       [](const std::string& catalog, const std::string& json_out, std::optional<double> mu_min,
-         std::optional<double> mu_max, std::optional<double> bin_width,
-         const std::string& measure) {
+         std::optional<double> mu_max, std::optional<double> bin_width, const std::string& measure,
+         std::optional<double> x_min, std::optional<double> x_max) {
         // Each argument checked against the scene key it stands for, as bkquake fit does.
         const auto check = [](const char* name, const char* key, std::optional<double> v) {
           if (v) option_value(std::string("fit: ") + name, key, format_real(*v));
@@ -240,6 +250,22 @@ PYBIND11_MODULE(_bkquake, m) {
               "got '" +
               measure + "'");
         r.measure = measure;
+        // A power law's range: sizes > 0, x_max above x_min, for a measure other than moment.
+        for (const auto& [name, v] : {std::pair{"x_min", x_min}, std::pair{"x_max", x_max}}) {
+          if (!v) continue;
+          if (measure == "moment")
+            throw Error(std::string("fit: ") + name + " = " + format_real(*v) +
+                        ": a power law's range, for measure blocks, topplings, area or "
+                        "duration (the moment's window is mu_min, mu_max)");
+          if (!(std::isfinite(*v) && *v > 0))
+            throw Error(std::string("fit: ") + name + " = " + format_real(*v) +
+                        ": allowed: a finite size > 0");
+        }
+        if (x_min && x_max && !(*x_max > *x_min))
+          throw Error("fit: x_max = " + format_real(*x_max) +
+                      ": allowed: greater than x_min = " + format_real(*x_min));
+        r.x_min = x_min;
+        r.x_max = x_max;
         py::gil_scoped_release release;
         NullBuffer null;
         std::ostream discard(&null);
@@ -247,9 +273,13 @@ PYBIND11_MODULE(_bkquake, m) {
       },
       py::arg("catalog"), py::arg("json_out"), py::arg("mu_min") = py::none(),
       py::arg("mu_max") = py::none(), py::arg("bin_width") = py::none(),
-      py::arg("measure") = "moment",
-      "bkquake fit CATALOG --json JSON_OUT [--mu-min A] [--mu-max B] [--bin-width W].");
+      py::arg("measure") = "moment", py::arg("x_min") = py::none(), py::arg("x_max") = py::none(),
+      "bkquake fit CATALOG --json JSON_OUT [--mu-min A] [--mu-max B] [--bin-width W] "
+      "[--measure M], with a power law's range [x_min, x_max] given.");
+}
 
+// bkquake spectrum.
+void bind_spectrum(py::module_& m) {
   m.def(
       "spectrum",
       [](const std::string& run_dir, const std::string& signal, std::optional<std::int64_t> segment,
@@ -312,4 +342,22 @@ PYBIND11_MODULE(_bkquake, m) {
       py::arg("peaks") = 6, py::arg("f_min") = 0.0, py::arg("out") = "",
       "bkquake spectrum RUN_DIR: the amplitude spectrum of a continuous run's signal (writes "
       "spectrum.csv, or `out`), its peaks and the natural frequencies, as a dict.");
+}
+
+}  // namespace
+}  // namespace bkq
+
+PYBIND11_MODULE(_bkquake, m) {
+  using namespace bkq;
+  m.doc() = "bkquake's compiled core; use the bkquake package (bkquake.run, bkquake.load).";
+  m.attr("__version__") = kVersion;
+  m.attr("git_revision") = kGitRevision;
+
+  bind_errors();
+  bind_parameters(m);
+  bind_scene(m);
+  bind_run(m);
+  bind_readers(m);
+  bind_fit(m);
+  bind_spectrum(m);
 }

@@ -862,10 +862,12 @@ void add_unbinned(GrFit& fit, std::span<const double> mu, const GrFitOptions& op
   fit.boot_note = std::isfinite(boot.err)
                       ? "block bootstrap over the catalogue: " + std::to_string(boot.resamples) +
                             " resamples of blocks of " + std::to_string(boot.block) +
-                            " events (the larger of n^(1/3) and " +
+                            " events (where the batch-means error levels off, from the larger "
+                            "of n^(1/3) and " +
                             fmt_short(opt.boot_block_factor) +
                             " x the integrated autocorrelation time " + fmt_short(boot.tau_int) +
-                            "), seed " + std::to_string(opt.boot_seed)
+                            " up to n/" + std::to_string(opt.boot_min_blocks) + "), seed " +
+                            std::to_string(opt.boot_seed)
                       : "block bootstrap: too few events in the window";
 }
 
@@ -913,6 +915,42 @@ double integrated_autocorrelation_time(std::span<const double> x, double window_
   return std::max(tau, 1.0);
 }
 
+std::int64_t plateau_block_length(std::span<const double> z, std::int64_t first, double plateau,
+                                  std::int64_t min_blocks) {
+  const auto n = static_cast<std::int64_t>(z.size());
+  first = std::max<std::int64_t>(first, 1);
+  std::vector<std::int64_t> lengths;
+  std::vector<double> errs;
+  for (std::int64_t L = first; L * std::max<std::int64_t>(min_blocks, 2) <= n; L *= 2) {
+    const std::int64_t nb = n / L;
+    std::vector<double> sums(static_cast<std::size_t>(nb), 0);
+    double mean = 0;
+    for (std::int64_t b = 0; b < nb; ++b) {
+      for (std::int64_t i = b * L; i < (b + 1) * L; ++i) sums[b] += z[i];
+      mean += sums[b];
+    }
+    mean /= static_cast<double>(nb);
+    double ss = 0;
+    for (double v : sums) ss += (v - mean) * (v - mean);
+    lengths.push_back(L);
+    errs.push_back(std::sqrt(ss / static_cast<double>(nb - 1) * static_cast<double>(nb)));
+  }
+  if (lengths.empty()) return first;
+  // The largest error at each candidate or any longer one.
+  std::vector<double> above(errs.size());
+  double top = 0;
+  for (std::size_t j = errs.size(); j-- > 0;) above[j] = top = std::max(top, errs[j]);
+  for (std::size_t j = 0; j < errs.size(); ++j)
+    if (errs[j] >= plateau * above[j]) return lengths[j];
+  return lengths.back();
+}
+
+static std::string fmt_sig6(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
 BootstrapError block_bootstrap_b(std::span<const double> mu, double bin_width, double mu_min,
                                  double mu_max, bool truncated, const GrFitOptions& opt,
                                  std::int64_t block) {
@@ -942,13 +980,19 @@ BootstrapError block_bootstrap_b(std::span<const double> mu, double bin_width, d
       if (in[i] != 0) z[i] = off[i] - mean;
     r.tau_int = integrated_autocorrelation_time(z, opt.boot_window_factor);
   }
-  // The larger of boot_block_factor tau_int and n^(1/3) (the rate of the optimal block
-  // length for a variance, Hall, Horowitz & Jing 1995).
-  r.block =
-      block > 0
-          ? block
-          : static_cast<std::int64_t>(std::ceil(std::max(
-                {1.0, opt.boot_block_factor * r.tau_int, std::cbrt(static_cast<double>(n))})));
+  // From the larger of boot_block_factor tau_int and n^(1/3) (the rate of the optimal
+  // block length for a variance, Hall, Horowitz & Jing 1995), up to the plateau.
+  if (block > 0) {
+    r.block = block;
+  } else {
+    std::vector<double> z(n, 0);
+    const double mean = sum / static_cast<double>(n_in);
+    for (std::size_t i = 0; i < n; ++i)
+      if (in[i] != 0) z[i] = off[i] - mean;
+    const auto first = static_cast<std::int64_t>(std::ceil(
+        std::max({1.0, opt.boot_block_factor * r.tau_int, std::cbrt(static_cast<double>(n))})));
+    r.block = plateau_block_length(z, first, opt.boot_plateau, opt.boot_min_blocks);
+  }
   r.block = std::min<std::int64_t>(r.block, static_cast<std::int64_t>(n));
   // Prefix sums over the series and its first `block` events again (circular blocks).
   const std::size_t L = static_cast<std::size_t>(r.block);
@@ -984,6 +1028,9 @@ BootstrapError block_bootstrap_b(std::span<const double> mu, double bin_width, d
   const double mean_b = s1 / static_cast<double>(m);
   r.err = std::sqrt(
       std::max(0.0, (s2 - static_cast<double>(m) * mean_b * mean_b) / static_cast<double>(m - 1)));
+  // Six significant digits (200 resamples leave it uncertain by 5 %): the last bits of exp
+  // differ between libm variants, and the error is written the same with either.
+  if (r.err > 0) r.err = std::stod(fmt_sig6(r.err));
   return r;
 }
 

@@ -97,14 +97,19 @@ struct GrFitOptions {
   // chi^2 test gives p >= secondary_p.
   double secondary_p = 0.001;
   // Block bootstrap of b over contiguous stretches of the catalogue (block_bootstrap_b):
-  // boot_resamples resamples from a generator seeded with boot_seed; the block length is
-  // the larger of n^(1/3) (n events) and boot_block_factor times the integrated
-  // autocorrelation time of the events' offsets in the window (Sokal's window,
-  // boot_window_factor).
+  // boot_resamples resamples from a generator seeded with boot_seed. The block length is
+  // where the error stops growing with it (plateau_block_length): from the larger of
+  // n^(1/3) (n events) and boot_block_factor times the integrated autocorrelation time of
+  // the events' offsets in the window (Sokal's window, boot_window_factor), doubled up to
+  // n / boot_min_blocks, the shortest whose batch-means error reaches boot_plateau of the
+  // largest at it and above (loading cycles correlate events over thousands of events,
+  // which an autocorrelation sum stopped at a few lags does not see).
   std::int64_t boot_resamples = 200;
   std::uint64_t boot_seed = 20261128;
   double boot_block_factor = 5.0;
   double boot_window_factor = 5.0;
+  double boot_plateau = 0.9;
+  std::int64_t boot_min_blocks = 10;
   // Polled between the steps of the fit (well under a millisecond apart at <= kMaxScanBins
   // bins); when it returns true the fit throws FitCancelled. Empty: never cancelled.
   std::function<bool()> cancelled;
@@ -242,9 +247,9 @@ void add_unbinned(GrFit& fit, std::span<const double> mu, const GrFitOptions& op
 
 // Block bootstrap of the binned MLE on a fixed window (Kuensch 1989, circular blocks of
 // Politis & Romano 1992): the catalogue mu (in its order) is cut into blocks of `block`
-// consecutive events (chosen from the data when 0: the larger of n^(1/3) and
-// boot_block_factor times the integrated autocorrelation time of the in-window offsets,
-// Sokal's window), opt.boot_resamples
+// consecutive events (chosen from the data when 0: plateau_block_length of the in-window
+// offsets from the larger of n^(1/3) and boot_block_factor times their integrated
+// autocorrelation time, Sokal's window), opt.boot_resamples
 // catalogues are drawn from them with a generator seeded by opt.boot_seed, and b's error is
 // the standard deviation of b_mle over them. Events outside the window count towards a
 // block's length but not its fit.
@@ -266,6 +271,16 @@ struct ScalingCeiling {
 };
 ScalingCeiling scaling_ceiling(const MagnitudeHistogram& h, double mu_start,
                                const GrFitOptions& opt = {});
+
+// The block length of a block bootstrap of the mean of z (an event's influence on the
+// estimate, zero for events outside the fit): candidates first, 2 first, 4 first, ... up to
+// n / min_blocks; for each, the batch-means error sqrt(sum of squared block sums, centred,
+// times nb / (nb - 1)) over nb = n / L whole blocks. The shortest candidate whose error is
+// at least `plateau` times the largest at it or any longer one (the plateau of the error
+// against the block length, Flyvbjerg & Petersen 1989). `first` when it is beyond
+// n / min_blocks already.
+std::int64_t plateau_block_length(std::span<const double> z, std::int64_t first, double plateau,
+                                  std::int64_t min_blocks);
 
 // The integrated autocorrelation time 1 + 2 sum_t rho(t) of a series, summed up to the
 // first lag M >= window_factor * tau(M) (Sokal 1997); 1 for an uncorrelated series.

@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -528,9 +529,12 @@ PowerLawFit fit_power_law(std::span<const double> x_in, const PowerLawOptions& o
     for (std::size_t i = 0; i < n; ++i)
       if (in[i] != 0) z[i] = lnx[i] - sum / static_cast<double>(cnt);
     f.boot_tau_int = integrated_autocorrelation_time(z);
-    const auto L = static_cast<std::size_t>(std::min<double>(
-        static_cast<double>(n), std::ceil(std::max({1.0, opt.boot_block_factor * f.boot_tau_int,
-                                                    std::cbrt(static_cast<double>(n))}))));
+    // As b's (block_bootstrap_b): where the batch-means error levels off.
+    const auto first = static_cast<std::int64_t>(std::ceil(std::max(
+        {1.0, opt.boot_block_factor * f.boot_tau_int, std::cbrt(static_cast<double>(n))})));
+    const auto L = static_cast<std::size_t>(std::min<std::int64_t>(
+        static_cast<std::int64_t>(n),
+        plateau_block_length(z, first, opt.boot_plateau, opt.boot_min_blocks)));
     f.boot_block = static_cast<std::int64_t>(L);
     std::vector<double> c_in(n + L + 1, 0), c_ln(n + L + 1, 0);
     for (std::size_t i = 0; i < n + L; ++i) {
@@ -558,6 +562,10 @@ PowerLawFit fit_power_law(std::span<const double> x_in, const PowerLawOptions& o
       const double mean = s1 / static_cast<double>(m);
       f.alpha_boot_err = std::sqrt(
           std::max(0.0, (s2 - static_cast<double>(m) * mean * mean) / static_cast<double>(m - 1)));
+      // Six significant digits, as b's: the same with every libm variant.
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.6g", f.alpha_boot_err);
+      f.alpha_boot_err = std::strtod(buf, nullptr);
     }
   }
 

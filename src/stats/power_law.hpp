@@ -33,6 +33,8 @@ struct PowerLawOptions {
   std::int64_t gof_sets = 100;   // synthetic sets of the goodness-of-fit p-value (0: none)
   std::int64_t boot_resamples = 200;
   double boot_block_factor = 5.0;
+  double boot_plateau = 0.9;  // the block length's rule (GrFitOptions)
+  std::int64_t boot_min_blocks = 10;
   std::uint64_t seed = 20261128;
   bool compare = true;  // the likelihood-ratio tests
   // Polled between synthetic sets; true stops the fit (FitCancelled).

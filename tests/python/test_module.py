@@ -80,6 +80,8 @@ def test_fit_is_bkquake_fit(cli_run, tmp_path):
         str(out))
     theirs = json.loads(out.read_text())
     ours = bkquake.load(cli_run).fit(mu_min=-8.6, mu_max=-6)
+    # Python adds the catalogue's size under a name that cannot be read as the window's.
+    assert ours["fit"].pop("catalog_events") == theirs["fit"]["events"]
     assert ours["fit"] == theirs["fit"]
     assert ours["fit"]["mu_min"] == -8.6 and ours["fit"]["b_mle"] > 0
     with pytest.raises(ValueError, match="mu_max must be greater than mu_min"):
@@ -95,13 +97,22 @@ def test_fit_measure_and_errors(cli_run, tmp_path):
     res = run.fit(measure="blocks")
     out = tmp_path / "fit.json"
     cli("fit", str(cli_run / "catalog.csv"), "--measure", "blocks", "--json", str(out))
-    assert res["tau"] == json.loads(out.read_text())["tau"]
     tau = res["tau"]
+    assert {k: v for k, v in tau.items() if k != "catalog_events"} == json.loads(
+        out.read_text())["tau"]
+    assert tau["catalog_events"] == SMALL["run.events"] and tau["n_in_range"] <= SMALL["run.events"]
     assert tau["measure"] == "blocks" and tau["discrete"] is True
     assert tau["ok"] is False or (tau["value"] > 1 and tau["err"] > 0 and tau["x_min"] >= 1)
     f = res["fit"]
-    assert f["events"] == SMALL["run.events"]
-    assert f["n_in_window"] <= f["events"]
+    assert f["events"] == f["catalog_events"] == SMALL["run.events"]
+    assert f["n_in_window"] <= f["catalog_events"]
+    # A given range for the power law: fitted there; refused for the moment or when empty.
+    given = run.fit(measure="blocks", x_min=1, x_max=5)["tau"]
+    assert given["x_min"] == 1 and given["x_max"] == 5 and given["x_min_auto"] is False
+    with pytest.raises(ValueError, match="x_min = 2: a power law's range"):
+        run.fit(x_min=2)
+    with pytest.raises(ValueError, match="x_max = 1: allowed: greater than x_min = 3"):
+        run.fit(measure="blocks", x_min=3, x_max=1)
     assert "b_mle_boot_err" in f and "mu_max_reason" in f
     assert "tau" not in run.fit()
     with pytest.raises(ValueError, match="expected one of moment, blocks"):

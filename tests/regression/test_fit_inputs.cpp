@@ -172,7 +172,9 @@ run.transient_events = 100
   std::getline(lines, header);
   std::getline(lines, row0);
   std::getline(lines, row1);
-  EXPECT_EQ(header, "point,friction.alpha,events,b,b_err,b_sys_err,b_mw,mu_min,mu_max,error");
+  EXPECT_EQ(header,
+            "point,friction.alpha,events,b,b_err,b_sys_err,b_mw,mu_min,mu_max,tau_measure,tau,"
+            "tau_err,tau_x_min,tau_x_max,tau_p,tau_error,error");
   // Point 0's b is the b of its merged histogram on the same window.
   const Fitted p0 = fit(
       dir, {dir.file("sw/points/p0000/histogram.csv"), "--mu-min", "-7.6", "--mu-max", "-2"}, "p0");
@@ -185,6 +187,32 @@ run.transient_events = 100
   EXPECT_DOUBLE_EQ(std::strtod(fields[3].c_str(), nullptr), p0.b);
   EXPECT_DOUBLE_EQ(std::strtod(fields[7].c_str(), nullptr), -7.6);
   EXPECT_EQ(row1.substr(0, 2), "1,");
+  // A chain's point has no tau unless a measure is asked for.
+  EXPECT_EQ(row0.substr(row0.size() - 11), ",-2,,,,,,,,") << row0;
+
+  // With --measure blocks: tau over the point's replica catalogue, the same as fitting that
+  // catalogue itself (one replica).
+  const auto m = run_bkquake({"fit", dir.file("sw"), "--measure", "blocks"});
+  ASSERT_EQ(m.status, 0) << m.err;
+  std::istringstream tau_lines(slurp(dir.file("sw/sweep_fit.csv")));
+  std::getline(tau_lines, header);
+  std::getline(tau_lines, row0);
+  fields.clear();
+  std::stringstream tau_row(row0);
+  for (std::string x; std::getline(tau_row, x, ',');) fields.push_back(x);
+  ASSERT_GE(fields.size(), 15u) << row0;
+  EXPECT_EQ(fields[9], "blocks");
+  const std::string json = dir.file("r.json");
+  const auto one =
+      run_bkquake({"fit", dir.file("sw/points/p0000/r00"), "--measure", "blocks", "--json", json});
+  ASSERT_EQ(one.status, 0) << one.err;
+  const std::string text = slurp(json);
+  const auto at = text.find("\"value\":");
+  ASSERT_NE(at, std::string::npos) << text;
+  EXPECT_DOUBLE_EQ(std::strtod(fields[10].c_str(), nullptr),
+                   std::strtod(text.c_str() + at + 8, nullptr))
+      << row0;
+  EXPECT_GT(std::strtod(fields[11].c_str(), nullptr), 0) << row0;
 }
 
 }  // namespace

@@ -278,14 +278,17 @@ class Run:
             )
         return scene
 
-    def fit(self, mu_min=None, mu_max=None, bin_width=None, measure="moment"):
+    def fit(self, mu_min=None, mu_max=None, bin_width=None, measure="moment", x_min=None,
+            x_max=None):
         """`bkquake fit` on the catalogue: the dict its --json writes. "fit" holds b_mle,
         its errors (b_mle_err: Shi & Bolt; b_mle_boot_err: block bootstrap), the window,
-        why it ends (mu_max_reason), warnings about a given window, ... Its "events" is the
-        catalogue's size, "n_in_window" the events the window holds. mu_min, mu_max: the fit
-        window (None: automatic); bin_width: None for the run's stats.bin_width; measure:
-        moment, or blocks, topplings, area, duration: then "tau" holds the power-law fit of
-        that size (value, err, x_min, x_max, p, the likelihood-ratio tests)."""
+        why it ends (mu_max_reason), warnings about a given window, ... Its
+        "catalog_events" is the catalogue's size (also "events", as in the JSON),
+        "n_in_window" the events the window holds. mu_min, mu_max: the fit window (None:
+        automatic); bin_width: None for the run's stats.bin_width; measure: moment, or
+        blocks, topplings, area, duration: then "tau" holds the power-law fit of that size
+        (value, err, x_min, x_max, p, the likelihood-ratio tests; "catalog_events" and
+        "n_in_range"), on [x_min, x_max] when given (None: chosen from the data)."""
         f = self.catalog_file
         if f is None:
             raise FileNotFoundError(f"{self.path}: no catalogue to fit")
@@ -293,9 +296,14 @@ class Run:
             bin_width = self.scene["stats.bin_width"]
         with tempfile.TemporaryDirectory(prefix="bkquake-fit-") as tmp:
             out = os.path.join(tmp, "fit.json")
-            _bkquake.fit_catalog(f, out, mu_min, mu_max, bin_width, measure)
+            _bkquake.fit_catalog(f, out, mu_min, mu_max, bin_width, measure, x_min, x_max)
             with open(out) as j:
-                return json.load(j)
+                result = json.load(j)
+        # The catalogue's size under a name that cannot be read as the window's count.
+        for part in ("fit", "tau"):
+            if isinstance(result.get(part), dict) and "events" in result[part]:
+                result[part]["catalog_events"] = result[part]["events"]
+        return result
 
     def spectrum(self, signal="pad_position", segment=None, start=None, end=None,
                  window="hann", peaks=6, f_min=0.0, out=None):
