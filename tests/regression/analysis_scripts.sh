@@ -32,8 +32,9 @@ q $P analysis/plot_lattice.py runs/lat --out runs/lat/lattice.png
 q $P analysis/plot_event_sizes.py data/reference/event_sizes_n100.csv --out runs/event_sizes.png
 # Not run here: analysis/compare_modes.py keeps about 5000 slip episodes per continuous run
 # (minutes); it writes under --out-dir (default runs/modes).
-# The OFC exponent: told nothing, it must not write into data/ or docs/ either.
-q $P analysis/ofc_exponent.py --quick --sizes 8 --events 2000
+# The OFC exponent: told no --out, it writes into the current folder only (never into data/
+# or docs/), so it runs from runs/.
+(cd runs && q $P ../analysis/ofc_exponent.py --quick --sizes 8 --events 2000)
 EVENTS=2000 analysis/scaling.sh 50 > runs/scaling.csv
  q $P analysis/plot_scaling.py runs/scaling.csv --out runs/scaling.png
 q analysis/peak_memory.sh 1000
