@@ -215,5 +215,40 @@ run.transient_events = 100
   EXPECT_GT(std::strtod(fields[11].c_str(), nullptr), 0) << row0;
 }
 
+TEST(FitInputs, AnOfcSweepGetsTauOfTheTopplingsWithoutBeingAsked) {
+  TempDir dir;
+  dir.write("s.ini", "[sweep]\nscene = " + std::string(BKQUAKE_SOURCE_DIR) +
+                         "/data/scenes/lattice/ofc-256-a020.ini\n"
+                         "replicas = 1\ncollect = catalog, histogram, summary\n"
+                         "[vary]\nofc.alpha = 0.2\n"
+                         "[set]\nmodel.blocks = 16\nmodel.rows = 16\n"
+                         "run.transient_events = 5000\nrun.events = 20000\n");
+  const auto r = run_bkquake({"sweep", dir.file("s.ini"), "--out", dir.file("sw")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto f = run_bkquake({"fit", dir.file("sw")});
+  ASSERT_EQ(f.status, 0) << f.err;
+  std::istringstream lines(slurp(dir.file("sw/sweep_fit.csv")));
+  std::string header, row0;
+  std::getline(lines, header);
+  std::getline(lines, row0);
+  std::vector<std::string> names, fields;
+  std::stringstream h(header), row(row0);
+  for (std::string x; std::getline(h, x, ',');) names.push_back(x);
+  for (std::string x; std::getline(row, x, ',');) fields.push_back(x);
+  ASSERT_EQ(fields.size(), names.size()) << header << "\n" << row0;
+  const auto column = [&](const std::string& name) {
+    const auto at = std::find(names.begin(), names.end(), name);
+    return at == names.end() ? std::string("missing") : fields[at - names.begin()];
+  };
+  EXPECT_EQ(column("tau_measure"), "topplings") << row0;
+  // Either a tau with a positive error or none with its reason.
+  if (column("tau").empty()) {
+    EXPECT_FALSE(column("tau_error").empty()) << row0;
+  } else {
+    EXPECT_GT(std::strtod(column("tau").c_str(), nullptr), 1.0) << row0;
+    EXPECT_GT(std::strtod(column("tau_err").c_str(), nullptr), 0.0) << row0;
+  }
+}
+
 }  // namespace
 }  // namespace bkq
