@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -264,6 +265,18 @@ std::vector<ParamSpec> make_table() {
            "CSV file of per-block a, b and D_c (header block,a,b,dc, one row per block 0..N-1 in "
            "order; docs/explanation/rate-and-state.md); relative to the scene file's folder; "
            "none: every block has rsf.a, rsf.b, rsf.dc"),
+      // rate-and-state keys: slow slip written apart, and per-block values from a pattern.
+      real("rsf.slow_slip_threshold", "0", '[', 0, 1e6, ']', "m/s",
+           "V_slow: slow-slip and afterslip episodes (some block faster than V_slow, none reaching "
+           "rsf.v_threshold) are written to slow_slip.csv; between drive.speed and "
+           "rsf.v_threshold; 0: off"),
+      choice("rsf.pattern", "uniform", {"uniform", "asperities"},
+             "per-block values: uniform (rsf.a, rsf.b everywhere), or asperities: blocks with x "
+             "mod rsf.pattern_period < rsf.pattern_width (and the same across strike on a lattice) "
+             "keep rsf.a and rsf.b, the others are barriers with a and b swapped"),
+      integer("rsf.pattern_period", "10", 2, 1e7, "", "blocks from one asperity to the next"),
+      integer("rsf.pattern_width", "5", 1, 1e7, "",
+              "blocks of each asperity; below rsf.pattern_period"),
 
       // --- drive: how the substrate moves ---
       choice("drive.mode", "events", {"events", "continuous"},
@@ -519,17 +532,20 @@ const std::vector<KeyDependency>& dependencies() {
       {{"integrator.tolerance"}, {{"integrator.scheme", {"adaptive"}}, {"friction.law", {"rsf"}}}},
       // Rate-and-state friction runs in SI units on its own integrator (engine/rsf_cycle.hpp).
       {{"rsf.a", "rsf.b", "rsf.dc", "rsf.mu0", "rsf.v0", "rsf.state_law", "rsf.form",
-        "rsf.normal_stress", "rsf.v_threshold", "rsf.v_init", "rsf.theta_init", "rsf.blocks"},
+        "rsf.normal_stress", "rsf.v_threshold", "rsf.v_init", "rsf.theta_init", "rsf.blocks",
+        "rsf.slow_slip_threshold", "rsf.pattern"},
        {{"friction.law", {"rsf"}}}},
+      {{"rsf.pattern_period", "rsf.pattern_width"}, {{"rsf.pattern", {"asperities"}}}},
       {{"model.stiffness", "model.coupling_stiffness", "model.dynamics", "model.shear_modulus",
         "model.shear_wave_speed", "model.mass_per_area"},
        {{"model.parameterisation", {"si"}}}},
       {{"model.mass_per_area"}, {{"model.dynamics", {"inertial"}}}},
+      // rate-and-state keys: the coupling's shape applies to every law (the chain and the lattice).
+      {{"model.coupling"}, {{"friction.law", rsf_and_law_names()}}},
       {{"integrator.scheme", "integrator.dt", "integrator.transitions", "friction.sigma",
         "run.initial_disorder", "run.max_steps_per_event", "run.start", "model.viscosity",
-        "model.rayleigh_alpha", "model.rayleigh_beta", "model.damping_ratio", "model.coupling",
-        "output.status", "output.energy", "output.energy_window", "output.energy_tol",
-        "output.segment_blocks"},
+        "model.rayleigh_alpha", "model.rayleigh_beta", "model.damping_ratio", "output.status",
+        "output.energy", "output.energy_window", "output.energy_tol", "output.segment_blocks"},
        {{"friction.law", law_names()}}},
       {{"integrator.theta"}, {{"integrator.scheme", {"theta"}}}},
       {{"integrator.transitions"}, {{"integrator.scheme", {"rk2", "rk4", "verlet"}}}},
@@ -788,11 +804,6 @@ void check_rsf(const Scene& s, const std::string& where) {
   if (kind != "bk" && kind != "1dof")
     throw Error("model.kind = " + kind +
                 " with friction.law = rsf: allowed model.kind = bk or 1dof" + where);
-  if (kind == "bk" && s.integer("model.rows") > 1)
-    throw Error("model.rows = " + s.text("model.rows") +
-                " with friction.law = rsf: lattices are not written for rate-and-state yet; "
-                "allowed: model.rows = 1" +
-                where);
   if (s.choice("drive.schedule") != "constant")
     throw Error("drive.schedule = " + s.choice("drive.schedule") +
                 " with friction.law = rsf: the plate moves at a constant rate; allowed: "
@@ -806,6 +817,29 @@ void check_rsf(const Scene& s, const std::string& where) {
     throw Error("rsf.v_threshold = " + s.text("rsf.v_threshold") +
                 ": the seismic slip rate must exceed the plate rate drive.speed = " +
                 s.text("drive.speed") + "; allowed: (" + s.text("drive.speed") + ", 1e6]" + where);
+  // rate-and-state keys: slow slip between the plate rate and V_th; a pattern or a file.
+  const double v_slow = s.real("rsf.slow_slip_threshold");
+  if (v_slow != 0 && !(v_slow > v_pl && v_slow < s.real("rsf.v_threshold")))
+    throw Error("rsf.slow_slip_threshold = " + s.text("rsf.slow_slip_threshold") +
+                ": slow slip lies between the plate rate and the seismic rate; allowed: 0 (off) "
+                "or (" +
+                s.text("drive.speed") + ", " + s.text("rsf.v_threshold") + ")" + where);
+  if (s.choice("rsf.pattern") != "uniform" && !s.text("rsf.blocks").empty())
+    throw Error("rsf.pattern = " + s.choice("rsf.pattern") +
+                " with rsf.blocks: per-block values come from one of them; allowed: rsf.pattern = "
+                "uniform with a file, or no rsf.blocks" +
+                where);
+  if (s.choice("rsf.pattern") == "asperities" && !(s.real("rsf.b") > 0))
+    throw Error("rsf.b = " + s.text("rsf.b") +
+                " with rsf.pattern = asperities: the barriers' direct effect is rsf.b; allowed: "
+                "rsf.b > 0" +
+                where);
+  if (s.choice("rsf.pattern") == "asperities" &&
+      s.integer("rsf.pattern_width") >= s.integer("rsf.pattern_period"))
+    throw Error("rsf.pattern_width = " + s.text("rsf.pattern_width") +
+                ": an asperity must be narrower than the pattern's period rsf.pattern_period = " +
+                s.text("rsf.pattern_period") + "; allowed: 1 to " +
+                std::to_string(s.integer("rsf.pattern_period") - 1) + where);
 }
 }  // namespace
 
@@ -1110,7 +1144,9 @@ bool added_later(const std::string& key) {
       "model.stiffness", "model.coupling_stiffness", "model.dynamics", "model.shear_modulus",
       "model.shear_wave_speed", "model.mass_per_area", "rsf.a", "rsf.b", "rsf.dc", "rsf.mu0",
       "rsf.v0", "rsf.state_law", "rsf.form", "rsf.normal_stress", "rsf.v_threshold", "rsf.v_init",
-      "rsf.theta_init"};
+      "rsf.theta_init",
+      // rate-and-state keys added later still.
+      "rsf.slow_slip_threshold", "rsf.pattern", "rsf.pattern_period", "rsf.pattern_width"};
   return keys.count(key) != 0;
 }
 }  // namespace
@@ -1128,6 +1164,14 @@ std::uint64_t Scene::hash() const {
     if (added_later(p.key) && values_.at(p.key) == normalise(p, p.default_value, "default"))
       continue;
     h = fnv1a64(p.key + "=" + values_.at(p.key) + "\n", h);
+    // rate-and-state keys: the per-block file's bytes, so that an edited file is another
+    // scene (a resume refuses it). An unreadable file hashes as its name alone (the run then
+    // refuses it when it reads the file).
+    if (p.key == "rsf.blocks") {
+      std::ifstream in(values_.at(p.key), std::ios::binary);
+      std::ostringstream bytes;
+      if (in && (bytes << in.rdbuf())) h = fnv1a64("rsf.blocks bytes=" + bytes.str() + "\n", h);
+    }
   }
   return h;
 }

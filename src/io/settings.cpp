@@ -12,6 +12,7 @@
 #include "io/friction_table.hpp"
 #include "io/rsf_blocks.hpp"
 #include "io/scene.hpp"
+#include "model/coupling.hpp"
 #include "model/friction_laws.hpp"
 
 namespace bkq {
@@ -95,6 +96,41 @@ ModelParams model_from_scene(const Scene& scene) {
   return line_as_chain(p);
 }
 
+namespace {
+
+// rate-and-state keys: the grid and springs of friction.law = rsf. A chain (model.rows = 1), a
+// column (model.blocks = 1: the chain along y) or a lattice, coupled by model.coupling's stencil
+// with model.coupling_stiffness the springs' total along each axis (isotropic).
+void rsf_grid(const Scene& scene, const ModelParams& chain, RsfModel& m) {
+  const int nx =
+      scene.choice("model.kind") == "1dof" ? 1 : static_cast<int>(scene.integer("model.blocks"));
+  const int ny = chain.n / nx;
+  m.rows = ny;
+  m.periodic = scene.choice("model.boundary") == "periodic";
+  m.periodic_y = scene.choice("model.boundary_y") == "periodic";
+  m.springs.clear();
+  if (m.k_c == 0) return;
+  ModelParams p = chain;
+  p.coupling = scene.choice("model.coupling") == "range"   ? Coupling::Range
+               : scene.choice("model.coupling") == "power" ? Coupling::Power
+                                                           : Coupling::Nearest;
+  p.range = static_cast<int>(scene.integer("model.range"));
+  p.coupling_exponent = scene.real("model.coupling_exponent");
+  p.k_c = m.k_c;
+  p.n = nx * ny;
+  p.rows = ny;
+  if (nx > 1 && ny > 1) {
+    p.k_c_y = m.k_c;
+    m.springs = lattice_stencil(p);
+    return;
+  }
+  p.rows = 1;
+  for (const CouplingSpring& c : coupling_stencil(p))
+    m.springs.push_back(nx > 1 ? LatticeSpring{c.offset, 0, c.k} : LatticeSpring{0, c.offset, c.k});
+}
+
+}  // namespace
+
 RsfSettings rsf_from_scene(const Scene& scene, const ModelParams& chain) {
   RsfSettings r;
   r.on = true;
@@ -110,6 +146,23 @@ RsfSettings rsf_from_scene(const Scene& scene, const ModelParams& chain) {
     const std::vector<rsf::Params> blocks = read_rsf_blocks(file, chain.n, p);
     for (int j = 0; j < chain.n; ++j) m.law[j] = rsf::Law(blocks[j]);
   }
+  // rate-and-state keys: asperities of rsf.a, rsf.b among barriers with the two swapped, in
+  // patches of pattern_width of every pattern_period blocks along strike (and across on a
+  // lattice).
+  if (scene.choice("rsf.pattern") == "asperities") {
+    const int period = static_cast<int>(scene.integer("rsf.pattern_period"));
+    const int width = static_cast<int>(scene.integer("rsf.pattern_width"));
+    const int nx =
+        scene.choice("model.kind") == "1dof" ? 1 : static_cast<int>(scene.integer("model.blocks"));
+    rsf::Params barrier = p;
+    std::swap(barrier.a, barrier.b_rsf);
+    for (int j = 0; j < chain.n; ++j) {
+      const int x = j % nx, y = j / nx;
+      const bool asperity = x % period < width && y % period < width;
+      m.law[j] = rsf::Law(asperity ? p : barrier);
+    }
+  }
+  r.v_slow = scene.real("rsf.slow_slip_threshold");
   m.state_law =
       scene.choice("rsf.state_law") == "slip" ? rsf::StateLaw::Slip : rsf::StateLaw::Aging;
   m.form = scene.choice("rsf.form") == "regularised" ? rsf::Form::Regularised : rsf::Form::Log;
@@ -118,7 +171,7 @@ RsfSettings rsf_from_scene(const Scene& scene, const ModelParams& chain) {
   m.sigma = scene.real("rsf.normal_stress");
   m.k = scene.real("model.stiffness");
   m.k_c = chain.n > 1 ? scene.real("model.coupling_stiffness") : 0.0;
-  m.periodic = chain.boundary == Boundary::Periodic;
+  rsf_grid(scene, chain, m);
   m.v_pl = scene.real("drive.speed");
   const double c_s = scene.real("model.shear_wave_speed");
   m.eta = c_s > 0 ? scene.real("model.shear_modulus") / (2 * c_s) : 0.0;  // Rice 1993
