@@ -28,6 +28,7 @@
 #include "io/catalog_h5.hpp"
 #include "io/checkpoint.hpp"
 #include "io/json.hpp"
+#include "io/rsf_blocks.hpp"
 #include "io/run_folder.hpp"
 #include "io/stability_csv.hpp"
 #include "stats/rsf_stability.hpp"
@@ -54,6 +55,8 @@ class RsfFigures : public RunObserver {
     r.set("eta", m.eta);
     r.set("last_hypocentre_time", events_.events() > 0 ? events_.times().hypocentre : 0.0);
     r.set("last_peak_time", events_.events() > 0 ? events_.times().peak : 0.0);
+    r.set("rows", m.rows);
+    r.set("springs_per_block", static_cast<std::int64_t>(2 * m.stencil().size()));
     summary.set("rsf", std::move(r));
   }
 
@@ -78,15 +81,19 @@ RsfStabilityReport rsf_stability(const Settings& settings) {
   int unstable = 0;
   double top_growth = -HUGE_VAL, top_freq = 0;
   const int n = m.n();
+  // One mode per wavenumber pair (q_x, q_y): the chain's q, or a lattice's pair.
   for (int q = 0; q < n; ++q) {
-    const double k_q = m.k + (n > 1 ? m.k_c * rsf_chain_laplacian(n, m.periodic, q) : 0.0);
+    const int qx = q % m.nx(), qy = q / m.nx();
+    const double k_q = m.k + rsf_mode_stiffness(m, qx, qy);
     const std::complex<double> s = rsf_eigenvalues(m, k_q)[0];
     const double freq = std::fabs(s.imag()) / (2 * std::numbers::pi);
     unstable += s.real() > 0 ? 1 : 0;
     if (s.real() > top_growth) top_growth = s.real(), top_freq = freq;
-    r.modes_csv += format_real(m.v_pl) + ",chain " + std::to_string(q) + "," +
-                   format_real(s.real()) + "," + format_real(std::fabs(s.imag())) + "," +
-                   format_real(freq) + "," + (s.real() > 0 ? "1" : "0") + "\n";
+    const std::string name = m.rows > 1 ? "lattice " + std::to_string(qx) + " " + std::to_string(qy)
+                                        : "chain " + std::to_string(q);
+    r.modes_csv += format_real(m.v_pl) + "," + name + "," + format_real(s.real()) + "," +
+                   format_real(std::fabs(s.imag())) + "," + format_real(freq) + "," +
+                   (s.real() > 0 ? "1" : "0") + "\n";
   }
   r.summary_csv =
       "v_pl,k,k_c,k_crit_quasi_static,k_crit_radiation_damping,k_crit,frequency_at_k_crit,"
@@ -195,6 +202,61 @@ class BlockSamples {
   std::FILE* file_ = nullptr;
 };
 
+// slow_slip.csv (rsf.slow_slip_threshold): one row per slow-slip or afterslip episode, cut
+// back to its checkpoint's rows on a resume as the catalogue is.
+class SlowSlipFile {
+ public:
+  static constexpr const char* kState = "rsf.slow_slip_csv";
+
+  explicit SlowSlipFile(std::string path) : path_(std::move(path)) {}
+  SlowSlipFile(const SlowSlipFile&) = delete;
+  SlowSlipFile& operator=(const SlowSlipFile&) = delete;
+  ~SlowSlipFile() {
+    if (file_) std::fclose(file_);
+  }
+
+  void open(const Checkpoint* resumed) {
+    const std::string header = header_of(slow_slip_schema());
+    if (resumed) {
+      std::uint64_t bytes = 0;
+      if (!find_state(*resumed, kState, bytes, rows_))
+        throw Error("--resume: the checkpoint holds no slow_slip.csv state");
+      check_csv_prefix(path_, header, rows_, bytes);
+      std::filesystem::resize_file(path_, bytes);
+      file_ = std::fopen(path_.c_str(), "ab");
+    } else {
+      file_ = std::fopen(path_.c_str(), "wb");
+      if (file_) std::fprintf(file_, "%s\n", header.c_str());
+    }
+    if (!file_) throw Error("cannot write '" + path_ + "'");
+  }
+
+  void write(const RsfSlowEpisode& s) {
+    const EventRecord& e = s.record;
+    std::fprintf(file_, "%lld,%s,%s,%s,%d,%s,%s,%s,%d,%d,%d,%d,%d,%d\n",
+                 static_cast<long long>(e.event), s.afterslip ? "afterslip" : "slow",
+                 format_real(e.hypocentre_time).c_str(), format_real(e.duration).c_str(), e.blocks,
+                 format_real(e.moment).c_str(), format_real(e.max_speed).c_str(),
+                 format_real(e.peak_time).c_str(), e.trigger, e.first_block, e.last_block,
+                 e.trigger_row, e.first_row, e.last_row);
+    ++rows_;
+  }
+
+  void checkpoint(Checkpoint& c) {
+    if (std::fflush(file_) != 0) throw Error("cannot write '" + path_ + "'");
+    put_state(c, kState, static_cast<std::uint64_t>(std::ftell(file_)), rows_);
+  }
+  void close() {
+    if (file_ && std::fclose(file_) != 0) throw Error("cannot write '" + path_ + "'");
+    file_ = nullptr;
+  }
+
+ private:
+  std::string path_;
+  std::int64_t rows_ = 0;
+  std::FILE* file_ = nullptr;
+};
+
 class RsfRun {
  public:
   RsfRun(const RunRequest& req, const Settings& settings, const OutputFolder& out,
@@ -207,6 +269,7 @@ class RsfRun {
                settings.rsf.theta_start()),
         detector_(settings.rsf.v_threshold),
         duration_(settings.run.duration) {
+    if (settings.rsf.v_slow > 0) slow_.emplace(settings.rsf.v_slow, settings.rsf.v_threshold);
     if (resumed) {
       const std::string* bytes = resumed->find(kStateName);
       if (!bytes)
@@ -215,6 +278,7 @@ class RsfRun {
       try {
         cycle_.restore(r.f64s());
         detector_.restore(r.f64s());
+        if (slow_) slow_->restore(r.f64s());
       } catch (const std::exception& e) {
         throw Error(std::string("--resume: the checkpoint's rate-and-state state is malformed: ") +
                     e.what());
@@ -229,6 +293,10 @@ class RsfRun {
                        settings.output.block_first, settings.output.block_count);
       samples_->open(resumed);
     }
+    if (slow_) {
+      slow_file_.emplace(out.path("slow_slip.csv"));
+      slow_file_->open(resumed);
+    }
     attach_observers(resumed != nullptr);
     if (resumed) obs_.resume(*resumed);
   }
@@ -242,12 +310,20 @@ class RsfRun {
       if (!std::isfinite(cycle_.ln_v(0)))
         throw Error("rsf: non-finite slip rate at t = " + format_real(cycle_.t()) +
                     " (lower integrator.tolerance)");
-      if (auto e = detector_.observe(cycle_)) obs_.event(*e);
+      // The slow episodes see the step before the seismic detector, which may end an event
+      // in it and so start an afterslip episode at the event's end.
+      if (slow_)
+        if (auto s = slow_->observe(cycle_)) slow_file_->write(*s);
+      if (auto e = detector_.observe(cycle_)) {
+        obs_.event(*e);
+        if (slow_) slow_->event_ended(cycle_, e->hypocentre_time + e->duration);
+      }
       if (samples_) samples_->after_step(cycle_);
       obs_.advance({cycle_.t(), detector_.events()});
     }
     obs_.phase_end({cycle_.t(), detector_.events()});
     if (samples_ && cycle_.t() >= duration_) samples_->close();
+    if (slow_file_ && cycle_.t() >= duration_) slow_file_->close();
     if (const int sig = signals.received(); sig != 0 && cycle_.t() < duration_) {
       save();
       obs_.end(run_end(sig));
@@ -294,8 +370,10 @@ class RsfRun {
     StateWriter w;
     w.f64s(cycle_.snapshot());
     w.f64s(detector_.snapshot());
+    if (slow_) w.f64s(slow_->snapshot());
     c.put(kStateName, std::move(w.bytes()));
     if (samples_) samples_->checkpoint(c);
+    if (slow_file_) slow_file_->checkpoint(c);
     obs_.checkpoint(c);
     files_.write(c);
   }
@@ -322,6 +400,8 @@ class RsfRun {
   const double duration_;
   RunProgress prog_;
   std::optional<BlockSamples> samples_;
+  std::optional<RsfSlowSlipDetector> slow_;
+  std::optional<SlowSlipFile> slow_file_;
   Observers obs_;
   Clock::time_point session_t0_ = Clock::now();
   double wall0_ = 0;

@@ -27,6 +27,10 @@ struct EventRecord {
   int trigger_row = 0;
   int first_row = 0;
   int last_row = 0;
+  // Rate-and-state runs (engine/rsf_events.hpp): the times [s] of the first crossing of the
+  // seismic slip rate and of the peak slip rate. 0 otherwise.
+  double hypocentre_time = 0;
+  double peak_time = 0;
 };
 
 // An event of a lattice of one column, which ran as the chain along y

@@ -51,11 +51,42 @@ Extremum hermite_extremum(double t0, double x0, double d0, double t1, double x1,
   return {t, hermite_value(t0, x0, d0, t1, x1, d1, t)};
 }
 
+RsfNeighbours rsf_neighbours(const RsfModel& m) {
+  const int n = m.n(), ny = m.rows, nx = m.nx();
+  if (ny < 1 || nx * ny != n)
+    throw Error("rsf: " + std::to_string(n) + " blocks do not fill " + std::to_string(ny) +
+                " rows");
+  const LatticeStencil springs = m.stencil();
+  RsfNeighbours nb;
+  nb.start.reserve(n + 1);
+  nb.start.push_back(0);
+  // One axis' neighbour coordinate, or -1 past a free edge.
+  const auto wrap = [](int c, int size, bool periodic) {
+    if (c >= 0 && c < size) return c;
+    if (!periodic) return -1;
+    return ((c % size) + size) % size;
+  };
+  for (int j = 0; j < n; ++j) {
+    const int x = j % nx, y = j / nx;
+    for (const LatticeSpring& s : springs)
+      for (const int sign : {-1, 1}) {
+        const int xi = wrap(x + sign * s.dx, nx, m.periodic);
+        const int yi = wrap(y + sign * s.dy, ny, m.periodic_y);
+        if (xi < 0 || yi < 0 || (xi == x && yi == y)) continue;
+        nb.index.push_back(yi * nx + xi);
+        nb.k.push_back(s.k);
+      }
+    nb.start.push_back(static_cast<int>(nb.index.size()));
+  }
+  return nb;
+}
+
 RsfCycle::RsfCycle(RsfModel model, double tolerance, const std::vector<double>& v,
                    const std::vector<double>& theta)
     : m_(std::move(model)), tol_(tolerance) {
   const int n = m_.n();
   if (n < 1) throw Error("rsf: a chain needs at least one block");
+  nb_ = rsf_neighbours(m_);
   for (const auto* x : {&v, &theta})
     if (x->size() != 1 && x->size() != static_cast<std::size_t>(n))
       throw Error("rsf: a start value per block or one for all, got " + std::to_string(x->size()) +
@@ -90,36 +121,31 @@ void RsfCycle::rhs(double t, const double* y, double* dy) {
   const double* ln_v = y + n;
   const double* ln_th = y + 2 * n;
   for (int j = 0; j < n; ++j) v_[j] = std::exp(ln_v[j]);
-  const bool coupled = m_.k_c != 0 && n > 1;
   for (int j = 0; j < n; ++j) {
     const rsf::Law& law = m_.law[j];
     const double dlnth = law.dlntheta_dt(m_.state_law, ln_v[j], ln_th[j]);
     const rsf::FrictionValue fr = law.friction(m_.form, ln_v[j], ln_th[j]);
-    // The neighbours' sum of (x_i - x_j): free ends drop the missing one.
-    const auto coupling = [&](const double* x) {
-      double s = 0;
-      const int l = j > 0 ? j - 1 : (m_.periodic ? n - 1 : -1);
-      const int r = j < n - 1 ? j + 1 : (m_.periodic ? 0 : -1);
-      if (l >= 0) s += x[l] - x[j];
-      if (r >= 0) s += x[r] - x[j];
-      return s;
-    };
     double dlnv;
     if (m_.dynamics == RsfDynamics::QuasiDynamic) {
-      double dtau = m_.k * (m_.v_pl - v_[j]);
-      if (coupled) dtau += m_.k_c * coupling(v_.data());
+      const double dtau = m_.k * (m_.v_pl - v_[j]) + coupling(j, v_.data());
       dlnv = (dtau - m_.sigma * fr.f_lntheta * dlnth) / (m_.sigma * fr.f_lnv + m_.eta * v_[j]);
     } else if (m_.dynamics == RsfDynamics::ImposedRate) {
       dlnv = 0;
     } else {
-      double tau = tau0_[j] + m_.k * (m_.v_pl * t - slip[j]);
-      if (coupled) tau += m_.k_c * coupling(slip);
+      const double tau = tau0_[j] + m_.k * (m_.v_pl * t - slip[j]) + coupling(j, slip);
       dlnv = (tau - m_.eta * v_[j] - m_.sigma * fr.f) / (m_.mass * v_[j]);
     }
     dy[j] = v_[j];
     dy[n + j] = dlnv;
     dy[2 * n + j] = dlnth;
   }
+}
+
+// Sum over block j's springs of k (x_i - x_j).
+double RsfCycle::coupling(int j, const double* x) const {
+  double s = 0;
+  for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) s += nb_.k[e] * (x[nb_.index[e]] - x[j]);
+  return s;
 }
 
 double RsfCycle::error_norm(const std::vector<double>& err, const std::vector<double>& y) const {
@@ -203,15 +229,7 @@ double RsfCycle::friction_stress_rate(int j) const {
 }
 
 double RsfCycle::elastic_stress(int j) const {
-  const int n = m_.n();
-  double tau = tau0_[j] + m_.k * (m_.v_pl * t_ - slip(j));
-  if (m_.k_c != 0 && n > 1) {
-    const int l = j > 0 ? j - 1 : (m_.periodic ? n - 1 : -1);
-    const int r = j < n - 1 ? j + 1 : (m_.periodic ? 0 : -1);
-    if (l >= 0) tau += m_.k_c * (slip(l) - slip(j));
-    if (r >= 0) tau += m_.k_c * (slip(r) - slip(j));
-  }
-  return tau;
+  return tau0_[j] + m_.k * (m_.v_pl * t_ - slip(j)) + coupling(j, y_.data());
 }
 
 std::vector<double> RsfCycle::snapshot() const {

@@ -3,10 +3,15 @@
 // of its own beside the continuous driver: the event kernels never see this law's state.
 //
 // Model, per unit fault area (SI), block j = 0..N-1, slip delta_j, slip rate V_j, state theta_j:
-//   elastic stress  tau_j = tau0_j + k (V_pl t - delta_j) + k_c sum_{i nb j} (delta_i - delta_j)
+//   elastic stress  tau_j = tau0_j + k (V_pl t - delta_j) + sum_{i nb j} k_ji (delta_i - delta_j)
 //   quasi-dynamic   tau_j - eta V_j = sigma f(V_j, theta_j)       (Rice 1993; eta = G/(2 c_s))
 //   inertial        m dV_j/dt = tau_j - eta V_j - sigma f(V_j, theta_j)
-// Free ends drop the missing neighbour's spring; periodic ends close the ring.
+// The blocks sit on a grid of `rows` rows of N/rows blocks (site j = y nx + x; one row is the
+// chain) and are coupled by a stencil of springs (model/coupling.hpp: nearest neighbours, or
+// range and power kernels on chains and lattices). Free edges drop the springs that reach past
+// them; periodic edges wrap. The neighbour lists are built once (compressed rows), so the
+// coupling sums cost one term per spring: 2N for a nearest-neighbour chain, 4N for a lattice,
+// 2RN for a chain of range R and about pi R^2 N for a lattice's disc.
 // Variables y = (delta_j, ln V_j, ln theta_j): V spans 1e-12..10 m/s and theta many decades,
 // and in logarithms both stay O(1)-smooth (QDYN integrates the same way). The quasi-dynamic
 // balance differentiated in time gives ln V explicitly, with f_lnv = V df/dV, f_lntheta =
@@ -31,6 +36,7 @@
 #include <limits>
 #include <vector>
 
+#include "model/coupling.hpp"
 #include "model/laws/rsf.hpp"
 
 namespace bkq {
@@ -45,13 +51,32 @@ struct RsfModel {
   RsfDynamics dynamics = RsfDynamics::QuasiDynamic;
   double sigma = 5e6;     // normal stress [Pa]
   double k = 2e9;         // loading spring per unit area [Pa/m]
-  double k_c = 0;         // nearest-neighbour coupling spring [Pa/m]
-  bool periodic = false;  // a ring instead of free ends
-  double v_pl = 1e-6;     // plate (loader) rate [m/s]
-  double eta = 0;         // radiation damping G/(2 c_s) [Pa s/m]; 0: off
-  double mass = 0;        // inertia per unit area [kg/m^2] (inertial dynamics only)
+  double k_c = 0;         // nearest-neighbour coupling spring [Pa/m] (the springs' total)
+  bool periodic = false;  // a ring instead of free ends (along strike)
+  int rows = 1;           // rows across strike; N/rows blocks along strike
+  bool periodic_y = false;
+  // The coupling springs (dx along strike, dy across); empty: nearest neighbours along the
+  // chain, {(1, 0, k_c)}.
+  LatticeStencil springs;
+  double v_pl = 1e-6;  // plate (loader) rate [m/s]
+  double eta = 0;      // radiation damping G/(2 c_s) [Pa s/m]; 0: off
+  double mass = 0;     // inertia per unit area [kg/m^2] (inertial dynamics only)
   int n() const { return static_cast<int>(law.size()); }
+  int nx() const { return n() / rows; }
+  // `springs`, or the nearest-neighbour chain's one spring.
+  LatticeStencil stencil() const {
+    if (!springs.empty() || k_c == 0) return springs;
+    return {{1, 0, k_c}};
+  }
 };
+
+// Every block's neighbours and springs in compressed rows: block j's are entries
+// start[j] .. start[j+1]-1 of index and k.
+struct RsfNeighbours {
+  std::vector<int> start, index;
+  std::vector<double> k;
+};
+RsfNeighbours rsf_neighbours(const RsfModel& m);
 
 // Hermite cubic through (t0, x0, x0') and (t1, x1, x1'): the time of its interior extremum
 // (where the derivative changes sign, x0' x1' <= 0) and the value there.
@@ -110,6 +135,9 @@ class RsfCycle {
   double t_ = 0, t_prev_ = 0, h_ = 0;
   std::vector<double> tau0_;
   std::vector<double> y_, dy_, y_prev_, dy_prev_;
+  double coupling(int j, const double* x) const;
+
+  RsfNeighbours nb_;
   std::vector<double> k_[7], ytmp_, err_, v_;
   std::int64_t accepted_ = 0, rejected_ = 0;
 };

@@ -82,18 +82,75 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
   e.trigger = trigger_;
   e.first_block = n;
   e.last_block = -1;
+  std::vector<int> slipped;
   for (int j = 0; j < n; ++j) {
     if (!seismic_[j]) continue;
     ++e.blocks;
     e.moment += slip_at(j, t_end) - slip0_[j];
     e.first_block = std::min(e.first_block, j);
     e.last_block = std::max(e.last_block, j);
+    slipped.push_back(j);
   }
+  // A lattice's event: the trigger and the bounding box as (x along strike, y across).
+  if (c.model().rows > 1) place_on_lattice(e, trigger_, slipped, c.model().nx());
   e.magnitude = std::log(e.moment);
   e.duration = t_end - times_.hypocentre;
   e.max_speed = std::exp(ln_peak_);
+  e.hypocentre_time = times_.hypocentre;
+  e.peak_time = times_.peak;
   in_event_ = false;
   return e;
+}
+
+void RsfEventDetector::restart(const RsfCycle& c, double t) {
+  if (!in_event_) return;
+  const int n = c.n();
+  const auto& y0 = c.y_prev();
+  const auto& d0 = c.dy_prev();
+  const auto& y1 = c.y();
+  const auto& d1 = c.dy();
+  const double t0 = c.t_prev(), t1 = c.t();
+  times_ = {t, t};
+  // The peak counts from the next step on (this step's holds the event's); the trigger is the
+  // fastest block at t.
+  ln_peak_ = -HUGE_VAL;
+  double fastest = -HUGE_VAL;
+  for (int j = 0; j < n; ++j) {
+    slip0_[j] = hermite_value(t0, y0[j], d0[j], t1, y1[j], d1[j], t);
+    const double ln_v = hermite_value(t0, y0[n + j], d0[n + j], t1, y1[n + j], d1[n + j], t);
+    seismic_[j] = ln_v >= ln_vth_ ? 1 : 0;
+    if (ln_v > fastest) fastest = ln_v, trigger_ = j;
+  }
+}
+
+std::optional<RsfSlowEpisode> RsfSlowSlipDetector::observe(const RsfCycle& c) {
+  std::optional<EventRecord> e = slow_.observe(c);
+  if (!e) return std::nullopt;
+  const bool afterslip = afterslip_;
+  afterslip_ = false;
+  // It held a seismic event, or it was an afterslip that had ended with the event.
+  if (std::log(e->max_speed) >= ln_vth_ || e->blocks == 0 || !(e->moment > 0)) return std::nullopt;
+  e->event = ++episodes_;
+  return RsfSlowEpisode{*e, afterslip};
+}
+
+void RsfSlowSlipDetector::event_ended(const RsfCycle& c, double t) {
+  if (!slow_.in_event()) return;
+  slow_.restart(c, t);
+  afterslip_ = true;
+}
+
+std::vector<double> RsfSlowSlipDetector::snapshot() const {
+  std::vector<double> s = {afterslip_ ? 1.0 : 0.0, static_cast<double>(episodes_)};
+  const std::vector<double> inner = slow_.snapshot();
+  s.insert(s.end(), inner.begin(), inner.end());
+  return s;
+}
+
+void RsfSlowSlipDetector::restore(const std::vector<double>& s) {
+  afterslip_ = s.at(0) != 0;
+  episodes_ = static_cast<std::int64_t>(s.at(1));
+  slow_.restore(std::vector<double>(s.begin() + 2, s.end()));
 }
 
 std::vector<double> RsfEventDetector::snapshot() const {

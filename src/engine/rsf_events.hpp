@@ -8,7 +8,9 @@
 //   moment      sum over those blocks of their slip from the event's start to its end [m]
 //   magnitude   ln moment; duration: from the first upward to the last downward crossing
 //   max_speed   the peak slip rate (located inside the step like the crossings) [m/s]
-// plus the hypocentre time and the time of the peak slip rate (RsfEventTimes).
+// plus the hypocentre time and the time of the peak slip rate (RsfEventTimes, and the record's
+// hypocentre_time and peak_time). On a lattice (model rows > 1) the trigger and the bounding box
+// are read as (x along strike, y across), with the row columns.
 #pragma once
 
 #include <cmath>
@@ -35,6 +37,10 @@ class RsfEventDetector {
   const RsfEventTimes& times() const { return times_; }
   std::int64_t events() const { return events_; }
 
+  // Starts the current interval afresh at time t inside the last step (an afterslip episode
+  // after the seismic event that ended at t): slips, peak and blocks are counted from t on.
+  void restart(const RsfCycle& c, double t);
+
   // The detector's state as numbers (a checkpoint's), and back.
   std::vector<double> snapshot() const;
   void restore(const std::vector<double>& s);
@@ -48,6 +54,36 @@ class RsfEventDetector {
   double ln_peak_ = 0;
   std::vector<double> slip0_;  // every block's slip at the event's start
   std::vector<char> seismic_;  // blocks above V_th during the event
+};
+
+// Slow-slip and afterslip episodes: intervals in which some block slips faster than V_slow
+// (V_pl < V_slow < V_th) without any block reaching the seismic V_th. An interval that holds a
+// seismic event is not one; what follows the event's end while some block is still above
+// V_slow is an afterslip episode, counted from the event's end. The record has the event
+// record's columns (load = V_pl x start, moment, blocks, duration, max_speed = peak slip rate).
+struct RsfSlowEpisode {
+  EventRecord record;
+  bool afterslip = false;  // follows a seismic event; otherwise a slow-slip episode
+};
+
+class RsfSlowSlipDetector {
+ public:
+  RsfSlowSlipDetector(double v_slow, double v_threshold)
+      : slow_(v_slow), ln_vth_(std::log(v_threshold)) {}
+  // After every accepted step, before the seismic detector sees it.
+  std::optional<RsfSlowEpisode> observe(const RsfCycle& c);
+  // A seismic event ended at t (inside the last step).
+  void event_ended(const RsfCycle& c, double t);
+  std::int64_t episodes() const { return episodes_; }
+
+  std::vector<double> snapshot() const;
+  void restore(const std::vector<double>& s);
+
+ private:
+  RsfEventDetector slow_;
+  double ln_vth_;
+  bool afterslip_ = false;
+  std::int64_t episodes_ = 0;
 };
 
 }  // namespace bkq

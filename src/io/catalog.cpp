@@ -10,6 +10,82 @@
 
 namespace bkq {
 
+namespace {
+
+// A column beyond the common ones, declared once: its schema entry and the record's cell.
+struct ExtraColumn {
+  ColumnSpec spec;
+  CatalogCell (*cell)(const EventRecord&);
+};
+using ExtraColumns = std::vector<ExtraColumn>;
+
+CatalogCell integer_cell(std::int64_t i) {
+  return {true, i, 0};
+}
+CatalogCell real_cell(double x) {
+  return {false, 0, x};
+}
+
+const ExtraColumns& topplings_column() {
+  static const ExtraColumns c = {
+      {{catalog_col::topplings, "", "topplings in the avalanche (a site may topple more than once)",
+        kInteger},
+       [](const EventRecord& e) { return integer_cell(e.topplings); }},
+  };
+  return c;
+}
+
+const ExtraColumns& row_columns() {
+  namespace c = catalog_col;
+  // The event's bounding box is [first_block, last_block] x [first_row, last_row]: the
+  // lowest and highest coordinates, also on a periodic axis (an event across the seam
+  // spans the whole axis there).
+  static const ExtraColumns s = {
+      {{c::trigger_row, "", "row y (0-based, across strike) of the trigger; model.rows > 1 only",
+        kInteger},
+       [](const EventRecord& e) { return integer_cell(e.trigger_row); }},
+      {{c::first_row, "", "lowest row y that slipped; model.rows > 1 only", kInteger},
+       [](const EventRecord& e) { return integer_cell(e.first_row); }},
+      {{c::last_row, "", "highest row y that slipped; model.rows > 1 only", kInteger},
+       [](const EventRecord& e) { return integer_cell(e.last_row); }},
+  };
+  return s;
+}
+
+const ExtraColumns& rsf_columns() {
+  namespace c = catalog_col;
+  static const ExtraColumns s = {
+      {{c::hypocentre_time, "s",
+        "time of the first crossing of rsf.v_threshold (load = drive.speed x this); "
+        "friction.law = rsf only"},
+       [](const EventRecord& e) { return real_cell(e.hypocentre_time); }},
+      {{c::peak_time, "s", "time of the event's peak slip rate; friction.law = rsf only"},
+       [](const EventRecord& e) { return real_cell(e.peak_time); }},
+      {{c::peak_slip_rate, "m/s",
+        "the event's peak slip rate of any block (max_speed in the law's units); friction.law = "
+        "rsf only"},
+       [](const EventRecord& e) { return real_cell(e.max_speed); }},
+  };
+  return s;
+}
+
+// The layout's extra columns in order.
+std::vector<const ExtraColumns*> extras_of(CatalogLayout layout) {
+  std::vector<const ExtraColumns*> x;
+  if (layout.topplings) x.push_back(&topplings_column());
+  if (layout.rows) x.push_back(&row_columns());
+  if (layout.rsf) x.push_back(&rsf_columns());
+  return x;
+}
+
+Schema specs_of(const ExtraColumns& c) {
+  Schema s;
+  for (const auto& x : c) s.push_back(x.spec);
+  return s;
+}
+
+}  // namespace
+
 const Schema& catalog_schema() {
   namespace c = catalog_col;
   static const Schema schema = {
@@ -55,38 +131,40 @@ const Schema& ofc_catalog_schema() {
         {c::first_block, "", "lowest column x that toppled", kInteger},
         {c::last_block, "", "highest column x that toppled", kInteger},
         {c::energy_residual, "", "0 (no energy ledger)"},
-        {c::topplings, "", "topplings in the avalanche (a site may topple more than once)",
-         kInteger},
     };
+    s.push_back(topplings_column()[0].spec);
     return s;
   }();
   return schema;
 }
 
 const Schema& lattice_row_columns() {
-  namespace c = catalog_col;
-  // The event's bounding box is [first_block, last_block] x [first_row, last_row]: the
-  // lowest and highest coordinates, also on a periodic axis (an event across the seam
-  // spans the whole axis there).
-  static const Schema s = {
-      {c::trigger_row, "", "row y (0-based, across strike) of the trigger; model.rows > 1 only",
-       kInteger},
-      {c::first_row, "", "lowest row y that slipped; model.rows > 1 only", kInteger},
-      {c::last_row, "", "highest row y that slipped; model.rows > 1 only", kInteger},
-  };
+  static const Schema s = specs_of(row_columns());
+  return s;
+}
+
+const Schema& rsf_catalog_columns() {
+  static const Schema s = specs_of(rsf_columns());
   return s;
 }
 
 const Schema& catalog_schema(CatalogLayout layout) {
-  const auto with_rows = [](const Schema& base) {
-    Schema s = base;
-    for (const auto& c : lattice_row_columns()) s.push_back(c);
-    return s;
-  };
-  static const Schema chain_rows = with_rows(catalog_schema());
-  static const Schema ofc_rows = with_rows(ofc_catalog_schema());
-  if (layout.topplings) return layout.rows ? ofc_rows : ofc_catalog_schema();
-  return layout.rows ? chain_rows : catalog_schema();
+  // One schema per layout (2^3), built on first use from the declarations above.
+  static const std::array<Schema, 8> schemas = [] {
+    std::array<Schema, 8> all;
+    for (int bits = 0; bits < 8; ++bits) {
+      const CatalogLayout l{
+          .topplings = (bits & 1) != 0, .rows = (bits & 2) != 0, .rsf = (bits & 4) != 0};
+      // The OFC schema already ends with topplings.
+      Schema s = l.topplings ? ofc_catalog_schema() : catalog_schema();
+      for (const ExtraColumns* x : extras_of(l))
+        if (x != &topplings_column())
+          for (const auto& c : *x) s.push_back(c.spec);
+      all[bits] = std::move(s);
+    }
+    return all;
+  }();
+  return schemas[(layout.topplings ? 1 : 0) | (layout.rows ? 2 : 0) | (layout.rsf ? 4 : 0)];
 }
 
 std::string catalog_header(CatalogLayout layout) {
@@ -117,15 +195,11 @@ CatalogCells catalog_cells(const EventRecord& e) {
            {false, 0, e.energy_residual}}};
 }
 
-std::size_t catalog_extra_cells(const EventRecord& e, CatalogLayout layout, std::int64_t* out) {
+std::size_t catalog_extra_cells(const EventRecord& e, CatalogLayout layout, CatalogCell* out) {
   // Same order as catalog_schema(layout) after the common columns.
   std::size_t n = 0;
-  if (layout.topplings) out[n++] = e.topplings;
-  if (layout.rows) {
-    out[n++] = e.trigger_row;
-    out[n++] = e.first_row;
-    out[n++] = e.last_row;
-  }
+  for (const ExtraColumns* x : extras_of(layout))
+    for (const auto& c : *x) out[n++] = c.cell(e);
   return n;
 }
 
@@ -135,11 +209,11 @@ char* catalog_row_to(char* out, const EventRecord& e, CatalogLayout layout) {
     if (k > 0) *out++ = ',';
     out = cells[k].integer ? integer_to(out, cells[k].i) : format_real_to(out, cells[k].x);
   }
-  std::int64_t extra[4];
+  CatalogCell extra[kMaxExtraColumns];
   const std::size_t n = catalog_extra_cells(e, layout, extra);
   for (std::size_t k = 0; k < n; ++k) {
     *out++ = ',';
-    out = integer_to(out, extra[k]);
+    out = extra[k].integer ? integer_to(out, extra[k].i) : format_real_to(out, extra[k].x);
   }
   return out;
 }

@@ -33,18 +33,26 @@ inline constexpr const char* topplings = "topplings";  // OFC catalogues only
 inline constexpr const char* trigger_row = "trigger_row";
 inline constexpr const char* first_row = "first_row";
 inline constexpr const char* last_row = "last_row";
+// Rate-and-state runs only (friction.law = rsf).
+inline constexpr const char* hypocentre_time = "hypocentre_time";
+inline constexpr const char* peak_time = "peak_time";
+inline constexpr const char* peak_slip_rate = "peak_slip_rate";
 }  // namespace catalog_col
 
-// Which columns a catalogue has beyond the common ones: `topplings` (the OFC automaton)
-// and the rows of a lattice with more than one row (trigger_row, first_row, last_row, in
-// that order, after topplings). A chain or a single row writes no row columns, so its
+// Which columns a catalogue has beyond the common ones: `topplings` (the OFC automaton),
+// the rows of a lattice with more than one row (trigger_row, first_row, last_row), and a
+// rate-and-state run's times and peak slip rate (hypocentre_time, peak_time,
+// peak_slip_rate), in that order. A chain or a single row writes no row columns, so its
 // catalogue keeps the columns it always had.
 struct CatalogLayout {
   bool topplings = false;
   bool rows = false;
-  std::size_t extra_columns() const { return (topplings ? 1 : 0) + (rows ? 3 : 0); }
+  bool rsf = false;
+  std::size_t extra_columns() const { return (topplings ? 1 : 0) + (rows ? 3 : 0) + (rsf ? 3 : 0); }
   bool operator==(const CatalogLayout&) const = default;
 };
+// Every column any catalogue declares: what the readers look for.
+inline constexpr CatalogLayout kEveryCatalogColumn{.topplings = true, .rows = true, .rsf = true};
 
 // The catalogue schema: column order is the CSV column order.
 const Schema& catalog_schema();
@@ -56,6 +64,8 @@ const Schema& ofc_catalog_schema();
 const Schema& catalog_schema(CatalogLayout layout);
 // The three row columns, as every layout with rows declares them.
 const Schema& lattice_row_columns();
+// The rate-and-state columns, as a layout with rsf declares them.
+const Schema& rsf_catalog_columns();
 // "event,load,trigger,..." (no newline) of a layout.
 std::string catalog_header(CatalogLayout layout = {});
 // The columns' count, and one row's values in schema order: integer columns in `i`, the
@@ -77,7 +87,9 @@ inline constexpr std::size_t kMaxCatalogRow = 512;
 // catalog_row's text written at `out` (room for kMaxCatalogRow); returns the end. The
 // streamed catalog formats straight into its write buffer with this.
 char* catalog_row_to(char* out, const EventRecord& e, CatalogLayout layout = {});
-// The layout's extra cells (all integers) in schema order; returns how many.
-std::size_t catalog_extra_cells(const EventRecord& e, CatalogLayout layout, std::int64_t* out);
+// The layout's extra cells (integers and reals) in schema order; returns how many (at most
+// kMaxExtraColumns).
+inline constexpr std::size_t kMaxExtraColumns = 7;
+std::size_t catalog_extra_cells(const EventRecord& e, CatalogLayout layout, CatalogCell* out);
 
 }  // namespace bkq

@@ -17,10 +17,10 @@
 
 namespace bkq {
 
-// The catalogue's columns for a run of these settings: the OFC automaton's topplings, and
-// the row columns of a lattice with more than one row.
+// The catalogue's columns for a run of these settings: the OFC automaton's topplings, the row
+// columns of a lattice with more than one row, a rate-and-state run's times and peak rate.
 inline CatalogLayout catalog_layout(const Settings& s) {
-  return {.topplings = s.ofc.on, .rows = s.lattice.ny > 1};
+  return {.topplings = s.ofc.on, .rows = s.lattice.ny > 1, .rsf = s.rsf.on};
 }
 
 // "catalog.csv", "catalog.h5"; nullptr for CatalogFormat::None.

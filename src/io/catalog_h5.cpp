@@ -310,9 +310,14 @@ void CatalogH5Writer::append(const EventRecord& e) {
     else
       std::memcpy(row + 8 * k, &cells[k].x, 8);
   }
-  std::int64_t extra[4];
+  CatalogCell extra[kMaxExtraColumns];
   const std::size_t n = catalog_extra_cells(e, w.layout, extra);
-  std::memcpy(row + 8 * kCatalogColumns, extra, 8 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (extra[k].integer)
+      std::memcpy(row + 8 * (kCatalogColumns + k), &extra[k].i, 8);
+    else
+      std::memcpy(row + 8 * (kCatalogColumns + k), &extra[k].x, 8);
+  }
   w.checksum =
       line_hash(std::string_view(reinterpret_cast<const char*>(row), 8 * w.columns), w.checksum);
   if (++w.buffered == kChunkRows) w.write_buffer();
@@ -411,7 +416,7 @@ CatalogH5Reader::CatalogH5Reader(const std::string& path, const std::vector<std:
                    "cannot build the row type");
   for (std::size_t k = 0; k < names.size(); ++k) {
     // A name outside the schemas is a bug.
-    column(catalog_schema(CatalogLayout{.topplings = true, .rows = true}), names[k]);
+    column(catalog_schema(kEveryCatalogColumn), names[k]);
     const bool in_file = H5Tget_member_index(file_type, names[k].c_str()) >= 0;
     r.present.push_back(in_file);
     if (in_file)

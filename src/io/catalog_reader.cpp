@@ -72,7 +72,7 @@ CatalogReader::CatalogReader(const std::filesystem::path& path) : file_(path.str
   }
   const auto header = csv::split(header_line);
   n_fields_ = header.size();
-  const Schema& schema = catalog_schema(CatalogLayout{.topplings = true, .rows = true});
+  const Schema& schema = catalog_schema(kEveryCatalogColumn);
   c_event_ = csv::find_column(header, schema, col::event);
   c_load_ = csv::find_column(header, schema, col::load);
   c_blocks_ = csv::find_column(header, schema, col::blocks);

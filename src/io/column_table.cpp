@@ -155,7 +155,7 @@ class CsvTableReader {
 // Every column any catalogue declares (the OFC automaton's topplings, a lattice's rows):
 // a file's own columns are those it has.
 const Schema& any_catalog_schema() {
-  return catalog_schema(CatalogLayout{.topplings = true, .rows = true});
+  return catalog_schema(kEveryCatalogColumn);
 }
 
 ColumnTable read_h5_catalog(const std::filesystem::path& path) {

@@ -12,6 +12,7 @@
 #include "io/energy_csv.hpp"
 #include "io/friction_table.hpp"
 #include "io/histogram_csv.hpp"
+#include "io/rsf_blocks.hpp"
 #include "io/scene.hpp"
 #include "io/segments_csv.hpp"
 #include "io/seismicity_csv.hpp"
@@ -69,6 +70,8 @@ std::vector<ReadmeTable> readme_tables() {
       {"catalog.csv", column_table(catalog_schema())},
       {"ofc catalog.csv",
        column_table(catalog_schema(CatalogLayout{.topplings = true, .rows = true}))},
+      {"rsf catalog.csv", column_table(rsf_catalog_columns())},
+      {"slow_slip.csv", column_table(slow_slip_schema())},
       {"ofc event_slip.csv",
        column_table(event_slip_schema(SlipLayout{.rows = true, .topplings = true}))},
       {"histogram.csv", column_table(histogram_schema())},

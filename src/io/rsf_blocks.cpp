@@ -63,4 +63,29 @@ std::vector<rsf::Params> read_rsf_blocks(const std::filesystem::path& path, int 
   return out;
 }
 
+const Schema& slow_slip_schema() {
+  static const Schema s = {
+      {"episode", "", "1-based episode number", kInteger},
+      {"kind", "",
+       "slow (some block above rsf.slow_slip_threshold, none reaching rsf.v_threshold) or "
+       "afterslip (the same after a seismic event's end, counted from that end)",
+       kText},
+      {"start", "s",
+       "time the episode starts (first crossing of the slow threshold, or the "
+       "event's end for afterslip)"},
+      {"duration", "s", "until the last block falls below the slow threshold"},
+      {"blocks", "", "blocks that slipped faster than the slow threshold", kInteger},
+      {"moment", "m", "sum over those blocks of their slip over the episode"},
+      {"peak_slip_rate", "m/s", "largest slip rate of any block in the episode"},
+      {"peak_time", "s", "time of that peak"},
+      {"trigger", "", "block (x along strike) that crossed first", kInteger},
+      {"first_block", "", "lowest x that slipped", kInteger},
+      {"last_block", "", "highest x that slipped", kInteger},
+      {"trigger_row", "", "row y of the trigger (0 on a chain)", kInteger},
+      {"first_row", "", "lowest row y that slipped (0 on a chain)", kInteger},
+      {"last_row", "", "highest row y that slipped (0 on a chain)", kInteger},
+  };
+  return s;
+}
+
 }  // namespace bkq

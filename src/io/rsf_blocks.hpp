@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "io/schema.hpp"
 #include "model/laws/rsf.hpp"
 
 namespace bkq {
@@ -15,5 +16,8 @@ namespace bkq {
 // file, the line and what is allowed (a > 0, b >= 0, dc > 0, finite; exactly `blocks` rows).
 std::vector<rsf::Params> read_rsf_blocks(const std::filesystem::path& path, int blocks,
                                          const rsf::Params& base);
+
+// slow_slip.csv (rsf.slow_slip_threshold): one row per slow-slip or afterslip episode.
+const Schema& slow_slip_schema();
 
 }  // namespace bkq

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -422,6 +423,13 @@ std::uint64_t Scene::hash() const {
     if (p.type == ParamType::Path && values_.at(p.key).empty()) continue;
     if (p.added_later && values_.at(p.key) == normalise(p, p.default_value, "default")) continue;
     h = fnv1a64(p.key + "=" + values_.at(p.key) + "\n", h);
+    // The per-block file's bytes, so that an edited file is another scene (a resume refuses
+    // it). An unreadable file hashes as its name alone (the run refuses it when it reads it).
+    if (p.key == key::rsf_blocks.name) {
+      std::ifstream in(values_.at(p.key), std::ios::binary);
+      std::ostringstream bytes;
+      if (in && (bytes << in.rdbuf())) h = fnv1a64("rsf.blocks bytes=" + bytes.str() + "\n", h);
+    }
   }
   return h;
 }

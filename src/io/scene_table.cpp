@@ -468,7 +468,7 @@ std::vector<ParamSpec> model_rows() {
           "block within R = model.range on each side; Xia, Gould, Klein & Rundle 2005) or "
           "power (k_c r^-p / sum_{s<=R} s^-p at distance r <= R, p = "
           "model.coupling_exponent); every choice sums to k_c per side")
-          .when(rate_law(), chain_kinds())
+          .when(either(rate_law(), rsf_law()), chain_kinds())
           .later(),
       integer(key::model_range, at(&SceneValues::model, &ModelKeys::range), "1", 1, 1e6, "",
               "R: blocks coupled on each side (model.coupling = range or power); R = 1 is the "
@@ -849,6 +849,28 @@ std::vector<ParamSpec> rsf_rows() {
            "order; docs/explanation/rate-and-state.md); relative to the scene file's folder; "
            "none: every block has rsf.a, rsf.b, rsf.dc")
           .when(rsf_law()),
+      real(key::rsf_slow_slip_threshold, at(&SceneValues::rsf, &RsfKeys::slow_slip_threshold), "0",
+           '[', 0, 1e6, ']', "m/s",
+           "V_slow: slow-slip and afterslip episodes (some block faster than V_slow, none reaching "
+           "rsf.v_threshold) are written to slow_slip.csv; between drive.speed and "
+           "rsf.v_threshold; 0: off")
+          .when(rsf_law())
+          .later(),
+      choice(key::rsf_pattern, "uniform", at(&SceneValues::rsf, &RsfKeys::pattern),
+             {{"uniform", RsfPattern::Uniform}, {"asperities", RsfPattern::Asperities}},
+             "per-block values: uniform (rsf.a, rsf.b everywhere), or asperities: blocks with x "
+             "mod rsf.pattern_period < rsf.pattern_width (and the same across strike on a lattice) "
+             "keep rsf.a and rsf.b, the others are barriers with a and b swapped")
+          .when(rsf_law())
+          .later(),
+      integer(key::rsf_pattern_period, at(&SceneValues::rsf, &RsfKeys::pattern_period), "10", 2,
+              1e7, "", "blocks from one asperity to the next")
+          .when(needs(key::rsf_pattern, {"asperities"}))
+          .later(),
+      integer(key::rsf_pattern_width, at(&SceneValues::rsf, &RsfKeys::pattern_width), "5", 1, 1e7,
+              "", "blocks of each asperity; below rsf.pattern_period")
+          .when(needs(key::rsf_pattern, {"asperities"}))
+          .later(),
   };
 }
 
@@ -874,11 +896,6 @@ void rate_and_state(const Scene& s, const std::string& where) {
   if (v.model.kind != ModelChoice::Bk && v.model.kind != ModelChoice::OneDof)
     throw Error("model.kind = " + s.text(key::model_kind) +
                 " with friction.law = rsf: allowed model.kind = bk or 1dof" + where);
-  if (v.model.kind == ModelChoice::Bk && v.model.rows > 1)
-    throw Error("model.rows = " + s.text(key::model_rows) +
-                " with friction.law = rsf: lattices are not written for rate-and-state yet; "
-                "allowed: model.rows = 1" +
-                where);
   if (v.drive.schedule != Schedule::Constant)
     throw Error("drive.schedule = " + s.text(key::drive_schedule) +
                 " with friction.law = rsf: the plate moves at a constant rate; allowed: "
@@ -892,6 +909,28 @@ void rate_and_state(const Scene& s, const std::string& where) {
                 ": the seismic slip rate must exceed the plate rate drive.speed = " +
                 s.text(key::drive_speed) + "; allowed: (" + s.text(key::drive_speed) + ", 1e6]" +
                 where);
+  // Slow slip lies between the plate rate and V_th; per-block values from a pattern or a file.
+  const double v_slow = v.rsf.slow_slip_threshold;
+  if (v_slow != 0 && !(v_slow > v.drive.speed && v_slow < v.rsf.v_threshold))
+    throw Error("rsf.slow_slip_threshold = " + s.text(key::rsf_slow_slip_threshold) +
+                ": slow slip lies between the plate rate and the seismic rate; allowed: 0 (off) "
+                "or (" +
+                s.text(key::drive_speed) + ", " + s.text(key::rsf_v_threshold) + ")" + where);
+  if (v.rsf.pattern != RsfPattern::Uniform && !v.rsf.blocks.empty())
+    throw Error("rsf.pattern = " + s.text(key::rsf_pattern) +
+                " with rsf.blocks: per-block values come from one of them; allowed: rsf.pattern = "
+                "uniform with a file, or no rsf.blocks" +
+                where);
+  if (v.rsf.pattern == RsfPattern::Asperities && !(v.rsf.law.b_rsf > 0))
+    throw Error("rsf.b = " + s.text(key::rsf_b) +
+                " with rsf.pattern = asperities: the barriers' direct effect is rsf.b; allowed: "
+                "rsf.b > 0" +
+                where);
+  if (v.rsf.pattern == RsfPattern::Asperities && v.rsf.pattern_width >= v.rsf.pattern_period)
+    throw Error("rsf.pattern_width = " + s.text(key::rsf_pattern_width) +
+                ": an asperity must be narrower than the pattern's period rsf.pattern_period = " +
+                s.text(key::rsf_pattern_period) + "; allowed: 1 to " +
+                std::to_string(v.rsf.pattern_period - 1) + where);
 }
 
 // ---------------------------------------------------------------------------------------

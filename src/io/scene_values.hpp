@@ -130,6 +130,9 @@ struct FrictionKeys {
 };
 
 // rsf.*, as given.
+// rsf.pattern: per-block values of rsf.a and rsf.b everywhere, or asperities among barriers.
+enum class RsfPattern { Uniform, Asperities };
+
 struct RsfKeys {
   rsf::Params law;  // rsf.a, rsf.b, rsf.dc, rsf.mu0, rsf.v0
   rsf::StateLaw state_law = rsf::StateLaw::Aging;
@@ -137,6 +140,9 @@ struct RsfKeys {
   double normal_stress = 0, v_threshold = 0, v_init = 0;
   std::optional<double> theta_init;  // auto: steady state at the plate rate
   std::string blocks;                // rsf.blocks: absolute path, or empty
+  double slow_slip_threshold = 0;    // 0: off
+  RsfPattern pattern = RsfPattern::Uniform;
+  int pattern_period = 0, pattern_width = 0;
 };
 
 struct SceneValues {

@@ -12,6 +12,7 @@
 #include "io/friction_table.hpp"
 #include "io/rsf_blocks.hpp"
 #include "io/scene.hpp"
+#include "model/coupling.hpp"
 #include "model/friction_laws.hpp"
 
 namespace bkq {
@@ -92,6 +93,48 @@ ModelParams model_of(const SceneValues& v) {
   return line_as_chain(p);
 }
 
+// The grid and springs of friction.law = rsf: a chain (model.rows = 1), a column
+// (model.blocks = 1: the chain along y) or a lattice, coupled by model.coupling's stencil with
+// model.coupling_stiffness the springs' total along each axis (isotropic).
+void rsf_grid(const SceneValues& v, const ModelParams& chain, RsfModel& m) {
+  const int nx = v.model.kind == ModelChoice::OneDof ? 1 : v.model.blocks;
+  const int ny = chain.n / nx;
+  m.rows = ny;
+  m.periodic = v.model.boundary == Boundary::Periodic;
+  m.periodic_y = v.model.boundary_y == Boundary::Periodic;
+  m.springs.clear();
+  if (m.k_c == 0) return;
+  ModelParams p = chain;
+  p.coupling = v.model.coupling;
+  p.range = v.model.range;
+  p.coupling_exponent = v.model.coupling_exponent;
+  p.k_c = m.k_c;
+  p.n = nx * ny;
+  p.rows = ny;
+  if (nx > 1 && ny > 1) {
+    p.k_c_y = m.k_c;
+    m.springs = lattice_stencil(p);
+    return;
+  }
+  p.rows = 1;
+  for (const CouplingSpring& c : coupling_stencil(p))
+    m.springs.push_back(nx > 1 ? LatticeSpring{c.offset, 0, c.k} : LatticeSpring{0, c.offset, c.k});
+}
+
+// Asperities of rsf.a, rsf.b among barriers with the two swapped, in patches of
+// rsf.pattern_width of every rsf.pattern_period blocks along strike (and across on a lattice).
+void rsf_pattern(const SceneValues& v, int n, RsfModel& m) {
+  const int period = v.rsf.pattern_period, width = v.rsf.pattern_width;
+  const int nx = v.model.kind == ModelChoice::OneDof ? 1 : v.model.blocks;
+  rsf::Params barrier = v.rsf.law;
+  std::swap(barrier.a, barrier.b_rsf);
+  for (int j = 0; j < n; ++j) {
+    const int x = j % nx, y = j / nx;
+    const bool asperity = x % period < width && y % period < width;
+    m.law[j] = rsf::Law(asperity ? v.rsf.law : barrier);
+  }
+}
+
 // The rate-and-state chain of `chain`'s size and boundary from the rsf.* and si model keys.
 RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
   RsfSettings r;
@@ -103,13 +146,15 @@ RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
     const std::vector<rsf::Params> blocks = read_rsf_blocks(v.rsf.blocks, chain.n, p);
     for (int j = 0; j < chain.n; ++j) m.law[j] = rsf::Law(blocks[j]);
   }
+  if (v.rsf.pattern == RsfPattern::Asperities) rsf_pattern(v, chain.n, m);
+  r.v_slow = v.rsf.slow_slip_threshold;
   m.state_law = v.rsf.state_law;
   m.form = v.rsf.form;
   m.dynamics = v.model.dynamics;
   m.sigma = v.rsf.normal_stress;
   m.k = v.model.stiffness;
   m.k_c = chain.n > 1 ? v.model.coupling_stiffness : 0.0;
-  m.periodic = chain.boundary == Boundary::Periodic;
+  rsf_grid(v, chain, m);
   m.v_pl = v.drive.speed;
   const double c_s = v.model.shear_wave_speed;
   m.eta = c_s > 0 ? v.model.shear_modulus / (2 * c_s) : 0.0;  // Rice 1993

@@ -43,6 +43,7 @@ struct RsfSettings {
   double v_threshold = 1e-3;  // rsf.v_threshold [m/s]
   double v_init = 2e-5;       // rsf.v_init [m/s]
   double theta_init = 0;      // rsf.theta_init [s]; 0: auto, each block's D_c/V_pl
+  double v_slow = 0;          // rsf.slow_slip_threshold [m/s]; 0: no slow_slip.csv
   // The start state of every block: theta_init, or each block's steady state at V_pl.
   std::vector<double> theta_start() const {
     std::vector<double> theta;

@@ -69,4 +69,17 @@ double rsf_chain_laplacian(int n, bool periodic, int q) {
   return 4 * x * x;
 }
 
+double rsf_mode_stiffness(const RsfModel& m, int qx, int qy) {
+  const double pi = std::numbers::pi;
+  const double tx = (m.periodic ? 2 : 1) * pi * qx / m.nx();
+  const double ty = (m.periodic_y ? 2 : 1) * pi * qy / m.rows;
+  double k = 0;
+  for (const LatticeSpring& s : m.stencil()) {
+    // A spring along an axis of one site adds nothing.
+    if ((s.dx != 0 && m.nx() == 1) || (s.dy != 0 && m.rows == 1)) continue;
+    k += 2 * s.k * (1 - std::cos(s.dx * tx + s.dy * ty));
+  }
+  return k;
+}
+
 }  // namespace bkq

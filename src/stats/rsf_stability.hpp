@@ -16,7 +16,12 @@
 // eta = m = 0 is Ruina's quasi-static sigma (b_rsf - a)/D_c, eta = 0 Rice & Ruina's (1983)
 // inertial correction. Steady sliding is unstable for k < k_crit. A chain's mode q has the
 // stiffness k + k_c mu_q, mu_q the graph Laplacian's eigenvalue (4 sin^2(pi q/(2N)) free,
-// 4 sin^2(pi q/N) ring), so mode q is unstable iff k + k_c mu_q < k_crit.
+// 4 sin^2(pi q/N) ring), so mode q is unstable iff k + k_c mu_q < k_crit. Any stencil of springs
+// (dx, dy, k_s) on a grid of nx x rows gives mode (q_x, q_y) the stiffness
+//   k + sum_s 2 k_s [1 - cos(dx th_x + dy th_y)],  th = pi q/n on free edges, 2 pi q/n periodic:
+// exact on periodic edges and for nearest neighbours on free ones (the chain's mu_q, and a
+// lattice's sum of its two axes' mu); for longer springs on free edges the sum is the stencil's
+// Fourier symbol at the free chain's wavenumbers, an approximation near the edges.
 #pragma once
 
 #include <complex>
@@ -35,5 +40,7 @@ double rsf_critical_stiffness(const RsfModel& m);
 double rsf_critical_frequency(const RsfModel& m);
 // mu_q of the chain's nearest-neighbour Laplacian (q = 0..N-1).
 double rsf_chain_laplacian(int n, bool periodic, int q);
+// The springs' stiffness of mode (qx, qy), qx < m.nx(), qy < m.rows (see above).
+double rsf_mode_stiffness(const RsfModel& m, int qx, int qy);
 
 }  // namespace bkq

@@ -98,14 +98,16 @@ TEST(RsfRun, QdynSceneWritesCatalogueHistogramAndSummary) {
 }
 
 // A run stopped by SIGTERM after its first checkpoint and resumed writes the catalogue,
-// histogram and block samples of the run that was never stopped, byte for byte.
+// histogram, block samples and afterslip episodes of the run that was never stopped, byte for
+// byte.
 TEST(RsfRun, KilledAndResumedRunGivesTheSameBytes) {
   test::TempDir tmp;
   const std::vector<std::string> scene = {kScene,  "--quiet",
                                           "--set", "run.duration=2e6",
                                           "--set", "run.checkpoint_events=200",
                                           "--set", "output.blocks=true",
-                                          "--set", "output.every=1000"};
+                                          "--set", "output.every=1000",
+                                          "--set", "rsf.slow_slip_threshold=2e-6"};
   auto args = [&](const std::string& out, std::vector<std::string> more) {
     std::vector<std::string> a = {"run"};
     a.insert(a.end(), scene.begin(), scene.end());
@@ -121,7 +123,7 @@ TEST(RsfRun, KilledAndResumedRunGivesTheSameBytes) {
   ASSERT_EQ(cut.status, 143) << cut.err;
   const auto resumed = run_bkquake(args(tmp.file("cut"), {"--resume"}));
   ASSERT_EQ(resumed.status, 0) << resumed.err;
-  for (const char* f : {"catalog.csv", "histogram.csv", "rsf_blocks.csv"})
+  for (const char* f : {"catalog.csv", "histogram.csv", "rsf_blocks.csv", "slow_slip.csv"})
     EXPECT_EQ(read_file(tmp.file(std::string("cut/") + f)),
               read_file(tmp.file(std::string("whole/") + f)))
         << f;
