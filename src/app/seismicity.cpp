@@ -24,6 +24,7 @@
 #include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
+#include "io/scene_keys.hpp"
 #include "io/scene_values.hpp"
 #include "io/seismicity_csv.hpp"
 
@@ -420,7 +421,7 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
 
   int blocks = 0;
   if (scene) {
-    blocks = static_cast<int>(scene->integer("model.blocks"));
+    blocks = scene_values(*scene).model.blocks;
     rep.blocks_from = "scene.ini";
     if (req.blocks && *req.blocks != blocks)
       throw Error("seismicity: --blocks = " + std::to_string(*req.blocks) + " contradicts " +
@@ -453,9 +454,10 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   if (probe.has_rows()) {
     geometry.nx = blocks;
     if (scene) {
-      geometry.ny = static_cast<int>(scene->integer("model.rows"));
-      geometry.periodic_x = scene_values(*scene).model.boundary == Boundary::Periodic;
-      geometry.periodic_y = scene_values(*scene).model.boundary_y == Boundary::Periodic;
+      const ModelKeys model = scene_values(*scene).model;
+      geometry.ny = model.rows;
+      geometry.periodic_x = model.boundary == Boundary::Periodic;
+      geometry.periodic_y = model.boundary_y == Boundary::Periodic;
       rows_from = "scene.ini";
     } else {
       for (CatalogEvent e; probe.next(e);) geometry.ny = std::max(geometry.ny, e.last_row + 1);
@@ -658,7 +660,7 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     Json p = Json::object();
     p.set("version", kVersion);
     p.set("git", kGitRevision);
-    p.set("seed", scene ? Json::string(scene->text("run.seed")) : Json::null());
+    p.set("seed", scene ? Json::string(scene->text(key::run_seed)) : Json::null());
     p.set("scene", scene ? Json::string(scene->origin) : Json::null());
     p.set("lines", Json::strings(comments));
     j.set("provenance", std::move(p));
