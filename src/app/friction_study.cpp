@@ -16,6 +16,7 @@
 #include "core/format.hpp"
 #include "io/output.hpp"
 #include "io/scene.hpp"
+#include "io/scene_keys.hpp"
 #include "io/segments_csv.hpp"
 #include "io/settings.hpp"
 
@@ -42,15 +43,15 @@ struct Job {
 // The scene of `config` set up for grid run `r` at `seed`.
 Scene job_scene(const std::string& file, const StudyRun& r, std::uint64_t seed, double segment) {
   Scene scene = Scene::from_file(file);
-  scene.set("drive.schedule", "steps");
-  scene.set("drive.speed", format_real(r.v0));
-  scene.set("drive.step_increment", format_real(r.inc));
-  scene.set("drive.step_interval", format_real(segment));
-  scene.set("run.duration", format_real(segment * r.count));
-  scene.set("run.seed", std::to_string(seed));
+  scene.set(key::drive_schedule, "steps");
+  scene.set(key::drive_speed, format_real(r.v0));
+  scene.set(key::drive_step_increment, format_real(r.inc));
+  scene.set(key::drive_step_interval, format_real(segment));
+  scene.set(key::run_duration, format_real(segment * r.count));
+  scene.set(key::run_seed, std::to_string(seed));
   // The study reads segments.csv only; keep the time series small.
-  scene.set("output.every", format_real(segment / 100));
-  scene.set("output.blocks", "false");
+  scene.set(key::output_every, format_real(segment / 100));
+  scene.set(key::output_blocks, "false");
   scene.validate();
   return scene;
 }
@@ -115,7 +116,7 @@ std::string run_friction_study(const StudyRequest& req) {
     if (!fs::exists(scene_file(c)))
       throw Error("friction-study: no scene " + scene_file(c) + " for configuration " + c);
     const Scene base = Scene::from_file(scene_file(c));
-    const auto seed0 = static_cast<std::uint64_t>(base.integer("run.seed"));
+    const std::uint64_t seed0 = scene_values(base).run.seed;
     const int seeds = (c == "bkp" || c == "bk") ? req.seeds : 1;
     for (int s = 0; s < seeds; ++s)
       for (std::size_t r = 0; r < grid.size(); ++r) {
@@ -129,7 +130,7 @@ std::string run_friction_study(const StudyRequest& req) {
   }
   // The special 1DOF needs the tabulated law (friction.law = table) and BK runs to build it.
   const bool special_possible =
-      find_param("friction.table") != nullptr && fs::exists(scene_file("special-1dof")) &&
+      find_param(key::friction_table) != nullptr && fs::exists(scene_file("special-1dof")) &&
       std::find(req.configs.begin(), req.configs.end(), "bk") != req.configs.end();
   if (want_special && !special_possible && !req.quiet)
     std::fprintf(stderr,
@@ -161,10 +162,10 @@ std::string run_friction_study(const StudyRequest& req) {
     write_file_atomic(law, special_law_csv(special_law(seed0_dirs), comments));
     const std::string file = scene_file("special-1dof");
     const Scene base = Scene::from_file(file);
-    const auto seed = static_cast<std::uint64_t>(base.integer("run.seed"));
+    const std::uint64_t seed = scene_values(base).run.seed;
     for (std::size_t r = 0; r < grid.size(); ++r) {
       Scene scene = job_scene(file, grid[r], seed, req.segment);
-      scene.set("friction.table", fs::absolute(law).string());
+      scene.set(key::friction_table, fs::absolute(law).string());
       scene.validate();
       second.push_back({"special-1dof", seed, static_cast<int>(r),
                         (fs::path(req.out) / "special-1dof" / ("seed" + std::to_string(seed)) /

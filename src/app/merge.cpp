@@ -18,6 +18,7 @@
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
 #include "io/scene.hpp"
+#include "io/scene_keys.hpp"
 #include "stats/gutenberg_richter.hpp"
 #include "stats/histogram.hpp"
 
@@ -32,7 +33,7 @@ namespace {
 bool must_match(const std::string& key) {
   for (const char* section : {"model.", "friction.", "drive.", "integrator."})
     if (key.rfind(section, 0) == 0) return true;
-  return key == "run.initial_disorder" || key == "stats.bin_width";
+  return key == key::run_initial_disorder.name || key == key::stats_bin_width.name;
 }
 
 // A merged folder's scene.ini records the seeds of every run merged into it on this
@@ -99,7 +100,7 @@ Inputs read_inputs(const std::vector<std::string>& runs) {
         std::istringstream list(line.substr(kMergedSeeds.size()));
         for (std::string seed; list >> seed;) seeds.push_back(seed);
       }
-    if (seeds.empty()) seeds.push_back(in.scenes.back().text("run.seed"));
+    if (seeds.empty()) seeds.push_back(in.scenes.back().text(key::run_seed));
     in.seeds.push_back(std::move(seeds));
   }
   return in;

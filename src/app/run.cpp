@@ -29,6 +29,7 @@
 #include "io/checkpoint.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
+#include "io/scene_keys.hpp"
 #include "io/settings.hpp"
 #include "model/chain.hpp"
 
@@ -51,11 +52,11 @@ Checkpoint finished_state(const std::string& dir, const CheckpointFiles& checkpo
                 "--force to run it again");
   Checkpoint saved = checkpoints.read_final();
   const Scene before = Scene::from_text(saved.scene_ini, checkpoints.final_state());
-  const char* key = events ? "run.events" : "run.duration";
+  const Key length = events ? key::run_events : key::run_duration;
   Scene same = scene;
-  same.set(key, before.text(key), "the finished run");
+  same.set(length, before.text(length), "the finished run");
   if (events) {
-    const std::int64_t n1 = before.integer("run.events");
+    const std::int64_t n1 = scene_values(before).run.events;
     const std::int64_t n2 = settings.run.events;
     if (n2 <= n1)
       throw Error(finished + " of " + std::to_string(n1) + " events: run.events = " +
@@ -65,7 +66,7 @@ Checkpoint finished_state(const std::string& dir, const CheckpointFiles& checkpo
     check_checkpoint_matches(saved, same, checkpoints.final_state());
     return saved;
   }
-  const double t1 = before.real("run.duration");
+  const double t1 = scene_values(before).run.duration;
   const double t2 = settings.run.duration;
   // Equal step counts are no extension (the run ends after ceil(duration / dt) steps).
   const Settings old = settings_from_scene(same);
@@ -139,7 +140,8 @@ int run_scene(const RunRequest& req) {
       saved = checkpoints.read(&from);
       check_checkpoint_matches(saved, scene, from);
     }
-    validate_checkpoint(saved, settings.ofc.on ? 0 : p.n, scene.real("stats.bin_width"), from);
+    validate_checkpoint(saved, settings.ofc.on ? 0 : p.n, scene_values(scene).stats.bin_width,
+                        from);
     if (settings.ofc.on) validate_ofc_state(saved, settings.ofc.lattice, from);
     const CatalogFormat format = settings.output.catalog;
     const std::string catalog =

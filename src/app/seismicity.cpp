@@ -24,6 +24,7 @@
 #include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
+#include "io/scene_keys.hpp"
 #include "io/scene_values.hpp"
 #include "io/seismicity_csv.hpp"
 
@@ -380,57 +381,60 @@ std::vector<std::string> seismicity_inputs(const std::string& input) {
               "none)");
 }
 
-SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) {
-  const auto t_start = std::chrono::steady_clock::now();
-  const fs::path in(req.input);
-  SeismicityReport rep;
+namespace {
+
+// What seismicity_of learns before it reads the events: where the catalogue lies, who is
+// writing it, the scene beside it, the chain or lattice it covers and the analysis' options.
+struct Setup {
   fs::path folder;  // the run folder, or the catalogue's folder
+  Outputs outputs;
+  std::optional<LockHolder> writer;  // a run writing the catalogue's folder now
+  std::optional<Scene> scene;        // the scene beside the catalogue, when there is one
+  fs::path scene_ini;
+  int blocks = 0;
+  seis::Geometry geometry;
+  std::string rows_from;  // empty for a chain
+  seis::SeismicityOptions opt;
+  std::string b_rule;  // how opt.b_mu_min was chosen
+  std::vector<std::string> comments;
+};
+
+// The catalogue of `req.input` (a run folder or a catalogue file) into rep.catalog; returns
+// the folder it lies in.
+fs::path locate_catalog(const SeismicityRequest& req, SeismicityReport& rep) {
+  const fs::path in(req.input);
   if (fs::is_directory(in)) {
     const auto c = catalog_in(in);
     if (!c) throw Error("seismicity: " + req.input + " holds no catalog.csv or catalog.h5");
     rep.catalog = c->string();
-    folder = in;
-  } else {
-    std::error_code ec;
-    if (!fs::exists(in, ec)) throw Error("seismicity: " + req.input + ": no such file");
-    // A device (/dev/zero) or a pipe reads without end: refused as the catalogue reader does.
-    if (!fs::is_regular_file(in, ec))
-      throw Error("seismicity: " + req.input +
-                  ": not a regular file (a device, a pipe or a socket); expected a catalogue "
-                  "file or a run folder");
-    rep.catalog = in.string();
-    folder = in.has_parent_path() ? in.parent_path() : fs::path(".");
+    return in;
   }
-  // The outputs' folders are locked before anything is read (a live run's folder is refused
-  // at once): the export's (a derived output, io/run_folder.hpp), then the folder that gets
-  // seismicity/ (or --out).
-  const Outputs outputs = lock_outputs(req, rep.catalog, folder);
-  // A run writing the catalogue's folder now (seismicity's files going elsewhere): its rows
-  // so far are analysed, up to the one being written.
-  const std::optional<LockHolder> writer = live_lock_holder(folder);
+  std::error_code ec;
+  if (!fs::exists(in, ec)) throw Error("seismicity: " + req.input + ": no such file");
+  // A device (/dev/zero) or a pipe reads without end: refused as the catalogue reader does.
+  if (!fs::is_regular_file(in, ec))
+    throw Error("seismicity: " + req.input +
+                ": not a regular file (a device, a pipe or a socket); expected a catalogue "
+                "file or a run folder");
+  rep.catalog = in.string();
+  return in.has_parent_path() ? in.parent_path() : fs::path(".");
+}
 
-  // The scene beside the catalogue, when there is one.
-  std::optional<Scene> scene;
-  const fs::path scene_ini = folder / "scene.ini";
-  if (fs::is_regular_file(scene_ini)) scene = read_run_scene(scene_ini);
-  const bool continuous = scene && scene_values(*scene).drive.mode == DriveMode::Continuous;
-  rep.clock = continuous ? "load at the start of each slip episode (continuous run: the "
-                           "substrate displacement v t at the episode's start)"
-                         : "load (substrate displacement at the trigger; event-driven run)";
-
+// The chain's length N: scene.ini's model.blocks, else --blocks, else the catalogue's extent.
+int blocks_of(const SeismicityRequest& req, const Setup& su, SeismicityReport& rep) {
   int blocks = 0;
-  if (scene) {
-    blocks = static_cast<int>(scene->integer("model.blocks"));
+  if (su.scene) {
+    blocks = scene_values(*su.scene).model.blocks;
     rep.blocks_from = "scene.ini";
     if (req.blocks && *req.blocks != blocks)
       throw Error("seismicity: --blocks = " + std::to_string(*req.blocks) + " contradicts " +
-                  scene_ini.string() + " (model.blocks = " + std::to_string(blocks) + ")");
+                  su.scene_ini.string() + " (model.blocks = " + std::to_string(blocks) + ")");
   } else if (req.blocks) {
     blocks = *req.blocks;
     rep.blocks_from = "--blocks";
   } else {
     CatalogReader pre(rep.catalog);
-    if (writer) pre.set_growing();
+    if (su.writer) pre.set_growing();
     if (!pre.has_extent())
       throw Error("seismicity: " + rep.catalog +
                   " has no first_block/last_block columns and no scene.ini beside it: give "
@@ -442,74 +446,91 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
   if (blocks < 1)
     throw Error("seismicity: N = " + std::to_string(blocks) + " (" + rep.blocks_from +
                 "): expected at least 1 block");
+  return blocks;
+}
 
-  // A lattice (the catalogue has the row columns): its rows and boundaries from scene.ini,
-  // else its rows from the catalogue (max(last_row) + 1) and free boundaries. The
-  // hypocentres' distances are then Euclidean in the plane (stats/seismicity/geometry.hpp).
-  seis::Geometry geometry = seis::Geometry::chain(blocks);
-  std::string rows_from;
+// A lattice (the catalogue has the row columns): its rows and boundaries from scene.ini,
+// else its rows from the catalogue (max(last_row) + 1) and free boundaries. The
+// hypocentres' distances are then Euclidean in the plane (stats/seismicity/geometry.hpp).
+void find_geometry(Setup& su, const SeismicityReport& rep) {
+  su.geometry = seis::Geometry::chain(su.blocks);
   CatalogReader probe(rep.catalog);
-  if (writer) probe.set_growing();
+  if (su.writer) probe.set_growing();
   if (probe.has_rows()) {
-    geometry.nx = blocks;
-    if (scene) {
-      geometry.ny = static_cast<int>(scene->integer("model.rows"));
-      geometry.periodic_x = scene_values(*scene).model.boundary == Boundary::Periodic;
-      geometry.periodic_y = scene_values(*scene).model.boundary_y == Boundary::Periodic;
-      rows_from = "scene.ini";
+    su.geometry.nx = su.blocks;
+    if (su.scene) {
+      const ModelKeys model = scene_values(*su.scene).model;
+      su.geometry.ny = model.rows;
+      su.geometry.periodic_x = model.boundary == Boundary::Periodic;
+      su.geometry.periodic_y = model.boundary_y == Boundary::Periodic;
+      su.rows_from = "scene.ini";
     } else {
-      for (CatalogEvent e; probe.next(e);) geometry.ny = std::max(geometry.ny, e.last_row + 1);
-      rows_from = "max(last_row) + 1 of the catalogue; boundaries taken as free";
+      for (CatalogEvent e; probe.next(e);)
+        su.geometry.ny = std::max(su.geometry.ny, e.last_row + 1);
+      su.rows_from = "max(last_row) + 1 of the catalogue; boundaries taken as free";
     }
   }
   // The statistics keep a few numbers a site: no more sites than the largest lattice a run
   // may have (an OFC lattice's 1e8), which a damaged catalogue's extent could exceed.
-  if (static_cast<std::int64_t>(geometry.nx) * geometry.ny > 100'000'000)
-    throw Error("seismicity: " + std::to_string(geometry.nx) + " x " + std::to_string(geometry.ny) +
-                " sites (blocks from " + rep.blocks_from +
-                (rows_from.empty() ? "" : ", rows from " + rows_from) +
+  if (static_cast<std::int64_t>(su.geometry.nx) * su.geometry.ny > 100'000'000)
+    throw Error("seismicity: " + std::to_string(su.geometry.nx) + " x " +
+                std::to_string(su.geometry.ny) + " sites (blocks from " + rep.blocks_from +
+                (su.rows_from.empty() ? "" : ", rows from " + su.rows_from) +
                 "): allowed at most 1e8 sites, the largest lattice a run may have");
-  const int sites = geometry.sites();
+}
 
-  CatalogReader reader(rep.catalog);
-  if (writer) reader.set_growing();
-  if (!reader.has_load())
-    throw Error("seismicity: " + rep.catalog + ": missing column 'load' (the events' time)");
-  if (!req.mainshock_mu && !reader.has_extent())
-    throw Error("seismicity: " + rep.catalog +
-                " has no first_block/last_block columns, so mainshocks cannot be told by their "
-                "extent: give --mainshock-mu X");
-
-  seis::SeismicityOptions opt;
-  opt.blocks = blocks;
-  if (geometry.lattice()) opt.geometry = geometry;
-  opt.mainshock.blocks = blocks;
+// The analysis' options from the request and the geometry; su.b_rule says where the
+// b-values' lower magnitude came from.
+void choose_options(const SeismicityRequest& req, Setup& su) {
+  seis::SeismicityOptions& opt = su.opt;
+  opt.blocks = su.blocks;
+  if (su.geometry.lattice()) opt.geometry = su.geometry;
+  opt.mainshock.blocks = su.blocks;
   opt.mainshock.mu = req.mainshock_mu;
   if (req.interevent_mu) opt.interevent_mu = *req.interevent_mu;
   // The b-values' lower magnitude: --b-mu-min, else the lower end of the run's own
   // Gutenberg-Richter window (summary.json fit_window.mu_min: above the discrete one- and
   // two-block events), else maximum curvature.
-  std::string b_rule = "--b-mu-min";
+  su.b_rule = "--b-mu-min";
   opt.b_mu_min = req.b_mu_min;
   if (!opt.b_mu_min) {
-    if (const auto mu = fit_window_mu_min(folder / "summary.json")) {
+    if (const auto mu = fit_window_mu_min(su.folder / "summary.json")) {
       opt.b_mu_min = *mu;
-      b_rule = "the lower end of the run's Gutenberg-Richter window (summary.json mu_min)";
+      su.b_rule = "the lower end of the run's Gutenberg-Richter window (summary.json mu_min)";
     } else {
-      b_rule = "maximum curvature (the fullest 0.2 bin of mu; Wiemer & Wyss 2000)";
+      su.b_rule = "maximum curvature (the fullest 0.2 bin of mu; Wiemer & Wyss 2000)";
     }
   }
-  log << "seismicity of " << rep.catalog << " (N = " << blocks << ", from " << rep.blocks_from;
-  if (geometry.lattice())
-    log << "; a lattice of " << geometry.ny << " rows, from " << rows_from
-        << ": distances Euclidean between trigger sites"
-        << (geometry.periodic_x || geometry.periodic_y ? ", wrapped where periodic" : "");
-  log << ")\n";
-  if (writer)
-    log << "  note: " << writer->describe()
-        << " is writing this folder: the events written so far are analysed\n";
-  log << "  time: " << rep.clock << "\n  mainshocks: " << opt.mainshock.describe() << "\n";
+}
 
+// Refuses a catalogue without the columns the analysis needs.
+void check_columns(const CatalogReader& reader, const SeismicityRequest& req,
+                   const std::string& catalog) {
+  if (!reader.has_load())
+    throw Error("seismicity: " + catalog + ": missing column 'load' (the events' time)");
+  if (!req.mainshock_mu && !reader.has_extent())
+    throw Error("seismicity: " + catalog +
+                " has no first_block/last_block columns, so mainshocks cannot be told by their "
+                "extent: give --mainshock-mu X");
+}
+
+// The first lines of the printout: what is analysed and how.
+void log_setup(std::ostream& log, const Setup& su, const SeismicityReport& rep) {
+  log << "seismicity of " << rep.catalog << " (N = " << su.blocks << ", from " << rep.blocks_from;
+  if (su.geometry.lattice())
+    log << "; a lattice of " << su.geometry.ny << " rows, from " << su.rows_from
+        << ": distances Euclidean between trigger sites"
+        << (su.geometry.periodic_x || su.geometry.periodic_y ? ", wrapped where periodic" : "");
+  log << ")\n";
+  if (su.writer)
+    log << "  note: " << su.writer->describe()
+        << " is writing this folder: the events written so far are analysed\n";
+  log << "  time: " << rep.clock << "\n  mainshocks: " << su.opt.mainshock.describe() << "\n";
+}
+
+// The outputs' comment lines: the input, then the scene's provenance (or the program's).
+std::vector<std::string> comments_of(const std::optional<Scene>& scene,
+                                     const std::string& catalog) {
   std::vector<std::string> comments;
   if (scene) {
     comments = provenance_lines(*scene);
@@ -517,22 +538,48 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
     comments = {std::string("bkquake ") + kVersion + " (git " + kGitRevision + ")",
                 "written " + utc_now_iso()};
   }
-  comments.insert(comments.begin(), "input " + rep.catalog);
+  comments.insert(comments.begin(), "input " + catalog);
+  return comments;
+}
 
+// Everything up to the events: the catalogue located, the outputs locked, the scene read,
+// the geometry and options chosen, the reader's columns checked.
+Setup prepare(const SeismicityRequest& req, SeismicityReport& rep) {
+  Setup su;
+  su.folder = locate_catalog(req, rep);
+  // The outputs' folders are locked before anything is read (a live run's folder is refused
+  // at once): the export's (a derived output, io/run_folder.hpp), then the folder that gets
+  // seismicity/ (or --out).
+  su.outputs = lock_outputs(req, rep.catalog, su.folder);
+  // A run writing the catalogue's folder now (seismicity's files going elsewhere): its rows
+  // so far are analysed, up to the one being written.
+  su.writer = live_lock_holder(su.folder);
+  su.scene_ini = su.folder / "scene.ini";
+  if (fs::is_regular_file(su.scene_ini)) su.scene = read_run_scene(su.scene_ini);
+  const bool continuous = su.scene && scene_values(*su.scene).drive.mode == DriveMode::Continuous;
+  rep.clock = continuous ? "load at the start of each slip episode (continuous run: the "
+                           "substrate displacement v t at the episode's start)"
+                         : "load (substrate displacement at the trigger; event-driven run)";
+  su.blocks = blocks_of(req, su, rep);
+  find_geometry(su, rep);
+  return su;
+}
+
+// Every event of `reader` into `s` (and the export), in time order.
+void read_events(CatalogReader& reader, const Setup& su, const SeismicityRequest& req,
+                 const SeismicityReport& rep, seis::Seismicity& s) {
   std::optional<ExportFile> exporter;
   if (!req.export_file.empty()) {
     std::vector<std::string> c = {
         "catalogue in seismology's conventions: time, Mw = (2/3) log10(moment) + " +
         format_real(req.mw_offset) + ", x = position along strike (trigger block)"};
-    c.insert(c.end(), comments.begin(), comments.end());
-    exporter.emplace(outputs.exported->resolved().string(), req.mw_offset, c);
+    c.insert(c.end(), su.comments.begin(), su.comments.end());
+    exporter.emplace(su.outputs.exported->resolved().string(), req.mw_offset, c);
   }
-
-  seis::Seismicity s(opt);
   CatalogEvent e;
   double last_t = -INFINITY;
   while (reader.next(e)) {
-    check_extent(e, reader, geometry, rep.blocks_from, rows_from);
+    check_extent(e, reader, su.geometry, rep.blocks_from, su.rows_from);
     const seis::Quake q = quake_of(e, reader);
     if (q.t < last_t)
       throw Error("seismicity: " + rep.catalog + " event " + std::to_string(e.event) +
@@ -547,51 +594,101 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
                 std::to_string(s.events()));
   s.finish();
   if (exporter) exporter->close();
+}
 
-  // seismicity.json
-  Json j = Json::object();
-  j.set("input", rep.catalog);
-  j.set("clock", rep.clock);
-  j.set("events", s.events());
-  j.set("blocks", static_cast<std::int64_t>(blocks));
-  j.set("blocks_from", rep.blocks_from);
-  if (geometry.lattice()) {
-    j.set("rows", static_cast<std::int64_t>(geometry.ny));
-    j.set("rows_from", rows_from);
-    j.set("periodic_x", geometry.periodic_x);
-    j.set("periodic_y", geometry.periodic_y);
+// seismicity.json's interevent section: the waiting times' moments, all and by subset.
+Json interevent_json(const seis::Seismicity& s) {
+  const auto& all = s.interevent().all().moments;
+  Json o = Json::object();
+  o.set("intervals", all.n());
+  o.set("mean", num(all.mean()));
+  o.set("cov", num(all.cov()));
+  o.set("cov_err", num(all.cov_err()));
+  Json subsets = Json::array();
+  for (const auto& w : s.interevent().subsets()) {
+    Json x = Json::object();
+    x.set("subset", w.subset);
+    x.set("intervals", w.moments.n());
+    x.set("mean", num(w.moments.mean()));
+    x.set("cov", num(w.moments.cov()));
+    x.set("cov_err", num(w.moments.cov_err()));
+    subsets.push(std::move(x));
   }
-  Json main = Json::object();
-  main.set("rule", opt.mainshock.describe());
-  main.set("count", s.mainshocks());
-  main.set("min_mu", num_or_null(s.mainshocks() > 0, s.min_mainshock_mu()));
-  j.set("mainshocks", std::move(main));
-  {
-    const auto& all = s.interevent().all().moments;
-    Json o = Json::object();
-    o.set("intervals", all.n());
-    o.set("mean", num(all.mean()));
-    o.set("cov", num(all.cov()));
-    o.set("cov_err", num(all.cov_err()));
-    Json subsets = Json::array();
-    for (const auto& w : s.interevent().subsets()) {
-      Json x = Json::object();
-      x.set("subset", w.subset);
-      x.set("intervals", w.moments.n());
-      x.set("mean", num(w.moments.mean()));
-      x.set("cov", num(w.moments.cov()));
-      x.set("cov_err", num(w.moments.cov_err()));
-      subsets.push(std::move(x));
-    }
-    o.set("subsets", std::move(subsets));
-    j.set("interevent", std::move(o));
-  }
-  {
-    Json o = intervals_json(s.recurrence().system(), s.weibull(), s.lognormal());
-    o.set("per_block",
-          intervals_json(s.recurrence().per_block(), s.block_weibull(), s.block_lognormal()));
-    j.set("recurrence", std::move(o));
-  }
+  o.set("subsets", std::move(subsets));
+  return o;
+}
+
+// seismicity.json's bath section: Båth's law, the largest aftershock's magnitude gap.
+Json bath_json(const seis::Seismicity& s) {
+  const auto& b = s.bath();
+  Json o = Json::object();
+  const bool ok = b.sequences > 0;
+  o.set("delta_mu", num_or_null(ok, b.delta_mu));
+  o.set("delta_mu_err", num_or_null(ok && std::isfinite(b.delta_mu_err), b.delta_mu_err));
+  o.set("delta_mw", num_or_null(ok, b.delta_mw()));
+  o.set("delta_mw_err",
+        num_or_null(ok && std::isfinite(b.delta_mu_err), b.delta_mu_err / seis::kMuPerMw));
+  o.set("sequences", b.sequences);
+  o.set("window", num_or_null(ok, b.window));
+  o.set("window_rule", b.window_rule);
+  o.set("units",
+        "delta_mu in mu = ln M; delta_mw in Mw = (2/3) log10 M; delta_mu = 1.5 ln 10 "
+        "delta_mw = 3.454 delta_mw");
+  return o;
+}
+
+// seismicity.json's scaling section: moment against rupture length and duration.
+Json scaling_json(const seis::Seismicity& s) {
+  Json o = Json::object();
+  const seis::LineFit L = s.scaling().length().binned_fit();
+  const seis::LineFit T = s.scaling().duration().binned_fit();
+  const auto& Le = s.scaling().length().fit;
+  const auto& Te = s.scaling().duration().fit;
+  o.set("length_exponent", num(L.slope()));
+  o.set("length_exponent_err", num(L.slope_err()));
+  o.set("length_bins", L.n());
+  o.set("duration_exponent", num(T.slope()));
+  o.set("duration_exponent_err", num(T.slope_err()));
+  o.set("duration_bins", T.n());
+  o.set("method",
+        "least squares of the log bins' mean ln M on their mean ln L (ln T), one "
+        "point a bin of 3 events or more; the *_per_event fits weight every event");
+  o.set("length_exponent_per_event", num(Le.slope()));
+  o.set("duration_exponent_per_event", num(Te.slope()));
+  return o;
+}
+
+// seismicity.json's spacetime section: the b-value of all events and the distance rule.
+Json spacetime_json(const seis::Seismicity& s, const Setup& su) {
+  Json o = Json::object();
+  const Estimate b = s.spacetime().all().b(s.b_mu_min());
+  o.set("b_mu_min", num(s.b_mu_min()));
+  o.set("b_mu_min_rule", su.b_rule);
+  o.set("b_all", num(b.value));
+  o.set("b_all_err", num(b.err));
+  o.set("b_all_note", "Aki's b of every event that is not a mainshock, mu >= b_mu_min");
+  o.set("distance_band", static_cast<std::int64_t>(s.spacetime().band_width()));
+  if (su.geometry.lattice())
+    o.set("distance",
+          "Euclidean between trigger sites (x, y) in site spacings, the shorter "
+          "way round along a periodic axis");
+  o.set("mainshocks", s.spacetime().mainshocks());
+  return o;
+}
+
+// seismicity.json's provenance section.
+Json provenance_json(const Setup& su) {
+  Json p = Json::object();
+  p.set("version", kVersion);
+  p.set("git", kGitRevision);
+  p.set("seed", su.scene ? Json::string(su.scene->text(key::run_seed)) : Json::null());
+  p.set("scene", su.scene ? Json::string(su.scene->origin) : Json::null());
+  p.set("lines", Json::strings(su.comments));
+  return p;
+}
+
+// seismicity.json's Omori sections: the aftershocks' and the foreshocks' rates.
+void set_omori(Json& j, const seis::Seismicity& s) {
   Json om = omori_json(s.aftershocks(), s.omori().after().sequences, true);
   om.set("method",
          "Ogata (1983) maximum likelihood of mu + K/(t + c)^p on the stacked sequences, times "
@@ -601,91 +698,67 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
          "an excess needs 2 dlnL > 16.27 over the background alone");
   j.set("omori", std::move(om));
   j.set("foreshock", omori_json(s.foreshocks(), s.omori().before().sequences, false));
-  {
-    const auto& b = s.bath();
-    Json o = Json::object();
-    const bool ok = b.sequences > 0;
-    o.set("delta_mu", num_or_null(ok, b.delta_mu));
-    o.set("delta_mu_err", num_or_null(ok && std::isfinite(b.delta_mu_err), b.delta_mu_err));
-    o.set("delta_mw", num_or_null(ok, b.delta_mw()));
-    o.set("delta_mw_err",
-          num_or_null(ok && std::isfinite(b.delta_mu_err), b.delta_mu_err / seis::kMuPerMw));
-    o.set("sequences", b.sequences);
-    o.set("window", num_or_null(ok, b.window));
-    o.set("window_rule", b.window_rule);
-    o.set("units",
-          "delta_mu in mu = ln M; delta_mw in Mw = (2/3) log10 M; delta_mu = 1.5 ln 10 "
-          "delta_mw = 3.454 delta_mw");
-    j.set("bath", std::move(o));
-  }
-  j.set("moment_budget", num(s.moment_rate().budget(sites)));
-  {
-    Json o = Json::object();
-    const seis::LineFit L = s.scaling().length().binned_fit();
-    const seis::LineFit T = s.scaling().duration().binned_fit();
-    const auto& Le = s.scaling().length().fit;
-    const auto& Te = s.scaling().duration().fit;
-    o.set("length_exponent", num(L.slope()));
-    o.set("length_exponent_err", num(L.slope_err()));
-    o.set("length_bins", L.n());
-    o.set("duration_exponent", num(T.slope()));
-    o.set("duration_exponent_err", num(T.slope_err()));
-    o.set("duration_bins", T.n());
-    o.set("method",
-          "least squares of the log bins' mean ln M on their mean ln L (ln T), one "
-          "point a bin of 3 events or more; the *_per_event fits weight every event");
-    o.set("length_exponent_per_event", num(Le.slope()));
-    o.set("duration_exponent_per_event", num(Te.slope()));
-    j.set("scaling", std::move(o));
-  }
-  {
-    Json o = Json::object();
-    const Estimate b = s.spacetime().all().b(s.b_mu_min());
-    o.set("b_mu_min", num(s.b_mu_min()));
-    o.set("b_mu_min_rule", b_rule);
-    o.set("b_all", num(b.value));
-    o.set("b_all_err", num(b.err));
-    o.set("b_all_note", "Aki's b of every event that is not a mainshock, mu >= b_mu_min");
-    o.set("distance_band", static_cast<std::int64_t>(s.spacetime().band_width()));
-    if (geometry.lattice())
-      o.set("distance",
-            "Euclidean between trigger sites (x, y) in site spacings, the shorter "
-            "way round along a periodic axis");
-    o.set("mainshocks", s.spacetime().mainshocks());
-    j.set("spacetime", std::move(o));
-  }
-  {
-    Json p = Json::object();
-    p.set("version", kVersion);
-    p.set("git", kGitRevision);
-    p.set("seed", scene ? Json::string(scene->text("run.seed")) : Json::null());
-    p.set("scene", scene ? Json::string(scene->origin) : Json::null());
-    p.set("lines", Json::strings(comments));
-    j.set("provenance", std::move(p));
-  }
-  rep.json = j.str();
+}
 
-  // Output, under the lock taken above: seismicity/ replaced as a whole (or --out's files).
-  if (req.out.empty()) {
-    const fs::path final_dir = folder / kOutFolder;
-    const fs::path tmp = folder / (kNewPrefix + std::to_string(::getpid()));
-    std::error_code ec;
-    fs::create_directory(tmp, ec);
-    if (ec) throw Error("seismicity: cannot create " + tmp.string() + ": " + ec.message());
-    try {
-      write_outputs(tmp, s, comments, rep.json);
-    } catch (...) {
-      fs::remove_all(tmp, ec);
-      throw;
-    }
-    swap_in(tmp, final_dir);
-    rep.out = final_dir.string();
-  } else {
-    write_outputs(req.out, s, comments, rep.json);
-    rep.out = req.out;
+// seismicity.json, whole.
+std::string seismicity_json(const seis::Seismicity& s, const Setup& su,
+                            const SeismicityReport& rep) {
+  Json j = Json::object();
+  j.set("input", rep.catalog);
+  j.set("clock", rep.clock);
+  j.set("events", s.events());
+  j.set("blocks", static_cast<std::int64_t>(su.blocks));
+  j.set("blocks_from", rep.blocks_from);
+  if (su.geometry.lattice()) {
+    j.set("rows", static_cast<std::int64_t>(su.geometry.ny));
+    j.set("rows_from", su.rows_from);
+    j.set("periodic_x", su.geometry.periodic_x);
+    j.set("periodic_y", su.geometry.periodic_y);
   }
-  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  Json main = Json::object();
+  main.set("rule", su.opt.mainshock.describe());
+  main.set("count", s.mainshocks());
+  main.set("min_mu", num_or_null(s.mainshocks() > 0, s.min_mainshock_mu()));
+  j.set("mainshocks", std::move(main));
+  j.set("interevent", interevent_json(s));
+  Json rec = intervals_json(s.recurrence().system(), s.weibull(), s.lognormal());
+  rec.set("per_block",
+          intervals_json(s.recurrence().per_block(), s.block_weibull(), s.block_lognormal()));
+  j.set("recurrence", std::move(rec));
+  set_omori(j, s);
+  j.set("bath", bath_json(s));
+  j.set("moment_budget", num(s.moment_rate().budget(su.geometry.sites())));
+  j.set("scaling", scaling_json(s));
+  j.set("spacetime", spacetime_json(s, su));
+  j.set("provenance", provenance_json(su));
+  return j.str();
+}
 
+// The files, under the lock taken before: seismicity/ replaced as a whole (or --out's
+// files). Returns where they went.
+std::string write_all(const SeismicityRequest& req, const Setup& su, const seis::Seismicity& s,
+                      const std::string& json) {
+  if (!req.out.empty()) {
+    write_outputs(req.out, s, su.comments, json);
+    return req.out;
+  }
+  const fs::path final_dir = su.folder / kOutFolder;
+  const fs::path tmp = su.folder / (kNewPrefix + std::to_string(::getpid()));
+  std::error_code ec;
+  fs::create_directory(tmp, ec);
+  if (ec) throw Error("seismicity: cannot create " + tmp.string() + ": " + ec.message());
+  try {
+    write_outputs(tmp, s, su.comments, json);
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+  swap_in(tmp, final_dir);
+  return final_dir.string();
+}
+
+// The printout's waiting times and mainshock recurrence.
+void log_intervals(std::ostream& log, const seis::Seismicity& s) {
   char line[512];
   const auto& ie = s.interevent().all().moments;
   std::snprintf(line, sizeof line,
@@ -703,6 +776,12 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
       log << ", Weibull k = " << format_with_error(s.weibull().k.value, s.weibull().k.err);
     log << "\n";
   }
+}
+
+// The printout's sequences (aftershocks, foreshocks, Båth), the budget and the files.
+void log_sequences(std::ostream& log, const seis::Seismicity& s, int sites,
+                   const SeismicityRequest& req, const SeismicityReport& rep) {
+  char line[512];
   const auto& af = s.aftershocks();
   if (af.excess)
     log << "  aftershocks: Omori-Utsu p = " << format_with_error(af.p.value, af.p.err)
@@ -726,6 +805,28 @@ SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) 
                 s.moment_rate().budget(sites));
   log << line << "  written " << rep.out << " in " << format_real(rep.seconds) << " s\n";
   if (!req.export_file.empty()) log << "  exported " << req.export_file << "\n";
+}
+
+}  // namespace
+
+SeismicityReport seismicity_of(const SeismicityRequest& req, std::ostream& log) {
+  const auto t_start = std::chrono::steady_clock::now();
+  SeismicityReport rep;
+  Setup su = prepare(req, rep);
+  CatalogReader reader(rep.catalog);
+  if (su.writer) reader.set_growing();
+  check_columns(reader, req, rep.catalog);
+  choose_options(req, su);
+  log_setup(log, su, rep);
+  su.comments = comments_of(su.scene, rep.catalog);
+
+  seis::Seismicity s(su.opt);
+  read_events(reader, su, req, rep, s);
+  rep.json = seismicity_json(s, su, rep);
+  rep.out = write_all(req, su, s, rep.json);
+  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  log_intervals(log, s);
+  log_sequences(log, s, su.geometry.sites(), req, rep);
   return rep;
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "io/scene_values.hpp"
 #include "io/stability_csv.hpp"
 
 namespace bkq {
@@ -162,7 +163,7 @@ std::vector<StabilityPoint> run_stability(const Scene& base, const StabilityOpti
   if (!opt.sweep) {
     Scene scene = base;
     scene.validate();
-    out.push_back(analyse(scene, scene.real("drive.speed"), opt));
+    out.push_back(analyse(scene, scene_values(scene).drive.speed, opt));
     return out;
   }
   const SweepSpec& s = *opt.sweep;

@@ -28,6 +28,7 @@
 #include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/run_folder.hpp"
+#include "io/scene_keys.hpp"
 #include "io/settings.hpp"
 #include "stats/gutenberg_richter.hpp"
 
@@ -114,7 +115,7 @@ class Sweep {
   Sweep(const SweepRequest& req, SweepSpec spec)
       : req_(req), spec_(std::move(spec)), points_(spec_.point_count()), out_(req.out_dir) {
     seed_swept_ = std::any_of(spec_.keys.begin(), spec_.keys.end(),
-                              [](const SweptKey& k) { return k.key == "run.seed"; });
+                              [](const SweptKey& k) { return k.key == key::run_seed.name; });
     results_.resize(points_);
     replica_done_.assign(points_, 0);
     replica_error_.resize(points_);
@@ -215,9 +216,8 @@ class Sweep {
     TaskResult res{task, 0, 0, ""};
     try {
       Scene scene = spec_.point(p).scene;
-      const auto seed = sweep_seed(static_cast<std::uint64_t>(scene.integer("run.seed")),
-                                   seed_swept_, p, spec_.replicas, r);
-      scene.set("run.seed", std::to_string(seed), "sweep");
+      const auto seed = sweep_seed(scene_values(scene).run.seed, seed_swept_, p, spec_.replicas, r);
+      scene.set(key::run_seed, std::to_string(seed), "sweep");
       scene.origin =
           spec_.origin + ", point " + std::to_string(p) + ", replica " + std::to_string(r);
       scene.validate();
@@ -313,12 +313,11 @@ class Sweep {
   double cost(std::size_t p) const {
     const Scene s = spec_.point(p).scene;
     // A lattice's cost grows with its sites, blocks times rows.
-    const double blocks = static_cast<double>(s.integer("model.blocks")) *
-                          static_cast<double>(s.integer("model.rows"));
-    if (scene_values(s).drive.mode == DriveMode::Events)
-      return blocks *
-             static_cast<double>(s.integer("run.events") + s.integer("run.transient_events"));
-    return blocks * s.real("run.duration") / s.real("integrator.dt");
+    const SceneValues v = scene_values(s);
+    const double blocks = static_cast<double>(v.model.blocks) * static_cast<double>(v.model.rows);
+    if (v.drive.mode == DriveMode::Events)
+      return blocks * static_cast<double>(v.run.events + v.run.transient_events);
+    return blocks * v.run.duration / v.integrator.dt;
   }
 
   double replica_seconds(std::size_t p, int r, double fallback) const {
@@ -355,8 +354,9 @@ class Sweep {
         for (int r = 0; r < spec_.replicas; ++r) m.runs.push_back(replica_dir(p, r).string());
         m.out = point_dir(p);
         m.force = true;  // a merge cut short by a kill is done again
-        m.mu_min = scene.real_or_auto("stats.mu_min");
-        m.mu_max = scene.real_or_auto("stats.mu_max");
+        const StatsSettings stats = scene_values(scene).stats;
+        m.mu_min = stats.mu_min;
+        m.mu_max = stats.mu_max;
         std::ostringstream ignored;
         merge_runs(m, ignored);
         const fs::path s = point_dir(p) / "summary.json";
@@ -499,9 +499,9 @@ class Sweep {
   }
 
   // The key that says how long a point's runs are.
-  static const char* length_key(const Scene& scene) {
-    return settings_from_scene(scene).drive.mode == DriveMode::Events ? "run.events"
-                                                                      : "run.duration";
+  static Key length_key(const Scene& scene) {
+    return scene_values(scene).drive.mode == DriveMode::Events ? key::run_events
+                                                               : key::run_duration;
   }
   // The run length a replica was made for (its scene.ini), none when it has no readable one.
   std::optional<std::string> replica_length(std::size_t p, int r) const {
@@ -535,16 +535,17 @@ class Sweep {
     bool grows = false;
     for (std::size_t p = 0; p < points_; ++p) {
       const Scene scene = spec_.point(p).scene;
-      const char* key = length_key(scene);
+      const std::string key = length_key(scene);
       std::optional<std::string> length;
       for (int r = 0; !length && r < spec_.replicas; ++r) length = replica_length(p, r);
       Scene before = scene;
       if (length) before.set(key, *length, "the sweep as run before");
       if (lines[p + 1] != point_line(p, before)) return false;
       if (!length || *length == scene.text(key)) continue;
-      const bool events = std::string(key) == "run.events";
-      const bool longer =
-          events ? scene.integer(key) > before.integer(key) : scene.real(key) > before.real(key);
+      const SceneValues now = scene_values(scene), then = scene_values(before);
+      const bool longer = now.drive.mode == DriveMode::Events
+                              ? now.run.events > then.run.events
+                              : now.run.duration > then.run.duration;
       if (!longer)
         throw Error("--resume: point " + std::to_string(p) + " (" + point_label(p) + "): " + key +
                     " = " + scene.text(key) + " would not extend its replicas' " + *length +

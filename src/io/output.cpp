@@ -24,6 +24,8 @@
 #include "io/friction_table.hpp"
 #include "io/run_folder.hpp"
 #include "io/scene.hpp"
+#include "io/scene_keys.hpp"
+#include "io/scene_values.hpp"
 
 namespace bkq {
 
@@ -269,14 +271,15 @@ std::vector<std::string> provenance_lines(const Scene& scene) {
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(scene.hash()));
   std::vector<std::string> lines = {
       std::string("bkquake ") + kVersion + " (git " + kGitRevision + ")",
-      "seed " + scene.text("run.seed"),
+      "seed " + scene.text(key::run_seed),
       "scene " + scene.origin,
       std::string("scene hash ") + hash,
   };
   // The table law's file by its contents too (the scene holds only its path).
-  if (scene.choice("friction.law") == "table")
-    lines.push_back("friction table " + scene.text("friction.table") + " fnv1a64 " +
-                    file_checksum(scene.text("friction.table")));
+  const LawChoice given = scene_values(scene).friction.law;
+  if (!given.rsf && given.law == law_id<law::Table>)
+    lines.push_back("friction table " + scene.text(key::friction_table) + " fnv1a64 " +
+                    file_checksum(scene.text(key::friction_table)));
   lines.push_back("written " + utc_now_iso());
   return lines;
 }
