@@ -12,7 +12,6 @@
 #include "core/format.hpp"
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
-#include "integrate/adaptive.hpp"
 #include "integrate/located.hpp"
 #include "integrate/stepper.hpp"
 #include "io/accuracy_schema.hpp"
@@ -57,6 +56,7 @@ class Study {
   Study(const Settings& settings, const AccuracyOptions& opt)
       : settings_(settings),
         opt_(opt),
+        reference_(accuracy_reference_scheme()),
         p_(settings.model),
         forces_(p_),
         dt_(settings.integrator.dt),
@@ -79,16 +79,17 @@ class Study {
     }
     // The engine checks stuck blocks outside the integrated ranges once per macro step;
     // a short macro step keeps that lag out of the reference.
-    Adaptive reference(p_.n, opt_.reference_tolerance);
+    const auto reference = make_stepper(reference_, p_.n, opt_.reference_tolerance);
     // The reference's own error floor: its difference from a reference at 10x its tolerance
     // (whose error is the larger, so this bounds the floor from above).
-    Adaptive looser(p_.n, std::min(10.0 * opt_.reference_tolerance, 1e-2));
+    const auto looser =
+        make_stepper(reference_, p_.n, std::min(10.0 * opt_.reference_tolerance, 1e-2));
     std::vector<double> fm, fd, fm1, fd1;
     for (const EngineSnapshot& s : states_) {
-      EventEngine e(forces_, reference, std::min(dt_, kReferenceMacroStep), s);
+      EventEngine e(forces_, *reference, std::min(dt_, kReferenceMacroStep), s);
       const EventRecord r = e.next_event();
       references_.push_back({r.moment, r.duration, r.blocks});
-      EventEngine l(forces_, looser, std::min(dt_, kReferenceMacroStep), s);
+      EventEngine l(forces_, *looser, std::min(dt_, kReferenceMacroStep), s);
       const EventRecord q = l.next_event();
       fm.push_back(relative_error(q.moment, r.moment));
       fd.push_back(relative_error(q.duration, r.duration));
@@ -103,8 +104,8 @@ class Study {
 
   // The reference long run and the noise floor (the reference from another seed).
   std::vector<AccuracyPoint> reference_rows(AccuracyStudy& study) {
-    Adaptive reference(p_.n, opt_.long_reference_tolerance);
-    reference_run_ = long_run(reference, dt_, seed_);
+    const auto reference = make_stepper(reference_, p_.n, opt_.long_reference_tolerance);
+    reference_run_ = long_run(*reference, dt_, seed_);
     const GrFit fit = fit_histogram(reference_run_.hist, std::nullopt, std::nullopt);
     study.mu_min = fit.mu_min;
     study.mu_max = fit.mu_max;
@@ -122,8 +123,8 @@ class Study {
     ref.seconds_per_event = reference_run_.seconds_per_event;
     ref.steps_per_event = reference_run_.steps_per_event;
 
-    Adaptive other(p_.n, opt_.long_reference_tolerance);
-    LongRun floor_run = long_run(other, dt_, seed_ + opt_.other_seed_offset);
+    const auto other = make_stepper(reference_, p_.n, opt_.long_reference_tolerance);
+    LongRun floor_run = long_run(*other, dt_, seed_ + opt_.other_seed_offset);
     AccuracyPoint floor = ref;
     floor.scheme = "noise-floor";
     floor.note = "reference from seed + " + std::to_string(opt_.other_seed_offset);
@@ -136,7 +137,7 @@ class Study {
     AccuracyPoint pt;
     pt.scheme = scheme;
     pt.dt = dt;
-    pt.tolerance = scheme == "adaptive" ? tolerance : 0.0;
+    pt.tolerance = scheme_traits(scheme)->error_control ? tolerance : 0.0;
     auto stepper = make_stepper(scheme, p_.n, tolerance > 0 ? tolerance : 1e-8);
     if (stepper->stick_rule() == StickRule::Crossing) {
       pt.transitions = transitions;
@@ -222,6 +223,7 @@ class Study {
   }
   const Settings& settings_;
   const AccuracyOptions& opt_;
+  std::string reference_;  // the reference scheme's keyword (accuracy_reference_scheme)
   ModelParams p_;
   ChainForces forces_;
   double dt_;
@@ -276,6 +278,21 @@ void check_accuracy_options(const AccuracyOptions& options) {
   check("samples", options.samples, 1, kMaxAccuracySamples);
   check("spacing", options.sample_spacing, 1, kMaxAccuracySpacing);
   check("long-events", options.long_events, kMinLongEvents, kMaxLongEvents);
+  for (const std::string& scheme : options.schemes)
+    if (scheme_traits(scheme) == nullptr) {
+      std::string valid;
+      for (const auto& k : stepper_keywords()) valid += (valid.empty() ? "" : "|") + k;
+      throw Error("accuracy: --schemes: '" + scheme + "' is not a scheme; expected a list of " +
+                  valid);
+    }
+}
+
+std::string accuracy_reference_scheme() {
+  for (const std::string& scheme : stepper_keywords())
+    if (scheme_traits(scheme)->error_control) return scheme;
+  throw Error(
+      "accuracy: no scheme of the registry controls its own error (error_control); the "
+      "study's reference needs one");
 }
 
 AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
@@ -283,7 +300,8 @@ AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
   check_accuracy_options(options);
   AccuracyStudy study;
   const Settings settings = settings_from_scene(scene);
-  // Its reference is the adaptive scheme, written for chains of nearest-neighbour springs.
+  // Its reference (the adaptive scheme among the shipped ones) is written for chains of
+  // nearest-neighbour springs.
   if (settings.model.lattice() || settings.model.long_range() || settings.model.viscous())
     throw Error(std::string("accuracy: ") +
                 (settings.model.lattice() ? "model.rows = " + std::to_string(settings.model.rows)
@@ -300,17 +318,23 @@ AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
     study.points.push_back(std::move(row));
   }
   for (const std::string& scheme : options.schemes) {
-    if (scheme == "adaptive") {
+    const SchemeTraits& traits = *scheme_traits(scheme);
+    if (traits.error_control) {
       for (double tol : options.tolerances) {
         study.points.push_back(s.measure(scheme, settings.integrator.dt, tol, "located"));
         if (report) report(study.points.back());
       }
       continue;
     }
-    // Each transition mode for the Crossing schemes; the others resolve their own.
-    const bool crossing = make_stepper(scheme, 1)->stick_rule() == StickRule::Crossing;
-    for (const std::string& transitions :
-         crossing ? options.transitions : std::vector<std::string>{"step"})
+    // Each transition mode asked for, for the Crossing schemes (located: the locatable
+    // ones); the others resolve their own.
+    std::vector<std::string> modes;
+    if (traits.stick_rule != StickRule::Crossing)
+      modes = {"step"};
+    else
+      for (const std::string& t : options.transitions)
+        if (t != "located" || traits.locatable) modes.push_back(t);
+    for (const std::string& transitions : modes)
       for (double dt : options.dts) {
         study.points.push_back(s.measure(scheme, dt, 0.0, transitions));
         if (report) report(study.points.back());

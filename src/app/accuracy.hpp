@@ -32,16 +32,19 @@
 #include <string>
 #include <vector>
 
+#include "integrate/stepper.hpp"
 #include "io/scene.hpp"
 #include "stats/histogram.hpp"
 
 namespace bkq {
 
 struct AccuracyOptions {
-  std::vector<std::string> schemes{"rk2", "rk4", "verlet", "theta", "adaptive"};
+  // The registry's schemes, shipped and registered, in its order (stepper_keywords()).
+  std::vector<std::string> schemes = stepper_keywords();
   std::vector<double> dts{0.05, 0.02, 0.01, 0.005, 0.002, 0.001};
-  std::vector<double> tolerances{1e-3, 1e-5, 1e-7, 1e-9};   // adaptive scheme
-  std::vector<std::string> transitions{"step", "located"};  // rk2, rk4, verlet
+  std::vector<double> tolerances{1e-3, 1e-5, 1e-7, 1e-9};   // schemes with error_control
+  std::vector<std::string> transitions{"step", "located"};  // Crossing schemes (located:
+                                                            // the locatable ones)
   int samples = 40;                        // K pre-event states for the per-event errors
   int sample_spacing = 25;                 // events between two sampled states
   std::int64_t long_events = 50000;        // events per long run, after the scene's transient
@@ -97,6 +100,10 @@ struct AccuracyStudy {
 
 // Runs the study (options checked first); `report` (if set) is told about each point as it
 // is finished.
+// The study's reference scheme: the first of the registry's (stepper_keywords()) that
+// declares error_control ("adaptive" among the shipped ones); bkq::Error when none does.
+std::string accuracy_reference_scheme();
+
 AccuracyStudy run_accuracy(const Scene& scene, const AccuracyOptions& options,
                            const std::function<void(const AccuracyPoint&)>& report = {});
 

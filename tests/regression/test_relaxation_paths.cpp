@@ -14,6 +14,7 @@
 
 #include "../record_bits.hpp"
 #include "../scene_sim.hpp"
+#include "app/accuracy.hpp"
 #include "core/error.hpp"
 #include "engine/general_path.hpp"
 #include "integrate/located.hpp"
@@ -107,13 +108,15 @@ TEST(RelaxationPaths, ATestOnlyPathRunsWithoutTouchingTheEngine) {
 
 // A scheme the program does not ship: the midpoint rule of rk2 behind a stepper of its own
 // that declares transitions at the step on every kernel, no fast kernels, and (unless told)
-// no located transitions.
+// no located transitions (a registration may declare other traits and another name).
 class TestMidpoint final : public Stepper {
  public:
   static constexpr SchemeTraits kTraits{.stick_rule = StickRule::Crossing, .general_kernels = true};
-  explicit TestMidpoint(int n) : inner_(make_stepper("rk2", n)) {}
-  std::string_view name() const override { return "test-midpoint"; }
-  const SchemeTraits& traits() const override { return kTraits; }
+  explicit TestMidpoint(int n, std::string name = "test-midpoint",
+                        const SchemeTraits& traits = kTraits)
+      : inner_(make_stepper("rk2", n)), name_(std::move(name)), traits_(traits) {}
+  std::string_view name() const override { return name_; }
+  const SchemeTraits& traits() const override { return traits_; }
   int order() const override { return inner_->order(); }
   double stability_constant() const override { return inner_->stability_constant(); }
   void step(const ChainForces& f, const Substrate& sub, ChainState& st, double dt,
@@ -123,6 +126,8 @@ class TestMidpoint final : public Stepper {
 
  private:
   std::unique_ptr<Stepper> inner_;
+  std::string name_;
+  SchemeTraits traits_;
 };
 
 // Registers the test scheme for the lifetime of the guard.
@@ -175,6 +180,42 @@ TEST(SchemeTraits, ASchemeWithoutTheLocatedCapabilityIsRefusedLocatedTransitions
     EXPECT_TRUE(located->traits().located_on_fixed_steps) << s;
     EXPECT_EQ(located->stick_rule(), StickRule::Located) << s;
   }
+}
+
+TEST(SchemeTraits, AccuracyOffersARegisteredSchemeByItsTraits) {
+  EXPECT_EQ(AccuracyOptions().schemes, stepper_keywords());
+  EXPECT_EQ(accuracy_reference_scheme(), "adaptive");
+  const Registered guard;
+  AccuracyOptions opt;
+  // The default list is the registry's, the registered scheme last.
+  ASSERT_FALSE(opt.schemes.empty());
+  EXPECT_EQ(opt.schemes.back(), "test-midpoint");
+  opt.schemes = {"rk2", "test-midpoint"};
+  opt.dts = {0.02, 0.005};
+  opt.tolerances = {1e-8};
+  opt.samples = 4;
+  opt.sample_spacing = 5;
+  opt.long_events = kMinLongEvents;
+  const Scene scene = test::make_scene({{"model.blocks", "30"}, {"run.transient_events", "100"}});
+  const AccuracyStudy study = run_accuracy(scene, opt);
+  // Not locatable: its transitions at the step only, where its errors are rk2's.
+  std::map<std::string, std::map<double, double>> moment;
+  for (const AccuracyPoint& pt : study.points) {
+    if (pt.scheme != "test-midpoint") continue;
+    EXPECT_EQ(pt.transitions, "step");
+    EXPECT_EQ(pt.tolerance, 0.0);
+    moment[pt.scheme][pt.dt] = pt.moment_error_median;
+  }
+  for (const AccuracyPoint& pt : study.points)
+    if (pt.scheme == "rk2" && pt.transitions == "step")
+      moment["rk2"][pt.dt] = pt.moment_error_median;
+  EXPECT_EQ(moment["test-midpoint"].size(), 2u);
+  EXPECT_EQ(moment["test-midpoint"], moment["rk2"]);
+  // rk2 (locatable) is offered located transitions too.
+  int rk2_located = 0;
+  for (const AccuracyPoint& pt : study.points)
+    rk2_located += pt.scheme == "rk2" && pt.transitions == "located";
+  EXPECT_EQ(rk2_located, 2);
 }
 
 TEST(SchemeTraits, EachShippedStepperDeclaresTheRegistrysTraits) {
