@@ -468,7 +468,7 @@ std::vector<ParamSpec> model_rows() {
           "block within R = model.range on each side; Xia, Gould, Klein & Rundle 2005) or "
           "power (k_c r^-p / sum_{s<=R} s^-p at distance r <= R, p = "
           "model.coupling_exponent); every choice sums to k_c per side")
-          .when(either(rate_law(), rsf_law()), chain_kinds())
+          .when(chain_kinds())  // every law, rate-and-state included
           .later(),
       integer(key::model_range, at(&SceneValues::model, &ModelKeys::range), "1", 1, 1e6, "",
               "R: blocks coupled on each side (model.coupling = range or power); R = 1 is the "

@@ -32,6 +32,8 @@ q $P analysis/plot_lattice.py runs/lat --out runs/lat/lattice.png
 q $P analysis/plot_event_sizes.py data/reference/event_sizes_n100.csv --out runs/event_sizes.png
 # Not run here: analysis/compare_modes.py keeps about 5000 slip episodes per continuous run
 # (minutes); it writes under --out-dir (default runs/modes).
+# Not run here: analysis/calibrate_errors.py runs 20-30 seeds of 1e5 events per case (tens of
+# minutes); it writes only under its required --work folder (and --csv where given).
 # The OFC exponent: told no --out, it writes into the current folder only (never into data/
 # or docs/), so it runs from runs/.
 (cd runs && q $P ../analysis/ofc_exponent.py --quick --sizes 8 --events 2000)
