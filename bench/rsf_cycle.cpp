@@ -22,17 +22,16 @@
 
 #include "engine/rsf_cycle.hpp"
 #include "engine/rsf_events.hpp"
+#include "support/qdyn_stickslip.hpp"
 #include "thread_clock.hpp"
 
 namespace {
 
 using namespace bkq;
 
-RsfModel qdyn(int n, double k_c);
-
 // The chain (rows = 1) or lattice, and its springs: nearest neighbours, or a range-R chain.
 RsfModel grid(int nx, int rows, int range) {
-  RsfModel m = qdyn(nx * rows, 0);
+  RsfModel m = test::qdyn_stickslip(nx * rows);
   m.rows = rows;
   if (rows > 1) {
     m.periodic = true;
@@ -40,23 +39,6 @@ RsfModel grid(int nx, int rows, int range) {
   } else {
     for (int r = 1; r <= range; ++r) m.springs.push_back({r, 0, 2e9 / range});
   }
-  return m;
-}
-
-RsfModel qdyn(int n, double k_c) {
-  RsfModel m;
-  rsf::Params p;
-  p.a = 0.01;
-  p.b_rsf = 0.025;
-  p.dc = 1e-5;
-  p.mu0 = 0.6;
-  p.v0 = 1e-6;
-  m.law.assign(n, rsf::Law(p));
-  m.sigma = 5e6;
-  m.k = 2e9;
-  m.k_c = k_c;
-  m.v_pl = 1e-6;
-  m.eta = 2e10 / 6000.0;
   return m;
 }
 
@@ -89,7 +71,7 @@ int main(int argc, char** argv) {
     std::int64_t steps = 0;
     for (int r = 0; r < repeat; ++r) {
       peaks.clear();
-      RsfCycle c(qdyn(1, 0), tol, {2e-5}, {10});
+      RsfCycle c(test::qdyn_stickslip(1), tol, {2e-5}, {10});
       const double t0 = bench::thread_seconds();
       while (c.t() < 1e4) {
         c.step(1e4);

@@ -14,27 +14,14 @@
 #include "model/laws/rsf.hpp"
 #include "stats/rsf_stability.hpp"
 #include "stats/stability.hpp"
+#include "support/qdyn_stickslip.hpp"
 
 namespace bkq {
 namespace {
 
-// QDYN's test "stickslip" (frozen reference 5ba3c6b008): G = 2e10 Pa, L = 10 m, k = G/L,
-// sigma = 5e6 Pa, a = 0.01, b = 0.025, D_c = 1e-5 m, mu* = 0.6, V* = V_pl = 1e-6 m/s,
-// c_s = 3000 m/s, aging law, quasi-dynamic.
+// QDYN's test "stickslip" (frozen reference 5ba3c6b008): support/qdyn_stickslip.hpp.
 RsfModel qdyn_model(int n = 1) {
-  RsfModel m;
-  rsf::Params p;
-  p.a = 0.01;
-  p.b_rsf = 0.025;
-  p.dc = 1e-5;
-  p.mu0 = 0.6;
-  p.v0 = 1e-6;
-  m.law.assign(n, rsf::Law(p));
-  m.sigma = 5e6;
-  m.k = 2e10 / 10;
-  m.v_pl = 1e-6;
-  m.eta = 2e10 / (2 * 3000.0);
-  return m;
+  return test::qdyn_stickslip(n);
 }
 
 // The limit cycle of one block: slip-rate peaks (times) and the extremes of tau/sigma, both

@@ -12,25 +12,15 @@
 #include "engine/rsf_events.hpp"
 #include "model/coupling.hpp"
 #include "stats/rsf_stability.hpp"
+#include "support/qdyn_stickslip.hpp"
 
 namespace bkq {
 namespace {
 
 // QDYN's stick-slip block (test_rsf.cpp) on every site of an nx x rows grid.
 RsfModel grid(int nx, int rows) {
-  RsfModel m;
-  rsf::Params p;
-  p.a = 0.01;
-  p.b_rsf = 0.025;
-  p.dc = 1e-5;
-  p.mu0 = 0.6;
-  p.v0 = 1e-6;
-  m.law.assign(nx * rows, rsf::Law(p));
+  RsfModel m = test::qdyn_stickslip(nx * rows);
   m.rows = rows;
-  m.sigma = 5e6;
-  m.k = 2e9;
-  m.v_pl = 1e-6;
-  m.eta = 2e10 / 6000.0;
   return m;
 }
 
