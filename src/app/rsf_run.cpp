@@ -19,6 +19,7 @@
 #include "app/observers/histogram.hpp"
 #include "app/observers/progress.hpp"
 #include "app/observers/summary.hpp"
+#include "app/rsf_stability.hpp"
 #include "app/stop_signals.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -50,8 +51,10 @@ class RsfFigures : public RunObserver {
     r.set("steps", cycle_.accepted());
     r.set("rejected_steps", cycle_.rejected());
     r.set("k", m.k);
-    r.set("k_crit_quasi_static", rsf::critical_stiffness(m.law[0].params(), m.sigma));
-    r.set("k_crit", rsf_critical_stiffness(m));
+    if (rsf_homogeneous(m)) {  // per-block laws have no one k_crit (app/rsf_stability.hpp)
+      r.set("k_crit_quasi_static", rsf::critical_stiffness(m.law[0].params(), m.sigma));
+      r.set("k_crit", rsf_critical_stiffness(m));
+    }
     r.set("eta", m.eta);
     r.set("last_hypocentre_time", events_.events() > 0 ? events_.times().hypocentre : 0.0);
     r.set("last_peak_time", events_.events() > 0 ? events_.times().peak : 0.0);
@@ -69,6 +72,7 @@ class RsfFigures : public RunObserver {
 
 RsfStabilityReport rsf_stability(const Settings& settings) {
   const RsfModel& m = settings.rsf.chain;
+  if (!rsf_homogeneous(m)) return rsf_dense_stability(settings);  // the modes are not waves
   const rsf::Params& law = m.law.at(0).params();
   const double quasi_static = rsf::critical_stiffness(law, m.sigma);
   RsfModel qd = m;

@@ -16,6 +16,7 @@ int run_rsf(const RunRequest& req, const Settings& settings, const OutputFolder&
 // `bkquake stability` of a rate-and-state scene (stats/rsf_stability.hpp): stability.csv's rows
 // (one per chain mode q: its leading root at stiffness k + k_c mu_q), rsf_stability.csv (k,
 // the critical stiffnesses, the frequency at k_crit, the unstable modes) and the lines printed.
+// Per-block laws (rsf.blocks, rsf.pattern) get app/rsf_stability.hpp's dense analysis instead.
 struct RsfStabilityReport {
   std::string modes_csv, summary_csv, text;
 };

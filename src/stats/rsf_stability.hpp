@@ -22,6 +22,19 @@
 // exact on periodic edges and for nearest neighbours on free ones (the chain's mu_q, and a
 // lattice's sum of its two axes' mu); for longer springs on free edges the sum is the stencil's
 // Fourier symbol at the free chain's wavenumbers, an approximation near the edges.
+//
+// Per-block laws (a, b_rsf, D_c varying along the chain or lattice) break the modal reduction:
+// the modes are no longer plane waves. Steady sliding at V_pl with theta_j = D_cj/V_pl is still
+// a fixed point (every block slides at V_pl, no spring is stretched further), and its
+// linearisation in x_j = ln(V_j/V_pl), phi_j = ln(theta_j V_pl/D_cj) and, for inertia,
+// xi_j = slip_j/V_pl - t (the slip's offset in seconds of plate motion) reads, with
+// omega_j = V_pl/D_cj, K = k I + the springs' Laplacian (the integrator's neighbour lists),
+// S_j = sigma f_lnv,j and T_j = sigma f_lntheta,j (sigma a_j and sigma b_j for the log form):
+//   phi_j' = -omega_j (x_j + phi_j)                                           (both state laws)
+//   quasi-dynamic  (S_j + eta V_pl) x_j' = -V_pl (K x)_j + T_j omega_j (x_j + phi_j)
+//   inertial       xi_j' = x_j,   m V_pl x_j' = -V_pl (K xi)_j - (S_j + eta V_pl) x_j - T_j phi_j
+// a dense 2N x 2N (3N x 3N) matrix whose eigenvalues GSL's gsl_eigen_nonsymmv gives in O(N^3).
+// For one law it has the modal reduction's roots, mode by mode.
 #pragma once
 
 #include <complex>
@@ -42,5 +55,17 @@ double rsf_critical_frequency(const RsfModel& m);
 double rsf_chain_laplacian(int n, bool periodic, int q);
 // The springs' stiffness of mode (qx, qy), qx < m.nx(), qy < m.rows (see above).
 double rsf_mode_stiffness(const RsfModel& m, int qx, int qy);
+
+// Whether every block has block 0's law (a, b_rsf, D_c, mu*, V*): the modal analysis above
+// describes the chain only then.
+bool rsf_homogeneous(const RsfModel& m);
+// The most blocks rsf_dense_eigenvalues takes (a 3000 x 3000 inertial matrix, seconds).
+inline constexpr int kRsfDenseLimit = 1000;
+// The per-block linearisation above as a dense row-major d x d matrix, d = 2N (quasi-dynamic)
+// or 3N (inertial), in the order (x_0..x_N-1, phi_0..phi_N-1[, xi_0..xi_N-1]).
+std::vector<double> rsf_linearisation(const RsfModel& m);
+// Every eigenvalue of the per-block linearisation above (2N quasi-dynamic, 3N inertial), complex
+// pairs both listed, ordered by decreasing real part (then decreasing imaginary part).
+std::vector<std::complex<double>> rsf_dense_eigenvalues(const RsfModel& m);
 
 }  // namespace bkq
