@@ -40,6 +40,7 @@ inline constexpr Key model_rayleigh_alpha{"model.rayleigh_alpha"};
 inline constexpr Key model_rayleigh_beta{"model.rayleigh_beta"};
 inline constexpr Key model_stiffness{"model.stiffness"};
 inline constexpr Key model_coupling_stiffness{"model.coupling_stiffness"};
+inline constexpr Key model_coupling_stiffness_y{"model.coupling_stiffness_y"};
 inline constexpr Key model_dynamics{"model.dynamics"};
 inline constexpr Key model_shear_modulus{"model.shear_modulus"};
 inline constexpr Key model_shear_wave_speed{"model.shear_wave_speed"};

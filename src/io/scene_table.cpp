@@ -653,8 +653,16 @@ std::vector<ParamSpec> si_model_rows() {
           .later(),
       real(key::model_coupling_stiffness, at(&SceneValues::model, &ModelKeys::coupling_stiffness),
            "0", '[', 0, kHuge, ']', "Pa/m",
-           "nearest-neighbour spring k_c per unit area between blocks (si)")
+           "nearest-neighbour spring k_c per unit area between blocks (si); on a lattice the "
+           "spring along strike")
           .when(si_units())
+          .later(),
+      real(key::model_coupling_stiffness_y,
+           at(&SceneValues::model, &ModelKeys::coupling_stiffness_y), "auto", '[', 0, kHuge, ']',
+           "Pa/m",
+           "lattice (model.rows > 1): spring k_c_y per unit area across strike (si; a column, "
+           "model.blocks = 1, is coupled by it alone); auto: equal to model.coupling_stiffness")
+          .when(si_units(), lattice_only())
           .later(),
       choice(key::model_dynamics, "quasi-dynamic", at(&SceneValues::model, &ModelKeys::dynamics),
              {{"quasi-dynamic", RsfDynamics::QuasiDynamic}, {"inertial", RsfDynamics::Inertial}},

@@ -111,6 +111,7 @@ struct ModelKeys {
   double rayleigh_alpha = 0, rayleigh_beta = 0;
   // si (rate-and-state): per unit fault area.
   double stiffness = 0, coupling_stiffness = 0;
+  std::optional<double> coupling_stiffness_y;  // auto: model.coupling_stiffness
   RsfDynamics dynamics = RsfDynamics::QuasiDynamic;
   double shear_modulus = 0, shear_wave_speed = 0, mass_per_area = 0;
 };

@@ -95,7 +95,8 @@ ModelParams model_of(const SceneValues& v) {
 
 // The grid and springs of friction.law = rsf: a chain (model.rows = 1), a column
 // (model.blocks = 1: the chain along y) or a lattice, coupled by model.coupling's stencil with
-// model.coupling_stiffness the springs' total along each axis (isotropic).
+// model.coupling_stiffness the springs' total along strike and model.coupling_stiffness_y
+// across (auto: the same); a column takes the across-strike springs, as the other laws' do.
 void rsf_grid(const SceneValues& v, const ModelParams& chain, RsfModel& m) {
   const int nx = v.model.kind == ModelChoice::OneDof ? 1 : v.model.blocks;
   const int ny = chain.n / nx;
@@ -103,7 +104,9 @@ void rsf_grid(const SceneValues& v, const ModelParams& chain, RsfModel& m) {
   m.periodic = v.model.boundary == Boundary::Periodic;
   m.periodic_y = v.model.boundary_y == Boundary::Periodic;
   m.springs.clear();
-  if (m.k_c == 0) return;
+  const double k_y = ny > 1 ? v.model.coupling_stiffness_y.value_or(m.k_c) : 0.0;
+  if (nx == 1 && ny > 1) m.k_c = k_y;
+  if (m.k_c == 0 && k_y == 0) return;
   ModelParams p = chain;
   p.coupling = v.model.coupling;
   p.range = v.model.range;
@@ -112,7 +115,7 @@ void rsf_grid(const SceneValues& v, const ModelParams& chain, RsfModel& m) {
   p.n = nx * ny;
   p.rows = ny;
   if (nx > 1 && ny > 1) {
-    p.k_c_y = m.k_c;
+    p.k_c_y = k_y;
     m.springs = lattice_stencil(p);
     return;
   }
