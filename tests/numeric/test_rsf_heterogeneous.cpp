@@ -2,7 +2,7 @@
 // has the modal analysis' roots on chains and lattices, quasi-dynamic and inertial; a chain
 // with one velocity-weakening asperity among velocity-strengthening blocks is unstable on weak
 // springs and stable on stiff ones, and a run from a small perturbation grows or decays at its
-// leading eigenvalue.
+// leading eigenvalue. And the law's units: scaled scenes run the scaled cycle.
 #include <gsl/gsl_eigen.h>
 #include <gtest/gtest.h>
 
@@ -154,6 +154,74 @@ TEST(RsfHeterogeneous, AsperityAmongBarriersGrowsOrDecaysAsTheLinearisationSays)
         "of its envelope\n",
         k_c, lambda.real(), lambda.imag(), worst);
     EXPECT_LT(worst, 0.01) << "k_c = " << k_c;
+  }
+}
+
+// The law's units (docs/explanation/rate-and-state.md, "Dimensionless form"): a scene whose
+// D_c, sigma or V_pl is scaled, with k, k_c and eta scaled to keep k D_c/sigma, k_c D_c/sigma
+// and eta V_pl/sigma, runs the same cycle in time units of D_c/V_pl: slip-rate peaks at the
+// scaled times, tau/sigma between the same extremes.
+struct Scaled {
+  std::vector<double> peaks;  // slip-rate maxima of block 0 [s]
+  double f_min = HUGE_VAL, f_max = -HUGE_VAL;
+};
+Scaled cycle_of(const RsfModel& m, double v_scale, double theta0, double t_end) {
+  // The two blocks start apart, so that the coupling springs work.
+  RsfCycle c(m, 1e-10, {2e-5 * v_scale, 3e-6 * v_scale}, {theta0});
+  Scaled out;
+  const int n = m.n();
+  while (c.t() < t_end) {
+    c.step(t_end);
+    const double d0 = c.dy_prev()[n], d1 = c.dy()[n];
+    if (d0 > 0 && d1 <= 0)
+      out.peaks.push_back(hermite_extremum(c.t_prev(), c.y_prev()[n], d0, c.t(), c.y()[n], d1).t);
+    const double f = c.friction_stress(0) / m.sigma;
+    out.f_min = std::min(out.f_min, f);
+    out.f_max = std::max(out.f_max, f);
+  }
+  return out;
+}
+
+TEST(RsfUnits, ScaledScenesRunTheScaledCycle) {
+  RsfModel base = test::qdyn_stickslip(2);
+  base.k_c = 1e9;
+  const double t_end = 3000;
+  const Scaled ref = cycle_of(base, 1, 10, t_end);
+  ASSERT_GE(ref.peaks.size(), 4u);
+  struct Case {
+    const char* what;
+    double dc, sigma, v;  // factors on D_c, sigma and V_pl (with V*)
+  };
+  for (const Case& k :
+       {Case{"D_c x 8", 8, 1, 1}, Case{"sigma x 3", 1, 3, 1}, Case{"V_pl x 5", 1, 1, 5}}) {
+    RsfModel m = base;
+    for (rsf::Law& law : m.law) {
+      rsf::Params p = law.params();
+      p.dc *= k.dc;
+      p.v0 *= k.v;
+      law = rsf::Law(p);
+    }
+    m.sigma *= k.sigma;
+    m.v_pl *= k.v;
+    const double stiff = k.sigma / k.dc;  // k D_c/sigma kept
+    m.k *= stiff;
+    m.k_c *= stiff;
+    m.eta *= k.sigma / k.v;          // eta V_pl/sigma kept
+    const double time = k.dc / k.v;  // D_c/V_pl
+    const Scaled s = cycle_of(m, k.v, 10 * time, t_end * time);
+    ASSERT_EQ(s.peaks.size(), ref.peaks.size()) << k.what;
+    double worst = 0;
+    for (std::size_t i = 0; i < ref.peaks.size(); ++i) {
+      EXPECT_NEAR(s.peaks[i] / time, ref.peaks[i], 1e-7 * t_end) << k.what << ", peak " << i;
+      worst = std::max(worst, std::fabs(s.peaks[i] / time - ref.peaks[i]));
+    }
+    std::printf(
+        "%s: %zu peaks, largest difference of a scaled peak time %.2e s, of tau/sigma "
+        "%.2e\n",
+        k.what, ref.peaks.size(), worst,
+        std::max(std::fabs(s.f_min - ref.f_min), std::fabs(s.f_max - ref.f_max)));
+    EXPECT_NEAR(s.f_min, ref.f_min, 1e-9) << k.what;
+    EXPECT_NEAR(s.f_max, ref.f_max, 1e-9) << k.what;
   }
 }
 
