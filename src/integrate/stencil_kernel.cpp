@@ -42,36 +42,48 @@ void append_site_springs(const ChainForces& forces, int j, std::vector<StencilSp
 
 void StencilRelaxation::build(const ChainForces& forces, Ranges ranges) {
   const ChainState& st = *state;
-  if (static_cast<int>(slot.size()) != forces.n()) slot.assign(forces.n(), -1);
+  const int n = forces.n();
+  if (listed_for != &forces || static_cast<int>(slot.size()) != n) {
+    listed_for = &forces;
+    slot.assign(n, -1);
+    listed_begin.assign(n, -1);
+    listed_end.assign(n, -1);
+    springs.clear();
+    site.clear();
+  }
   for (const int j : site) slot[j] = -1;
   site.clear();
   range.clear();
   place.clear();
   begin.clear();
-  springs.clear();
+  end.clear();
   for (std::size_t k = 0; k < ranges.size(); ++k)
     for (int j = ranges[k].lo; j < ranges[k].hi; ++j) {
       slot[j] = static_cast<int>(site.size());
       site.push_back(j);
       range.push_back(static_cast<int>(k));
       place.push_back((j - ranges[k].lo) % 4);
-      begin.push_back(static_cast<int>(springs.size()));
-      append_site_springs(forces, j, springs);
+      if (listed_begin[j] < 0) {
+        listed_begin[j] = static_cast<int>(springs.size());
+        append_site_springs(forces, j, springs);
+        listed_end[j] = static_cast<int>(springs.size());
+      }
+      begin.push_back(listed_begin[j]);
+      end.push_back(listed_end[j]);
     }
-  begin.push_back(static_cast<int>(springs.size()));
   // Every partner of a sliding site is covered (ActiveSet::cover), which the kernel's
   // compact springs need; said so here, not assumed.
   usable = true;
   for (std::size_t i = 0; i < site.size() && usable; ++i)
     if (st.mobile[site[i]] != 0.0)
-      for (int k = begin[i]; k < begin[i + 1]; ++k)
+      for (int k = begin[i]; k < end[i]; ++k)
         usable = usable && slot[springs[k].l] >= 0 && (springs[k].r < 0 || slot[springs[k].r] >= 0);
   // The refit keeps a covered site that slides or has a sliding partner (the sites a
   // sliding one covers are its partners: ActiveSet::cover).
   refit_keeps = true;
   for (std::size_t i = 0; i < site.size() && refit_keeps; ++i) {
     bool needed = st.mobile[site[i]] != 0.0;
-    for (int k = begin[i]; k < begin[i + 1] && !needed; ++k)
+    for (int k = begin[i]; k < end[i] && !needed; ++k)
       needed =
           st.mobile[springs[k].l] != 0.0 || (springs[k].r >= 0 && st.mobile[springs[k].r] != 0.0);
     refit_keeps = needed;

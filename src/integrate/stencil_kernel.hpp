@@ -57,10 +57,13 @@ struct StencilRelaxation {
   int refit_every = 1;            // the engine refits its ranges after every this many
 
   // The structure (build()): the covered sites in order, each one's range and place in it
-  // modulo 4 (RangePowerSum's), its springs (springs[begin[i], begin[i + 1]), global
-  // indices), and whether the engine's refit would keep every covered site.
-  std::vector<int> site, range, place, begin;
+  // modulo 4 (RangePowerSum's), its springs (springs[begin[i], end[i]), global indices),
+  // and whether the engine's refit would keep every covered site. Each site's springs are
+  // listed once, the first time it is covered, and kept for the next calls.
+  std::vector<int> site, range, place, begin, end;
   std::vector<StencilSpring> springs;
+  std::vector<int> listed_begin, listed_end;  // by site; -1: not listed yet
+  const ChainForces* listed_for = nullptr;
   bool refit_keeps = false;
   bool usable = false;  // every partner of a sliding site is covered
   // The structure of the covered ranges, from the state's stick flags.
@@ -75,7 +78,7 @@ struct StencilRelaxation {
 
   // The kernel's scratch, kept between calls.
   std::vector<int> slot;  // site -> compact index, -1 elsewhere (size n)
-  std::vector<double> w, v, x, y, cw, cv, u, y0, mobile, dir, a;
+  std::vector<double> w, v, x, y, cw, cv, u, y0, mobile, dir, a, magnitude, magnitude0;
   std::vector<unsigned char> dirty;
   std::vector<int> moving;  // compact indices of the sliding sites, in order
   std::vector<int> local_begin;
@@ -123,13 +126,18 @@ class StencilLayout {
     const int* begin = r.local_begin.data();
     const double anchor = r.anchor;
     const SubstrateState sub = r.sub;
+    // The first stage at the state reads each site's friction magnitude at its velocity,
+    // which the loop keeps (the same value: acceleration() is acceleration_given() of it).
+    const bool known = at_start_ && Point::velocities == Buf::V;
+    at_start_ = false;
     for (int s = 0; s < m; ++s) {
       const int i = r.moving[s];
       const double xi = pos[i];
       const double f =
           spring_sum(pos, xi, local + begin[s], local + begin[s + 1]) - kp_ * (xi - anchor);
-      r.a[s] =
-          forces_.acceleration<Law, ForceTerms<true, false>, false>(law_, f, vel[i], r.dir[i], sub);
+      const double magnitude = known ? r.magnitude[i] : law_.magnitude(vel[i]);
+      r.a[s] = forces_.acceleration_given<Law, ForceTerms<true, false>, false>(f, magnitude, vel[i],
+                                                                               r.dir[i], sub);
     }
     for (int s = 0; s < m; ++s) {
       const int i = r.moving[s];
@@ -139,8 +147,11 @@ class StencilLayout {
     }
   }
   void finish(double) {}
+  // A step begins: r.magnitude holds the magnitudes at the state's velocities.
+  void begin_step() { at_start_ = true; }
 
  private:
+  bool at_start_ = false;
   const ChainForces& forces_;
   const Law& law_;
   StencilRelaxation& r_;
@@ -154,7 +165,7 @@ inline void compact_springs(StencilRelaxation& r) {
   r.local_begin.clear();
   for (const int i : r.moving) {
     r.local_begin.push_back(static_cast<int>(r.local.size()));
-    for (int k = r.begin[i]; k < r.begin[i + 1]; ++k) {
+    for (int k = r.begin[i]; k < r.end[i]; ++k) {
       const StencilSpring& s = r.springs[k];
       r.local.push_back({r.slot[s.l], s.r >= 0 ? r.slot[s.r] : -1, s.k});
     }
@@ -169,8 +180,8 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
   const ModelParams& p = forces.params();
   const double damper = p.c_u / p.m_u, kp = p.k_p, anchor = r.anchor, dt = r.dt;
   const int c = static_cast<int>(r.site.size());
-  for (std::vector<double>* b :
-       {&r.w, &r.v, &r.x, &r.y, &r.cw, &r.cv, &r.u, &r.y0, &r.mobile, &r.dir, &r.a})
+  for (std::vector<double>* b : {&r.w, &r.v, &r.x, &r.y, &r.cw, &r.cv, &r.u, &r.y0, &r.mobile,
+                                 &r.dir, &r.a, &r.magnitude, &r.magnitude0})
     if (static_cast<int>(b->size()) < c) b->resize(c);
   r.dirty.assign(c, 1);  // the first step tests every stuck site
   r.moving.clear();
@@ -180,7 +191,10 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
     r.v[i] = st.wd[j];
     r.mobile[i] = st.mobile[j];
     r.dir[i] = st.dir[j];
-    if (r.mobile[i] != 0.0) r.moving.push_back(i);
+    if (r.mobile[i] != 0.0) {
+      r.moving.push_back(i);
+      r.magnitude[i] = law.magnitude(r.v[i]);
+    }
   }
   compact_springs(r);
   double* w_all = st.w.data();
@@ -188,7 +202,7 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
   auto spring_force = [&](int i) {
     const int j = r.site[i];
     const double wj = w_all[j];
-    return spring_sum(w_all, wj, r.springs.data() + r.begin[i], r.springs.data() + r.begin[i + 1]) -
+    return spring_sum(w_all, wj, r.springs.data() + r.begin[i], r.springs.data() + r.end[i]) -
            kp * (wj - anchor);
   };
   double t = st.t, dissipated = *r.dissipated, max_speed = 0;
@@ -202,11 +216,13 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
     for (int s = 0; s < m; ++s) {
       const int i = r.moving[s];
       r.y0[i] = r.v[i];
+      r.magnitude0[i] = r.magnitude[i];
       for (int k = r.local_begin[s]; k < r.local_begin[s + 1]; ++k) {
         r.dirty[r.local[k].l] = 1;
         if (r.local[k].r >= 0) r.dirty[r.local[k].r] = 1;
       }
     }
+    layout.begin_step();
     Method::advance(layout, dt);
     t += dt;
     ++steps;
@@ -222,7 +238,9 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
         part = RangePowerSum{};
         range = r.range[i];
       }
-      part.add(r.place[i], step_power(law, r.y0[i], r.v[i], r.dir[i], damper));
+      r.magnitude[i] = law.magnitude(r.v[i]);
+      part.add(r.place[i], step_power_given<Law::backslip>(r.magnitude0[i], r.y0[i], r.magnitude[i],
+                                                           r.v[i], r.dir[i], damper));
     }
     power += part.total();
     dissipated += r.half_dt_m * power;
@@ -235,10 +253,13 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
       r.dirty[i] = 0;
       const stick::Outcome o = stick::settle_one(fr, true, r.mobile[i], r.dir[i], r.y0[i], r.v[i],
                                                  [&] { return spring_force(i); });
+      const double y1 = r.v[i];
       r.v[i] = o.y;
       r.mobile[i] = o.mobile;
       r.dir[i] = o.dir;
       if (o.slides) {
+        // The rule may have set the velocity to 0 (a crossing without backslip).
+        if (o.y != y1 || o.y == 0.0) r.magnitude[i] = law.magnitude(o.y);
         ++sliding;
         raise_max_speed(max_speed, std::abs(o.y));
       } else if (o.breaks) {
