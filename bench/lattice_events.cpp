@@ -15,7 +15,10 @@
 // event (equal for all three: the same events), the shares of events started and finished
 // (lone slips) from the replay, and the number of events whose trigger or size differ from
 // the straightforward engine's (0: the same events). A last row per size: the event engine
-// alone over S more events from S (round "steady"), the rate a long run sees.
+// alone over S more events from S (round "steady"), the rate a long run sees. After each
+// round a comment line on stderr gives the event engine's CPU nanoseconds per sliding
+// site-step (replay on and off) beside the chain's (the same scene on a chain of L x L
+// blocks, its events timed the same way from the state after its transient).
 //
 //   build/lattice_events [--events F] [--rounds R] [--transient T] [--steady S] [L ...]
 //                        (defaults: F = 200, R = 3, T = 10, S = 100000, L = 64 256)
@@ -145,6 +148,15 @@ int main(int argc, char** argv) {
       bkq::EventEngine warm(forces, *stepper, dt, bkq::initial_state(forces, 7, 0.01, true));
       for (long long i = 0; i < transient_per_site * p.n; ++i) warm.next_event();
       const bkq::EngineSnapshot start = warm.snapshot();
+      // The same scene on a chain of as many blocks, for its cost per sliding block-step.
+      bkq::Scene chain_scene;
+      chain_scene.set("model.blocks", std::to_string(p.n));
+      chain_scene.validate();
+      const bkq::ChainForces chain_forces(bkq::model_from_scene(chain_scene));
+      bkq::EventEngine chain_warm(chain_forces, *stepper, dt,
+                                  bkq::initial_state(chain_forces, 7, 0.01, true));
+      for (long long i = 0; i < transient_per_site * p.n; ++i) chain_warm.next_event();
+      const bkq::EngineSnapshot chain_start = chain_warm.snapshot();
 
       for (int round = 1; round <= rounds; ++round) {
         const Pass fast = event_engine_pass(forces, scheme, dt, start, f, true, 0.2);
@@ -163,6 +175,14 @@ int main(int argc, char** argv) {
         row("event_replay_off", direct);
         row("straightforward", full);
         std::fflush(stdout);
+        const Pass chain = event_engine_pass(chain_forces, scheme, dt, chain_start, f, true, 0.2);
+        const Pass chain_direct =
+            event_engine_pass(chain_forces, scheme, dt, chain_start, f, false, 0.2);
+        auto ns = [](const Pass& pass) { return 1e9 * pass.seconds / pass.sliding_block_steps; };
+        std::fprintf(stderr,
+                     "# %dx%d round %d: ns per sliding site-step: lattice %.3g (replay off %.3g), "
+                     "chain of %d blocks %.3g (replay off %.3g)\n",
+                     l, l, round, ns(fast), ns(direct), p.n, ns(chain), ns(chain_direct));
       }
       if (steady > 0) {
         bkq::EventEngine engine(forces, *stepper, dt, start);

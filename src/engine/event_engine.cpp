@@ -50,7 +50,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
       pad_(forces.params().pad_moves()),
       active_(forces, margin_for(forces, stepper), pad_),
       ledger_(forces.n()),
-      paths_{&replay_, &cluster_, &general_} {
+      paths_{&replay_, &cluster_, &stencil_, &general_} {
   check_model(forces.params());
   check_stepper(forces, stepper);
   std::fill(st_.mobile.begin(), st_.mobile.end(), 0.0);
@@ -70,7 +70,7 @@ EventEngine::EventEngine(const ChainForces& forces, Stepper& stepper, double dt,
       pad_(forces.params().pad_moves()),
       active_(forces, margin_for(forces, stepper), pad_),
       ledger_(forces.n()),
-      paths_{&replay_, &cluster_, &general_} {
+      paths_{&replay_, &cluster_, &stencil_, &general_} {
   check_model(forces.params());
   check_stepper(forces, stepper);
   if (st_.n() != forces.n())
@@ -176,6 +176,7 @@ EventRecord EventEngine::next_event() {
   rx.replay = lone_slip_path;
   rx.cluster = cluster_path;
   rx.held_ranges = held_ranges_path;
+  rx.stencil = stencil_path;
   for (;;) {
     while (ledger_.sliding() > 0) relax_step(rx);
     if (!pad_ || !pad_phase()) break;

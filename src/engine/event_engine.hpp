@@ -33,6 +33,7 @@
 #include "engine/general_path.hpp"
 #include "engine/relaxation.hpp"
 #include "engine/replay_path.hpp"
+#include "engine/stencil_path.hpp"
 #include "integrate/stepper.hpp"
 #include "model/chain.hpp"
 
@@ -82,10 +83,12 @@ class EventEngine {
   std::int64_t max_steps_per_event = 200'000'000;
   // The optional paths (engine/relaxation.hpp), each the same events as the general step;
   // off only to test exactly that. The cluster kernel (cluster_path.hpp); the fused step
-  // over held ranges (general_path.hpp); the replayed event start (replay_path.hpp).
+  // over held ranges (general_path.hpp); the replayed event start (replay_path.hpp); the
+  // stencil kernel of lattices and long-range chains (stencil_path.hpp).
   bool cluster_path = true;
   bool held_ranges_path = true;
   bool lone_slip_path = true;
+  bool stencil_path = true;
 
   // A further path, asked after the shipped fast paths and before the general step.
   void add_path(std::unique_ptr<RelaxationPath> path);
@@ -99,6 +102,7 @@ class EventEngine {
   const ClusterSteps& cluster_steps() const { return cluster_.steps(); }
   const LoneSlipStarts& lone_slip_starts() const { return replay_.starts(); }
   std::int64_t pad_held_steps() const { return general_.pad_held_steps(); }
+  std::int64_t stencil_steps() const { return stencil_.steps(); }
 
  private:
   double anchor() const { return st_.s + (pad_ ? st_.x : 0.0); }
@@ -123,9 +127,10 @@ class EventEngine {
   EventLedger ledger_;
   ReplayPath replay_;
   ClusterPath cluster_;
+  StencilPath stencil_;
   GeneralStepPath general_;
   std::vector<std::unique_ptr<RelaxationPath>> added_;
-  // The paths in the order asked: replay, cluster, the added ones, general.
+  // The paths in the order asked: replay, cluster, stencil, the added ones, general.
   std::vector<RelaxationPath*> paths_;
   std::function<void(const PathReport&)> observer_;
 };

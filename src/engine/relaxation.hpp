@@ -9,6 +9,8 @@
 //   replay   the start of an event from the lone block's recorded slide (replay_path.hpp)
 //   cluster  a few blocks between two that hold, in the scheme's fixed-size kernel
 //            (cluster_path.hpp)
+//   stencil  a lattice's or a long-range chain's covered sites, in the scheme's kernel over
+//            a run-time neighbour structure (stencil_path.hpp)
 //   general  one step of the covered ranges, fused over held ranges where the scheme can
 //            (general_path.hpp); it always applies and is asked last.
 // A new path is a class deriving from RelaxationPath and one EventEngine::add_path call.
@@ -64,7 +66,7 @@ struct Relaxation {
   std::int64_t steps = 0;      // steps of the event so far
   std::int64_t max_steps = 0;  // the event gives up after this many
   // The optional paths' switches (EventEngine::lone_slip_path, ...).
-  bool replay = true, cluster = true, held_ranges = true;
+  bool replay = true, cluster = true, held_ranges = true, stencil = true;
 
   double anchor() const { return st.s + (pad ? st.x : 0.0); }
 };

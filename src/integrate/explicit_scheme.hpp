@@ -9,6 +9,7 @@
 
 #include "integrate/cluster.hpp"
 #include "integrate/layouts.hpp"
+#include "integrate/stencil_step.hpp"
 #include "integrate/stepper.hpp"
 
 namespace bkq {
@@ -18,12 +19,14 @@ class ExplicitScheme final : public Stepper {
  public:
   explicit ExplicitScheme(int) {}
   // Transitions at the step (the Crossing rule), locatable, on every force kernel, with the
-  // cluster form; fused over held ranges where the Method's stages allow it.
+  // cluster form and the stencil form; fused over held ranges where the Method's stages
+  // allow it.
   static constexpr SchemeTraits kTraits{.stick_rule = StickRule::Crossing,
                                         .locatable = true,
                                         .general_kernels = true,
                                         .cluster_kernels = true,
-                                        .fused_kernels = Method::fusable};
+                                        .fused_kernels = Method::fusable,
+                                        .stencil_kernel = &run_stencil<Method>};
   std::string_view name() const override { return Method::name; }
   const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return Method::order; }

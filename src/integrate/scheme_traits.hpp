@@ -8,6 +8,9 @@
 
 namespace bkq {
 
+class ChainForces;
+struct StencilRelaxation;
+
 // How a stepper resolves stick and slip transitions (integrate/stepper.hpp says what each
 // rule does).
 enum class StickRule { Crossing, Projection, Located };
@@ -31,6 +34,9 @@ struct SchemeTraits {
   bool fused_kernels = false;
   // It controls its own step size to integrator.tolerance (the accuracy reference).
   bool error_control = false;
+  // Its step over a run-time neighbour structure (lattices, range and power stencils:
+  // integrate/stencil_kernel.hpp), null where it has none.
+  bool (*stencil_kernel)(const ChainForces&, StencilRelaxation&) = nullptr;
 
   friend bool operator==(const SchemeTraits&, const SchemeTraits&) = default;
 };
@@ -43,6 +49,7 @@ constexpr SchemeTraits located_traits(SchemeTraits scheme) {
   t.located_on_fixed_steps = true;
   t.general_kernels = false;  // its dense output reads j +- 1
   t.fused_kernels = false;
+  t.stencil_kernel = nullptr;
   return t;
 }
 

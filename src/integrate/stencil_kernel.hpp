@@ -1,0 +1,320 @@
+// The event engine's fast relaxation where the springs reach beyond j +- 1 (a lattice, a
+// range- or power-coupled chain): the covered sites held in compact arrays with their
+// springs as lists of partners (a run-time neighbour structure built once per call), and a
+// scheme's Method advancing only the sliding ones (StencilLayout) instead of the general
+// step's range loops and their per-site stencil look-ups.
+//
+// Each step does what the general path (engine/general_path.cpp) does, in the same order,
+// so the events are the same bit for bit (tests/regression/test_stencil_path.cpp):
+//  - the stages: at each stage point every sliding site's spring force, summed over its
+//    springs in the stencil's order as ChainForces::spring_force sums them, and its
+//    acceleration; then the Method's update of each sliding site. A stuck site's
+//    acceleration and velocity are 0, so the general step leaves it where it is: here it
+//    is not advanced, and its stage position is its position.
+//  - the friction work: the step powers of the sliding sites, added up range by range in
+//    RangePowerSum's places (a stuck site's term is 0 and changes no partial sum);
+//  - the stick rule and the release test over the covered sites in site order
+//    (settle_contacts), the forces from the chain's positions.
+// A stuck site whose partners all stayed stuck through a step has the force it had at the
+// end of the step before, when this loop tested it (it held), so it is not tested again.
+//
+// The loop returns after the first step at whose end a site broke loose, every site is
+// stuck, a speed is not finite, the step budget ran out, or the engine refits its ranges
+// (unless the refit keeps them: every covered site slides or has a sliding partner, and no
+// site stuck); the caller then books the steps, and the next call rebuilds the structure.
+// Only Crossing schemes, the pad held and no dashpots (the general path takes the rest).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+#include "integrate/layouts.hpp"
+#include "integrate/scheme.hpp"
+#include "integrate/stencil_step.hpp"
+#include "model/chain.hpp"
+#include "model/stick.hpp"
+
+namespace bkq {
+
+// One spring of a site: partners l and r (r < 0: only l; a spring that reaches no site is
+// left out), stiffness k.
+struct StencilSpring {
+  int l, r;
+  double k;
+};
+
+struct StencilRelaxation {
+  // Set by the caller.
+  ChainState* state = nullptr;
+  double* dissipated = nullptr;  // += half_dt_m * power, step by step
+  double anchor = 0;             // the substrate (the pad held)
+  SubstrateState sub;            // the frozen substrate
+  double dt = 0, half_dt_m = 0;
+  std::int64_t max_steps = 0;     // return after this many steps at most
+  std::int64_t steps_before = 0;  // steps of the event before this call
+  int refit_every = 1;            // the engine refits its ranges after every this many
+
+  // The structure (build()): the covered sites in order, each one's range and place in it
+  // modulo 4 (RangePowerSum's), its springs (springs[begin[i], end[i]), global indices),
+  // and whether the engine's refit would keep every covered site. Each site's springs are
+  // listed once, the first time it is covered, and kept for the next calls.
+  std::vector<int> site, range, place, begin, end;
+  std::vector<StencilSpring> springs;
+  std::vector<int> listed_begin, listed_end;  // by site; -1: not listed yet
+  const ChainForces* listed_for = nullptr;
+  bool refit_keeps = false;
+  bool usable = false;  // every partner of a sliding site is covered
+  // The structure of the covered ranges, from the state's stick flags.
+  void build(const ChainForces& forces, Ranges ranges);
+
+  // What happened.
+  std::int64_t steps = 0;
+  std::int64_t sliding_block_steps = 0;  // sliding sites at the end of each step, summed
+  double max_speed = 0;                  // NaN if a speed became NaN
+  int sliding = 0;                       // sliding sites after the last step
+  std::vector<int> released;             // sites that broke loose then, in order
+
+  // The kernel's scratch, kept between calls.
+  std::vector<int> slot;  // site -> compact index, -1 elsewhere (size n)
+  std::vector<double> w, v, x, y, cw, cv, u, y0, mobile, dir, a, magnitude, magnitude0;
+  std::vector<unsigned char> dirty;
+  std::vector<int> moving;  // compact indices of the sliding sites, in order
+  std::vector<int> local_begin;
+  std::vector<StencilSpring> local;  // the moving sites' springs in compact indices
+};
+
+// The springs of site j in the order ChainForces::neighbour_force sums them.
+void append_site_springs(const ChainForces& forces, int j, std::vector<StencilSpring>& out);
+
+namespace stencil_detail {
+
+// sum_s k_s (x_l - x_j) [+ (x_r - x_j)]: neighbour_force's sum (a spring's first partner
+// added to 0 is that partner's term; a spring that reaches no site adds k 0, which leaves
+// the sum as it is, as does the 0 that starts it, so both are left out).
+inline double spring_sum(const double* x, double xj, const StencilSpring* s,
+                         const StencilSpring* end) {
+  double f = 0;
+  for (; s != end; ++s) {
+    double d = x[s->l] - xj;
+    if (s->r >= 0) d += x[s->r] - xj;
+    f += s->k * d;
+  }
+  return f;
+}
+
+// The sliding sites in compact arrays, advanced by a Method's stages.
+template <class Round, class Law>
+class StencilLayout {
+ public:
+  StencilLayout(const ChainForces& forces, const Law& law, StencilRelaxation& r)
+      : forces_(forces), law_(law), r_(r), kp_(forces.params().k_p) {}
+
+  bool velocity_dependent() const { return bkq::velocity_dependent(forces_.params(), false); }
+
+  template <class Point, class Update, class Sum, class Earlier = NoSum>
+  void stage(Point, double, Update&& update, const Sum&, const Earlier& = no_sum) {
+    constexpr bool state_positions = Point::positions == Buf::W;
+    StencilRelaxation& r = r_;
+    const double* pos = state_positions ? r.w.data() : r.x.data();
+    const double* vel = Point::velocities == Buf::V   ? r.v.data()
+                        : Point::velocities == Buf::Y ? r.y.data()
+                                                      : r.u.data();
+    const int m = static_cast<int>(r.moving.size());
+    const StencilSpring* local = r.local.data();
+    const int* begin = r.local_begin.data();
+    const double anchor = r.anchor;
+    const SubstrateState sub = r.sub;
+    // The first stage at the state reads each site's friction magnitude at its velocity,
+    // which the loop keeps (the same value: acceleration() is acceleration_given() of it).
+    const bool known = at_start_ && Point::velocities == Buf::V;
+    at_start_ = false;
+    for (int s = 0; s < m; ++s) {
+      const int i = r.moving[s];
+      const double xi = pos[i];
+      const double f =
+          spring_sum(pos, xi, local + begin[s], local + begin[s + 1]) - kp_ * (xi - anchor);
+      const double magnitude = known ? r.magnitude[i] : law_.magnitude(vel[i]);
+      r.a[s] = forces_.acceleration_given<Law, ForceTerms<true, false>, false>(f, magnitude, vel[i],
+                                                                               r.dir[i], sub);
+    }
+    for (int s = 0; s < m; ++s) {
+      const int i = r.moving[s];
+      StageElement<typename Round::BlockRound> e{r.w[i], r.v[i],  r.x[i],  r.y[i], r.x[i],
+                                                 r.y[i], r.cw[i], r.cv[i], r.u[i]};
+      update(e, r.a[s]);
+    }
+  }
+  void finish(double) {}
+  // A step begins: r.magnitude holds the magnitudes at the state's velocities.
+  void begin_step() { at_start_ = true; }
+
+ private:
+  bool at_start_ = false;
+  const ChainForces& forces_;
+  const Law& law_;
+  StencilRelaxation& r_;
+  double kp_;
+};
+
+// The sliding sites' springs in compact indices (every partner of a sliding site is
+// covered), in r.local from r.local_begin.
+inline void compact_springs(StencilRelaxation& r) {
+  r.local.clear();
+  r.local_begin.clear();
+  for (const int i : r.moving) {
+    r.local_begin.push_back(static_cast<int>(r.local.size()));
+    for (int k = r.begin[i]; k < r.end[i]; ++k) {
+      const StencilSpring& s = r.springs[k];
+      r.local.push_back({r.slot[s.l], s.r >= 0 ? r.slot[s.r] : -1, s.k});
+    }
+  }
+  r.local_begin.push_back(static_cast<int>(r.local.size()));
+}
+
+template <class Method, class Law>
+void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& r) {
+  ChainState& st = *r.state;
+  const Friction& fr = forces.friction();
+  const ModelParams& p = forces.params();
+  const double damper = p.c_u / p.m_u, kp = p.k_p, anchor = r.anchor, dt = r.dt;
+  const int c = static_cast<int>(r.site.size());
+  for (std::vector<double>* b : {&r.w, &r.v, &r.x, &r.y, &r.cw, &r.cv, &r.u, &r.y0, &r.mobile,
+                                 &r.dir, &r.a, &r.magnitude, &r.magnitude0})
+    if (static_cast<int>(b->size()) < c) b->resize(c);
+  r.dirty.assign(c, 1);  // the first step tests every stuck site
+  r.moving.clear();
+  for (int i = 0; i < c; ++i) {
+    const int j = r.site[i];
+    r.w[i] = r.x[i] = st.w[j];
+    r.v[i] = st.wd[j];
+    r.mobile[i] = st.mobile[j];
+    r.dir[i] = st.dir[j];
+    if (r.mobile[i] != 0.0) {
+      r.moving.push_back(i);
+      r.magnitude[i] = law.magnitude(r.v[i]);
+    }
+  }
+  compact_springs(r);
+  double* w_all = st.w.data();
+  // The spring force on covered site i from the chain's positions (spring_force's).
+  auto spring_force = [&](int i) {
+    const int j = r.site[i];
+    const double wj = w_all[j];
+    return spring_sum(w_all, wj, r.springs.data() + r.begin[i], r.springs.data() + r.end[i]) -
+           kp * (wj - anchor);
+  };
+  double t = st.t, dissipated = *r.dissipated, max_speed = 0;
+  std::int64_t steps = 0, sliding_block_steps = 0;
+  int sliding = 0;
+  bool stuck_in_call = false;
+  r.released.clear();
+  StencilLayout<typename Method::Round, Law> layout(forces, law, r);
+  for (bool done = false; !done;) {
+    const int m = static_cast<int>(r.moving.size());
+    for (int s = 0; s < m; ++s) {
+      const int i = r.moving[s];
+      r.y0[i] = r.v[i];
+      r.magnitude0[i] = r.magnitude[i];
+      for (int k = r.local_begin[s]; k < r.local_begin[s + 1]; ++k) {
+        r.dirty[r.local[k].l] = 1;
+        if (r.local[k].r >= 0) r.dirty[r.local[k].r] = 1;
+      }
+    }
+    layout.begin_step();
+    Method::advance(layout, dt);
+    t += dt;
+    ++steps;
+    for (const int i : r.moving) w_all[r.site[i]] = r.w[i];  // the forces below read them
+
+    // dissipated_power's sum: range by range, in RangePowerSum's places.
+    double power = 0;
+    RangePowerSum part;
+    int range = m > 0 ? r.range[r.moving[0]] : 0;
+    for (const int i : r.moving) {
+      if (r.range[i] != range) {
+        power += part.total();
+        part = RangePowerSum{};
+        range = r.range[i];
+      }
+      r.magnitude[i] = law.magnitude(r.v[i]);
+      part.add(r.place[i], step_power_given<Law::backslip>(r.magnitude0[i], r.y0[i], r.magnitude[i],
+                                                           r.v[i], r.dir[i], damper));
+    }
+    power += part.total();
+    dissipated += r.half_dt_m * power;
+
+    // settle_contacts' rule over the covered sites in order.
+    sliding = 0;
+    for (int i = 0; i < c; ++i) {
+      const bool was_sliding = r.mobile[i] != 0.0;
+      if (!was_sliding && !r.dirty[i]) continue;
+      r.dirty[i] = 0;
+      const stick::Outcome o = stick::settle_one(fr, true, r.mobile[i], r.dir[i], r.y0[i], r.v[i],
+                                                 [&] { return spring_force(i); });
+      const double y1 = r.v[i];
+      r.v[i] = o.y;
+      r.mobile[i] = o.mobile;
+      r.dir[i] = o.dir;
+      if (o.slides) {
+        // The rule may have set the velocity to 0 (a crossing without backslip).
+        if (o.y != y1 || o.y == 0.0) r.magnitude[i] = law.magnitude(o.y);
+        ++sliding;
+        raise_max_speed(max_speed, std::abs(o.y));
+      } else if (o.breaks) {
+        ++sliding;
+        r.released.push_back(r.site[i]);
+      } else if (was_sliding) {
+        r.x[i] = r.w[i];  // stuck: its stage position is its position
+        stuck_in_call = true;
+      }
+    }
+    sliding_block_steps += sliding;
+    const bool refit = (r.steps_before + steps) % r.refit_every == 0;
+    done = sliding == 0 || !r.released.empty() || !std::isfinite(max_speed) ||
+           steps >= r.max_steps || (refit && (stuck_in_call || !r.refit_keeps));
+    if (!done && stuck_in_call) {
+      // Sites stuck: the moving list and its springs lose them.
+      r.moving.clear();
+      for (int i = 0; i < c; ++i)
+        if (r.mobile[i] != 0.0) r.moving.push_back(i);
+      compact_springs(r);
+    }
+  }
+  for (int i = 0; i < c; ++i) {
+    const int j = r.site[i];
+    st.w[j] = r.w[i];
+    st.wd[j] = r.v[i];
+    st.mobile[j] = r.mobile[i];
+    st.dir[j] = r.dir[i];
+  }
+  st.t = t;
+  *r.dissipated = dissipated;
+  r.max_speed = max_speed;
+  r.steps = steps;
+  r.sliding_block_steps = sliding_block_steps;
+  r.sliding = sliding;
+}
+
+}  // namespace stencil_detail
+
+// The laws the stencil kernel is compiled for: those that drive events, but the table
+// (which pays for its own look-ups); no block damper (the 1DOF model's single block).
+template <class Law, class Terms>
+inline constexpr bool kStencilKernel =
+    Law::drives_events && !Terms::damper && !std::is_same_v<Law, law::Table>;
+
+template <class Method>
+bool run_stencil(const ChainForces& forces, StencilRelaxation& r) {
+  return forces.with_switches([&]<class Law, class Terms>(const Law& law) {
+    if constexpr (!kStencilKernel<Law, Terms>) {
+      return false;
+    } else {
+      stencil_detail::stencil_steps<Method, Law>(forces, law, r);
+      return true;
+    }
+  });
+}
+
+}  // namespace bkq
