@@ -9,6 +9,10 @@
 
 namespace bkq {
 
+namespace {
+bool handed_back(const RsfCycle& c, int j, double ln_vh);
+}
+
 IndexedMinHeap::IndexedMinHeap(int n)
     : heap_(n), pos_(n), time_(n, std::numeric_limits<double>::infinity()) {
   for (int i = 0; i < n; ++i) heap_[i] = pos_[i] = i;
@@ -114,6 +118,21 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
   return e;
 }
 
+// Whether block j can go back to its closed form: below V_h, and not decelerating while the
+// closed form would have it nucleate (V theta/D_c >= 1, where it only accelerates) -- such a
+// block, slowed by its neighbours or by healing the nucleation form leaves out, would be handed
+// straight back to the integrator. Near steady state (ln Omega < 0.05) a decelerating block
+// goes back once it is a decade below V_h, so that a creeping barrier ends the integration.
+namespace {
+bool handed_back(const RsfCycle& c, int j, double ln_vh) {
+  const double ln_v = c.ln_v(j);
+  if (!(ln_v < ln_vh)) return false;
+  if (c.dy()[c.n() + j] >= 0) return true;
+  const double ln_omega = ln_v + c.ln_theta(j) - std::log(c.model().law[j].params().dc);
+  return ln_omega < 0 || (ln_omega < 0.05 && ln_v < ln_vh - std::log(10.0));
+}
+}  // namespace
+
 // From t0 on the cycle integrator runs the whole grid from every block's closed-form state,
 // until no event is open and every block is below V_h (or t_end); its events get the run's
 // times and numbers, and every block goes back to its closed form from where it ended.
@@ -143,9 +162,9 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
     }
     if (t0 + cycle.t() >= t_end) break;
     if (detector.in_event()) continue;
-    bool below = true;
-    for (int j = 0; j < n && below; ++j) below = cycle.ln_v(j) < ln_vh;
-    if (below) break;
+    bool done = true;
+    for (int j = 0; j < n && done; ++j) done = handed_back(cycle, j, ln_vh);
+    if (done) break;
   }
   steps_ += cycle.accepted();
   t_ = t0 + cycle.t();

@@ -4,7 +4,9 @@
 // only the entries of the blocks it touched. At that time the whole grid is handed to the
 // cycle integrator (engine/rsf_cycle.hpp: the scene's dynamics, quasi-dynamic or inertial,
 // the full aging law), which runs until the seismic detector (engine/rsf_events.hpp) has
-// closed its events and every block is below V_h again; each block then goes back to its
+// closed its events and every block is below V_h again, and none is decelerating while its
+// closed form would have it nucleate (V theta/D_c >= 1: the nucleation form only
+// accelerates, so such a block would come straight back); each block then goes back to its
 // closed form from the integrator's slip rate and state, both kept as they are (the elastic
 // stress is the law's at those values, as the closed form's quasi-static balance has it).
 //
