@@ -137,6 +137,37 @@ TEST(RsfNucleation, FullAgingLawWithinTheApproximationsBound) {
   }
 }
 
+// Dieterich's (1994) seismicity rate after a stress step, from the closed form: a population
+// of independent nucleating sliders whose instabilities come at a steady rate r (times
+// (i + 1/2)/r), each given the step dtau (V times exp(dtau/(a sigma))), fails at the rate
+// R(t) = r/[1 + (exp(-dtau/(a sigma)) - 1) exp(-t/t_a)], t_a = a sigma/tau_dot: the counts in
+// 5 s bins over the first 5 t_a lie within 3 Poisson standard deviations of R's integral.
+TEST(RsfNucleation, PopulationAfterAStressStepFollowsDieterichsRate) {
+  const rsf::Slider s = qdyn_slider();
+  const double alpha = s.stressing_rate / (s.a * s.sigma), t_a = 1 / alpha;
+  const double c = s.sigma * s.h() / s.stressing_rate, r = 10;
+  const double step = 1.0;  // dtau/(a sigma)
+  const double width = 5, end = 5 * t_a;
+  std::vector<double> counts(static_cast<std::size_t>(end / width), 0.0);
+  for (int i = 0; i < 100000; ++i) {
+    const double t0 = (i + 0.5) / r;
+    // V0 from the time to instability t0 = ln(1 + 1/(c V0))/alpha.
+    const rsf::SliderState x{-std::log(c * std::expm1(alpha * t0)), 50.0};
+    const double t = rsf::time_to_speed(s, rsf::stress_step(s, x, step * s.a * s.sigma), 700);
+    if (t < end) counts[static_cast<std::size_t>(t / width)] += 1;
+  }
+  const double q = std::exp(-step) - 1;
+  const auto integral = [&](double t) {
+    return r * (t + t_a * std::log1p(q * std::exp(-t / t_a)));
+  };
+  for (std::size_t k = 0; k < counts.size(); ++k) {
+    const double expected = integral((k + 1) * width) - integral(k * width);
+    EXPECT_NEAR(counts[k], expected, 3 * std::sqrt(expected)) << "bin " << k;
+  }
+  // The first bin holds the aftershocks: well above the background r width.
+  EXPECT_GT(counts[0], 2 * r * width);
+}
+
 TEST(RsfLoader, HeapKeepsTheEarliestOnTopWithTiesByIndex) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 10);
