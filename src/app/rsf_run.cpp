@@ -24,6 +24,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/rsf_events.hpp"
+#include "engine/rsf_loader.hpp"
 #include "io/catalog.hpp"
 #include "io/catalog_file.hpp"
 #include "io/catalog_h5.hpp"
@@ -411,6 +412,175 @@ class RsfRun {
   double wall0_ = 0;
 };
 
+// drive.mode = events (engine/rsf_loader.hpp): closed forms between events, each event by the
+// cycle integrator. Events before run.transient_events are run and not recorded; a checkpoint
+// is taken between events only, where the engine's state is every block's closed form.
+class RsfEventFigures : public RunObserver {
+ public:
+  explicit RsfEventFigures(const RsfEventEngine& e, double v_handover)
+      : e_(e), v_handover_(v_handover) {}
+  void add_to_summary(Json& summary) const override {
+    const RsfModel& m = e_.model();
+    Json r = Json::object();
+    r.set("engine", "event-driven");
+    r.set("scheme", "dopri5");
+    r.set("handover_speed", v_handover_);
+    r.set("integrations", e_.integrations());
+    r.set("steps", e_.steps());
+    r.set("time", e_.t());
+    r.set("k", m.k);
+    r.set("k_crit_quasi_static", rsf::critical_stiffness(m.law[0].params(), m.sigma));
+    r.set("eta", m.eta);
+    r.set("rows", m.rows);
+    summary.set("rsf", std::move(r));
+  }
+
+ private:
+  const RsfEventEngine& e_;
+  double v_handover_;
+};
+
+class RsfEventRun {
+ public:
+  RsfEventRun(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+              const Checkpoint* resumed)
+      : req_(req),
+        settings_(settings),
+        out_(out),
+        files_(out.dir()),
+        engine_(settings.rsf.chain, settings.rsf.tolerance, settings.rsf.v_threshold,
+                settings.rsf.v_handover, {settings.rsf.v_init}, settings.rsf.theta_start()),
+        transient_(settings.run.transient_events),
+        events_(settings.run.events) {
+    if (resumed) {
+      const std::string* bytes = resumed->find(kStateName);
+      if (!bytes)
+        throw Error("--resume: the checkpoint holds no rate-and-state state (it is another run's)");
+      StateReader r(*bytes, kStateName);
+      try {
+        engine_.restore(r.f64s());
+      } catch (const std::exception& e) {
+        throw Error(std::string("--resume: the checkpoint's rate-and-state state is malformed: ") +
+                    e.what());
+      }
+      if (!r.done()) throw Error("--resume: the checkpoint's rate-and-state state is malformed");
+      prog_ = resumed->progress;
+      ++prog_.resumes;
+    }
+    wall0_ = prog_.wall_total;
+    const RunSettings& r = settings_.run;
+    if (const char* catalog = catalog_file_name(settings_.output.catalog))
+      obs_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
+                                 resumed ? prog_.events_done : -1, settings_.output.catalog_deflate,
+                                 catalog_layout(settings_));
+    const auto& hist =
+        obs_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
+    obs_.attach<RsfEventFigures>(engine_, settings_.rsf.v_handover);
+    obs_.attach<ContinuousSummary>(req_.scene, settings_, out_, hist.histogram(), obs_);
+    if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
+      obs_.attach<CheckpointTimer>([this] { save(); }, r.checkpoint_events, r.checkpoint_seconds);
+    if (!req_.quiet) obs_.attach<ProgressLine>();
+    for (RunObserver* o : req_.observers) obs_.attach_ref(*o);
+    if (resumed) obs_.resume(*resumed);
+  }
+
+  int run() {
+    StopSignals signals;
+    obs_.start();
+    const auto stop = [&] { return signals.received() && !engine_.pending(); };
+    const auto advance = [&](std::int64_t done) {
+      if (!engine_.pending()) obs_.advance({static_cast<double>(done), engine_.events()});
+    };
+    bool quiet = false;  // no block reaches V_h any more
+    if (prog_.transient_done < transient_) {
+      obs_.phase({"transient events", static_cast<double>(prog_.transient_done),
+                  static_cast<double>(transient_)});
+      while (prog_.transient_done < transient_ && !stop()) {
+        if (!engine_.next(HUGE_VAL)) {
+          quiet = true;
+          break;
+        }
+        ++prog_.transient_done;
+        advance(prog_.transient_done);
+      }
+      obs_.phase_end({static_cast<double>(prog_.transient_done), engine_.events()});
+    }
+    if (prog_.transient_done == transient_ && !stop() && !quiet) {
+      obs_.phase({"events", static_cast<double>(prog_.events_done), static_cast<double>(events_)});
+      while (prog_.events_done < events_ && !stop()) {
+        auto e = engine_.next(HUGE_VAL);
+        if (!e) {
+          quiet = true;
+          break;
+        }
+        e->event -= transient_;
+        ++prog_.events_done;
+        obs_.event(*e);
+        advance(prog_.events_done);
+      }
+      obs_.phase_end({static_cast<double>(prog_.events_done), engine_.events()});
+    }
+    if (quiet)
+      std::fprintf(stderr,
+                   "bkquake: no block reaches rsf.handover_speed any more (every block creeps "
+                   "below it); the run ends after %lld events\n",
+                   static_cast<long long>(prog_.events_done));
+    if (const int sig = signals.received(); sig != 0 && prog_.events_done < events_ && !quiet) {
+      save();
+      obs_.end(run_end(sig));
+      std::fprintf(stderr,
+                   "bkquake: stopped by %s after %lld of %lld events; checkpoint in '%s'; to "
+                   "continue: bkquake run %s --out %s --resume\n",
+                   sig == SIGINT ? "SIGINT" : "SIGTERM", static_cast<long long>(prog_.events_done),
+                   static_cast<long long>(events_), files_.current().c_str(),
+                   out_.path("scene.ini").c_str(), out_.dir().c_str());
+      return 128 + sig;
+    }
+    obs_.end(run_end(0));
+    files_.remove_interim();
+    return 0;
+  }
+
+ private:
+  void save() {
+    prog_.wall_total = prog_.wall_events = wall0_ + seconds_since(session_t0_);
+    Checkpoint c =
+        Checkpoint::of_run(req_.scene.hash(), req_.scene.to_ini(), settings_.run.seed, prog_);
+    c.engine.counters.steps = engine_.steps();
+    c.engine.counters.events = engine_.events();
+    StateWriter w;
+    w.f64s(engine_.snapshot());
+    c.put(kStateName, std::move(w.bytes()));
+    obs_.checkpoint(c);
+    files_.write(c);
+  }
+
+  RunEnd run_end(int signal) const {
+    RunEnd end;
+    end.signal = signal;
+    end.events = prog_.events_done;
+    end.transient_events = prog_.transient_done;
+    end.steps = engine_.steps();
+    end.blocks = engine_.model().n();
+    end.total_load = settings_.rsf.chain.v_pl * engine_.t();
+    end.duration = engine_.t();
+    end.wall_seconds = end.wall_seconds_total = wall0_ + seconds_since(session_t0_);
+    end.resumes = prog_.resumes;
+    return end;
+  }
+
+  const RunRequest& req_;
+  const Settings& settings_;
+  const OutputFolder& out_;
+  const CheckpointFiles files_;
+  RsfEventEngine engine_;
+  const std::int64_t transient_, events_;
+  RunProgress prog_;
+  Observers obs_;
+  Clock::time_point session_t0_ = Clock::now();
+  double wall0_ = 0;
+};
+
 }  // namespace
 
 int run_rsf(const RunRequest& req, const Settings& settings, const OutputFolder& out) {
@@ -422,6 +592,7 @@ int run_rsf(const RunRequest& req, const Settings& settings, const OutputFolder&
                   "); use --resume to continue it or --force to start over");
     if (req.force) checkpoints.remove();
     write_file_atomic(out.path("scene.ini"), req.scene.to_ini(provenance_lines(req.scene)));
+    if (settings.rsf.event_driven) return RsfEventRun(req, settings, out, nullptr).run();
     return RsfRun(req, settings, out, nullptr).run();
   }
   // Everything is checked before anything is changed: a refused resume leaves the folder as it
@@ -442,15 +613,26 @@ int run_rsf(const RunRequest& req, const Settings& settings, const OutputFolder&
   else if (format == CatalogFormat::Hdf5)
     check_catalog_h5(catalog, saved.progress.events_done, saved_catalog_checksum(saved),
                      catalog_layout(settings));
-  RsfRun run(req, settings, out, &saved);
-  if (format == CatalogFormat::Csv) {
+  const auto truncate = [&] {
+    if (format != CatalogFormat::Csv) return;
     std::error_code ec;
     std::filesystem::resize_file(catalog, saved.progress.catalog_bytes, ec);
     if (ec) throw Error("cannot truncate '" + catalog + "' to its checkpoint: " + ec.message());
+  };
+  const auto resuming = [&] {
+    std::printf("bkquake: resuming '%s' from %s (%lld events so far)\n", out.dir().c_str(),
+                from.c_str(), static_cast<long long>(saved.progress.events_done));
+    std::fflush(stdout);
+  };
+  if (settings.rsf.event_driven) {
+    RsfEventRun run(req, settings, out, &saved);
+    truncate();
+    resuming();
+    return run.run();
   }
-  std::printf("bkquake: resuming '%s' from %s (%lld events so far)\n", out.dir().c_str(),
-              from.c_str(), static_cast<long long>(saved.progress.events_done));
-  std::fflush(stdout);
+  RsfRun run(req, settings, out, &saved);
+  truncate();
+  resuming();
   return run.run();
 }
 

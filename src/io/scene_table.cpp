@@ -864,6 +864,14 @@ std::vector<ParamSpec> rsf_rows() {
            "rsf.v_threshold; 0: off")
           .when(rsf_law())
           .later(),
+      positive_or_auto(key::rsf_handover_speed, at(&SceneValues::rsf, &RsfKeys::handover_speed),
+                       1e6, "m/s",
+                       "V_h of the event-driven engine: below it a block follows its closed form "
+                       "between events, and an event is integrated from the first block to reach "
+                       "it until every block is below it again; below rsf.v_threshold; auto: "
+                       "rsf.v_threshold/10, or less so that eta V_h <= 0.01 a sigma")
+          .when(rsf_law(), event_driven())
+          .later(),
       choice(key::rsf_pattern, "uniform", at(&SceneValues::rsf, &RsfKeys::pattern),
              {{"uniform", RsfPattern::Uniform}, {"asperities", RsfPattern::Asperities}},
              "per-block values: uniform (rsf.a, rsf.b everywhere), or asperities: blocks with x "
@@ -896,11 +904,18 @@ void rate_and_state(const Scene& s, const std::string& where) {
     throw Error("friction.law = rsf runs in SI units, but model.parameterisation = " +
                 s.text(key::model_parameterisation) + "; allowed: model.parameterisation = si" +
                 where);
-  if (v.drive.mode != DriveMode::Continuous)
-    throw Error("drive.mode = " + s.text(key::drive_mode) +
-                " with friction.law = rsf: bkquake has no event-driven rate-and-state engine yet; "
-                "allowed: drive.mode = continuous (whole cycles, rsf.v_threshold defines events)" +
+  // The event-driven engine's closed forms are the aging law's, in the quasi-static balance.
+  if (v.drive.mode == DriveMode::Events && v.rsf.state_law != rsf::StateLaw::Aging)
+    throw Error("rsf.state_law = " + s.text(key::rsf_state_law) +
+                " with drive.mode = events: the event-driven engine's closed form between events "
+                "is the aging law's; allowed: rsf.state_law = aging, or drive.mode = continuous" +
                 where);
+  if (v.drive.mode == DriveMode::Events && v.rsf.handover_speed &&
+      !(*v.rsf.handover_speed<v.rsf.v_threshold&& * v.rsf.handover_speed> v.drive.speed))
+    throw Error("rsf.handover_speed = " + s.text(key::rsf_handover_speed) +
+                ": the hand-over speed lies between the plate rate and the seismic rate; allowed: "
+                "auto or (" +
+                s.text(key::drive_speed) + ", " + s.text(key::rsf_v_threshold) + ")" + where);
   if (v.model.kind != ModelChoice::Bk && v.model.kind != ModelChoice::OneDof)
     throw Error("model.kind = " + s.text(key::model_kind) +
                 " with friction.law = rsf: allowed model.kind = bk or 1dof" + where);
@@ -950,10 +965,12 @@ std::vector<ParamSpec> drive_rows() {
              {{"events", DriveMode::Events}, {"continuous", DriveMode::Continuous}},
              "events: quasistatic loading, one relaxation per slip event (nu -> 0); "
              "continuous: integrate at finite substrate speed"),
-      real(key::drive_speed, at(&SceneValues::drive, &DriveSettings::speed), "0.01", '[', 0, 1e6,
-           ']', "length/time",
-           "substrate speed v (continuous mode; the start value of a steps schedule)")
-          .when(continuous()),
+      real(
+          key::drive_speed, at(&SceneValues::drive, &DriveSettings::speed), "0.01", '[', 0, 1e6,
+          ']', "length/time",
+          "substrate speed v (continuous mode; the start value of a steps schedule; the plate rate "
+          "V_pl of friction.law = rsf in either mode)")
+          .when(either(continuous(), rsf_law())),
       choice(
           key::drive_schedule, "constant", at(&SceneValues::drive, &DriveSettings::schedule),
           {{"constant", Schedule::Constant}, {"steps", Schedule::Steps}, {"ramp", Schedule::Ramp}},

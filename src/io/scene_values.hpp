@@ -144,6 +144,7 @@ struct RsfKeys {
   double slow_slip_threshold = 0;    // 0: off
   RsfPattern pattern = RsfPattern::Uniform;
   int pattern_period = 0, pattern_width = 0;
+  std::optional<double> handover_speed;  // drive.mode = events; auto: chosen from V_th and eta
 };
 
 struct SceneValues {

@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "integrate/located.hpp"
 #include "integrate/theta.hpp"
 #include "io/friction_table.hpp"
@@ -138,6 +140,13 @@ void rsf_pattern(const SceneValues& v, int n, RsfModel& m) {
   }
 }
 
+// A value in a message, to 3 digits.
+std::string short_real(double x) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.3g", x);
+  return s;
+}
+
 // The rate-and-state chain of `chain`'s size and boundary from the rsf.* and si model keys.
 RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
   RsfSettings r;
@@ -166,6 +175,26 @@ RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
   r.v_threshold = v.rsf.v_threshold;
   r.v_init = v.rsf.v_init;
   r.theta_init = v.rsf.theta_init.value_or(0.0);
+  if (v.drive.mode == DriveMode::Events) {
+    // The closed forms between events leave radiation damping out: V_h keeps eta V_h a small
+    // share of a sigma (at most 0.1 when given, 0.01 when auto).
+    r.event_driven = true;
+    double a_min = HUGE_VAL;
+    for (const rsf::Law& law : m.law) a_min = std::min(a_min, law.params().a);
+    const double damped = m.eta > 0 ? a_min * m.sigma / m.eta : HUGE_VAL;
+    r.v_handover = v.rsf.handover_speed.value_or(std::min(r.v_threshold / 10, 0.01 * damped));
+    if (v.rsf.handover_speed && m.eta * r.v_handover > 0.1 * a_min * m.sigma)
+      throw Error("rsf.handover_speed = " + format_real(r.v_handover) +
+                  ": radiation damping eta V_h exceeds a tenth of a sigma there, which the "
+                  "closed form between events leaves out; allowed: up to " +
+                  short_real(0.1 * damped) + " m/s (or auto)");
+    if (!(r.v_handover > m.v_pl))
+      throw Error("rsf.handover_speed = auto: with radiation damping eta = " + format_real(m.eta) +
+                  " Pa s/m the hand-over speed that keeps eta V_h << a sigma (" +
+                  short_real(r.v_handover) +
+                  " m/s) is not above the plate rate drive.speed; allowed: a larger "
+                  "model.shear_wave_speed, or drive.mode = continuous");
+  }
   return r;
 }
 

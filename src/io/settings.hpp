@@ -44,6 +44,8 @@ struct RsfSettings {
   double v_init = 2e-5;       // rsf.v_init [m/s]
   double theta_init = 0;      // rsf.theta_init [s]; 0: auto, each block's D_c/V_pl
   double v_slow = 0;          // rsf.slow_slip_threshold [m/s]; 0: no slow_slip.csv
+  bool event_driven = false;  // drive.mode = events (engine/rsf_loader.hpp)
+  double v_handover = 0;      // rsf.handover_speed [m/s], auto resolved
   // The start state of every block: theta_init, or each block's steady state at V_pl.
   std::vector<double> theta_start() const {
     std::vector<double> theta;

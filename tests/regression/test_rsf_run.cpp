@@ -1,6 +1,7 @@
 // Rate-and-state runs from the command line: the refusals (a <= 0, D_c <= 0, V_th not
-// above V_pl, event-driven drive), the shipped QDYN scene through the catalogue, histogram and
-// summary, and `bkquake stability` reporting k_crit.
+// above V_pl, event-driven runs the closed forms cannot serve), the shipped QDYN scene through
+// the catalogue, histogram and summary, the event-driven chain killed and resumed, and
+// `bkquake stability` reporting k_crit.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -54,8 +55,22 @@ TEST(RsfRun, Refusals) {
   expect_refused(run_bkquake(rsf_args(out, with(cont, "rsf.dc=0"))), {"rsf.dc", "(0, 1e+06]"});
   expect_refused(run_bkquake(rsf_args(out, with(cont, "rsf.v_threshold=1e-6"))),
                  {"rsf.v_threshold = 1e-06", "drive.speed", "allowed"});
-  expect_refused(run_bkquake(rsf_args(out, {})),
-                 {"drive.mode = events", "friction.law = rsf", "allowed: drive.mode = continuous"});
+  // Event-driven: the closed form between events is the aging law's, the hand-over speed lies
+  // between V_pl and V_th, and radiation damping must stay small below it.
+  const std::vector<std::string> ev = {"drive.mode=events", "drive.speed=1e-6", "run.events=5"};
+  expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.state_law=slip"))),
+                 {"rsf.state_law = slip", "drive.mode = events", "allowed: rsf.state_law = aging"});
+  expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.handover_speed=2e-3"))),
+                 {"rsf.handover_speed = 0.002", "allowed: auto or (1e-06, 0.001)"});
+  const auto damped = [&](const std::string& c_s) {
+    std::vector<std::string> v = with(with(ev, "model.shear_modulus=2e10"), c_s);
+    return v;
+  };
+  expect_refused(run_bkquake(rsf_args(
+                     out, with(damped("model.shear_wave_speed=30"), "rsf.handover_speed=5e-4"))),
+                 {"rsf.handover_speed = 5e-04", "radiation damping", "allowed: up to 1.5e-05"});
+  expect_refused(run_bkquake(rsf_args(out, damped("model.shear_wave_speed=0.01"))),
+                 {"rsf.handover_speed = auto", "radiation damping", "allowed"});
   expect_refused(run_bkquake({"run", "--set", "model.parameterisation=si", "--out", out}),
                  {"model.parameterisation = si", "friction.law = clst91"});
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out" / "catalog.csv"));
@@ -124,6 +139,47 @@ TEST(RsfRun, KilledAndResumedRunGivesTheSameBytes) {
   const auto resumed = run_bkquake(args(tmp.file("cut"), {"--resume"}));
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   for (const char* f : {"catalog.csv", "histogram.csv", "rsf_blocks.csv", "slow_slip.csv"})
+    EXPECT_EQ(read_file(tmp.file(std::string("cut/") + f)),
+              read_file(tmp.file(std::string("whole/") + f)))
+        << f;
+  EXPECT_FALSE(std::filesystem::exists(checkpoint));
+}
+
+// The shipped event-driven chain (20 blocks here), stopped by SIGTERM after its first
+// checkpoint and resumed, writes the catalogue and histogram of the run never stopped.
+TEST(RsfRun, EventDrivenKilledAndResumedGivesTheSameBytes) {
+  test::TempDir tmp;
+  const std::string scene = std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-events.ini";
+  auto args = [&](const std::string& out, std::vector<std::string> more) {
+    std::vector<std::string> a = {"run",
+                                  scene,
+                                  "--quiet",
+                                  "--set",
+                                  "model.blocks=20",
+                                  "--set",
+                                  "run.events=400",
+                                  "--set",
+                                  "run.transient_events=20",
+                                  "--set",
+                                  "run.checkpoint_events=50",
+                                  "--out",
+                                  out};
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  const auto whole = run_bkquake(args(tmp.file("whole"), {}));
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  const std::string catalog = read_file(tmp.file("whole/catalog.csv"));
+  EXPECT_EQ(std::count(catalog.begin(), catalog.end(), '\n'), 401);
+  EXPECT_NE(read_file(tmp.file("whole/summary.json")).find("\"engine\": \"event-driven\""),
+            std::string::npos);
+  const std::string checkpoint = tmp.file("cut/checkpoint.bin");
+  const auto cut = test::run_bkquake_until([&] { return std::filesystem::exists(checkpoint); },
+                                           args(tmp.file("cut"), {}));
+  ASSERT_EQ(cut.status, 143) << cut.err;
+  const auto resumed = run_bkquake(args(tmp.file("cut"), {"--resume"}));
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  for (const char* f : {"catalog.csv", "histogram.csv"})
     EXPECT_EQ(read_file(tmp.file(std::string("cut/") + f)),
               read_file(tmp.file(std::string("whole/") + f)))
         << f;

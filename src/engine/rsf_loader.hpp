@@ -1,0 +1,118 @@
+// The event-driven rate-and-state engine: between events every block follows its closed form
+// (model/rsf_nucleation.hpp) under the loader's stressing rate k V_pl; the next block to reach
+// the hand-over speed V_h is the top of an indexed heap of those times, and an event changes
+// only the entries of the blocks it touched. At that time the whole grid is handed to the
+// cycle integrator (engine/rsf_cycle.hpp: the scene's dynamics, quasi-dynamic or inertial,
+// the full aging law), which runs until the seismic detector (engine/rsf_events.hpp) has
+// closed its events and every block is below V_h again, and none is decelerating while its
+// closed form would have it nucleate (V theta/D_c >= 1: the nucleation form only
+// accelerates, so such a block would come straight back); each block then goes back to its
+// closed form from the integrator's slip rate and state, both kept as they are (the elastic
+// stress is the law's at those values, as the closed form's quasi-static balance has it).
+//
+// Approximations (stated in docs/explanation/rate-and-state.md):
+//   - between events a block is loaded by the plate only: stress moved by the neighbours'
+//     creep is left out (as in RSQSim), and a block's own creep unloads it through
+//     k_eff = k + its coupling springs' sum, in H = b/D_c - k_eff/sigma;
+//   - the closed forms' phases (healing while V theta/D_c < 1, nucleation with
+//     V theta/D_c >> 1 after it) and their quasi-static balance (eta V << a sigma below V_h).
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "engine/event_record.hpp"
+#include "engine/rsf_cycle.hpp"
+#include "model/rsf_nucleation.hpp"
+
+namespace bkq {
+
+// A binary min-heap of one time per index 0..n-1, ordered by time and then by index (so the
+// order never depends on the history of updates); set() moves one entry, O(log n).
+class IndexedMinHeap {
+ public:
+  explicit IndexedMinHeap(int n = 0);
+  void set(int i, double time);
+  int top() const { return heap_[0]; }
+  double top_time() const { return time_[heap_[0]]; }
+  double time(int i) const { return time_[i]; }
+  int size() const { return static_cast<int>(heap_.size()); }
+  // Every parent before its children (what the tests check).
+  bool valid() const;
+
+ private:
+  bool before(int a, int b) const { return time_[a] < time_[b] || (time_[a] == time_[b] && a < b); }
+  void place(int slot, int i) {
+    heap_[slot] = i;
+    pos_[i] = slot;
+  }
+  void up(int slot);
+  void down(int slot);
+  std::vector<int> heap_, pos_;
+  std::vector<double> time_;
+};
+
+// Every block's closed form and its time to the hand-over speed.
+class RsfLoader {
+ public:
+  RsfLoader(const RsfModel& m, double v_handover);
+  int n() const { return static_cast<int>(slider_.size()); }
+  const rsf::Slider& slider(int j) const { return slider_[j]; }
+  // Block j's state at time t, not before its last set().
+  rsf::SliderState state_at(int j, double t) const;
+  // Block j is in state x at time t: its closed form restarts there.
+  void set(int j, double t, rsf::SliderState x);
+  // A shear-stress step dtau on block j at time t.
+  void stress_step(int j, double t, double dtau);
+  // The next block to reach V_h, and when.
+  int next_block() const { return heap_.top(); }
+  double next_time() const { return heap_.top_time(); }
+  double ln_v_handover() const { return ln_vh_; }
+  // Where block j's closed form starts (its last set()).
+  double t_ref(int j) const { return t_ref_[j]; }
+  const rsf::SliderState& x_ref(int j) const { return x_ref_[j]; }
+
+ private:
+  std::vector<rsf::Slider> slider_;
+  std::vector<double> t_ref_;
+  std::vector<rsf::SliderState> x_ref_;
+  IndexedMinHeap heap_;
+  double ln_vh_;
+};
+
+class RsfEventEngine {
+ public:
+  // Starts at t = 0 with slip rates v and states theta (one value, or one per block).
+  RsfEventEngine(RsfModel m, double tolerance, double v_threshold, double v_handover,
+                 const std::vector<double>& v, const std::vector<double>& theta);
+
+  // The next seismic event's record, or none when t_end comes first (then t() = t_end).
+  std::optional<EventRecord> next(double t_end);
+
+  double t() const { return t_; }
+  std::int64_t events() const { return events_; }
+  std::int64_t integrations() const { return integrations_; }  // hand-overs to the integrator
+  std::int64_t steps() const { return steps_; }                // their accepted steps
+  const RsfLoader& loader() const { return loader_; }
+  const RsfModel& model() const { return m_; }
+  // Records of the last integration not yet returned (a checkpoint is taken only at none).
+  bool pending() const { return !pending_.empty(); }
+
+  // The state between two events, as numbers (a checkpoint's), and back.
+  std::vector<double> snapshot() const;
+  void restore(const std::vector<double>& s);
+
+ private:
+  void integrate_event(double t0, double t_end);
+
+  RsfModel m_;
+  double tol_, v_th_;
+  RsfLoader loader_;
+  double t_ = 0;
+  std::int64_t events_ = 0, integrations_ = 0, steps_ = 0;
+  std::deque<EventRecord> pending_;
+};
+
+}  // namespace bkq

@@ -1,0 +1,111 @@
+// One rate-and-state slider between events in closed form; see rsf_nucleation.hpp.
+#include "model/rsf_nucleation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace bkq::rsf {
+
+namespace {
+
+constexpr double kNever = std::numeric_limits<double>::infinity();
+
+// The first t > 0 where f(t) = f0 + alpha t + beta ln(1 + t/theta0) reaches 0, f0 < 0,
+// alpha >= 0: f is monotone (beta >= 0) or convex with its minimum at -beta/alpha - theta0,
+// so the root lies on the rising branch. Bracketed, then Newton kept inside the bracket.
+double first_root(double f0, double alpha, double beta, double theta0) {
+  if (f0 >= 0) return 0;
+  const auto f = [&](double t) { return f0 + alpha * t + beta * std::log1p(t / theta0); };
+  if (alpha <= 0) return beta > 0 ? theta0 * std::expm1(-f0 / beta) : kNever;
+  double lo = beta < 0 ? std::max(0.0, -beta / alpha - theta0) : 0.0;
+  double hi = lo + std::max(theta0, 1 / alpha);
+  for (int i = 0; f(hi) <= 0; ++i) {
+    if (i > 2000 || !std::isfinite(hi)) return kNever;
+    lo = hi;
+    hi *= 2;
+  }
+  double t = hi;
+  for (int i = 0; i < 200; ++i) {
+    const double ft = f(t);
+    (ft > 0 ? hi : lo) = t;
+    double next = t - ft / (alpha + beta / (theta0 + t));
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next == t || hi - lo <= 1e-15 * hi) return next;
+    t = next;
+  }
+  return t;
+}
+
+double alpha_of(const Slider& s) {
+  return s.stressing_rate / (s.a * s.sigma);
+}
+
+// The locked phase dt on (dt at most its time to Omega = 1).
+SliderState locked_after(const Slider& s, SliderState x, double dt) {
+  const double grow = std::log1p(dt * std::exp(-x.ln_theta));
+  return {x.ln_v + alpha_of(s) * dt - (s.b_rsf / s.a) * grow, x.ln_theta + grow};
+}
+
+// Seconds from a locked state to Omega = 1.
+double time_to_nucleation(const Slider& s, SliderState x) {
+  return first_root(x.ln_v + x.ln_theta - std::log(s.dc), alpha_of(s), 1 - s.b_rsf / s.a,
+                    std::exp(x.ln_theta));
+}
+
+// The nucleating phase dt on.
+SliderState nucleating_after(const Slider& s, SliderState x, double dt) {
+  const double alpha = alpha_of(s), c = s.h() / (s.a * alpha), v0 = std::exp(x.ln_v);
+  const double u = std::exp(-x.ln_v - alpha * dt) + c * std::expm1(-alpha * dt);
+  if (!(u > 0)) return {kNever, -kNever};
+  // ln[1 - c V0 (e^{alpha dt} - 1)] = ln(u V0) + alpha dt; slip = -that/(alpha c).
+  double slip;
+  if (c == 0)
+    slip = v0 * std::expm1(alpha * dt) / alpha;
+  else if (alpha * dt < 1)
+    slip = -std::log1p(-c * v0 * std::expm1(alpha * dt)) / (alpha * c);
+  else
+    slip = -(std::log(u) + x.ln_v + alpha * dt) / (alpha * c);
+  return {-std::log(u), x.ln_theta - slip / s.dc};
+}
+
+double nucleating_time(const Slider& s, SliderState x, double ln_v_target) {
+  if (x.ln_v >= ln_v_target) return 0;
+  const double alpha = alpha_of(s), c = s.h() / (s.a * alpha);
+  const double u0 = std::exp(-x.ln_v), ut = std::exp(-ln_v_target);
+  if (!(ut + c > 0)) return kNever;  // H < 0: the steady creep stays below the target
+  return std::log1p((u0 - ut) / (ut + c)) / alpha;
+}
+
+}  // namespace
+
+bool locked(const Slider& s, const SliderState& x) {
+  return x.ln_v + x.ln_theta - std::log(s.dc) < 0;
+}
+
+SliderState evolve(const Slider& s, SliderState x, double dt) {
+  if (locked(s, x)) {
+    const double t_nuc = time_to_nucleation(s, x);
+    if (dt <= t_nuc) return locked_after(s, x, dt);
+    x = locked_after(s, x, t_nuc);
+    dt -= t_nuc;
+  }
+  return nucleating_after(s, x, dt);
+}
+
+double time_to_speed(const Slider& s, SliderState x, double ln_v_target) {
+  if (x.ln_v >= ln_v_target) return 0;
+  if (!locked(s, x)) return nucleating_time(s, x, ln_v_target);
+  const double theta0 = std::exp(x.ln_theta);
+  const double t_v = first_root(x.ln_v - ln_v_target, alpha_of(s), -s.b_rsf / s.a, theta0);
+  const double t_nuc = time_to_nucleation(s, x);
+  if (t_v <= t_nuc) return t_v;
+  if (t_nuc == kNever) return kNever;
+  return t_nuc + nucleating_time(s, locked_after(s, x, t_nuc), ln_v_target);
+}
+
+SliderState stress_step(const Slider& s, SliderState x, double dtau) {
+  return {x.ln_v + dtau / (s.a * s.sigma), x.ln_theta};
+}
+
+}  // namespace bkq::rsf

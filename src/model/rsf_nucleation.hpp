@@ -1,0 +1,55 @@
+// One rate-and-state slider between events, in closed form (Dieterich, J. Geophys. Res. 99,
+// 2601, 1994; Dieterich, J. Geophys. Res. 100, 1995): what the event-driven engine
+// (engine/rsf_loader.hpp) uses instead of time steps. Log form of the law, aging law, quasi-
+// static balance (radiation damping and inertia left out: the engine hands a block over to the
+// full integration below speeds where eta V << a sigma), constant stressing rate tau_dot:
+//
+//   a sigma d ln V/dt = tau_dot - k_eff V - b sigma d ln theta/dt
+//
+// with k_eff the stiffness a block's own slip unloads it by (loader plus coupling springs:
+// the neighbours' creep is left out, as in RSQSim). Two phases, by Omega = V theta/D_c:
+//
+//   locked (Omega < 1)       d theta/dt = 1 (healing; the aging law with V theta/D_c << 1) and
+//                            k_eff V left out of the balance (V << V_pl while locked), so
+//                            ln V = ln V0 + tau_dot t/(a sigma) - (b/a) ln(1 + t/theta0),
+//                            theta = theta0 + t;
+//   nucleating (Omega >= 1)  d theta/dt = -V theta/D_c (the aging law with V theta/D_c >> 1),
+//                            which with H = b/D_c - k_eff/sigma gives, u = 1/V,
+//                            u(t) = (u0 + c) exp(-alpha t) - c, alpha = tau_dot/(a sigma),
+//                            c = H/(a alpha), slip = -(1/(alpha c)) ln[1 - c V0 (e^{alpha t} - 1)],
+//                            ln theta = ln theta0 - slip/D_c.
+//
+// A block locked goes over to nucleating when Omega reaches 1, and stays nucleating until the
+// engine takes it over. With H > 0 the slip rate runs away at t_inst = ln(1 + 1/(c V0))/alpha
+// (Dieterich 1994, eq. 9's form); with H <= 0 it tends to the steady creep V = tau_dot/(sigma
+// |H|) and reaches a speed only below that.
+// A shear-stress step dtau multiplies V by exp(dtau/(a sigma)) at constant theta (the law's
+// direct effect; theta changes only with a normal-stress step, Linker & Dieterich 1992).
+#pragma once
+
+namespace bkq::rsf {
+
+// One slider's constants.
+struct Slider {
+  double a = 0.01, b_rsf = 0.015, dc = 1e-5;               // the law's a, b and D_c [m]
+  double sigma = 5e6;                                      // normal stress [Pa]
+  double stressing_rate = 2e3;                             // tau_dot [Pa/s], > 0
+  double k_eff = 2e9;                                      // unloading stiffness [Pa/m]
+  double h() const { return b_rsf / dc - k_eff / sigma; }  // H [1/m]
+};
+
+struct SliderState {
+  double ln_v = 0, ln_theta = 0;
+};
+
+bool locked(const Slider& s, const SliderState& x);  // Omega = V theta/D_c < 1
+
+// The state dt seconds on (dt >= 0; the slip rate is +inf past the instability).
+SliderState evolve(const Slider& s, SliderState x, double dt);
+// The first time from now at which V reaches exp(ln_v_target) from below (0 if it is there or
+// above already; +inf if never).
+double time_to_speed(const Slider& s, SliderState x, double ln_v_target);
+// A shear-stress step dtau [Pa]: V times exp(dtau/(a sigma)), theta kept.
+SliderState stress_step(const Slider& s, SliderState x, double dtau);
+
+}  // namespace bkq::rsf
