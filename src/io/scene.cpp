@@ -316,9 +316,28 @@ std::vector<std::string> Scene::drop_inapplicable() {
   return warnings;
 }
 
+bool Scene::overridden() const {
+  for (const auto& [key, from] : set_by_)
+    if (from == "--set") return true;
+  return false;
+}
+
+std::string Scene::provenance() const {
+  if (origin != kBuiltInOrigin || !overridden()) return origin;
+  const std::string& kind = text(key::model_kind);
+  const std::string mode = text(key::drive_mode) == "events" ? "event-driven" : "continuous";
+  std::string words;
+  if (kind == "ofc") {
+    words = "ofc";
+  } else {
+    words = (kind == "bk" ? "" : kind + ", ") + text(key::model_parameterisation);
+    if (text(key::friction_law) == "rsf") words += ", rsf";
+  }
+  return "built-in default with --set overrides (" + words + ", " + mode + ")";
+}
+
 std::string Scene::where() const {
-  bool overridden = false;
-  for (const auto& [key, from] : set_by_) overridden = overridden || from == "--set";
+  const bool overridden = this->overridden();
   // The built-in default's origin describes the scene it starts as (event-driven); once
   // --set has changed it, that description may no longer hold (drive.mode = continuous).
   if (origin == kBuiltInOrigin)

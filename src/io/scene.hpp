@@ -149,6 +149,14 @@ class Scene {
   std::string origin;  // the file it came from, or kBuiltInOrigin
   // The origin of a default-constructed scene (the provenance line of its outputs).
   static constexpr const char* kBuiltInOrigin = "built-in default (carlson-langer, event-driven)";
+  // True when a --set override gave a key.
+  bool overridden() const;
+  // Where the scene came from, as an output's provenance states it (summary.json's "scene"):
+  // the origin, or for the built-in default changed by --set what it became, "built-in
+  // default with --set overrides (bkp, thesis, continuous)" (the model kind unless bk, the
+  // parameterisation, rsf for rate-and-state friction, the drive mode; the automaton: "ofc,
+  // event-driven").
+  std::string provenance() const;
   // Where the scene came from, for the end of an error message: " (scene FILE)",
   // " (built-in default scene)", each "with --set overrides" when --set changed it.
   std::string where() const;
