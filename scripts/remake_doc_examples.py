@@ -2,7 +2,7 @@
 """Remakes the printouts and figures that the tutorials and how-to guides show.
 
     scripts/remake_doc_examples.py [PAGE.md ...] [--binary build/bkquake] [--keep DIR]
-                                   [--check]
+                                   [--check] [--long]
 
 For each page (default: docs/tutorials/*.md and docs/how-to/*.md) that marks a printout or
 a figure, runs the page's ```bash blocks in order, at the page's own sizes, in a scratch
@@ -20,6 +20,13 @@ tests/regression/test_tutorials.cpp), then
 `build/bkquake SUBCOMMAND` commands here only (where the page shows a figure of a larger run
 than its command, e.g. more seeds); the test's `<!-- test ...: -->` options are not applied.
 With --check nothing is written: the script says which printouts and figures would change.
+
+--long also remakes the how-to figures drawn from studies of 10^6 events per run (LONG
+below: the Carlson-Langer scenes' b scan and window by eye in fit-window.md, the
+Carlson-Langer sweep in sweeps.md and validation/carlson-langer.md): their commands run in
+the same kind of scratch folder, and the figures they draw replace the pages' images. They
+take several CPU-minutes (eight sweep points and two runs of 10^6 events), so the test
+suite never runs them.
 Nothing is written outside the pages and their images; the scratch folder is removed unless
 --keep names one.
 """
@@ -40,6 +47,31 @@ FIGURE = re.compile(r"^<!-- figure: (\S+)\s*-->\s*$")
 REMAKE = re.compile(r"^<!-- remake ([a-z-]+): (.*) -->\s*$")
 IMAGE = re.compile(r"!\[[^\]]*\]\(([^)]+\.png)\)")
 BKQUAKE = re.compile(r"^\s*build/bkquake\s+([a-z-]+)\b")
+
+
+# The figures of the how-to pages drawn from studies too long for a page's own blocks: the
+# pages they belong to, the commands that make them (run in order, as the pages give them)
+# and each file those write -> the image it replaces (paths relative to the repository).
+LONG = [
+    {"pages": ["docs/how-to/fit-window.md"],
+     "commands": [
+         "build/bkquake run data/scenes/cl-l10-a1-n100.ini --out runs/cl/cl-l10-a1-n100 --quiet",
+         "build/bkquake fit runs/cl/cl-l10-a1-n100 --scan > /dev/null",
+         "/usr/bin/python3 analysis/plot_b_scan.py runs/cl/cl-l10-a1-n100",
+         "build/bkquake run data/scenes/cl-l10-a2.5-n100.ini --out runs/cl/a2.5 --quiet",
+         "/usr/bin/python3 analysis/plot_gr.py runs/cl/a2.5 --mu-min -7.6 --mu-max -2",
+     ],
+     "figures": {"runs/cl/cl-l10-a1-n100/b_scan.png": "docs/img/b_scan_cl_a1.png",
+                 "runs/cl/a2.5/gr.png": "docs/img/gr_cl_a2.5_eye_window.png"}},
+    {"pages": ["docs/how-to/sweeps.md", "docs/validation/carlson-langer.md"],
+     "commands": [
+         "build/bkquake sweep data/sweeps/carlson-langer-table.ini --out runs/cl-table > /dev/null",
+         "build/bkquake fit runs/cl-table --mu-min -7.6 --mu-max -2 > /dev/null",
+         "/usr/bin/python3 analysis/plot_sweep.py runs/cl-table --reference "
+         "data/reference/carlson-langer-published.csv --out runs/cl-table/sweep_cl_table.png",
+     ],
+     "figures": {"runs/cl-table/sweep_cl_table.png": "docs/img/plots/sweep_cl_table.png"}},
+]
 
 
 def squeezed(text):
@@ -136,17 +168,51 @@ def remade_text(shown_lines, output):
     return new, missing
 
 
+def scratch_folder(scratch, name, binary):
+    """A folder under `scratch` holding data/, analysis/ and build/bkquake, as the pages'
+    commands expect."""
+    work = os.path.join(scratch, name)
+    os.makedirs(os.path.join(work, "build"))
+    os.symlink(os.path.join(ROOT, "data"), os.path.join(work, "data"))
+    os.symlink(os.path.join(ROOT, "analysis"), os.path.join(work, "analysis"))
+    os.symlink(os.path.abspath(binary), os.path.join(work, "build", "bkquake"))
+    return work
+
+
+def remake_long(study, k, binary, scratch, check):
+    """Runs one LONG study and copies its figures over the images."""
+    name = ", ".join(study["pages"])
+    if check:
+        for image in study["figures"].values():
+            print(f"{name}: --long would remake {image}")
+        return True
+    work = scratch_folder(scratch, f"long{k}", binary)
+    print(f"{name}: the long study ({len(study['commands'])} commands) ...", flush=True)
+    script = os.path.join(work, "long.sh")
+    with open(script, "w") as f:
+        f.write("set -eo pipefail\n" + "\n".join(study["commands"]) + "\n")
+    env = dict(os.environ, MPLBACKEND="Agg")
+    if subprocess.run(["bash", script], cwd=work, env=env, stdout=subprocess.DEVNULL).returncode:
+        print(f"{name}: the long study failed ({script})", file=sys.stderr)
+        return False
+    ok = True
+    for made, image in study["figures"].items():
+        if not os.path.isfile(os.path.join(work, made)):
+            print(f"{name}: no {made} for {image}", file=sys.stderr)
+            ok = False
+            continue
+        shutil.copyfile(os.path.join(work, made), os.path.join(ROOT, image))
+        print(f"{name}: {image} remade")
+    return ok
+
+
 def remake(page, binary, scratch, check):
     lines = open(page, encoding="utf-8").read().split("\n")
     blocks, shown, figures = parse(lines)
     if not shown and not figures:
         return True
     rel = os.path.relpath(page, ROOT)
-    work = os.path.join(scratch, os.path.splitext(os.path.basename(page))[0])
-    os.makedirs(os.path.join(work, "build"))
-    os.symlink(os.path.join(ROOT, "data"), os.path.join(work, "data"))
-    os.symlink(os.path.join(ROOT, "analysis"), os.path.join(work, "analysis"))
-    os.symlink(os.path.abspath(binary), os.path.join(work, "build", "bkquake"))
+    work = scratch_folder(scratch, os.path.splitext(os.path.basename(page))[0], binary)
     captures = [{"command": squeezed(s["command"]), "file": os.path.join(work, f"shown{k}.txt"),
                  "found": False} for k, s in enumerate(shown)]
     last = max([s["after"] for s in shown] + [f["after"] for f in figures])
@@ -201,16 +267,22 @@ def main():
     ap.add_argument("--binary", default=os.path.join(ROOT, "build", "bkquake"))
     ap.add_argument("--keep", help="scratch folder to keep (must not exist)")
     ap.add_argument("--check", action="store_true", help="write nothing; say what would change")
+    ap.add_argument("--long", action="store_true",
+                    help="also remake the figures of the 10^6-event studies (CPU-minutes)")
     a = ap.parse_args()
     pages = a.pages or sorted(glob.glob(os.path.join(ROOT, "docs", "tutorials", "*.md")) +
                               glob.glob(os.path.join(ROOT, "docs", "how-to", "*.md")))
+    chosen = {os.path.abspath(p) for p in pages}
+    long = [s for s in LONG if a.long and (not a.pages or any(
+        os.path.join(ROOT, p) in chosen for p in s["pages"]))]
     if not os.access(a.binary, os.X_OK):
         sys.exit(f"remake_doc_examples.py: no bkquake binary at {a.binary} (build it, or --binary)")
     scratch = a.keep or tempfile.mkdtemp(prefix="bkq_doc_examples_")
     if a.keep:
         os.makedirs(scratch)
     try:
-        ok = all([remake(os.path.abspath(p), a.binary, scratch, a.check) for p in pages])
+        ok = all([remake(os.path.abspath(p), a.binary, scratch, a.check) for p in pages] +
+                 [remake_long(s, k, a.binary, scratch, a.check) for k, s in enumerate(long)])
     finally:
         if not a.keep:
             shutil.rmtree(scratch, ignore_errors=True)

@@ -1,7 +1,9 @@
 """Executes the example notebooks of this folder with nbclient (Debian python3-nbclient,
 python3-ipykernel) and writes the executed copies (with their figures) to --out. A cell that
 raises fails the run, and so does a cell that makes a figure (plt.subplots, plt.figure)
-without an image among its outputs: ctest runs this with --small as the test Notebooks.
+without an image among its outputs, or whose outputs, executed or committed (and the
+documentation's page of them), show a path under /tmp/: ctest runs this with --small as
+the test Notebooks.
 
     PYTHONPATH=build/python /usr/bin/python3 analysis/notebooks/execute.py [--small] [--out DIR]
         [--in-place] [--docs DIR] [NOTEBOOK...]
@@ -41,6 +43,23 @@ def figure_cells_without_image(nb):
         if not any("image/png" in o.get("data", {}) for o in cell.get("outputs", [])):
             missing.append(k)
     return missing
+
+
+def output_text(cell):
+    """Everything a code cell's outputs show as text (streams, values, tables, errors)."""
+    parts = []
+    for o in cell.get("outputs", []):
+        parts.append(o.get("text", ""))
+        parts.extend(v for k, v in o.get("data", {}).items() if k.startswith("text/"))
+        parts.extend(o.get("traceback", []))
+    return "\n".join(p if isinstance(p, str) else "".join(p) for p in parts)
+
+
+def cells_showing_tmp(nb):
+    """The indices of the code cells whose outputs show a path under /tmp/ (a scratch folder
+    of one machine and one run: a notebook names its runs relative to its working folder)."""
+    return [k for k, cell in enumerate(nb.cells)
+            if cell.cell_type == "code" and "/tmp/" in output_text(cell)]
 
 
 def to_markdown(nb, name, folder, small):
@@ -104,6 +123,16 @@ def main():
     failed = []
     for path in args.notebooks or sorted(HERE.glob("*.ipynb")):
         nb = nbformat.read(path, as_version=4)
+        # The committed outputs and the documentation's page of them, as they are now (unless
+        # this run rewrites them).
+        page = HERE.parents[1] / "docs" / "notebooks" / f"{path.stem}.md"
+        for k in ([] if args.in_place else cells_showing_tmp(nb)):
+            failed.append(path.name)
+            print(f"{path.name}: the committed outputs of cell {k} show a /tmp/ path",
+                  file=sys.stderr)
+        if not args.docs and page.exists() and "/tmp/" in page.read_text(encoding="utf-8"):
+            failed.append(path.name)
+            print(f"{path.name}: {page} shows a /tmp/ path", file=sys.stderr)
         client = NotebookClient(nb, timeout=args.timeout, kernel_name="python3",
                                 resources={"metadata": {"path": str(path.resolve().parent)}})
         try:
@@ -112,6 +141,10 @@ def main():
             for k in figure_cells_without_image(nb):
                 status = "FAILED"
                 print(f"{path.name}: cell {k} makes a figure but has no image output",
+                      file=sys.stderr)
+            for k in cells_showing_tmp(nb):
+                status = "FAILED"
+                print(f"{path.name}: cell {k} shows a /tmp/ path in its outputs",
                       file=sys.stderr)
             if status != "ok":
                 failed.append(path.name)
@@ -128,7 +161,7 @@ def main():
         if status == "ok" and args.docs:
             print(f"{path.name}: page {to_markdown(nb, path.stem, args.docs, args.small)}")
     if failed:
-        sys.exit(f"notebooks failed: {', '.join(failed)}")
+        sys.exit(f"notebooks failed: {', '.join(dict.fromkeys(failed))}")
 
 
 if __name__ == "__main__":

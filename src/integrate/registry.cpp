@@ -63,6 +63,13 @@ const SchemeTraits* scheme_traits(std::string_view keyword) {
   return nullptr;
 }
 
+std::vector<std::string> shipped_scheme_keywords() {
+  std::vector<std::string> k;
+  for (const Entry& e : schemes())
+    if (e.shipped) k.push_back(e.keyword);
+  return k;
+}
+
 std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n, double tolerance) {
   for (const Entry& e : schemes())
     if (scheme == e.keyword) return e.make(n, tolerance);
@@ -74,8 +81,10 @@ std::unique_ptr<Stepper> make_stepper(const std::string& scheme, int n, double t
 void register_scheme(const std::string& keyword, const SchemeTraits& traits, StepperMaker make) {
   if (scheme_traits(keyword) != nullptr)
     throw Error("integrator.scheme: '" + keyword + "' is registered already");
+  // The keyword list first: made on first use from the entries, it would hold this one twice.
+  std::vector<std::string>& k = keywords();
   schemes().push_back(Entry{keyword, traits, make, false});
-  keywords().push_back(keyword);
+  k.push_back(keyword);
 }
 
 void unregister_scheme(const std::string& keyword) {

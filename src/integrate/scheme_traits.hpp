@@ -4,7 +4,9 @@
 // Nobody tests a scheme's type or compares its name to find out what it can do.
 #pragma once
 
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace bkq {
 
@@ -56,5 +58,9 @@ constexpr SchemeTraits located_traits(SchemeTraits scheme) {
 // The traits of the scheme named `keyword` (integrator.scheme; the registry's, shipped or
 // registered), nullptr when there is none of that name.
 const SchemeTraits* scheme_traits(std::string_view keyword);
+
+// The keywords of the schemes the program ships, in registry order: what the reference docs
+// list as integrator.scheme's choices (stepper_keywords() adds those registered since).
+std::vector<std::string> shipped_scheme_keywords();
 
 }  // namespace bkq

@@ -272,7 +272,7 @@ std::vector<std::string> provenance_lines(const Scene& scene) {
   std::vector<std::string> lines = {
       std::string("bkquake ") + kVersion + " (git " + kGitRevision + ")",
       "seed " + scene.text(key::run_seed),
-      "scene " + scene.origin,
+      "scene " + scene.provenance(),
       std::string("scene hash ") + hash,
   };
   // The table law's file by its contents too (the scene holds only its path).

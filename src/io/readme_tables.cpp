@@ -49,8 +49,8 @@ std::string scene_key_table() {
       "| key | default | allowed | units | meaning |\n"
       "|---|---|---|---|---|\n";
   for (const auto& p : parameter_table())
-    t += "| " + code(p.key) + " | " + code(p.default_value) + " | " + code(allowed_text(p)) +
-         " | " + cell(p.units) + " | " + cell(p.doc) + " |\n";
+    t += "| " + code(p.key) + " | " + code(p.default_value) + " | " +
+         code(documented_allowed_text(p)) + " | " + cell(p.units) + " | " + cell(p.doc) + " |\n";
   return t;
 }
 

@@ -83,11 +83,13 @@ std::string normalise(const ParamSpec& p, const std::string& raw, const std::str
     throw Error(p.key + ": the value holds a NUL byte at character " + std::to_string(nul + 1) +
                 ", which no value may contain" + where);
   switch (p.type) {
-    case ParamType::Choice:
-      if (std::find(p.choices.begin(), p.choices.end(), text) == p.choices.end())
+    case ParamType::Choice: {
+      const std::vector<std::string> choices = p.allowed_choices();
+      if (std::find(choices.begin(), choices.end(), text) == choices.end())
         throw Error(p.key + ": expected one of " + allowed_text(p) + ", got '" + text + "'" +
                     where);
       return text;
+    }
     case ParamType::Path:
       return text;
     case ParamType::Boolean: {
@@ -149,7 +151,7 @@ std::string join(const std::vector<std::string>& parts, const std::string& sep) 
 // "drive.schedule = steps", "model.parameterisation = thesis or model.kind = bkp".
 std::string needs_text(const Requirement& r) {
   std::vector<std::string> parts;
-  for (const auto& c : r.any_of) parts.push_back(c.controller + " = " + join(c.values, "|"));
+  for (const auto& c : r.any_of) parts.push_back(c.controller + " = " + join(c.allowed(), "|"));
   return join(parts, " or ");
 }
 
@@ -162,9 +164,10 @@ std::string now_text(const Scene& s, const Requirement& r) {
 
 bool holds(const Scene& s, const Requirement& r) {
   if (r.holds) return r.holds(s);
-  for (const auto& c : r.any_of)
-    if (std::find(c.values.begin(), c.values.end(), s.text(c.controller)) != c.values.end())
-      return true;
+  for (const auto& c : r.any_of) {
+    const std::vector<std::string> values = c.allowed();
+    if (std::find(values.begin(), values.end(), s.text(c.controller)) != values.end()) return true;
+  }
   return false;
 }
 
@@ -196,13 +199,11 @@ const ParamSpec* find_param(const std::string& key) {
   return nullptr;
 }
 
-std::string allowed_text(const ParamSpec& p) {
+namespace {
+std::string allowed_text(const ParamSpec& p, const std::vector<std::string>& choices) {
   switch (p.type) {
-    case ParamType::Choice: {
-      std::string s;
-      for (const auto& c : p.choices) s += (s.empty() ? "" : "|") + c;
-      return s;
-    }
+    case ParamType::Choice:
+      return join(choices, "|");
     case ParamType::Boolean:
       return "true|false";
     case ParamType::Path:
@@ -216,6 +217,15 @@ std::string allowed_text(const ParamSpec& p) {
     }
   }
   return "";
+}
+}  // namespace
+
+std::string allowed_text(const ParamSpec& p) {
+  return allowed_text(p, p.allowed_choices());
+}
+
+std::string documented_allowed_text(const ParamSpec& p) {
+  return allowed_text(p, p.choices);
 }
 
 std::string option_value(const std::string& option, const std::string& key,
@@ -306,9 +316,28 @@ std::vector<std::string> Scene::drop_inapplicable() {
   return warnings;
 }
 
+bool Scene::overridden() const {
+  for (const auto& [key, from] : set_by_)
+    if (from == "--set") return true;
+  return false;
+}
+
+std::string Scene::provenance() const {
+  if (origin != kBuiltInOrigin || !overridden()) return origin;
+  const std::string& kind = text(key::model_kind);
+  const std::string mode = text(key::drive_mode) == "events" ? "event-driven" : "continuous";
+  std::string words;
+  if (kind == "ofc") {
+    words = "ofc";
+  } else {
+    words = (kind == "bk" ? "" : kind + ", ") + text(key::model_parameterisation);
+    if (text(key::friction_law) == "rsf") words += ", rsf";
+  }
+  return "built-in default with --set overrides (" + words + ", " + mode + ")";
+}
+
 std::string Scene::where() const {
-  bool overridden = false;
-  for (const auto& [key, from] : set_by_) overridden = overridden || from == "--set";
+  const bool overridden = this->overridden();
   // The built-in default's origin describes the scene it starts as (event-driven); once
   // --set has changed it, that description may no longer hold (drive.mode = continuous).
   if (origin == kBuiltInOrigin)
@@ -320,6 +349,14 @@ std::string Scene::where() const {
 void Scene::validate() const {
   const std::string where = this->where();
   for (const auto& p : parameter_table()) {
+    // A registry's choice read while its value was registered, validated after it was
+    // taken away (a test's scheme): refused as reading it now would refuse it.
+    if (p.choices_now) {
+      const std::vector<std::string> choices = p.choices_now();
+      if (std::find(choices.begin(), choices.end(), text(p.key)) == choices.end())
+        throw Error(p.key + ": expected one of " + allowed_text(p, choices) + ", got '" +
+                    text(p.key) + "'" + where);
+    }
     if (!is_set(p.key)) continue;
     const Requirement* r = failing_requirement(p);
     if (!r) continue;

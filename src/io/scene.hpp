@@ -24,9 +24,14 @@ class Scene;
 struct SceneValues;
 
 // One condition of an applies-when rule: the controlling key holds one of these values.
+// `values_now`, when given, replaces `values` by a list read each time the rule is checked
+// (integrator.transitions: the schemes whose traits allow located transitions, shipped or
+// registered since the table was built).
 struct KeyCondition {
   std::string controller;
   std::vector<std::string> values;
+  std::function<std::vector<std::string>()> values_now;
+  std::vector<std::string> allowed() const { return values_now ? values_now() : values; }
 };
 
 // One applies-when rule of a key: it holds when any of its conditions does. A rule that is
@@ -48,11 +53,16 @@ struct ParamSpec {
   double min = 0, max = 0;    // Real/Integer only
   bool min_open = false, max_open = false;
   bool has_min = false, has_max = false;
-  std::vector<std::string> choices;  // Choice only
-  std::string units;                 // "" for dimensionless or not applicable
-  std::string doc;                   // one line
-  bool allow_auto = false;           // Real only: the word `keyword` is accepted too
-  std::string keyword = "auto";      // `auto` (chosen for you) or `none` (the output is off)
+  // Choice only. A choice read from a registry (integrator.scheme) gives `choices_now`, the
+  // values allowed at the moment (shipped and registered since), read whenever a scene is
+  // read or validated; `choices` then holds the shipped ones, which the reference docs list.
+  std::vector<std::string> choices;
+  std::function<std::vector<std::string>()> choices_now;
+  std::vector<std::string> allowed_choices() const { return choices_now ? choices_now() : choices; }
+  std::string units;             // "" for dimensionless or not applicable
+  std::string doc;               // one line
+  bool allow_auto = false;       // Real only: the word `keyword` is accepted too
+  std::string keyword = "auto";  // `auto` (chosen for you) or `none` (the output is off)
   // When the key applies: every rule holds (in this order: the first that fails says why).
   std::vector<Requirement> applies_when;
   // Given in a scene file where it does not apply, it is not dropped with a warning but
@@ -139,6 +149,14 @@ class Scene {
   std::string origin;  // the file it came from, or kBuiltInOrigin
   // The origin of a default-constructed scene (the provenance line of its outputs).
   static constexpr const char* kBuiltInOrigin = "built-in default (carlson-langer, event-driven)";
+  // True when a --set override gave a key.
+  bool overridden() const;
+  // Where the scene came from, as an output's provenance states it (summary.json's "scene"):
+  // the origin, or for the built-in default changed by --set what it became, "built-in
+  // default with --set overrides (bkp, thesis, continuous)" (the model kind unless bk, the
+  // parameterisation, rsf for rate-and-state friction, the drive mode; the automaton: "ofc,
+  // event-driven").
+  std::string provenance() const;
   // Where the scene came from, for the end of an error message: " (scene FILE)",
   // " (built-in default scene)", each "with --set overrides" when --set changed it.
   std::string where() const;
@@ -154,8 +172,11 @@ class Scene {
   std::map<std::string, std::string> set_by_;  // where each given key came from
 };
 
-// The allowed values of a key as text: "[0, 1)", "thesis|clst91|cl89", "true|false".
+// The allowed values of a key as text: "[0, 1)", "thesis|clst91|cl89", "true|false"
+// (a registry's choice: the values allowed now).
 std::string allowed_text(const ParamSpec& spec);
+// The same as the reference docs list it: a registry's choice lists its shipped values.
+std::string documented_allowed_text(const ParamSpec& spec);
 
 // The value of a command-line option that stands for the scene key `key` (fit --mu-min is
 // stats.mu_min), checked against that key's one declaration: the normalised text, or

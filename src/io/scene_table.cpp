@@ -246,10 +246,34 @@ std::vector<std::pair<std::string, LawChoice>> law_options() {
   return o;
 }
 
-std::vector<std::pair<std::string, std::string>> scheme_options() {
-  std::vector<std::pair<std::string, std::string>> o;
-  for (const std::string& k : stepper_keywords()) o.emplace_back(k, k);
-  return o;
+// integrator.scheme: the registry's keywords (integrate/registry.cpp), read whenever a scene
+// is read or validated, so that a scheme registered at run time is a choice as the shipped
+// ones are; the reference docs list the shipped ones.
+Row scheme_choice(const char* def, const char* doc) {
+  const auto a = at(&SceneValues::integrator, &IntegratorSettings::scheme);
+  Row row(key::integrator_scheme, ParamType::Choice, def, "", doc);
+  ParamSpec& p = row.spec();
+  p.choices = shipped_scheme_keywords();
+  p.choices_now = [] { return stepper_keywords(); };
+  p.fill = [a](SceneValues& v, const std::string& t) { a.set(v, t); };
+  p.text_of = [a](const SceneValues& v) { return a.get(v); };
+  return row;
+}
+
+// The schemes of `keywords` whose traits let integrator.transitions = located wrap them.
+std::vector<std::string> locatable(const std::vector<std::string>& keywords) {
+  std::vector<std::string> out;
+  for (const std::string& k : keywords)
+    if (scheme_supports_located(k)) out.push_back(k);
+  return out;
+}
+
+// "rk2, rk4, verlet": the shipped locatable schemes, for integrator.transitions' doc.
+std::string shipped_locatable_text() {
+  std::string t;
+  for (const std::string& k : locatable(shipped_scheme_keywords()))
+    t += (t.empty() ? "" : ", ") + k;
+  return t;
 }
 
 // The named keys of `s` through their rows (a rule reads the keys it joins as enums).
@@ -266,7 +290,7 @@ SceneValues read(const Scene& s, K... keys) {
 
 Requirement needs(Key controller, std::vector<std::string> values) {
   Requirement r;
-  r.any_of.push_back({controller.name, std::move(values)});
+  r.any_of.push_back({controller.name, std::move(values), {}});
   return r;
 }
 
@@ -339,11 +363,12 @@ Requirement theta_scheme() {
 Requirement adaptive_or_rsf() {
   return either(needs(key::integrator_scheme, {"adaptive"}), rsf_law());
 }
+// Read from the registry's traits each time it is checked (a scheme registered at run time
+// that declares itself locatable takes located transitions).
 Requirement located_scheme() {
-  std::vector<std::string> schemes;
-  for (const std::string& k : stepper_keywords())
-    if (scheme_supports_located(k)) schemes.push_back(k);
-  return needs(key::integrator_scheme, schemes);
+  Requirement r = needs(key::integrator_scheme, {});
+  r.any_of.front().values_now = [] { return locatable(stepper_keywords()); };
+  return r;
 }
 Requirement energy_on() {
   return needs(key::output_energy, {"true"});
@@ -1104,10 +1129,9 @@ void equilibrium_needs_continuous(const Scene& s, const std::string& where) {
 
 std::vector<ParamSpec> integrator_rows() {
   return {
-      choice(key::integrator_scheme, "rk4",
-             at(&SceneValues::integrator, &IntegratorSettings::scheme), scheme_options(),
-             "rk2 (explicit midpoint), rk4, verlet, theta (theta-method, set-valued friction), "
-             "adaptive (event-located adaptive reference)")
+      scheme_choice("rk4",
+                    "rk2 (explicit midpoint), rk4, verlet, theta (theta-method, set-valued "
+                    "friction), adaptive (event-located adaptive reference)")
           .when(rate_law(), chain_kinds()),
       real(key::integrator_dt, at(&SceneValues::integrator, &IntegratorSettings::dt), "0.01", '(',
            0, 1e6, ']', "time", "time step")
@@ -1115,9 +1139,11 @@ std::vector<ParamSpec> integrator_rows() {
       choice(key::integrator_transitions, "step",
              at(&SceneValues::integrator, &IntegratorSettings::located_transitions),
              {{"step", false}, {"located", true}},
-             "where stick and slip happen: step (at the end of the step that crosses them, first "
-             "order) or located (inside the step, on its dense output: the scheme's order) "
-             "(schemes rk2, rk4, verlet)")
+             ("where stick and slip happen: step (at the end of the step that crosses them, "
+              "first order) or located (inside the step, on its dense output: the scheme's "
+              "order) (schemes " +
+              shipped_locatable_text() + ")")
+                 .c_str())
           .when(rate_law(), located_scheme())
           .later(),
       real(key::integrator_tolerance, at(&SceneValues::integrator, &IntegratorSettings::tolerance),
@@ -1232,8 +1258,8 @@ void check_table(const std::vector<ParamSpec>& table) {
                                  "', which is not a choice");
         const std::vector<std::string> allowed = controller->type == ParamType::Boolean
                                                      ? std::vector<std::string>{"true", "false"}
-                                                     : controller->choices;
-        for (const std::string& value : c.values)
+                                                     : controller->allowed_choices();
+        for (const std::string& value : c.allowed())
           if (std::find(allowed.begin(), allowed.end(), value) == allowed.end())
             throw std::logic_error("scene: " + p.key + " depends on " + c.controller + " = " +
                                    value + ", which it does not allow");

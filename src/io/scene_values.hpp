@@ -162,9 +162,9 @@ struct SceneValues {
 // Every key of `scene` through its row into its member. Reads no file.
 SceneValues scene_values(const Scene& scene);
 
-// Whether integrator.scheme `scheme` locates stick and slip inside its step
-// (integrator.transitions = located) and runs the general kernels (long-range, viscous,
-// lattice), as the scheme's traits declare it (integrate/scheme_traits.hpp).
+// Whether integrator.scheme `scheme` can locate stick and slip inside its step
+// (integrator.transitions = located), as the scheme's traits declare it
+// (integrate/scheme_traits.hpp); false for a keyword the registry does not hold.
 bool scheme_supports_located(const std::string& scheme);
 
 }  // namespace bkq

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "integrate/located.hpp"
+#include "integrate/scheme_traits.hpp"
 #include "integrate/theta.hpp"
 #include "io/friction_table.hpp"
 #include "io/rsf_blocks.hpp"
@@ -198,21 +199,31 @@ RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
   return r;
 }
 
-// The theta-method's implicit solve, the adaptive scheme's and the located transitions'
-// event functions are written for nearest-neighbour springs without dashpots.
+// The located transitions' event functions and the steps of the schemes whose traits
+// declare no general kernels (the theta-method's implicit solve, the adaptive scheme's) are
+// written for nearest-neighbour springs without dashpots.
 void check_general_kernels(const Scene& scene, const Settings& s) {
-  const std::string& scheme = s.integrator.scheme;
-  const bool crossing = scheme_supports_located(scheme);
   const bool general = s.model.long_range() || s.model.viscous() || s.model.lattice();
-  if (!general || (crossing && !s.integrator.located_transitions)) return;
-  throw Error((crossing ? "integrator.transitions = located" : "integrator.scheme = " + scheme) +
+  if (!general) return;
+  const std::string& scheme = s.integrator.scheme;
+  const SchemeTraits* traits = scheme_traits(scheme);
+  const bool runs = traits != nullptr && traits->general_kernels;
+  if (runs && !s.integrator.located_transitions) return;
+  std::vector<std::string> able;  // "rk2, rk4 or verlet": the registry's, by their traits
+  for (const std::string& k : stepper_keywords())
+    if (scheme_traits(k)->general_kernels) able.push_back(k);
+  std::string allowed;
+  for (std::size_t i = 0; i < able.size(); ++i)
+    allowed += (i == 0 ? "" : i + 1 == able.size() ? " or " : ", ") + able[i];
+  throw Error((runs ? "integrator.transitions = located" : "integrator.scheme = " + scheme) +
               " with " +
               (s.model.lattice()      ? "model.rows = " + scene.text(key::model_rows)
                : s.model.long_range() ? "model.coupling = " + scene.text(key::model_coupling) +
                                             " and model.range = " + scene.text(key::model_range)
                                       : "model.viscosity = " + scene.text(key::model_viscosity)) +
               ": written for chains of nearest-neighbour springs without dashpots; allowed "
-              "here: integrator.scheme = rk2, rk4 or verlet with integrator.transitions = step");
+              "here: integrator.scheme = " +
+              allowed + " with integrator.transitions = step");
 }
 
 }  // namespace

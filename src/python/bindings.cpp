@@ -106,7 +106,7 @@ void bind_parameters(py::module_& m) {
       .def_readonly("default", &ParamSpec::default_value)
       .def_readonly("units", &ParamSpec::units)
       .def_readonly("doc", &ParamSpec::doc)
-      .def_readonly("choices", &ParamSpec::choices)
+      .def_property_readonly("choices", [](const ParamSpec& p) { return p.allowed_choices(); })
       .def_property_readonly("type",
                              [](const ParamSpec& p) {
                                switch (p.type) {

@@ -84,6 +84,27 @@ TEST(Scene, Defaults) {
   EXPECT_NO_THROW(s.validate());
 }
 
+TEST(Scene, TheBuiltInDefaultChangedBySetSaysWhatItBecame) {
+  Scene s;
+  EXPECT_EQ(s.provenance(), Scene::kBuiltInOrigin);
+  s.set("model.blocks", "40", "values");  // not an override of the command line
+  EXPECT_EQ(s.provenance(), Scene::kBuiltInOrigin);
+  s.set("model.blocks", "40");
+  EXPECT_EQ(s.provenance(), "built-in default with --set overrides (carlson-langer, event-driven)");
+  s.set("drive.mode", "continuous");
+  EXPECT_EQ(s.provenance(), "built-in default with --set overrides (carlson-langer, continuous)");
+  s.set("model.kind", "bkp");
+  s.set("model.parameterisation", "thesis");
+  EXPECT_EQ(s.provenance(), "built-in default with --set overrides (bkp, thesis, continuous)");
+  s.set("model.parameterisation", "si");
+  s.set("friction.law", "rsf");
+  EXPECT_EQ(s.provenance(), "built-in default with --set overrides (bkp, si, rsf, continuous)");
+  // A scene file's origin stays its file's, --set or not.
+  Scene f = from("[model]\nblocks = 50\n");
+  f.set("drive.mode", "continuous");
+  EXPECT_EQ(f.provenance(), "x.ini");
+}
+
 TEST(Scene, FileThenOverridesInOrder) {
   Scene s = from(
       "# a comment\n[model]\nblocks = 50\nl = 3\n\n[friction]\nalpha = 1\n"

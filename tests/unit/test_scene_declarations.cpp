@@ -135,18 +135,21 @@ TEST(SceneDeclarations, AKeyIsRefusedInEveryContextItsRowExcludes) {
         const ParamSpec& controller = *find_param(c.controller);
         const std::vector<std::string> all = controller.type == ParamType::Boolean
                                                  ? std::vector<std::string>{"true", "false"}
-                                                 : controller.choices;
+                                                 : controller.allowed_choices();
+        const std::vector<std::string> values = c.allowed();
         for (const std::string& excluded : all) {
-          if (std::find(c.values.begin(), c.values.end(), excluded) != c.values.end()) continue;
+          if (std::find(values.begin(), values.end(), excluded) != values.end()) continue;
           bool tried = false;
           for (const Scene& base : bases) {
             if (!base.applies(c.controller)) continue;
             Scene s = base;
             s.set(c.controller, excluded, "context");
             bool other_holds = false;
-            for (const KeyCondition& d : rule.any_of)
-              other_holds = other_holds || std::find(d.values.begin(), d.values.end(),
-                                                     s.text(d.controller)) != d.values.end();
+            for (const KeyCondition& d : rule.any_of) {
+              const std::vector<std::string> dv = d.allowed();
+              other_holds =
+                  other_holds || std::find(dv.begin(), dv.end(), s.text(d.controller)) != dv.end();
+            }
             if (other_holds) continue;
             tried = true;
             ++contexts;
@@ -185,7 +188,7 @@ TEST(SceneDeclarations, EveryApplicabilityRuleCanBeReadAndExplained) {
       EXPECT_TRUE(!r.any_of.empty() || (r.holds && r.why_not)) << p.key;
       for (const KeyCondition& c : r.any_of) {
         ASSERT_NE(find_param(c.controller), nullptr) << p.key;
-        EXPECT_FALSE(c.values.empty()) << p.key;
+        EXPECT_FALSE(c.allowed().empty()) << p.key;
       }
     }
 }

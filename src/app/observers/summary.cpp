@@ -28,14 +28,6 @@ namespace bkq {
 
 namespace {
 
-// Where the scene came from. The built-in default's origin names the chain it starts as; an
-// OFC run made from it with --set says so instead. (Chain runs keep the origin as it is: the
-// golden outputs record it.)
-std::string origin_text(const Scene& scene, const Settings& settings) {
-  if (!settings.ofc.on || scene.origin != Scene::kBuiltInOrigin) return scene.origin;
-  return "built-in default with --set overrides (ofc, event-driven)";
-}
-
 // The provenance, then "status" (io/run_folder.hpp): finished, or interrupted with what
 // the run needs to go on ("interrupted": the signal, the checkpoint, the command, and how
 // far it was meant to go; the figures after it are those reached so far).
@@ -45,7 +37,7 @@ Json provenance_json(const Scene& scene, const Settings& settings, const std::st
   j.set("version", kVersion);
   j.set("git_revision", kGitRevision);
   j.set("seed", static_cast<std::int64_t>(settings.run.seed));
-  j.set("scene", origin_text(scene, settings));
+  j.set("scene", scene.provenance());
   j.set("scene_hash", std::to_string(scene.hash()));
   j.set("mode", mode);
   j.set("written", utc_now_iso());
