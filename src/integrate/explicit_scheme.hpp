@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <memory>
 #include <string_view>
 
 #include "integrate/cluster.hpp"
@@ -25,6 +26,9 @@ class ExplicitScheme final : public Stepper {
                                         .cluster_kernels = true,
                                         .fused_kernels = Method::fusable};
   std::string_view name() const override { return Method::name; }
+  std::unique_ptr<Stepper> fresh(int n_blocks) const override {
+    return std::make_unique<ExplicitScheme>(n_blocks);
+  }
   const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return Method::order; }
   double stability_constant() const override { return Method::stability_constant; }

@@ -43,6 +43,7 @@ constexpr SchemeTraits located_traits(SchemeTraits scheme) {
   t.located_on_fixed_steps = true;
   t.general_kernels = false;  // its dense output reads j +- 1
   t.fused_kernels = false;
+  t.cluster_kernels = false;  // not compiled for it (docs/developer/build-time.md)
   return t;
 }
 
