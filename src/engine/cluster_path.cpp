@@ -7,23 +7,18 @@ namespace bkq {
 
 bool ClusterPath::ready(const Relaxation& rx, ClusterRelaxation& r) {
   // One covered range (so every sliding block is inside it) and at most kMaxCluster
-  // blocks between its ends, which are stuck blocks or free chain ends (the stepper
-  // refuses the shapes it has no code for: run_cluster). The kernels read j +- 1 and have
-  // no dashpots: a coupling of longer range or viscous takes the general step.
+  // blocks between its ends, which are stuck blocks (a sliding block at a free chain end
+  // takes the general step; the stepper refuses the laws it has no code for:
+  // kClusterKernel). The kernels read j +- 1 and have no dashpots: a coupling of longer
+  // range or viscous takes the general step.
   const Ranges ranges = rx.active.ranges();
   if (!rx.cluster || !rx.traits.cluster_kernels || ranges.size() != 1 || rx.forces.general_kernel())
     return false;
   const Range& range = ranges.front();
-  const int n = rx.forces.n();
-  const ChainState& st = rx.st;
-  const bool free_ends = rx.forces.params().boundary == Boundary::Free && n >= 2;
-  r.free_left = free_ends && range.lo == 0 && st.mobile[0] != 0.0;
-  r.free_right = free_ends && range.hi == n && st.mobile[n - 1] != 0.0;
-  r.lo = range.lo - (r.free_left ? 1 : 0);
-  r.k = range.hi - range.lo - 2 + (r.free_left ? 1 : 0) + (r.free_right ? 1 : 0);
+  r.lo = range.lo;
+  r.k = range.hi - range.lo - 2;
   if (r.k < 1 || r.k > kMaxCluster) return false;
-  return (r.free_left || st.mobile[range.lo] == 0.0) &&
-         (r.free_right || st.mobile[range.hi - 1] == 0.0);
+  return rx.st.mobile[range.lo] == 0.0 && rx.st.mobile[range.hi - 1] == 0.0;
 }
 
 bool ClusterPath::advance(Relaxation& rx, PathReport& out) {
@@ -51,21 +46,16 @@ bool ClusterPath::advance(Relaxation& rx, PathReport& out) {
     r.half_dt_cp = 0.5 * dt * rx.forces.params().c_p;
   }
   if (!rx.stepper.relax_cluster(rx.forces, r)) return false;
-  // Located: the first step had a transition and was undone; the general path takes it.
-  if (r.steps == 0) return false;
   // A shrink due inside a lone block's run changed nothing; the one due after the last
   // step, if any, the driver does.
   steps_.all += r.steps;
   if (k > 1) steps_.multi_block += r.steps;
-  if (r.free_left) steps_.left_end += r.steps;
-  if (r.free_right) steps_.right_end += r.steps;
   const Range& range = rx.active.ranges().front();
   out.steps = r.steps;
   out.block_steps = (range.hi - range.lo) * r.steps;
   out.sliding_block_steps = r.sliding_block_steps;
   out.sliding = r.sliding;
   out.max_speed = r.max_speed;
-  out.stick_time = rx.stepper.located_stick_time();
   std::copy(r.released.begin(), r.released.begin() + r.n_released, released_);
   out.released = std::span<const int>(released_, r.n_released);
   return true;

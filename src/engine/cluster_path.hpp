@@ -1,7 +1,6 @@
 // The cluster kernel: while the sliding blocks lie within one covered range of at most
-// kMaxCluster interior blocks whose ends hold (or are free chain ends), the scheme's
-// fixed-size form steps it (integrate/cluster.hpp; located: up to the step before a
-// transition, which the general step takes). The same events bit for bit, in less time.
+// kMaxCluster interior blocks whose ends hold, the scheme's fixed-size form steps it
+// (integrate/cluster.hpp). The same events bit for bit, in less time.
 #pragma once
 
 #include <cstdint>
@@ -16,10 +15,10 @@ class ClusterPath final : public RelaxationPath {
   const char* name() const override { return "cluster"; }
   bool advance(Relaxation& rx, PathReport& out) override;
 
-  // Steps taken here (a study count): all of them, those with more than one block between
-  // the ends, and those at a free chain end.
+  // Steps taken here (a study count): all of them, and those with more than one block
+  // between the ends.
   struct Steps {
-    std::int64_t all = 0, multi_block = 0, left_end = 0, right_end = 0;
+    std::int64_t all = 0, multi_block = 0;
   };
   const Steps& steps() const { return steps_; }
 

@@ -5,6 +5,8 @@
 #include <bit>
 #include <cstdint>
 
+#include "integrate/transition_rule.hpp"
+
 namespace bkq::contacts_detail {
 namespace {
 
@@ -78,14 +80,12 @@ template <class Law>
 double range_power(const Law law, double damper, const double* __restrict mobile,
                    const double* __restrict dir, const double* __restrict y0,
                    const double* __restrict y1, int lo, int hi) {
-  RangePowerSum sum;
-  auto power = [&](int j) { return mobile[j] * step_power(law, y0[j], y1[j], dir[j], damper); };
   // Four blocks at a time, the place modulo 4 a constant in the body: it vectorises.
-  int j = lo;
-  for (; j + 4 <= hi; j += 4)
-    for (int k = 0; k < 4; ++k) sum.add(k, power(j + k));
-  for (; j < hi; ++j) sum.add(j - lo, power(j));
-  return sum.total();
+  return transition::range_power(hi - lo, [&](int m) {
+    const int j = lo + m;
+    return transition::crossing_power<Law::backslip>(mobile[j], law.magnitude(y0[j]), y0[j],
+                                                     law.magnitude(y1[j]), y1[j], dir[j], damper);
+  });
 }
 
 }  // namespace

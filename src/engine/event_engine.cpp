@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "integrate/transition_rule.hpp"
 #include "model/damped_oscillator.hpp"
 
 namespace bkq {
@@ -187,19 +188,15 @@ EventRecord EventEngine::next_event() {
 }
 
 bool EventEngine::query_tree_failures() {
-  // Stuck, uncovered blocks feel only the pad's motion; ask the tree who broke.
-  const double thr = forces_.friction().threshold, kp = forces_.params().k_p;
-  const bool backslip = forces_.friction().backslip;
+  // Stuck, uncovered blocks feel only the pad's motion; ask the tree who broke (the
+  // transition rules' far-block test, which the cluster kernels apply too).
+  const double kp = forces_.params().k_p;
   bool any = false;
   for (;;) {
-    const double a = anchor();
-    if (active_.tree().max() + kp * a > thr) {
-      release(active_.tree().argmax());
-    } else if (backslip && active_.tree().min() + kp * a < -thr) {
-      release(active_.tree().argmin());
-    } else {
-      break;
-    }
+    const int side = transition::far_failure(forces_.friction(), kp, active_.tree().max(),
+                                             active_.tree().min(), anchor());
+    if (side == 0) break;
+    release(side > 0 ? active_.tree().argmax() : active_.tree().argmin());
     ledger_.add_sliding();
     any = true;
   }

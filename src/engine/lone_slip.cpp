@@ -15,7 +15,7 @@
 
 namespace bkq {
 
-LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string_view scheme,
+LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, const Stepper& scheme,
                              double dt, std::int64_t max_steps, bool located) {
   LoneSlip out;
   out.stiffness = stiffness;
@@ -33,12 +33,10 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
   q.m_x = q.k_p0 = q.c_p = 0;
   const ChainForces forces(q);
   const Friction& fr = forces.friction();
-  const auto& known = stepper_keywords();
-  if (std::find(known.begin(), known.end(), scheme) == known.end()) {
-    out.why_not = "the stepper is not one of the registry's";
-    return out;
-  }
-  auto stepper = make_stepper(std::string(scheme), 1);
+  // The scheme's own steps (unwrapped, if it came with located transitions), on a stepper of
+  // one block: a copy of the caller's, so that any scheme, registered or not, is recorded.
+  const Stepper& plain_scheme = scheme.scheme();
+  auto stepper = plain_scheme.fresh(1);
   if (stepper->stick_rule() != StickRule::Crossing) {
     out.why_not = "the stepper resolves transitions itself";
     return out;
@@ -48,7 +46,7 @@ LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string
   std::unique_ptr<Stepper> plain;
   const LocatedTransitions* wrapper = nullptr;
   if (located) {
-    plain = make_stepper(std::string(scheme), 1);
+    plain = plain_scheme.fresh(1);
     stepper = with_located_transitions(std::move(stepper), 1);
     wrapper = static_cast<const LocatedTransitions*>(stepper.get());
   }

@@ -53,12 +53,13 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "model/parameters.hpp"
 
 namespace bkq {
+
+class Stepper;
 
 struct LoneSlip {
   // The state at the end of step n (steps[n - 1]), after the stick rule.
@@ -89,9 +90,10 @@ struct LoneSlip {
 };
 
 // Integrates the lone block of stiffness `stiffness` with the model's friction, mass and
-// damper, by `scheme` at step dt, until it sticks (unusable if it has not after max_steps
+// damper, by a fresh copy of `scheme`'s stepper (Stepper::fresh; a located wrapper's scheme
+// unwrapped) at step dt, until it sticks (unusable if it has not after max_steps
 // steps, or if it never leaves the start); `located`: with located transitions.
-LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, std::string_view scheme,
+LoneSlip integrate_lone_slip(const ModelParams& p, double stiffness, const Stepper& scheme,
                              double dt, std::int64_t max_steps, bool located = false);
 
 // Bounds on the differences of rounding size between the table and a direct integration

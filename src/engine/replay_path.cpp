@@ -116,7 +116,7 @@ const LoneSlip& ReplayPath::chain_lone_slip(const Relaxation& rx, int j) {
   LoneSlip& table = lone_[at_end];
   if (!lone_built_[at_end]) {
     const double stiffness = p.k_p + (p.has_neighbours() ? (at_end ? 1.0 : 2.0) * p.k_c : 0.0);
-    table = integrate_lone_slip(p, stiffness, rx.stepper.name(), rx.dt, rx.max_steps,
+    table = integrate_lone_slip(p, stiffness, rx.stepper, rx.dt, rx.max_steps,
                                 rx.traits.located_on_fixed_steps);
     lone_built_[at_end] = true;
   }
@@ -155,9 +155,8 @@ const LoneSlip& ReplayPath::lattice_lone_slip(const Relaxation& rx, int j) {
     lattice_coupled_ = 0;
     for (const LatticeSpring& c : rx.forces.lattice_stencil()) lattice_coupled_ += 2.0 * c.k;
   }
-  lattice_lone_.push_back(integrate_lone_slip(rx.forces.params(), stiffness, rx.stepper.name(),
-                                              rx.dt, rx.max_steps,
-                                              rx.traits.located_on_fixed_steps));
+  lattice_lone_.push_back(integrate_lone_slip(rx.forces.params(), stiffness, rx.stepper, rx.dt,
+                                              rx.max_steps, rx.traits.located_on_fixed_steps));
   return lattice_lone_.back();
 }
 

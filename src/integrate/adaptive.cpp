@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cstdio>
+#include <memory>
 #include <utility>
 
 #include "core/error.hpp"
@@ -61,6 +62,12 @@ void take_max(double& m, double q) {
 }
 
 }  // namespace
+
+std::unique_ptr<Stepper> Adaptive::fresh(int n_blocks) const {
+  auto copy = std::make_unique<Adaptive>(n_blocks, tol_);
+  copy->set_fixed_step(fixed_h_);
+  return copy;
+}
 
 Adaptive::Adaptive(int n_blocks, double tolerance) : tol_(tolerance), n_(n_blocks) {
   if (!(tolerance > 0.0 && tolerance < 1.0)) {

@@ -25,6 +25,7 @@ class Adaptive final : public Stepper {
   // Transitions located on its own dense output, its step size under error control.
   static constexpr SchemeTraits kTraits{.stick_rule = StickRule::Located, .error_control = true};
   std::string_view name() const override { return "adaptive"; }
+  std::unique_ptr<Stepper> fresh(int n_blocks) const override;
   const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return 5; }
   double stability_constant() const override { return HUGE_VAL; }

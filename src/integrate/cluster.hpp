@@ -26,27 +26,9 @@
 // ends' stage positions equal their positions), so the events are the same bit for bit;
 // tests/regression/test_cluster.cpp and test_pad_paths.cpp run both paths and compare.
 //
-// Located transitions (integrator.transitions = located, integrate/located.hpp): the same
-// loop with the Located flag, which stops *before* a step with a transition instead of
-// applying the Crossing rule after it. After each step it tests what the located stepper's
-// attempted step tests (a sliding block with dir w' <= 0, a stuck block of the range,
-// ends included, whose spring force breaks the threshold); if one fired, the step is undone
-// (the cluster put back as it was at its start) and the loop returns, so that the caller
-// takes that step on its general path, where the transition is located and the step cut.
-// A step without a transition is then exactly the located stepper's: its length is
-// (t + dt) - t as the stepper forms it, and its work is the plain sum of the sliding
-// blocks' step powers in block order (LocatedTransitions::step_work), so the located
-// events are the same bit for bit on either path (tests/regression/test_cluster.cpp). Most
-// steps of an event have no transition, so the general path's price is paid only at the
-// few that do (one undone kernel step each).
-//
-// At a free chain end the range has no stuck block on that side: its first (or last)
-// block is then the chain's end block, in any state, and the cluster's entry 0 (or
-// K + 1) is a phantom. The interior force with the phantom's position equal to the end
-// block's, passed as the left neighbour and the block's one real neighbour as the right,
-// is the end block's spring force bit for bit: k_c ((w - 2w) + w_n) is k_c (w_n - w)
-// exactly, and k_p (anchor - w) + that is spring_force's k_c (0 + (w_n - w)) -
-// k_p (w - anchor) exactly.
+// Only these shapes are compiled (docs/developer/build-time.md): located transitions, a
+// cluster at a free chain end and the other cases of kClusterKernel below take the general
+// path, which gives the same events bit for bit.
 #pragma once
 
 #include <array>
@@ -56,6 +38,7 @@
 #include <utility>
 
 #include "integrate/layouts.hpp"
+#include "integrate/transition_rule.hpp"
 #include "model/chain.hpp"
 #include "model/stick.hpp"
 
@@ -67,13 +50,10 @@ inline constexpr int kMaxCluster = 8;
 
 struct ClusterRelaxation {
   // Set by the caller.
-  int lo = 0;               // the range is [lo, lo + k + 2); its end blocks are stuck,
-  int k = 1;                // k interior blocks, 1..kMaxCluster, between them,
-  bool free_left = false;   // except that entry 0 is a phantom (lo = -1: block 0 is a free end)
-  bool free_right = false;  // or entry k + 1 is (block n - 1 is a free end)
-  double anchor = 0;        // substrate + pad (the pad held; not read when it moves)
-  SubstrateState sub;       // the frozen substrate
-  bool located = false;     // located transitions (set by the located stepper), see above
+  int lo = 0;          // the range is [lo, lo + k + 2); its end blocks are stuck,
+  int k = 1;           // k interior blocks, 1..kMaxCluster, between them
+  double anchor = 0;   // substrate + pad (the pad held; not read when it moves)
+  SubstrateState sub;  // the frozen substrate
   double dt = 0;
   double half_dt_m = 0;        // trapezoidal weight of the dissipated power: dt m_u / 2
   std::int64_t max_steps = 0;  // return after this many steps at most
@@ -91,8 +71,6 @@ struct ClusterRelaxation {
   int sliding = 0;                              // sliding blocks after the last step
   std::array<int, kMaxCluster + 2> released{};  // blocks that broke loose then, in order
   int n_released = 0;
-  // Located: the step after the last one has a transition (undone; steps may be 0).
-  bool transition_next = false;
   bool far_break = false;  // with the pad moving: the last step's swing broke a far block
 };
 
@@ -113,7 +91,7 @@ using ClusterArray = std::array<double, K + 2>;
 // Runs the loop described above with the Method's step on ClusterArray<K> positions and
 // velocities, interior entries only, the stick flags and directions of sliding frozen for
 // the step. Returns false, having done nothing, where kClusterKernel is false.
-template <class Method, bool Pad, int K, bool FreeLeft, bool FreeRight, bool Located = false>
+template <class Method, bool Pad, int K>
 bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
   static_assert(K >= 1 && K <= kMaxCluster);
   return forces.with_switches([&]<class Law, class Terms>(const Law& law_in) {
@@ -131,8 +109,8 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
       ChainState& st = *r.state;
       double* w_all = st.w.data();
       const int lo = r.lo;
-      // The entries that are blocks of the chain (the phantoms are not).
-      constexpr int first = FreeLeft ? 1 : 0, last = FreeRight ? K : K + 1;
+      // The entries: the stuck ends 0 and K + 1 and the blocks between them.
+      constexpr int first = 0, last = K + 1;
       const double dt = r.dt, half_dt_m = r.half_dt_m, half_dt_cp = r.half_dt_cp;
       const double far_max = r.far_max, far_min = r.far_min;
       const SubstrateState sub = r.sub;
@@ -152,7 +130,7 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
       double t = st.t, dissipated = *r.dissipated, max_speed = r.max_speed;
       std::int64_t steps = 0, sliding_block_steps = 0;
       int sliding = 0, n_released = 0;
-      bool far_break = false, transition_next = false;
+      bool far_break = false;
       // Each block's friction magnitude |phi(y)| at its current velocity: the power at the
       // end of one step needs it, and the first stage of the next step and the power at
       // its start need it again (the same value, so it is divided out once).
@@ -162,16 +140,7 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
       // A lone block slides throughout the run (it ends at the step where it sticks), and
       // 1 * acc is acc: the product is left out of its critical path.
       auto flagged = [&](int i, double acc) { return K == 1 ? acc : mobile[i] * acc; };
-      // The phantom always goes in the left slot: k_c ((w - 2w) + w_n) rounds once, as
-      // spring_force's k_c (0 + (w_n - w)) does; in the right slot (w_n - 2w) + w would
-      // round twice.
       auto force = [&](const Array& x, int i, double anchor) {
-        if constexpr (FreeLeft) {
-          if (i == 1) return forces.interior_force<Terms>(x[1], x[1], x[2], anchor);
-        }
-        if constexpr (FreeRight) {
-          if (i == K) return forces.interior_force<Terms>(x[K], x[K], x[K - 1], anchor);
-        }
         return forces.interior_force<Terms>(x[i - 1], x[i], x[i + 1], anchor);
       };
       auto acceleration = [&](const Array& x, const Array& v, double anchor, Array& a) {
@@ -182,11 +151,6 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
       for (bool done = false; !done;) {
         const Array y0 = y, magnitude0 = magnitude;
         const double xd_old = pad.xd;
-        // Located: the start of the step, to undo a step with a transition, and its length
-        // as the located stepper forms it.
-        [[maybe_unused]] const Array w_start = w;
-        [[maybe_unused]] const PadStageState pad_start = pad;
-        const double h = Located ? (t + dt) - t : dt;
         const double anchor0 = Pad ? base + pad.x : base;
         Array a;  // the first stage's accelerations, at the start of the step
         for (int i = 1; i <= K; ++i)
@@ -195,93 +159,50 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
         {
           ClusterLayout<typename Method::Round, decltype(acceleration), Array, Pad> layout(
               forces, base, acceleration, w, y, a, pad, velocity_dependent);
-          Method::advance(layout, h);
+          Method::advance(layout, dt);
         }
         for (int i = 1; i <= K; ++i) w_all[lo + i] = w[i];  // the spring forces below read them
-        if constexpr (Located) {
-          // LocatedTransitions::fired_at_end's test, over the same blocks.
-          const double anchor = Pad ? base + pad.x : base;
-          bool fired = false;
-          for (int i = first; i <= last; ++i)
-            fired |= mobile[i] != 0.0 ? dir[i] * y[i] <= 0.0
-                                      : fr.breaks(forces.spring_force(w_all, lo + i, anchor));
-          if (fired) {
-            w = w_start;
-            y = y0;
-            magnitude = magnitude0;
-            pad = pad_start;
-            for (int i = 1; i <= K; ++i) w_all[lo + i] = w[i];
-            transition_next = true;
-            break;
-          }
-          t = t + dt;  // the located stepper's end of step
-        } else {
-          t += dt;
-        }
+        t += dt;
         ++steps;
 
-        if constexpr (Located) {
-          // LocatedTransitions::step_work's sum: the sliding blocks in block order.
-          double sum = 0;
-          for (int i = first; i <= last; ++i) {
-            magnitude[i] = law.magnitude(y[i]);
-            if (mobile[i] != 0.0)
-              sum += step_power_given<Law::backslip>(magnitude0[i], y0[i], magnitude[i], y[i],
-                                                     dir[i], damper);
-          }
-          dissipated += 0.5 * h * p.m_u * sum;
-        } else {
-          // dissipated_power's sum, in the same order.
-          RangePowerSum power;
-          for (int i = first; i <= last; ++i) {
-            magnitude[i] = law.magnitude(y[i]);
-            power.add(i - first,
-                      mobile[i] * step_power_given<Law::backslip>(
-                                      magnitude0[i], y0[i], magnitude[i], y[i], dir[i], damper));
-          }
-          dissipated += half_dt_m * power.total();
-        }
+        // The crossing rule's work (dissipated_power's sum, in the same order).
+        dissipated += half_dt_m * transition::range_power(last - first + 1, [&](int m) {
+                        const int i = first + m;
+                        magnitude[i] = law.magnitude(y[i]);
+                        return transition::crossing_power<Law::backslip>(
+                            mobile[i], magnitude0[i], y0[i], magnitude[i], y[i], dir[i], damper);
+                      });
 
-        // The stick rule (model/stick.hpp), block by block. Located, no block fired, so the
-        // rule (with the crossing test off, as the located path applies it) changes nothing:
-        // only the count and the speeds are taken.
+        // The stick rule (model/stick.hpp), block by block.
         const double anchor = Pad ? base + pad.x : base;
         sliding = 0;
         n_released = 0;
-        if constexpr (Located) {
-          for (int i = first; i <= last; ++i)
-            if (mobile[i] != 0.0) {
-              ++sliding;
-              raise_max_speed(max_speed, std::abs(y[i]));
-            }
-        } else {
-          for (int i = first; i <= last; ++i) {
-            const int j = lo + i;
-            const bool was_sliding = mobile[i] != 0.0;
-            const stick::Outcome o =
-                stick::settle_one(fr, true, mobile[i], dir[i], y0[i], y[i],
-                                  [&] { return forces.spring_force(w_all, j, anchor); });
-            y[i] = o.y;
-            mobile[i] = o.mobile;
-            dir[i] = o.dir;
-            if (o.slides) {
-              if (o.y == 0.0) magnitude[i] = magnitude_at_rest;  // clst91 after a crossing
-              ++sliding;
-              raise_max_speed(max_speed, std::abs(o.y));
-            } else if (o.breaks) {
-              ++sliding;
-              r.released[n_released++] = j;
-            } else if (was_sliding) {
-              magnitude[i] = magnitude_at_rest;  // it stuck
-            }
+        for (int i = first; i <= last; ++i) {
+          const int j = lo + i;
+          const bool was_sliding = mobile[i] != 0.0;
+          const stick::Outcome o = transition::settle(fr, mobile[i], dir[i], y0[i], y[i], [&] {
+            return forces.spring_force(w_all, j, anchor);
+          });
+          y[i] = o.y;
+          mobile[i] = o.mobile;
+          dir[i] = o.dir;
+          if (o.slides) {
+            if (o.y == 0.0) magnitude[i] = magnitude_at_rest;  // clst91 after a crossing
+            ++sliding;
+            raise_max_speed(max_speed, std::abs(o.y));
+          } else if (o.breaks) {
+            ++sliding;
+            r.released[n_released++] = j;
+          } else if (was_sliding) {
+            magnitude[i] = magnitude_at_rest;  // it stuck
           }
         }
         if constexpr (Pad) dissipated += half_dt_cp * (xd_old * xd_old + pad.xd * pad.xd);
         sliding_block_steps += sliding;
-        // query_tree_failures' test, with the anchor formed as anchor() forms it.
+        // The far blocks' test (the event engine's, over its force tree), with the anchor
+        // formed as the engine forms it.
         if constexpr (Pad)
-          far_break = far_max + kp * anchor > fr.threshold ||
-                      (fr.backslip && far_min + kp * anchor < -fr.threshold);
+          far_break = transition::far_failure(fr, kp, far_max, far_min, anchor) != 0;
         done = sliding == 0 || n_released > 0 || far_break || !std::isfinite(max_speed) ||
                steps >= r.max_steps;
       }
@@ -303,41 +224,20 @@ bool run_cluster_sized(const ChainForces& forces, ClusterRelaxation& r) {
       r.sliding_block_steps = sliding_block_steps;
       r.sliding = sliding;
       r.n_released = n_released;
-      r.transition_next = transition_next;
       return true;
     }
   });
 }
 
-// Free chain ends take this many blocks at most into a cluster (fewer instantiations).
-inline constexpr int kMaxClusterAtEnd = 4;
-
-// Calls run_cluster_sized with K = r.k and the free ends as compile-time constants. False
-// if there is no such instantiation (a cluster at a chain end larger than kMaxClusterAtEnd).
-// With r.located, the located loop.
-template <class Method, bool Pad, bool Located = false>
-bool run_cluster_mode(const ChainForces& forces, ClusterRelaxation& r) {
-  auto sized = [&]<bool FreeLeft, bool FreeRight, int Max>() {
-    return [&]<int... Ks>(std::integer_sequence<int, Ks...>) {
-      bool ran = false;
-      ((r.k == Ks + 1 &&
-        (ran = run_cluster_sized<Method, Pad, Ks + 1, FreeLeft, FreeRight, Located>(forces, r),
-         true)) ||
-       ...);
-      return ran;
-    }
-    (std::make_integer_sequence<int, Max>());
-  };
-  if (r.free_left && r.free_right) return false;
-  if (r.free_left) return sized.template operator()<true, false, kMaxClusterAtEnd>();
-  if (r.free_right) return sized.template operator()<false, true, kMaxClusterAtEnd>();
-  return sized.template operator()<false, false, kMaxCluster>();
-}
-
+// Calls run_cluster_sized with K = r.k.
 template <class Method, bool Pad>
 bool run_cluster(const ChainForces& forces, ClusterRelaxation& r) {
-  return r.located ? run_cluster_mode<Method, Pad, true>(forces, r)
-                   : run_cluster_mode<Method, Pad, false>(forces, r);
+  return [&]<int... Ks>(std::integer_sequence<int, Ks...>) {
+    bool ran = false;
+    ((r.k == Ks + 1 && (ran = run_cluster_sized<Method, Pad, Ks + 1>(forces, r), true)) || ...);
+    return ran;
+  }
+  (std::make_integer_sequence<int, kMaxCluster>());
 }
 
 }  // namespace bkq

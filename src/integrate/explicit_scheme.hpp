@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <memory>
 #include <string_view>
 
 #include "integrate/cluster.hpp"
@@ -28,6 +29,9 @@ class ExplicitScheme final : public Stepper {
                                         .fused_kernels = Method::fusable,
                                         .stencil_kernel = &run_stencil<Method>};
   std::string_view name() const override { return Method::name; }
+  std::unique_ptr<Stepper> fresh(int n_blocks) const override {
+    return std::make_unique<ExplicitScheme>(n_blocks);
+  }
   const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return Method::order; }
   double stability_constant() const override { return Method::stability_constant; }

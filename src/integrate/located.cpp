@@ -6,8 +6,8 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "integrate/cluster.hpp"
 #include "integrate/transit.hpp"
+#include "integrate/transition_rule.hpp"
 
 namespace bkq {
 
@@ -47,11 +47,6 @@ void LocatedTransitions::restore_carried_state(std::span<const double> s) {
   last_stick_time_ = s[0];
 }
 
-bool LocatedTransitions::relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const {
-  r.located = true;
-  return scheme_->relax_cluster(forces, r);
-}
-
 void LocatedTransitions::save_start(const ChainState& st, Ranges ranges) {
   for (const Range& r : ranges) {
     std::copy(st.w.begin() + r.lo, st.w.begin() + r.hi, w0_.begin() + r.lo);
@@ -80,12 +75,10 @@ bool LocatedTransitions::fired_at_end(const ChainForces& forces, const Substrate
   const double anchor = sub.at(st.t).s + (forces.params().pad_moves() ? st.x : 0.0);
   fired_.clear();
   for (const Range& r : ranges)
-    for (int j = r.lo; j < r.hi; ++j) {
-      const bool fired = st.mobile[j] != 0.0
-                             ? st.dir[j] * st.wd[j] <= 0.0
-                             : fr.breaks(forces.spring_force(st.w.data(), j, anchor));
-      if (fired) fired_.push_back(j);
-    }
+    for (int j = r.lo; j < r.hi; ++j)
+      if (transition::fired(fr, st.mobile[j], st.dir[j], st.wd[j],
+                            [&] { return forces.spring_force(st.w.data(), j, anchor); }))
+        fired_.push_back(j);
   return !fired_.empty();
 }
 
@@ -193,7 +186,7 @@ double LocatedTransitions::sub_step_work(const ChainForces& forces, const ChainS
     for (const Range& r : ranges)
       for (int j = r.lo; j < r.hi; ++j)
         if (st.mobile[j] != 0.0) sum += step_power(law, v0_[j], st.wd[j], st.dir[j], damper);
-    return 0.5 * tau * p.m_u * sum;
+    return transition::located_work(tau, p.m_u, sum);
   });
 }
 
@@ -246,7 +239,8 @@ bool LocatedTransitions::instant_matters(const ChainState& st, int who, Ranges r
   if (st.mobile[who] == 0.0) return true;  // a failure
   for (const Range& r : ranges)
     for (int j = r.lo; j < r.hi; ++j)
-      if (j != who && st.mobile[j] != 0.0 && !(st.dir[j] * st.wd[j] <= 0.0)) return false;
+      if (j != who && st.mobile[j] != 0.0 && !transition::stopped(st.dir[j], st.wd[j]))
+        return false;
   return true;  // a stick after which nothing of the ranges slides: the event may end here
 }
 

@@ -64,6 +64,10 @@ class LocatedTransitions final : public Stepper {
   LocatedTransitions(std::unique_ptr<Stepper> scheme, int n_blocks);
 
   std::string_view name() const override { return scheme_->name(); }
+  std::unique_ptr<Stepper> fresh(int n_blocks) const override {
+    return std::make_unique<LocatedTransitions>(scheme_->fresh(n_blocks), n_blocks);
+  }
+  const Stepper& scheme() const override { return *scheme_; }
   const SchemeTraits& traits() const override { return traits_; }
   int order() const override { return scheme_->order(); }
   double stability_constant() const override { return scheme_->stability_constant(); }
@@ -75,9 +79,6 @@ class LocatedTransitions final : public Stepper {
   double located_stick_time() const override { return last_stick_time_; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override;
-  // The scheme's cluster form with located transitions (integrate/cluster.hpp): it stops
-  // before a step with a transition, which the caller then takes with step().
-  bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override;
   std::vector<double> carried_state() const override { return {last_stick_time_}; }
   void restore_carried_state(std::span<const double> s) override;
 

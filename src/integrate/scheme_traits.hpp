@@ -52,6 +52,7 @@ constexpr SchemeTraits located_traits(SchemeTraits scheme) {
   t.general_kernels = false;  // its dense output reads j +- 1
   t.fused_kernels = false;
   t.stencil_kernel = nullptr;
+  t.cluster_kernels = false;  // not compiled for it (docs/developer/build-time.md)
   return t;
 }
 

@@ -92,6 +92,13 @@ class Stepper {
   // steppers that carry nothing; restore throws bkq::Error on data of another shape.
   virtual std::vector<double> carried_state() const { return {}; }
   virtual void restore_carried_state(std::span<const double>) {}
+  // A new stepper of the same scheme and settings for a chain of n_blocks blocks, carrying
+  // nothing from this one's steps: the lone-slip record (engine/lone_slip.hpp) integrates
+  // its one block with it, whatever the scheme and whether the registry knows it.
+  virtual std::unique_ptr<Stepper> fresh(int n_blocks) const = 0;
+  // The scheme that takes the steps: this one, or the one a wrapper (located transitions)
+  // wraps.
+  virtual const Stepper& scheme() const { return *this; }
 };
 
 // Keyword -> stepper; an unknown keyword throws bkq::Error listing the valid ones.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <type_traits>
 
@@ -38,6 +39,13 @@ constexpr int kMaxChordSteps = 3;
 constexpr int kMaxSweeps = 100000;
 constexpr double kSweepTolerance = 1e-14;
 }  // namespace
+
+std::unique_ptr<Stepper> Theta::fresh(int n_blocks) const {
+  auto copy = std::make_unique<Theta>(n_blocks);
+  copy->set_theta(theta_);
+  copy->set_max_active_set_iterations(max_active_set_);
+  return copy;
+}
 
 Theta::Theta(int n_blocks) {
   resize(n_blocks);

@@ -23,6 +23,7 @@ class Theta final : public Stepper {
   // Transitions projected inside its step, on chains of nearest-neighbour springs.
   static constexpr SchemeTraits kTraits{.stick_rule = StickRule::Projection};
   std::string_view name() const override { return "theta"; }
+  std::unique_ptr<Stepper> fresh(int n_blocks) const override;
   const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return theta_ == 0.5 ? 2 : 1; }
   double stability_constant() const override { return HUGE_VAL; }

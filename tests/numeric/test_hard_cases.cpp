@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -330,6 +331,11 @@ class PoisonedRk4 : public Stepper {
  public:
   explicit PoisonedRk4(int n, int victim) : inner_(n), victim_(victim) {}
   std::string_view name() const override { return "poisoned-rk4"; }
+  // The lone-slip record's copy is poisoned too (its first block), so the engine does not
+  // replay the event's start from it and takes every step with this stepper.
+  std::unique_ptr<Stepper> fresh(int n) const override {
+    return std::make_unique<PoisonedRk4>(n, victim_ < n ? victim_ : 0);
+  }
   static constexpr SchemeTraits kTraits{.locatable = true, .general_kernels = true};
   const SchemeTraits& traits() const override { return kTraits; }
   int order() const override { return inner_.order(); }

@@ -162,14 +162,15 @@ TEST(LocatedOrder, LoneSlipRecordKeepsTheSchemesOrder) {
   const ModelParams p = single_block(law_id<law::Clst91>);
   for (const char* scheme : {"rk2", "rk4", "verlet"}) {
     std::vector<double> time_err, slip_err;
-    const int order = make_stepper(scheme, 1)->order();
+    const auto stepper = make_stepper(scheme, 1);
+    const int order = stepper->order();
     for (double h : hs) {
-      const LoneSlip rec = integrate_lone_slip(p, 1.0, scheme, h, 1000, true);
+      const LoneSlip rec = integrate_lone_slip(p, 1.0, *stepper, h, 1000, true);
       ASSERT_TRUE(rec.usable) << scheme << ": " << rec.why_not;
       ASSERT_EQ(rec.steps.back().sliding, 0) << scheme;
       time_err.push_back(std::abs(rec.stick_time - M_PI));
       slip_err.push_back(std::abs(rec.steps.back().d - 2.0 * kSigma));
-      const LoneSlip at_step = integrate_lone_slip(p, 1.0, scheme, h, 1000, false);
+      const LoneSlip at_step = integrate_lone_slip(p, 1.0, *stepper, h, 1000, false);
       EXPECT_TRUE(std::isnan(at_step.stick_time)) << scheme;
       EXPECT_NEAR(at_step.steps.back().t - M_PI, h / 2, 1e-9) << scheme;
     }
@@ -208,7 +209,7 @@ TEST(LocatedOrder, StickUnderVelocityWeakeningKeepsTheOrderOfRk4) {
 // The event engine's duration (EventRecord::duration: from the trigger to the instant the
 // last sliding block sticks) with located transitions keeps each scheme's order, for events
 // of one block (the stick located in the lone-slip record) and of several (the last stick
-// located on the general path or after a cluster kernel's undone step). The built-in
+// located on the general path). The built-in
 // Carlson–Langer scene with 30 blocks: pre-event states sampled from a run, each event
 // relaxed at dt and dt/2 against the adaptive stepper at tolerance 1e-12 (macro step
 // 1e-3, as `bkquake accuracy` does); the median error over the sampled events of each

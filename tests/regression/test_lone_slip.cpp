@@ -25,6 +25,7 @@
 
 #include "../scene_sim.hpp"
 #include "engine/lone_slip.hpp"
+#include "integrate/rk4.hpp"
 #include "stats/gutenberg_richter.hpp"
 
 namespace bkq {
@@ -190,7 +191,7 @@ TEST(LoneSlipReplay, DeclinesANeighbourOnTheLineAndReplaysOneClearOfIt) {
   Sim sim(scene);
   const double dt = scene.real("integrator.dt");
   const ModelParams& p = sim.p;
-  const LoneSlip table = integrate_lone_slip(p, p.k_p + 2.0 * p.k_c, "rk4", dt, 1'000'000);
+  const LoneSlip table = integrate_lone_slip(p, p.k_p + 2.0 * p.k_c, Rk4(1), dt, 1'000'000);
   ASSERT_TRUE(table.usable) << table.why_not;
   const double reach = p.k_c * table.steps.back().d_max;  // how far the start raises a neighbour
 

@@ -116,6 +116,9 @@ class TestMidpoint final : public Stepper {
                         const SchemeTraits& traits = kTraits)
       : inner_(make_stepper("rk2", n)), name_(std::move(name)), traits_(traits) {}
   std::string_view name() const override { return name_; }
+  std::unique_ptr<Stepper> fresh(int n) const override {
+    return std::make_unique<TestMidpoint>(n, name_, traits_);
+  }
   const SchemeTraits& traits() const override { return traits_; }
   int order() const override { return inner_->order(); }
   double stability_constant() const override { return inner_->stability_constant(); }
@@ -158,6 +161,22 @@ TEST(RelaxationPaths, ATestOnlySchemeRunsWithoutTouchingTheEngine) {
   EXPECT_EQ(engine.cluster_steps().all, 0);
   EXPECT_GT(rk2.engine.cluster_steps().all, 0);
   EXPECT_GT(engine.lone_slip_starts().replayed, 0);
+  EXPECT_EQ(rk2.engine.counters().steps, engine.counters().steps);
+}
+
+TEST(RelaxationPaths, TheReplayedStartCopiesAnUnregisteredScheme) {
+  // The lone-slip record is integrated by a copy of the engine's own stepper (Stepper::
+  // fresh), not by the registry's stepper of its name: a scheme nobody registered gets its
+  // replayed starts, and the events stay rk2's bit for bit.
+  Sim rk2(chain("rk2"));
+  TestMidpoint unlisted(rk2.p.n, "test-unlisted");
+  ASSERT_EQ(scheme_traits("test-unlisted"), nullptr);
+  EventEngine engine(rk2.forces, unlisted, 0.005, rk2.engine.state());
+  for (int i = 0; i < 1000; ++i)
+    ASSERT_EQ(record_bits(rk2.engine.next_event()), record_bits(engine.next_event()))
+        << "event " << i + 1;
+  EXPECT_GT(engine.lone_slip_starts().replayed, 0);
+  EXPECT_EQ(rk2.engine.lone_slip_starts().replayed, engine.lone_slip_starts().replayed);
   EXPECT_EQ(rk2.engine.counters().steps, engine.counters().steps);
 }
 
