@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "integrate/rk2.hpp"
 #include "integrate/scheme_traits.hpp"
+#include "integrate/stencil_kernel.hpp"  // run_stencil<TwinMethod>, for the lattice case
 #include "io/readme_tables.hpp"
 #include "io/scene.hpp"
 #include "io/settings.hpp"
