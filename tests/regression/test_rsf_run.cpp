@@ -173,6 +173,10 @@ TEST(RsfRun, EventDrivenKilledAndResumedGivesTheSameBytes) {
   EXPECT_EQ(std::count(catalog.begin(), catalog.end(), '\n'), 401);
   EXPECT_NE(read_file(tmp.file("whole/summary.json")).find("\"engine\": \"event-driven\""),
             std::string::npos);
+  // An event-driven run says so: summary.json's mode and the printed line.
+  EXPECT_NE(read_file(tmp.file("whole/summary.json")).find("\"mode\": \"events\""),
+            std::string::npos);
+  EXPECT_NE(whole.out.find("event-driven run to t = "), std::string::npos) << whole.out;
   const std::string checkpoint = tmp.file("cut/checkpoint.bin");
   const auto cut = test::run_bkquake_until([&] { return std::filesystem::exists(checkpoint); },
                                            args(tmp.file("cut"), {}));

@@ -296,7 +296,10 @@ void EventSummary::on_end(const RunEnd& end) {
 
 void ContinuousSummary::on_end(const RunEnd& end) {
   const double wall = end.wall_seconds;
-  Json summary = provenance_json(scene_, settings_, "continuous", end, out_);
+  // An event-driven rate-and-state run (closed forms between events) shares this summary.
+  const bool rsf_events = settings_.rsf.on && settings_.rsf.event_driven;
+  Json summary =
+      provenance_json(scene_, settings_, rsf_events ? "events" : "continuous", end, out_);
   summary.set("duration", end.duration);
   summary.set("steps", end.steps);
   summary.set("blocks", end.blocks);
@@ -311,9 +314,10 @@ void ContinuousSummary::on_end(const RunEnd& end) {
   all_.add_to_summary(summary);
   write_file_atomic(out_.path("summary.json"), summary.str() + "\n");
   if (end.signal != 0) return;  // the run's own stderr line says where it stopped
-  std::printf("bkquake %s: continuous run to t = %.6g (%lld steps) in %.3g s; %lld slip episodes\n",
-              kVersion, end.duration, static_cast<long long>(end.steps), wall,
-              static_cast<long long>(end.events));
+  std::printf("bkquake %s: %s run to t = %.6g (%lld steps) in %.3g s; %lld %s\n", kVersion,
+              rsf_events ? "event-driven" : "continuous", end.duration,
+              static_cast<long long>(end.steps), wall, static_cast<long long>(end.events),
+              rsf_events ? "events" : "slip episodes");
   // A run with a pad (bkp, 1dof: the brake side, Ferre 2018 ch. 4) is read through the pad's
   // segment statistics and time series; its slip episodes' b (in summary.json) is not what
   // such a run is for, so the line says where its figures are instead.
