@@ -262,6 +262,43 @@ class SlowSlipFile {
   std::FILE* file_ = nullptr;
 };
 
+// Reads the rate-and-state record of a checkpoint with `restore` (given the record's reader);
+// a missing or malformed record is refused in one line.
+template <class Restore>
+void restore_rsf_state(const Checkpoint& resumed, Restore restore) {
+  const std::string* bytes = resumed.find(kStateName);
+  if (!bytes)
+    throw Error("--resume: the checkpoint holds no rate-and-state state (it is another run's)");
+  StateReader r(*bytes, kStateName);
+  try {
+    restore(r);
+  } catch (const std::exception& e) {
+    throw Error(std::string("--resume: the checkpoint's rate-and-state state is malformed: ") +
+                e.what());
+  }
+  if (!r.done()) throw Error("--resume: the checkpoint's rate-and-state state is malformed");
+}
+
+// The observers of both rate-and-state runs, in this order: catalogue, histogram, the run's
+// figures (attached by `figures`), summary, checkpoint timer, progress, the caller's.
+template <class Figures, class Save>
+void attach_run_observers(Observers& obs, const RunRequest& req, const Settings& settings,
+                          const OutputFolder& out, std::int64_t resumed_events, Figures figures,
+                          Save save) {
+  const RunSettings& r = settings.run;
+  if (const char* catalog = catalog_file_name(settings.output.catalog))
+    obs.attach<CatalogWriter>(settings.output.catalog, out.path(catalog), req.scene, resumed_events,
+                              settings.output.catalog_deflate, catalog_layout(settings));
+  const auto& hist =
+      obs.attach<HistogramWriter>(settings.stats.bin_width, out.path("histogram.csv"));
+  figures(obs);
+  obs.attach<ContinuousSummary>(req.scene, settings, out, hist.histogram(), obs);
+  if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
+    obs.attach<CheckpointTimer>(save, r.checkpoint_events, r.checkpoint_seconds);
+  if (!req.quiet) obs.attach<ProgressLine>();
+  for (RunObserver* o : req.observers) obs.attach_ref(*o);
+}
+
 class RsfRun {
  public:
   RsfRun(const RunRequest& req, const Settings& settings, const OutputFolder& out,
@@ -276,19 +313,11 @@ class RsfRun {
         duration_(settings.run.duration) {
     if (settings.rsf.v_slow > 0) slow_.emplace(settings.rsf.v_slow, settings.rsf.v_threshold);
     if (resumed) {
-      const std::string* bytes = resumed->find(kStateName);
-      if (!bytes)
-        throw Error("--resume: the checkpoint holds no rate-and-state state (it is another run's)");
-      StateReader r(*bytes, kStateName);
-      try {
+      restore_rsf_state(*resumed, [&](StateReader& r) {
         cycle_.restore(r.f64s());
         detector_.restore(r.f64s());
         if (slow_) slow_->restore(r.f64s());
-      } catch (const std::exception& e) {
-        throw Error(std::string("--resume: the checkpoint's rate-and-state state is malformed: ") +
-                    e.what());
-      }
-      if (!r.done()) throw Error("--resume: the checkpoint's rate-and-state state is malformed");
+      });
       prog_ = resumed->progress;
       ++prog_.resumes;
     }
@@ -347,19 +376,9 @@ class RsfRun {
 
  private:
   void attach_observers(bool resumed) {
-    const RunSettings& r = settings_.run;
-    if (const char* catalog = catalog_file_name(settings_.output.catalog))
-      obs_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
-                                 resumed ? prog_.events_done : -1, settings_.output.catalog_deflate,
-                                 catalog_layout(settings_));
-    const auto& hist =
-        obs_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
-    obs_.attach<RsfFigures>(cycle_, detector_);
-    obs_.attach<ContinuousSummary>(req_.scene, settings_, out_, hist.histogram(), obs_);
-    if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
-      obs_.attach<CheckpointTimer>([this] { save(); }, r.checkpoint_events, r.checkpoint_seconds);
-    if (!req_.quiet) obs_.attach<ProgressLine>();
-    for (RunObserver* o : req_.observers) obs_.attach_ref(*o);
+    attach_run_observers(
+        obs_, req_, settings_, out_, resumed ? prog_.events_done : -1,
+        [&](Observers& o) { o.attach<RsfFigures>(cycle_, detector_); }, [this] { save(); });
   }
 
   // A checkpoint between two steps: the integrator's state is exact (every double's bits),
@@ -453,34 +472,15 @@ class RsfEventRun {
         transient_(settings.run.transient_events),
         events_(settings.run.events) {
     if (resumed) {
-      const std::string* bytes = resumed->find(kStateName);
-      if (!bytes)
-        throw Error("--resume: the checkpoint holds no rate-and-state state (it is another run's)");
-      StateReader r(*bytes, kStateName);
-      try {
-        engine_.restore(r.f64s());
-      } catch (const std::exception& e) {
-        throw Error(std::string("--resume: the checkpoint's rate-and-state state is malformed: ") +
-                    e.what());
-      }
-      if (!r.done()) throw Error("--resume: the checkpoint's rate-and-state state is malformed");
+      restore_rsf_state(*resumed, [&](StateReader& r) { engine_.restore(r.f64s()); });
       prog_ = resumed->progress;
       ++prog_.resumes;
     }
     wall0_ = prog_.wall_total;
-    const RunSettings& r = settings_.run;
-    if (const char* catalog = catalog_file_name(settings_.output.catalog))
-      obs_.attach<CatalogWriter>(settings_.output.catalog, out_.path(catalog), req_.scene,
-                                 resumed ? prog_.events_done : -1, settings_.output.catalog_deflate,
-                                 catalog_layout(settings_));
-    const auto& hist =
-        obs_.attach<HistogramWriter>(settings_.stats.bin_width, out_.path("histogram.csv"));
-    obs_.attach<RsfEventFigures>(engine_, settings_.rsf.v_handover);
-    obs_.attach<ContinuousSummary>(req_.scene, settings_, out_, hist.histogram(), obs_);
-    if (r.checkpoint_events > 0 || r.checkpoint_seconds > 0)
-      obs_.attach<CheckpointTimer>([this] { save(); }, r.checkpoint_events, r.checkpoint_seconds);
-    if (!req_.quiet) obs_.attach<ProgressLine>();
-    for (RunObserver* o : req_.observers) obs_.attach_ref(*o);
+    attach_run_observers(
+        obs_, req_, settings_, out_, resumed ? prog_.events_done : -1,
+        [&](Observers& o) { o.attach<RsfEventFigures>(engine_, settings_.rsf.v_handover); },
+        [this] { save(); });
     if (resumed) obs_.resume(*resumed);
   }
 
