@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "../record_bits.hpp"
+#include "../same_events.hpp"
 #include "../scene_sim.hpp"
 
 namespace bkq {
@@ -21,8 +21,6 @@ namespace {
 
 using test::Settings;
 using test::Sim;
-
-using test::record_bits;
 
 struct Case {
   std::string name;
@@ -53,18 +51,8 @@ void expect_same_events(const std::string& scheme) {
     Sim fast(settings), general(settings);
     general.engine.cluster_path = false;
     general.engine.held_ranges_path = false;
-    for (int i = 0; i < 2000; ++i) {
-      const EventRecord a = fast.engine.next_event(), b = general.engine.next_event();
-      ASSERT_EQ(record_bits(a), record_bits(b)) << "event " << i + 1;
-    }
+    ASSERT_NO_FATAL_FAILURE(test::expect_same_events(fast.engine, general.engine, 2000));
     const EngineCounters& ca = fast.engine.counters();
-    const EngineCounters& cb = general.engine.counters();
-    EXPECT_EQ(ca.steps, cb.steps);
-    EXPECT_EQ(ca.block_steps, cb.block_steps);
-    EXPECT_EQ(ca.sliding_block_steps, cb.sliding_block_steps);
-    EXPECT_EQ(ca.releases, cb.releases);
-    EXPECT_EQ(fast.engine.state().w, general.engine.state().w);
-    EXPECT_EQ(fast.engine.state().s, general.engine.state().s);
     EXPECT_EQ(std::bit_cast<std::uint64_t>(fast.engine.state().x),
               std::bit_cast<std::uint64_t>(general.engine.state().x));
     EXPECT_EQ(general.engine.pad_held_steps(), 0);
