@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace bkq {
 
@@ -20,18 +21,39 @@ double crossing(double t0, double x0, double d0, double t1, double x1, double d1
   return 0.5 * (lo + hi);
 }
 
+// The cycle's last step: its two ends (each block's slip at j, ln V at n + j, ln theta at
+// 2n + j, and their rates) and the Hermite cubic of a component between them.
+struct StepEnds {
+  explicit StepEnds(const RsfCycle& c)
+      : n(c.n()),
+        y0(c.y_prev()),
+        d0(c.dy_prev()),
+        y1(c.y()),
+        d1(c.dy()),
+        t0(c.t_prev()),
+        t1(c.t()) {}
+  // Component k at time t of the step.
+  double at(int k, double t) const { return hermite_value(t0, y0[k], d0[k], t1, y1[k], d1[k], t); }
+  // When component k crosses `level` in the step (it lies on either side at the two ends).
+  double crossing_of(int k, double level) const {
+    return crossing(t0, y0[k], d0[k], t1, y1[k], d1[k], level);
+  }
+
+  const int n;
+  const std::vector<double>&y0, &d0, &y1, &d1;
+  const double t0, t1;
+};
+
 }  // namespace
 
 std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
-  const int n = c.n();
-  const auto& y0 = c.y_prev();
-  const auto& d0 = c.dy_prev();
-  const auto& y1 = c.y();
-  const auto& d1 = c.dy();
-  const double t0 = c.t_prev(), t1 = c.t();
-  const auto slip_at = [&](int j, double t) {
-    return hermite_value(t0, y0[j], d0[j], t1, y1[j], d1[j], t);
-  };
+  const StepEnds s(c);
+  const int n = s.n;
+  const auto& y0 = s.y0;
+  const auto& d0 = s.d0;
+  const auto& y1 = s.y1;
+  const auto& d1 = s.d1;
+  const double t0 = s.t0, t1 = s.t1;
   // Block j's largest ln V in the step (inside it where ln V turns over) and when.
   const auto peak_of = [&](int j) {
     const double a = y0[n + j], b = y1[n + j];
@@ -48,8 +70,7 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
     for (int j = 0; j < n; ++j) {
       const double a = y0[n + j];
       if (peak_of(j).x < ln_vth_) continue;
-      const double tc =
-          a >= ln_vth_ ? t0 : crossing(t0, a, d0[n + j], t1, y1[n + j], d1[n + j], ln_vth_);
+      const double tc = a >= ln_vth_ ? t0 : s.crossing_of(n + j, ln_vth_);
       if (first < 0 || tc < t_first) first = j, t_first = tc;
     }
     if (first < 0) return std::nullopt;
@@ -59,7 +80,7 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
     ln_peak_ = -HUGE_VAL;
     seismic_.assign(n, 0);
     slip0_.resize(n);
-    for (int j = 0; j < n; ++j) slip0_[j] = slip_at(j, t_first);
+    for (int j = 0; j < n; ++j) slip0_[j] = s.at(j, t_first);
   }
   double top = -HUGE_VAL;
   for (int j = 0; j < n; ++j) {
@@ -73,9 +94,7 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
   // Every block is below V_th again: the event ends at the last downward crossing.
   double t_end = t0;
   for (int j = 0; j < n; ++j)
-    if (seismic_[j] && y0[n + j] >= ln_vth_)
-      t_end =
-          std::max(t_end, crossing(t0, y0[n + j], d0[n + j], t1, y1[n + j], d1[n + j], ln_vth_));
+    if (seismic_[j] && y0[n + j] >= ln_vth_) t_end = std::max(t_end, s.crossing_of(n + j, ln_vth_));
   EventRecord e;
   e.event = ++events_;
   e.load = c.model().v_pl * times_.hypocentre;
@@ -86,7 +105,7 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
   for (int j = 0; j < n; ++j) {
     if (!seismic_[j]) continue;
     ++e.blocks;
-    e.moment += slip_at(j, t_end) - slip0_[j];
+    e.moment += s.at(j, t_end) - slip0_[j];
     e.first_block = std::min(e.first_block, j);
     e.last_block = std::max(e.last_block, j);
     slipped.push_back(j);
@@ -104,20 +123,16 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
 
 void RsfEventDetector::restart(const RsfCycle& c, double t) {
   if (!in_event_) return;
-  const int n = c.n();
-  const auto& y0 = c.y_prev();
-  const auto& d0 = c.dy_prev();
-  const auto& y1 = c.y();
-  const auto& d1 = c.dy();
-  const double t0 = c.t_prev(), t1 = c.t();
+  const StepEnds s(c);
+  const int n = s.n;
   times_ = {t, t};
   // The peak counts from the next step on (this step's holds the event's); the trigger is the
   // fastest block at t.
   ln_peak_ = -HUGE_VAL;
   double fastest = -HUGE_VAL;
   for (int j = 0; j < n; ++j) {
-    slip0_[j] = hermite_value(t0, y0[j], d0[j], t1, y1[j], d1[j], t);
-    const double ln_v = hermite_value(t0, y0[n + j], d0[n + j], t1, y1[n + j], d1[n + j], t);
+    slip0_[j] = s.at(j, t);
+    const double ln_v = s.at(n + j, t);
     seismic_[j] = ln_v >= ln_vth_ ? 1 : 0;
     if (ln_v > fastest) fastest = ln_v, trigger_ = j;
   }
