@@ -7,7 +7,6 @@
 
 #include <signal.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -24,6 +23,7 @@
 #include "app/observers/timeseries.hpp"
 #include "app/stability.hpp"
 #include "app/stop_signals.hpp"
+#include "app/wall_clock.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/continuous.hpp"
@@ -37,12 +37,6 @@
 namespace bkq {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // The run's own named state in a checkpoint: what the driver holds besides the chain
 // state (which goes into the checkpoint's engine.state, the steps and episodes done into
@@ -152,7 +146,7 @@ class ContinuousRun {
               : initial_state(forces, settings.run.seed, settings.run.initial_disorder, false),
           dt_);
     }
-    wall0_ = prog_.wall_total;
+    wall_.set_before(prog_.wall_total);
     attach_observers(resumed != nullptr, forces);
     if (resumed) observers_.resume(*resumed);
   }
@@ -239,7 +233,7 @@ class ContinuousRun {
   // Writes a checkpoint of the run as it stands, between two steps; the observers add
   // their state and sync their files. `final`: the finished run's final state.
   void save(bool final = false) {
-    prog_.wall_total = prog_.wall_events = wall0_ + seconds_since(session_t0_);
+    prog_.wall_total = prog_.wall_events = wall_.total();
     prog_.events_done = episodes_;
     prog_.transient_done = 0;
     ContinuousSnapshot d = driver_->snapshot();
@@ -264,7 +258,7 @@ class ContinuousRun {
     end.blocks = settings_.model.n;
     end.total_load = driver_->substrate().s;
     end.duration = driver_->state().t;
-    end.wall_seconds = end.wall_seconds_total = wall0_ + seconds_since(session_t0_);
+    end.wall_seconds = end.wall_seconds_total = wall_.total();
     end.resumes = prog_.resumes;
     return end;
   }
@@ -312,8 +306,7 @@ class ContinuousRun {
   std::int64_t next_sample_ = 0;          // index k of the next sample (on the grid)
   RunProgress prog_;  // wall time and resumes; catalog_bytes and the moment sums are the observers'
   Observers observers_;
-  Clock::time_point session_t0_ = Clock::now();
-  double wall0_ = 0;  // wall seconds of the sessions before this one
+  RunWall wall_;
 };
 
 // Cuts `path` back to the `bytes` its checkpoint covers (rows written after it are

@@ -18,6 +18,7 @@
 #include "app/observers/progress.hpp"
 #include "app/observers/summary.hpp"
 #include "app/stop_signals.hpp"
+#include "app/wall_clock.hpp"
 #include "core/error.hpp"
 #include "engine/event_engine.hpp"
 #include "engine/initial_state.hpp"
@@ -29,11 +30,7 @@ namespace bkq {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using Clock = WallClock;
 
 // What the loop needs of an engine, so that the chain's event engine and the OFC automaton
 // (engine/ofc.hpp) run under the same loop, observers and checkpoints.

@@ -5,7 +5,6 @@
 
 #include <signal.h>
 
-#include <chrono>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -21,6 +20,7 @@
 #include "app/observers/summary.hpp"
 #include "app/rsf_stability.hpp"
 #include "app/stop_signals.hpp"
+#include "app/wall_clock.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "engine/rsf_events.hpp"
@@ -123,12 +123,6 @@ RsfStabilityReport rsf_stability(const Settings& settings) {
 }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // The run's own named state in a checkpoint: the integrator's and the detector's numbers.
 constexpr const char* kStateName = "rsf";
@@ -321,7 +315,7 @@ class RsfRun {
       prog_ = resumed->progress;
       ++prog_.resumes;
     }
-    wall0_ = prog_.wall_total;
+    wall_.set_before(prog_.wall_total);
     if (settings.output.blocks) {
       samples_.emplace(out.path("rsf_blocks.csv"), settings.output.every,
                        settings.output.block_first, settings.output.block_count);
@@ -384,7 +378,7 @@ class RsfRun {
   // A checkpoint between two steps: the integrator's state is exact (every double's bits),
   // so a resumed run takes the same steps and writes the same bytes.
   void save() {
-    prog_.wall_total = prog_.wall_events = wall0_ + seconds_since(session_t0_);
+    prog_.wall_total = prog_.wall_events = wall_.total();
     prog_.events_done = detector_.events();
     prog_.transient_done = 0;
     Checkpoint c =
@@ -410,7 +404,7 @@ class RsfRun {
     end.blocks = cycle_.n();
     end.total_load = settings_.rsf.chain.v_pl * cycle_.t();
     end.duration = cycle_.t();
-    end.wall_seconds = end.wall_seconds_total = wall0_ + seconds_since(session_t0_);
+    end.wall_seconds = end.wall_seconds_total = wall_.total();
     end.resumes = prog_.resumes;
     return end;
   }
@@ -427,8 +421,7 @@ class RsfRun {
   std::optional<RsfSlowSlipDetector> slow_;
   std::optional<SlowSlipFile> slow_file_;
   Observers obs_;
-  Clock::time_point session_t0_ = Clock::now();
-  double wall0_ = 0;
+  RunWall wall_;
 };
 
 // drive.mode = events (engine/rsf_loader.hpp): closed forms between events, each event by the
@@ -476,7 +469,7 @@ class RsfEventRun {
       prog_ = resumed->progress;
       ++prog_.resumes;
     }
-    wall0_ = prog_.wall_total;
+    wall_.set_before(prog_.wall_total);
     attach_run_observers(
         obs_, req_, settings_, out_, resumed ? prog_.events_done : -1,
         [&](Observers& o) { o.attach<RsfEventFigures>(engine_, settings_.rsf.v_handover); },
@@ -543,7 +536,7 @@ class RsfEventRun {
 
  private:
   void save() {
-    prog_.wall_total = prog_.wall_events = wall0_ + seconds_since(session_t0_);
+    prog_.wall_total = prog_.wall_events = wall_.total();
     Checkpoint c =
         Checkpoint::of_run(req_.scene.hash(), req_.scene.to_ini(), settings_.run.seed, prog_);
     c.engine.counters.steps = engine_.steps();
@@ -564,7 +557,7 @@ class RsfEventRun {
     end.blocks = engine_.model().n();
     end.total_load = settings_.rsf.chain.v_pl * engine_.t();
     end.duration = engine_.t();
-    end.wall_seconds = end.wall_seconds_total = wall0_ + seconds_since(session_t0_);
+    end.wall_seconds = end.wall_seconds_total = wall_.total();
     end.resumes = prog_.resumes;
     return end;
   }
@@ -577,8 +570,7 @@ class RsfEventRun {
   const std::int64_t transient_, events_;
   RunProgress prog_;
   Observers obs_;
-  Clock::time_point session_t0_ = Clock::now();
-  double wall0_ = 0;
+  RunWall wall_;
 };
 
 }  // namespace
