@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -24,6 +26,25 @@ using test::read_file;
 using test::run_bkquake;
 
 const std::string kScene = std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/qdyn-stickslip.ini";
+
+// Runs `args(tmp/cut, {})` until its first checkpoint is written, stops it with SIGTERM,
+// resumes it and expects `files` equal byte for byte to those of the run never stopped
+// (tmp/whole, already run) and the checkpoint gone.
+template <class Args>
+void expect_resumed_equals_whole(const test::TempDir& tmp, const Args& args,
+                                 std::initializer_list<const char*> files) {
+  const std::string checkpoint = tmp.file("cut/checkpoint.bin");
+  const auto cut = test::run_bkquake_until([&] { return std::filesystem::exists(checkpoint); },
+                                           args(tmp.file("cut"), {}));
+  ASSERT_EQ(cut.status, 143) << cut.err;
+  const auto resumed = run_bkquake(args(tmp.file("cut"), {"--resume"}));
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  for (const char* f : files)
+    EXPECT_EQ(read_file(tmp.file(std::string("cut/") + f)),
+              read_file(tmp.file(std::string("whole/") + f)))
+        << f;
+  EXPECT_FALSE(std::filesystem::exists(checkpoint));
+}
 
 // The built-in default turned into a rate-and-state scene by --set, then `more`.
 std::vector<std::string> rsf_args(const std::string& out, std::vector<std::string> more) {
@@ -132,17 +153,8 @@ TEST(RsfRun, KilledAndResumedRunGivesTheSameBytes) {
   };
   const auto whole = run_bkquake(args(tmp.file("whole"), {}));
   ASSERT_EQ(whole.status, 0) << whole.err;
-  const std::string checkpoint = tmp.file("cut/checkpoint.bin");
-  const auto cut = test::run_bkquake_until([&] { return std::filesystem::exists(checkpoint); },
-                                           args(tmp.file("cut"), {}));
-  ASSERT_EQ(cut.status, 143) << cut.err;
-  const auto resumed = run_bkquake(args(tmp.file("cut"), {"--resume"}));
-  ASSERT_EQ(resumed.status, 0) << resumed.err;
-  for (const char* f : {"catalog.csv", "histogram.csv", "rsf_blocks.csv", "slow_slip.csv"})
-    EXPECT_EQ(read_file(tmp.file(std::string("cut/") + f)),
-              read_file(tmp.file(std::string("whole/") + f)))
-        << f;
-  EXPECT_FALSE(std::filesystem::exists(checkpoint));
+  expect_resumed_equals_whole(tmp, args,
+                              {"catalog.csv", "histogram.csv", "rsf_blocks.csv", "slow_slip.csv"});
 }
 
 // The shipped event-driven chain (20 blocks here), stopped by SIGTERM after its first
@@ -177,17 +189,7 @@ TEST(RsfRun, EventDrivenKilledAndResumedGivesTheSameBytes) {
   EXPECT_NE(read_file(tmp.file("whole/summary.json")).find("\"mode\": \"events\""),
             std::string::npos);
   EXPECT_NE(whole.out.find("event-driven run to t = "), std::string::npos) << whole.out;
-  const std::string checkpoint = tmp.file("cut/checkpoint.bin");
-  const auto cut = test::run_bkquake_until([&] { return std::filesystem::exists(checkpoint); },
-                                           args(tmp.file("cut"), {}));
-  ASSERT_EQ(cut.status, 143) << cut.err;
-  const auto resumed = run_bkquake(args(tmp.file("cut"), {"--resume"}));
-  ASSERT_EQ(resumed.status, 0) << resumed.err;
-  for (const char* f : {"catalog.csv", "histogram.csv"})
-    EXPECT_EQ(read_file(tmp.file(std::string("cut/") + f)),
-              read_file(tmp.file(std::string("whole/") + f)))
-        << f;
-  EXPECT_FALSE(std::filesystem::exists(checkpoint));
+  expect_resumed_equals_whole(tmp, args, {"catalog.csv", "histogram.csv"});
 }
 
 // rsf.blocks: per-block a, b and D_c. Two uncoupled blocks, one with QDYN's law and one with
