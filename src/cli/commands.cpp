@@ -17,14 +17,16 @@ Command sweep_command_row();           // cli/sweep.cpp
 Command friction_study_command_row();  // cli/friction_study.cpp
 Command stability_command_row();       // cli/stability.cpp
 Command seismicity_command_row();      // cli/seismicity.cpp
+Command compare_command_row();         // cli/compare.cpp
 Command readme_tables_command_row();   // cli/readme_tables.cpp (not listed)
 
 const std::vector<Command>& command_table() {
   static const std::vector<Command> table = {
-      run_command_row(),         fit_command_row(),        merge_command_row(),
-      accuracy_command_row(),    spectrum_command_row(),   special_speed_command_row(),
-      special_law_command_row(), sweep_command_row(),      friction_study_command_row(),
-      stability_command_row(),   seismicity_command_row(), readme_tables_command_row(),
+      run_command_row(),           fit_command_row(),        merge_command_row(),
+      accuracy_command_row(),      spectrum_command_row(),   special_speed_command_row(),
+      special_law_command_row(),   sweep_command_row(),      friction_study_command_row(),
+      stability_command_row(),     seismicity_command_row(), compare_command_row(),
+      readme_tables_command_row(),
   };
   return table;
 }

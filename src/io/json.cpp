@@ -262,6 +262,10 @@ class Scanner {
       }
     }
   }
+  std::size_t pos() {
+    space();
+    return i_;
+  }
   [[noreturn]] void fail(const std::string& what) const {
     throw Error(origin_ + ": not a JSON object: " + what + " at offset " + std::to_string(i_));
   }
@@ -326,6 +330,50 @@ std::optional<std::string> json_top_level_string(const std::string& text, const 
     if (v == "null") return std::nullopt;
     throw Error(origin + ": \"" + key + "\": expected a string, got " + quote_printable(v));
   });
+}
+
+namespace {
+
+// The text of the object at `path` ("a.b": member b of the top-level member a); nullopt
+// when a member on the way is absent or null. `last` gets the path's last key.
+std::optional<std::string> enclosing_object(const std::string& text, const std::string& path,
+                                            const std::string& origin, std::string& last) {
+  std::string inner = text;
+  std::size_t from = 0;
+  for (std::size_t dot = path.find('.'); dot != std::string::npos; dot = path.find('.', from)) {
+    const std::string key = path.substr(from, dot - from);
+    const auto member =
+        read_top_level(inner, key, origin, [&](Scanner& s) -> std::optional<std::string> {
+          if (!s.at('{')) {
+            if (s.token() == "null") return std::nullopt;
+            throw Error(origin + ": \"" + path.substr(0, dot) + "\": expected an object");
+          }
+          const std::size_t b = s.pos();
+          s.skip_value();
+          return inner.substr(b, s.pos() - b);
+        });
+    if (!member) return std::nullopt;
+    inner = *member;
+    from = dot + 1;
+  }
+  last = path.substr(from);
+  return inner;
+}
+
+}  // namespace
+
+std::optional<double> json_number_at(const std::string& text, const std::string& path,
+                                     const std::string& origin) {
+  std::string key;
+  const auto inner = enclosing_object(text, path, origin, key);
+  return inner ? json_top_level_number(*inner, key, origin + " (" + path + ")") : std::nullopt;
+}
+
+std::optional<std::string> json_string_at(const std::string& text, const std::string& path,
+                                          const std::string& origin) {
+  std::string key;
+  const auto inner = enclosing_object(text, path, origin, key);
+  return inner ? json_top_level_string(*inner, key, origin + " (" + path + ")") : std::nullopt;
 }
 
 }  // namespace bkq

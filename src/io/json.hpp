@@ -83,4 +83,11 @@ std::optional<double> json_top_level_number(const std::string& text, const std::
 std::optional<std::string> json_top_level_string(const std::string& text, const std::string& key,
                                                  const std::string& origin);
 
+// The same at a dotted path through nested objects ("omori.p": member p of the top-level
+// object omori); nullopt when a member on the way is absent or null.
+std::optional<double> json_number_at(const std::string& text, const std::string& path,
+                                     const std::string& origin);
+std::optional<std::string> json_string_at(const std::string& text, const std::string& path,
+                                          const std::string& origin);
+
 }  // namespace bkq
