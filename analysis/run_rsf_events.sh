@@ -1,0 +1,84 @@
+#!/bin/bash
+# Event-driven against continuous rate-and-state runs, and the aftershocks beside
+# velocity-weakening BK and OFC with relaxation (docs/validation/rsf-events.md):
+#
+#   analysis/run_rsf_events.sh [OUT_DIR]        (default runs/rsf-events)
+#
+# The chain of 100 (data/scenes/rsf/chain100-asperities.ini) at V_pl = 1e-9 m/s and at
+# 1e-6 m/s, and the 16 x 8 lattice (data/scenes/rsf/lattice-patches.ini, 1e-6 m/s): each run
+# continuously from two starts (rsf.v_init = V_pl and 1.1 V_pl) and event-driven at the auto
+# hand-over speed (both starts) and at 3 V_pl. Then `bkquake seismicity` on every folder and
+# `bkquake compare` of each set, written to OUT_DIR/compare-*.txt. Each run's user CPU
+# seconds go to OUT_DIR/NAME.cpu. A folder that already holds summary.json is kept, so the
+# script resumes where it stopped.
+#
+# Environment: BKQUAKE (default build/bkquake); EVENTS_SET, extra --set options for the
+# event-driven runs only (e.g. EVENTS_SET="--set rsf.creep_quantum=..." with OUT_DIR a new
+# folder, to measure a change of the event-driven engine against the same continuous runs:
+# link or copy the continuous folders c*-* there first, and they are kept). Runs at nice 10,
+# one at a time.
+set -euo pipefail
+B=${BKQUAKE:-build/bkquake}
+OUT=${1:-runs/rsf-events}
+read -r -a EXTRA <<<"${EVENTS_SET:-}"
+mkdir -p "$OUT"
+
+run() {
+  local name=$1
+  shift
+  if [ -f "$OUT/$name/summary.json" ]; then return; fi
+  echo "+ $B run $* --out $OUT/$name" >&2
+  /usr/bin/time -f %U -o "$OUT/$name.cpu" nice -n 10 "$B" run "$@" --out "$OUT/$name" --quiet
+}
+events() { run "$@" --set drive.mode=events --set run.transient_events=0 "${EXTRA[@]}"; }
+
+C=data/scenes/rsf/chain100-asperities.ini
+L=data/scenes/rsf/lattice-patches.ini
+# The chain at 1e-9 m/s over 4e7 s; event-driven until past 4e7 s.
+run c1-9 "$C" --set run.duration=4e7
+run c2-9 "$C" --set run.duration=4e7 --set rsf.v_init=1.1e-9
+events ea1-9 "$C" --set run.events=5000
+events ea2-9 "$C" --set run.events=5000 --set rsf.v_init=1.1e-9
+events eh-9 "$C" --set run.events=5000 --set rsf.handover_speed=3e-9
+# The same chain at 1e-6 m/s over 4e4 s.
+F6=(--set drive.speed=1e-6 --set rsf.v_init=1e-6)
+run c1-6 "$C" "${F6[@]}" --set run.duration=4e4
+run c2-6 "$C" "${F6[@]}" --set run.duration=4e4 --set rsf.v_init=1.1e-6
+events ea1-6 "$C" "${F6[@]}" --set run.events=5000
+events ea2-6 "$C" "${F6[@]}" --set run.events=5000 --set rsf.v_init=1.1e-6
+events eh-6 "$C" "${F6[@]}" --set run.events=5000 --set rsf.handover_speed=3e-6
+# The 16 x 8 lattice at 1e-6 m/s over 2e4 s.
+run lc1 "$L" --set run.duration=2e4
+run lc2 "$L" --set run.duration=2e4 --set rsf.v_init=1.1e-6
+events lea1 "$L" --set run.events=4000
+events lea2 "$L" --set run.events=4000 --set rsf.v_init=1.1e-6
+events leh "$L" --set run.events=4000 --set rsf.handover_speed=3e-6
+# Aftershocks beside: velocity-weakening BK (the Carlson-Langer chain of 100) and OFC with
+# relaxation (docs/explanation/ofc.md).
+run vw data/scenes/carlson-langer.ini --set run.events=200000
+run ofc data/scenes/lattice/ofc-relaxation-64.ini
+
+# Mainshocks (and the large events of the recurrence) by magnitude: the rate-and-state runs
+# have no events spanning half the system.
+seis() {
+  local mu=$1 d
+  shift
+  for d in "$@"; do
+    [ -f "$OUT/$d/seismicity/seismicity.json" ] ||
+      nice -n 10 "$B" seismicity "$OUT/$d" --mainshock-mu "$mu" >"$OUT/$d.seismicity.log"
+  done
+}
+seis -6.5 c1-9 c2-9 ea1-9 ea2-9 eh-9
+seis -6.5 c1-6 c2-6 ea1-6 ea2-6 eh-6
+seis -6.5 lc1 lc2 lea1 lea2 leh
+seis 5 ofc
+[ -f "$OUT/vw/seismicity/seismicity.json" ] || "$B" seismicity "$OUT/vw" >"$OUT/vw.seismicity.log"
+
+cmp() {
+  local name=$1
+  shift
+  "$B" compare "$@" --mu-large -6.5 | tee "$OUT/compare-$name.txt"
+}
+cmp 9 "$OUT"/{c1-9,c2-9,ea1-9,ea2-9,eh-9} --from 4e-3 --to 4e-2
+cmp 6 "$OUT"/{c1-6,c2-6,ea1-6,ea2-6,eh-6} --from 4e-3 --to 4e-2
+cmp lattice "$OUT"/{lc1,lc2,lea1,lea2,leh} --from 2e-3 --to 2e-2
