@@ -13,10 +13,12 @@
 # script resumes where it stopped.
 #
 # Environment: BKQUAKE (default build/bkquake); EVENTS_SET, extra --set options for the
-# event-driven runs only (e.g. EVENTS_SET="--set rsf.creep_quantum=..." with OUT_DIR a new
-# folder, to measure a change of the event-driven engine against the same continuous runs:
-# link or copy the continuous folders c*-* there first, and they are kept). Runs at nice 10,
-# one at a time.
+# event-driven runs only; REUSE, a folder of an earlier run of this script whose continuous,
+# velocity-weakening and OFC runs are linked instead of run again. So a change of the
+# event-driven engine is measured against the same continuous runs with, e.g.,
+#   REUSE=runs/rsf-events EVENTS_SET="--set rsf.creep_quantum=1e-6" \
+#     analysis/run_rsf_events.sh runs/rsf-events-creep
+# Runs at nice 10, one at a time.
 set -euo pipefail
 B=${BKQUAKE:-build/bkquake}
 OUT=${1:-runs/rsf-events}
@@ -31,32 +33,40 @@ run() {
   /usr/bin/time -f %U -o "$OUT/$name.cpu" nice -n 10 "$B" run "$@" --out "$OUT/$name" --quiet
 }
 events() { run "$@" --set drive.mode=events --set run.transient_events=0 "${EXTRA[@]}"; }
+# A run that does not depend on the event-driven engine: linked from $REUSE when it is there.
+kept() {
+  if [ -n "${REUSE:-}" ] && [ -f "$REUSE/$1/summary.json" ] && [ ! -e "$OUT/$1" ]; then
+    ln -s "$(cd "$REUSE" && pwd)/$1" "$OUT/$1"
+    [ ! -f "$REUSE/$1.cpu" ] || cp "$REUSE/$1.cpu" "$OUT/$1.cpu"
+  fi
+  run "$@"
+}
 
 C=data/scenes/rsf/chain100-asperities.ini
 L=data/scenes/rsf/lattice-patches.ini
 # The chain at 1e-9 m/s over 4e7 s; event-driven until past 4e7 s.
-run c1-9 "$C" --set run.duration=4e7
-run c2-9 "$C" --set run.duration=4e7 --set rsf.v_init=1.1e-9
+kept c1-9 "$C" --set run.duration=4e7
+kept c2-9 "$C" --set run.duration=4e7 --set rsf.v_init=1.1e-9
 events ea1-9 "$C" --set run.events=5000
 events ea2-9 "$C" --set run.events=5000 --set rsf.v_init=1.1e-9
 events eh-9 "$C" --set run.events=5000 --set rsf.handover_speed=3e-9
 # The same chain at 1e-6 m/s over 4e4 s.
 F6=(--set drive.speed=1e-6 --set rsf.v_init=1e-6)
-run c1-6 "$C" "${F6[@]}" --set run.duration=4e4
-run c2-6 "$C" "${F6[@]}" --set run.duration=4e4 --set rsf.v_init=1.1e-6
+kept c1-6 "$C" "${F6[@]}" --set run.duration=4e4
+kept c2-6 "$C" "${F6[@]}" --set run.duration=4e4 --set rsf.v_init=1.1e-6
 events ea1-6 "$C" "${F6[@]}" --set run.events=5000
 events ea2-6 "$C" "${F6[@]}" --set run.events=5000 --set rsf.v_init=1.1e-6
 events eh-6 "$C" "${F6[@]}" --set run.events=5000 --set rsf.handover_speed=3e-6
-# The 16 x 8 lattice at 1e-6 m/s over 2e4 s.
-run lc1 "$L" --set run.duration=2e4
-run lc2 "$L" --set run.duration=2e4 --set rsf.v_init=1.1e-6
-events lea1 "$L" --set run.events=4000
-events lea2 "$L" --set run.events=4000 --set rsf.v_init=1.1e-6
-events leh "$L" --set run.events=4000 --set rsf.handover_speed=3e-6
+# The 16 x 8 lattice at 1e-6 m/s over 5e4 s; event-driven at the auto hand-over from one
+# start only, and to 800 events: on the lattice it makes about 4 events a CPU second.
+kept lc1 "$L" --set run.duration=5e4
+kept lc2 "$L" --set run.duration=5e4 --set rsf.v_init=1.1e-6
+events leh "$L" --set run.events=6000 --set rsf.handover_speed=3e-6
+events lea1 "$L" --set run.events=800
 # Aftershocks beside: velocity-weakening BK (the Carlson-Langer chain of 100) and OFC with
 # relaxation (docs/explanation/ofc.md).
-run vw data/scenes/carlson-langer.ini --set run.events=200000
-run ofc data/scenes/lattice/ofc-relaxation-64.ini
+kept vw data/scenes/carlson-langer.ini --set run.events=200000
+kept ofc data/scenes/lattice/ofc-relaxation-64.ini
 
 # Mainshocks (and the large events of the recurrence) by magnitude: the rate-and-state runs
 # have no events spanning half the system.
@@ -65,20 +75,23 @@ seis() {
   shift
   for d in "$@"; do
     [ -f "$OUT/$d/seismicity/seismicity.json" ] ||
-      nice -n 10 "$B" seismicity "$OUT/$d" --mainshock-mu "$mu" >"$OUT/$d.seismicity.log"
+      nice -n 10 "$B" seismicity "$OUT/$d" --mainshock-mu "$mu" >"$OUT/$d.seismicity.log" 2>&1 ||
+      echo "bkquake seismicity $OUT/$d failed: $(tail -1 "$OUT/$d.seismicity.log")" >&2
   done
 }
 seis -6.5 c1-9 c2-9 ea1-9 ea2-9 eh-9
 seis -6.5 c1-6 c2-6 ea1-6 ea2-6 eh-6
-seis -6.5 lc1 lc2 lea1 lea2 leh
+seis -6.3 lc1 lc2 leh lea1
 seis 5 ofc
 [ -f "$OUT/vw/seismicity/seismicity.json" ] || "$B" seismicity "$OUT/vw" >"$OUT/vw.seismicity.log"
 
-cmp() {
-  local name=$1
-  shift
-  "$B" compare "$@" --mu-large -6.5 | tee "$OUT/compare-$name.txt"
+compare_set() {
+  local name=$1 mu=$2
+  shift 2
+  "$B" compare "$@" --mu-large "$mu" >"$OUT/compare-$name.txt" || true
+  cat "$OUT/compare-$name.txt"
 }
-cmp 9 "$OUT"/{c1-9,c2-9,ea1-9,ea2-9,eh-9} --from 4e-3 --to 4e-2
-cmp 6 "$OUT"/{c1-6,c2-6,ea1-6,ea2-6,eh-6} --from 4e-3 --to 4e-2
-cmp lattice "$OUT"/{lc1,lc2,lea1,lea2,leh} --from 2e-3 --to 2e-2
+compare_set 9 -6.5 "$OUT"/{c1-9,c2-9,ea1-9,ea2-9,eh-9} --from 4e-3 --to 4e-2
+compare_set 6 -6.5 "$OUT"/{c1-6,c2-6,ea1-6,ea2-6,eh-6} --from 4e-3 --to 4e-2
+compare_set lattice -6.3 "$OUT"/{lc1,lc2,leh} --from 5e-3 --to 5e-2
+compare_set lattice-auto -6.3 "$OUT"/{lc1,lc2,leh,lea1} --from 2e-3 --to 2e-2
