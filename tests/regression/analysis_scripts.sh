@@ -16,6 +16,7 @@ q $B run data/scenes/thesis.ini --set run.duration=200 --set output.energy=true 
 q $P analysis/plot_gr.py runs/r --out runs/r/gr.png
 q $B fit runs/r --scan; q $P analysis/plot_b_scan.py runs/r
 q $B seismicity runs/r; q $P analysis/plot_seismicity.py runs/r
+q $B compare runs/r runs/r; q $P analysis/plot_rsf_events.py runs/r runs/r --from 0 --to 1e9 --out runs/r/rsf_events.png
 q $P analysis/plot_slip_profiles.py runs/r --largest 4
 q $P analysis/plot_energy.py runs/c --out runs/c/energy.png
 q $P analysis/plot_brake.py timeseries runs/c
@@ -46,5 +47,8 @@ q analysis/run_carlson_langer.sh 1500
 q analysis/run_coupling_b.sh 1000 500 100 1 3
 q analysis/run_coupling_viscosity.sh 500 200 2
 q analysis/run_coupling_fronts.sh 20 0
+# Not run here: analysis/run_rsf_events.sh runs the rate-and-state chain of 100, the 16 x 8
+# lattice, velocity-weakening BK and OFC (about 10 CPU-minutes); it writes under its OUT_DIR
+# (default runs/rsf-events).
 # Not run here: analysis/run_lattice.sh runs the shipped lattice scenes at their own sizes
 # (about 30 CPU-minutes); it writes under runs/lattice.
