@@ -14,6 +14,7 @@
 #include "app/compare.hpp"
 #include "cli_helpers.hpp"
 #include "core/error.hpp"
+#include "io/json.hpp"
 #include "stats/catalog_compare.hpp"
 
 namespace {
@@ -49,6 +50,19 @@ TEST(CatalogCompare, RecurrenceOfPeriodicAndIdenticalTimes) {
   EXPECT_GT(a.cov, 0.5);
   EXPECT_GT(a.cov_err, 0.0);
   EXPECT_TRUE(std::isnan(bkq::recurrence_of({1, 2}).cov));  // one interval: no spread
+}
+
+TEST(CatalogCompare, JsonNumbersAtDottedPaths) {
+  const std::string t = R"({"a": {"b": 2.5, "c": null, "s": "x"}, "d": 1, "e": null})";
+  EXPECT_EQ(bkq::json_number_at(t, "a.b", "t"), 2.5);
+  EXPECT_EQ(bkq::json_number_at(t, "d", "t"), 1.0);
+  EXPECT_FALSE(bkq::json_number_at(t, "a.c", "t"));  // null
+  EXPECT_FALSE(bkq::json_number_at(t, "a.x", "t"));  // absent
+  EXPECT_FALSE(bkq::json_number_at(t, "x.b", "t"));  // no such object
+  EXPECT_FALSE(bkq::json_number_at(t, "e.b", "t"));  // a null object
+  EXPECT_EQ(bkq::json_string_at(t, "a.s", "t"), std::string("x"));
+  EXPECT_THROW(bkq::json_number_at(t, "d.b", "t"), bkq::Error);  // d is a number
+  EXPECT_THROW(bkq::json_number_at(t, "a.s", "t"), bkq::Error);  // a string
 }
 
 // A run folder with a catalogue: event k at load k/1000, mu = k/1000 + shift (k = 0..999),
