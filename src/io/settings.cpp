@@ -180,8 +180,12 @@ RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
     // The closed forms between events leave radiation damping out: V_h keeps eta V_h a small
     // share of a sigma (at most 0.1 when given, 0.01 when auto).
     r.event_driven = true;
-    double a_min = HUGE_VAL;
-    for (const rsf::Law& law : m.law) a_min = std::min(a_min, law.params().a);
+    double a_min = HUGE_VAL, dc_min = HUGE_VAL;
+    for (const rsf::Law& law : m.law) {
+      a_min = std::min(a_min, law.params().a);
+      dc_min = std::min(dc_min, law.params().dc);
+    }
+    r.creep_quantum = v.rsf.creep_quantum.value_or(dc_min / 10);
     const double damped = m.eta > 0 ? a_min * m.sigma / m.eta : HUGE_VAL;
     r.v_handover = v.rsf.handover_speed.value_or(std::min(r.v_threshold / 10, 0.01 * damped));
     if (v.rsf.handover_speed && m.eta * r.v_handover > 0.1 * a_min * m.sigma)
