@@ -9,11 +9,11 @@ namespace bkq {
 
 namespace {
 
-// Where the Hermite cubic of x over the step crosses `level` (x0 < level <= x1 or the
-// reverse), by bisection.
-double crossing(double t0, double x0, double d0, double t1, double x1, double d1, double level) {
-  double lo = t0, hi = t1;
-  const bool below_at_lo = x0 < level;
+// Where the Hermite cubic of x over the step [t0, t1] crosses `level` between lo and hi (on
+// either side of it there), by bisection.
+double crossing(double t0, double x0, double d0, double t1, double x1, double d1, double level,
+                double lo, double hi) {
+  const bool below_at_lo = (lo == t0 ? x0 : hermite_value(t0, x0, d0, t1, x1, d1, lo)) < level;
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
     ((hermite_value(t0, x0, d0, t1, x1, d1, mid) < level) == below_at_lo ? lo : hi) = mid;
@@ -34,10 +34,11 @@ struct StepEnds {
         t1(c.t()) {}
   // Component k at time t of the step.
   double at(int k, double t) const { return hermite_value(t0, y0[k], d0[k], t1, y1[k], d1[k], t); }
-  // When component k crosses `level` in the step (it lies on either side at the two ends).
-  double crossing_of(int k, double level) const {
-    return crossing(t0, y0[k], d0[k], t1, y1[k], d1[k], level);
+  // When component k crosses `level` between lo and hi (on either side of it there).
+  double crossing_of(int k, double level, double lo, double hi) const {
+    return crossing(t0, y0[k], d0[k], t1, y1[k], d1[k], level, lo, hi);
   }
+  double crossing_of(int k, double level) const { return crossing_of(k, level, t0, t1); }
 
   const int n;
   const std::vector<double>&y0, &d0, &y1, &d1;
@@ -69,8 +70,12 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
     double t_first = t1;
     for (int j = 0; j < n; ++j) {
       const double a = y0[n + j];
-      if (peak_of(j).x < ln_vth_) continue;
-      const double tc = a >= ln_vth_ ? t0 : s.crossing_of(n + j, ln_vth_);
+      const Extremum p = peak_of(j);
+      if (p.x < ln_vth_) continue;
+      // Up to the peak: a block whose ln V rises above V_th and falls back inside the step.
+      const double tc = a >= ln_vth_           ? t0
+                        : y1[n + j] >= ln_vth_ ? s.crossing_of(n + j, ln_vth_)
+                                               : s.crossing_of(n + j, ln_vth_, t0, p.t);
       if (first < 0 || tc < t_first) first = j, t_first = tc;
     }
     if (first < 0) return std::nullopt;
@@ -91,10 +96,17 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
     if (p.x > ln_peak_) ln_peak_ = p.x, times_.peak = p.t;
   }
   if (top >= ln_vth_) return std::nullopt;
-  // Every block is below V_th again: the event ends at the last downward crossing.
+  // Every block is below V_th again: the event ends at the last downward crossing (after the
+  // step's peak for a block that rose above V_th and fell back inside the step).
   double t_end = t0;
-  for (int j = 0; j < n; ++j)
-    if (seismic_[j] && y0[n + j] >= ln_vth_) t_end = std::max(t_end, s.crossing_of(n + j, ln_vth_));
+  for (int j = 0; j < n; ++j) {
+    if (!seismic_[j]) continue;
+    const Extremum p = peak_of(j);
+    if (y0[n + j] >= ln_vth_)
+      t_end = std::max(t_end, s.crossing_of(n + j, ln_vth_));
+    else if (p.x >= ln_vth_)
+      t_end = std::max(t_end, s.crossing_of(n + j, ln_vth_, p.t, t1));
+  }
   EventRecord e;
   e.event = ++events_;
   e.load = c.model().v_pl * times_.hypocentre;

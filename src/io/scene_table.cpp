@@ -902,7 +902,8 @@ std::vector<ParamSpec> rsf_rows() {
                        "q of the event-driven engine: between events a block's closed-form slip is "
                        "passed on to its neighbours as stress steps (k_c times it) whenever it "
                        "reaches q, and at every event; smaller is closer to the continuous "
-                       "integration and slower; auto: a tenth of the least rsf.dc")
+                       "integration and slower; auto: 0.1 a sigma/k_c (the least a, the stiffest "
+                       "spring), so that a quantum moves a neighbour's slip rate by at most 10 %")
           .when(rsf_law(), event_driven())
           .later(),
       choice(key::rsf_pattern, "uniform", at(&SceneValues::rsf, &RsfKeys::pattern),

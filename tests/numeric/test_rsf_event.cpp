@@ -397,6 +397,42 @@ TEST(RsfEventEngine, QuantaBringTheFirstEventToTheContinuousOne) {
   for (const double q : {1e-6, 1e-7, 1e-8}) EXPECT_LT(std::fabs(first(q)), 1e-3) << "q " << q;
 }
 
+// A block whose slip rate rises above V_th and falls back inside one step (V_th just below
+// an event's peak): the event starts on the way up and ends on the way down, so its duration
+// is positive and its moment the slip between, not a crossing searched where there is none.
+TEST(RsfEventDetector, EventInsideOneStepStartsBeforeItEnds) {
+  const RsfModel m = test::qdyn_stickslip(1);
+  double peak = 0;
+  {
+    RsfCycle c(m, 1e-8, {1e-9}, {100.0});
+    RsfEventDetector det(1e-3);
+    std::optional<EventRecord> e;
+    while (!e) {
+      c.step();
+      e = det.observe(c);
+    }
+    peak = e->max_speed;
+  }
+  int inside = 0;
+  for (const double below : {1e-3, 1e-5, 1e-7, 1e-9}) {
+    RsfCycle c(m, 1e-8, {1e-9}, {100.0});
+    RsfEventDetector det(peak * (1 - below));
+    std::optional<EventRecord> e;
+    while (!e) {
+      c.step();
+      e = det.observe(c);
+      if (e && c.y_prev()[1] < std::log(peak * (1 - below)) &&
+          c.ln_v(0) < std::log(peak * (1 - below)))
+        ++inside;
+    }
+    EXPECT_GT(e->duration, 0) << below;
+    EXPECT_GT(e->moment, 0) << below;
+    EXPECT_GE(e->peak_time, e->hypocentre_time) << below;
+    EXPECT_LE(e->peak_time, e->hypocentre_time + e->duration) << below;
+  }
+  EXPECT_GT(inside, 0);  // some threshold was crossed both ways inside one step
+}
+
 TEST(RsfLoader, HeapKeepsTheEarliestOnTopWithTiesByIndex) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 10);
