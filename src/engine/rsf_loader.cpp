@@ -119,11 +119,16 @@ void RsfLoader::rebase(int j, double t) {
 // half a quantum.
 void RsfLoader::schedule(int j) {
   const rsf::Slider& s = slider_[j];
-  const double t_vh = rsf::time_to_speed(s, x_ref_[j], ln_vh_);
-  const double t_q =
-      std::isinf(quantum_)
-          ? quantum_
-          : rsf::time_to_slip(s, x_ref_[j], 0.5 * quantum_ + lead_[j] - unsynced_[j]);
+  double t_vh, t_q;
+  if (std::isinf(quantum_)) {
+    t_vh = rsf::time_to_speed(s, x_ref_[j], ln_vh_);
+    t_q = quantum_;
+  } else {
+    const rsf::Clocks c =
+        rsf::clocks(s, x_ref_[j], ln_vh_, 0.5 * quantum_ + lead_[j] - unsynced_[j]);
+    t_vh = c.to_speed;
+    t_q = c.to_slip;
+  }
   quantum_due_[j] = t_q < t_vh ? 1 : 0;
   heap_.set(j, t_ref_[j] + std::min(t_vh, t_q));
 }

@@ -134,15 +134,34 @@ SliderState evolve(const Slider& s, SliderState x, double dt) {
   return nucleating_after(s, x, dt);
 }
 
+namespace {
+
+// time_to_speed from a locked state, given its time to nucleation.
+// While locked ln V rises at most as fast as alpha t (b >= 0), so where that reaches the target
+// only after nucleation the search for the locked phase's own time is skipped (same result).
+double locked_time_to_speed(const Slider& s, SliderState x, double ln_v_target, double t_nuc) {
+  const double alpha = alpha_of(s);
+  if (!(s.b_rsf >= 0 && (ln_v_target - x.ln_v) / alpha > t_nuc)) {
+    const double theta0 = std::exp(x.ln_theta);
+    const double t_v = first_root(x.ln_v - ln_v_target, alpha, -s.b_rsf / s.a, theta0);
+    if (t_v <= t_nuc) return t_v;
+  }
+  if (t_nuc == kNever) return kNever;
+  return t_nuc + nucleating_time(s, locked_after(s, x, t_nuc), ln_v_target);
+}
+
+// time_to_slip from a locked state, given its time to nucleation.
+double locked_time_to_slip(const Slider& s, SliderState x, double amount, double t_nuc) {
+  if (t_nuc == kNever) return kNever;
+  return t_nuc + nucleating_slip_time(s, locked_after(s, x, t_nuc), amount);
+}
+
+}  // namespace
+
 double time_to_speed(const Slider& s, SliderState x, double ln_v_target) {
   if (x.ln_v >= ln_v_target) return 0;
   if (!locked(s, x)) return nucleating_time(s, x, ln_v_target);
-  const double theta0 = std::exp(x.ln_theta);
-  const double t_v = first_root(x.ln_v - ln_v_target, alpha_of(s), -s.b_rsf / s.a, theta0);
-  const double t_nuc = time_to_nucleation(s, x);
-  if (t_v <= t_nuc) return t_v;
-  if (t_nuc == kNever) return kNever;
-  return t_nuc + nucleating_time(s, locked_after(s, x, t_nuc), ln_v_target);
+  return locked_time_to_speed(s, x, ln_v_target, time_to_nucleation(s, x));
 }
 
 double slip(const Slider& s, SliderState x, double dt) {
@@ -158,9 +177,14 @@ double slip(const Slider& s, SliderState x, double dt) {
 double time_to_slip(const Slider& s, SliderState x, double amount) {
   if (!(amount > 0)) return 0;
   if (!locked(s, x)) return nucleating_slip_time(s, x, amount);
+  return locked_time_to_slip(s, x, amount, time_to_nucleation(s, x));
+}
+
+Clocks clocks(const Slider& s, SliderState x, double ln_v_target, double amount) {
+  if (!locked(s, x) || x.ln_v >= ln_v_target || !(amount > 0))
+    return {time_to_speed(s, x, ln_v_target), time_to_slip(s, x, amount)};
   const double t_nuc = time_to_nucleation(s, x);
-  if (t_nuc == kNever) return kNever;
-  return t_nuc + nucleating_slip_time(s, locked_after(s, x, t_nuc), amount);
+  return {locked_time_to_speed(s, x, ln_v_target, t_nuc), locked_time_to_slip(s, x, amount, t_nuc)};
 }
 
 SliderState stress_step(const Slider& s, SliderState x, double dtau) {

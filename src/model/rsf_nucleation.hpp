@@ -60,6 +60,12 @@ double time_to_speed(const Slider& s, SliderState x, double ln_v_target);
 double slip(const Slider& s, SliderState x, double dt);
 // The first time from now at which that slip reaches `amount` > 0 (+inf if never).
 double time_to_slip(const Slider& s, SliderState x, double amount);
+// Both: the times to the speed and to the slip, sharing the locked phase's time to nucleation
+// (the same numbers as the two calls).
+struct Clocks {
+  double to_speed = 0, to_slip = 0;
+};
+Clocks clocks(const Slider& s, SliderState x, double ln_v_target, double amount);
 // A shear-stress step dtau [Pa]: V times exp(dtau/(a sigma)), theta kept.
 SliderState stress_step(const Slider& s, SliderState x, double dtau);
 
