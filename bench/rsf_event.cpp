@@ -168,6 +168,10 @@ int main(int argc, char** argv) {
               asperities ? " (asperities)" : "", v_pl, duration, v_h);
   const Result c1 = continuous(m, duration, 1.3, v_h);
   const Result c2 = continuous(m, duration, 0.7, v_h);
+  std::printf(
+      "continuous steps with the fastest block below V_h: %lld (%.3f CPU s), at or above: %lld "
+      "(%.3f CPU s); ceiling on the speed-up at equal events: total/above = %.1fx\n",
+      c1.steps_below, c1.cpu_below, c1.steps_above, c1.cpu_above, c1.cpu / c1.cpu_above);
   std::printf("%-22s %9s %9s %10s %13s %7s %10s %10s %9s\n", "engine", "events", "CPU [s]",
               "events/CPU s", "ratio", "KS", "mean M", "steps", "syncs");
   const auto row = [&](const char* name, const Result& r, double ks_value) {
@@ -179,17 +183,16 @@ int main(int argc, char** argv) {
   row("continuous, other start", c2, ks(c2.magnitudes, c1.magnitudes));
   for (const double q : quanta) {
     const Result e = event_driven(m, duration, 1.3, v_h, q);
-    const std::string name =
-        std::isinf(q) ? std::string("events, q off") : "events, q = " + std::to_string(q);
-    row(name.c_str(), e, ks(e.magnitudes, c1.magnitudes));
+    char name[64];
+    if (std::isinf(q))
+      std::snprintf(name, sizeof name, "events, q off");
+    else
+      std::snprintf(name, sizeof name, "events, q = %g", q);
+    row(name, e, ks(e.magnitudes, c1.magnitudes));
   }
   std::printf(
       "magnitudes counted after T/5 (%zu and %zu continuous events); KS to the first "
       "continuous run\n",
       c1.magnitudes.size(), c2.magnitudes.size());
-  std::printf(
-      "continuous steps with the fastest block below V_h: %lld (%.3f CPU s), at or above: %lld "
-      "(%.3f CPU s); ceiling on the speed-up at equal events: total/above = %.1fx\n",
-      c1.steps_below, c1.cpu_below, c1.steps_above, c1.cpu_above, c1.cpu / c1.cpu_above);
   return 0;
 }

@@ -145,9 +145,11 @@ double RsfLoader::sync(int j, double t, bool settle) {
   unsynced_[j] = 0;
   position_[j] += moved;
   double slip = moved - lead_[j];
-  if (settle) {
+  if (std::isinf(quantum_)) {
+    slip = 0;  // no quanta: the creep is left out between events altogether
+  } else if (settle) {
     lead_[j] = 0;
-  } else if (!std::isinf(quantum_)) {
+  } else {
     slip += 0.5 * quantum_;
     lead_[j] = 0.5 * quantum_;
   }

@@ -72,7 +72,7 @@ class IndexedMinHeap {
 // of its two times (V_h, or its next quantum).
 class RsfLoader {
  public:
-  // creep_quantum: q [m], > 0; +inf: never synced between events.
+  // creep_quantum: q [m], > 0; +inf: the creep is never passed on (left out, as in RSQSim).
   RsfLoader(const RsfModel& m, double v_handover, double creep_quantum);
   int n() const { return static_cast<int>(slider_.size()); }
   const rsf::Slider& slider(int j) const { return slider_[j]; }
