@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -482,6 +483,28 @@ TEST(RsfEventEngine, HandOverKeepsSlipRateAndStateAndResumesExactly) {
     EXPECT_EQ(ea->hypocentre_time, eb->hypocentre_time);
     EXPECT_EQ(ea->moment, eb->moment);
   }
+  // Stopped between two events, after some quanta (unsynced slip and leads not zero): a
+  // snapshot there resumes to the same events and positions too.
+  const std::int64_t syncs = a.syncs();
+  double t_stop = a.t();
+  while (a.syncs() < syncs + 5 && a.loader().next_is_quantum() && !a.pending()) {
+    t_stop = std::nextafter(a.loader().next_time(), HUGE_VAL);
+    ASSERT_FALSE(a.next(t_stop).has_value());
+  }
+  ASSERT_GT(a.syncs(), syncs);
+  double lead = 0;
+  for (int j = 0; j < 4; ++j) lead += a.loader().lead(j);
+  EXPECT_GT(lead, 0);
+  RsfEventEngine c(m, 1e-8, 1e-3, 1e-4, 1e-6, {1e-8}, theta);
+  c.restore(a.snapshot());
+  for (int k = 0; k < 3; ++k) {
+    const auto ea = a.next(1e5), ec = c.next(1e5);
+    ASSERT_EQ(ea.has_value(), ec.has_value());
+    if (!ea) break;
+    EXPECT_EQ(ea->hypocentre_time, ec->hypocentre_time);
+    EXPECT_EQ(ea->moment, ec->moment);
+  }
+  for (int j = 0; j < 4; ++j) EXPECT_EQ(a.loader().position(j), c.loader().position(j));
 }
 
 // One QDYN block (quasi-dynamic, with radiation damping) from a healed state: the first events'
