@@ -1,21 +1,31 @@
 // Event-driven against continuous rate-and-state on the same chain (engine/rsf_loader.hpp vs
-// engine/rsf_cycle.hpp): QDYN's stick-slip block on each of N blocks, springs k_c = k, free
-// ends, quasi-dynamic, V_th = 1e-3 m/s, tolerance 1e-8, from the rate-and-state bench's rough
-// start (V_j = V_pl (1 + 0.5 sin(1.3 j)), theta = 10 s), over T seconds of simulated time.
+// engine/rsf_cycle.hpp): QDYN's stick-slip block on each of N blocks (or, with --asperities,
+// the pattern of rsf.pattern = asperities: blocks with j mod 10 < 5 keep a = 0.01, b = 0.025,
+// the others have a and b swapped), springs k_c = k, free ends, quasi-dynamic, V_th = 1e-3 m/s,
+// tolerance 1e-8, from the rate-and-state bench's rough start (V_j = V_pl (1 + 0.5 sin(1.3 j)),
+// theta = 10 s), over T seconds of simulated time.
+//
 // Prints each engine's events, CPU seconds and events per CPU second side by side and their
-// ratio, then the magnitude distributions' Kolmogorov-Smirnov distance between the
-// event-driven run and the continuous one, beside the distance between two continuous runs
-// from different rough starts (phase 1.3 j and 0.7 j); events before T/5 are left out.
+// ratio (the event-driven engine once per creep quantum given, and with none: "off"), then the
+// magnitude distributions' Kolmogorov-Smirnov distance between each event-driven run and the
+// continuous one, beside the distance between two continuous runs from different rough starts
+// (phase 1.3 j and 0.7 j); events before T/5 are left out. Then what bounds the speed-up: the
+// continuous integrator's steps and CPU split into those taken while the fastest block is below
+// V_h (what the event-driven engine replaces by closed forms) and at or above it (what it
+// integrates too); total CPU / the CPU above V_h is the ceiling on the speed-up at equal events.
 //
 //   build/rsf_event [--chain N] [--duration T] [--speed V_pl] [--handover V_h]
-//     defaults: N = 100, T = 2000 s, V_pl = 1e-6 m/s (the handover speed is the scene's auto:
-//     min(V_th/10, 0.01 a sigma/eta))
+//                   [--quantum q[,q2,...]] [--asperities]
+//     defaults: N = 100, T = 2000 s, V_pl = 1e-6 m/s, q = 1e-6 m (the scene's auto, D_c/10);
+//     the handover speed is the scene's auto, min(V_th/10, 0.01 a sigma/eta)
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "engine/rsf_cycle.hpp"
@@ -30,8 +40,11 @@ using namespace bkq;
 
 struct Result {
   std::vector<double> magnitudes;  // after the transient
-  long long events = 0;
+  long long events = 0, steps = 0, syncs = 0;
   double cpu = 0;
+  // Continuous only: steps and CPU while the fastest block is below V_h, and at or above it.
+  long long steps_below = 0, steps_above = 0;
+  double cpu_below = 0, cpu_above = 0;
 };
 
 std::vector<double> rough(int n, double v_pl, double phase) {
@@ -40,29 +53,52 @@ std::vector<double> rough(int n, double v_pl, double phase) {
   return v;
 }
 
-Result continuous(const RsfModel& m, double duration, double phase) {
+// The clock is read only where the fastest block crosses V_h, so the split costs nothing per
+// step; a step counts on the side its start lies on.
+Result continuous(const RsfModel& m, double duration, double phase, double v_h) {
   Result r;
   RsfCycle c(m, 1e-8, rough(m.n(), m.v_pl, phase), {10});
   RsfEventDetector events(1e-3);
+  const double ln_vh = std::log(v_h);
+  const auto above = [&] {
+    for (int j = 0; j < c.n(); ++j)
+      if (c.ln_v(j) >= ln_vh) return true;
+    return false;
+  };
   const double t0 = bench::thread_seconds();
+  double t_mark = t0;
+  bool was_above = above();
   while (c.t() < duration) {
     c.step(duration);
+    (was_above ? r.steps_above : r.steps_below) += 1;
     if (auto e = events.observe(c))
       if (e->hypocentre_time > duration / 5) r.magnitudes.push_back(e->magnitude);
+    const bool now_above = above();
+    if (now_above != was_above) {
+      const double t = bench::thread_seconds();
+      (was_above ? r.cpu_above : r.cpu_below) += t - t_mark;
+      t_mark = t;
+      was_above = now_above;
+    }
   }
-  r.cpu = bench::thread_seconds() - t0;
+  const double t1 = bench::thread_seconds();
+  (was_above ? r.cpu_above : r.cpu_below) += t1 - t_mark;
+  r.cpu = t1 - t0;
   r.events = events.events();
+  r.steps = c.accepted();
   return r;
 }
 
-Result event_driven(const RsfModel& m, double duration, double phase, double v_h) {
+Result event_driven(const RsfModel& m, double duration, double phase, double v_h, double q) {
   Result r;
-  RsfEventEngine engine(m, 1e-8, 1e-3, v_h, rough(m.n(), m.v_pl, phase), {10});
+  RsfEventEngine engine(m, 1e-8, 1e-3, v_h, q, rough(m.n(), m.v_pl, phase), {10});
   const double t0 = bench::thread_seconds();
   while (auto e = engine.next(duration))
     if (e->hypocentre_time > duration / 5) r.magnitudes.push_back(e->magnitude);
   r.cpu = bench::thread_seconds() - t0;
   r.events = engine.events();
+  r.steps = engine.steps();
+  r.syncs = engine.syncs();
   return r;
 }
 
@@ -83,11 +119,19 @@ double ks(std::vector<double> a, std::vector<double> b) {
   return d;
 }
 
+double mean(const std::vector<double>& x) {
+  double s = 0;
+  for (double v : x) s += v;
+  return x.empty() ? NAN : s / static_cast<double>(x.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int n = 100;
   double duration = 2000, v_pl = 1e-6, v_h = 0;
+  std::vector<double> quanta;
+  bool asperities = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--chain") == 0 && i + 1 < argc)
       n = std::atoi(argv[++i]);
@@ -97,24 +141,58 @@ int main(int argc, char** argv) {
       v_pl = std::atof(argv[++i]);
     else if (std::strcmp(argv[i], "--handover") == 0 && i + 1 < argc)
       v_h = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--quantum") == 0 && i + 1 < argc) {
+      const std::string list = argv[++i];
+      for (std::size_t p = 0; p < list.size();) {
+        const std::size_t comma = std::min(list.find(',', p), list.size());
+        const std::string item = list.substr(p, comma - p);
+        quanta.push_back(item == "off" ? std::numeric_limits<double>::infinity()
+                                       : std::atof(item.c_str()));
+        p = comma + 1;
+      }
+    } else if (std::strcmp(argv[i], "--asperities") == 0)
+      asperities = true;
   }
+  if (quanta.empty()) quanta = {1e-6};
   RsfModel m = test::qdyn_stickslip(n);
   m.springs = {{1, 0, 2e9}};
   m.v_pl = v_pl;
+  if (asperities) {
+    rsf::Params barrier = m.law[0].params();
+    std::swap(barrier.a, barrier.b_rsf);
+    for (int j = 0; j < n; ++j)
+      if (j % 10 >= 5) m.law[j] = rsf::Law(barrier);
+  }
   if (v_h == 0) v_h = std::min(1e-4, 0.01 * 0.01 * m.sigma / m.eta);
-  std::printf("chain %d, V_pl = %g m/s, %g s simulated, V_h = %g m/s\n", n, v_pl, duration, v_h);
-  const Result c1 = continuous(m, duration, 1.3);
-  const Result e1 = event_driven(m, duration, 1.3, v_h);
-  std::printf("%14s %10s %10s %14s\n", "engine", "events", "CPU [s]", "events/CPU s");
-  std::printf("%14s %10lld %10.3f %14.2f\n", "continuous", c1.events, c1.cpu, c1.events / c1.cpu);
-  std::printf("%14s %10lld %10.3f %14.2f\n", "event-driven", e1.events, e1.cpu, e1.events / e1.cpu);
-  std::printf("ratio of events per CPU second (event-driven / continuous): %.1fx\n",
-              (e1.events / e1.cpu) / (c1.events / c1.cpu));
-  const Result c2 = continuous(m, duration, 0.7);
+  std::printf("chain %d%s, V_pl = %g m/s, %g s simulated, V_h = %g m/s\n", n,
+              asperities ? " (asperities)" : "", v_pl, duration, v_h);
+  const Result c1 = continuous(m, duration, 1.3, v_h);
+  const Result c2 = continuous(m, duration, 0.7, v_h);
   std::printf(
-      "magnitudes after T/5: KS(event-driven, continuous) = %.3f (%zu, %zu events); "
-      "KS(continuous, continuous from another start) = %.3f (%zu events)\n",
-      ks(e1.magnitudes, c1.magnitudes), e1.magnitudes.size(), c1.magnitudes.size(),
-      ks(c1.magnitudes, c2.magnitudes), c2.magnitudes.size());
+      "continuous steps with the fastest block below V_h: %lld (%.3f CPU s), at or above: %lld "
+      "(%.3f CPU s); ceiling on the speed-up at equal events: total/above = %.1fx\n",
+      c1.steps_below, c1.cpu_below, c1.steps_above, c1.cpu_above, c1.cpu / c1.cpu_above);
+  std::printf("%-22s %9s %9s %10s %13s %7s %10s %10s %9s\n", "engine", "events", "CPU [s]",
+              "events/CPU s", "ratio", "KS", "mean M", "steps", "syncs");
+  const auto row = [&](const char* name, const Result& r, double ks_value) {
+    std::printf("%-22s %9lld %9.3f %10.2f %12.1fx %7.3f %10.3f %10lld %9lld\n", name, r.events,
+                r.cpu, r.events / r.cpu, (r.events / r.cpu) / (c1.events / c1.cpu), ks_value,
+                mean(r.magnitudes), r.steps, r.syncs);
+  };
+  row("continuous", c1, 0.0);
+  row("continuous, other start", c2, ks(c2.magnitudes, c1.magnitudes));
+  for (const double q : quanta) {
+    const Result e = event_driven(m, duration, 1.3, v_h, q);
+    char name[64];
+    if (std::isinf(q))
+      std::snprintf(name, sizeof name, "events, q off");
+    else
+      std::snprintf(name, sizeof name, "events, q = %g", q);
+    row(name, e, ks(e.magnitudes, c1.magnitudes));
+  }
+  std::printf(
+      "magnitudes counted after T/5 (%zu and %zu continuous events); KS to the first "
+      "continuous run\n",
+      c1.magnitudes.size(), c2.magnitudes.size());
   return 0;
 }

@@ -437,7 +437,9 @@ class RsfEventFigures : public RunObserver {
     r.set("engine", "event-driven");
     r.set("scheme", "dopri5");
     r.set("handover_speed", v_handover_);
+    r.set("creep_quantum", e_.loader().creep_quantum());
     r.set("integrations", e_.integrations());
+    r.set("syncs", e_.syncs());
     r.set("steps", e_.steps());
     r.set("time", e_.t());
     r.set("k", m.k);
@@ -461,7 +463,8 @@ class RsfEventRun {
         out_(out),
         files_(out.dir()),
         engine_(settings.rsf.chain, settings.rsf.tolerance, settings.rsf.v_threshold,
-                settings.rsf.v_handover, {settings.rsf.v_init}, settings.rsf.theta_start()),
+                settings.rsf.v_handover, settings.rsf.creep_quantum, {settings.rsf.v_init},
+                settings.rsf.theta_start()),
         transient_(settings.run.transient_events),
         events_(settings.run.events) {
     if (resumed) {

@@ -1,6 +1,7 @@
 // The event-driven rate-and-state engine; see rsf_loader.hpp.
 #include "engine/rsf_loader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -57,11 +58,20 @@ bool IndexedMinHeap::valid() const {
   return size() == 0 || pos_[heap_[0]] == 0;
 }
 
-RsfLoader::RsfLoader(const RsfModel& m, double v_handover)
-    : t_ref_(m.n(), 0.0), x_ref_(m.n()), heap_(m.n()), ln_vh_(std::log(v_handover)) {
+RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
+    : nb_(rsf_neighbours(m)),
+      t_ref_(m.n(), 0.0),
+      x_ref_(m.n()),
+      unsynced_(m.n(), 0.0),
+      position_(m.n(), 0.0),
+      lead_(m.n(), 0.0),
+      quantum_due_(m.n(), 0),
+      heap_(m.n()),
+      ln_vh_(std::log(v_handover)),
+      quantum_(creep_quantum) {
   if (!(m.v_pl > 0) || !(m.k > 0))
     throw Error("rsf: the event-driven engine needs a loader (k > 0, V_pl > 0)");
-  const RsfNeighbours nb = rsf_neighbours(m);
+  if (!(creep_quantum > 0)) throw Error("rsf: the creep quantum must be positive");
   for (int j = 0; j < m.n(); ++j) {
     const rsf::Params& p = m.law[j].params();
     rsf::Slider s;
@@ -71,7 +81,7 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover)
     s.sigma = m.sigma;
     s.stressing_rate = m.k * m.v_pl;
     s.k_eff = m.k;
-    for (int e = nb.start[j]; e < nb.start[j + 1]; ++e) s.k_eff += nb.k[e];
+    for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) s.k_eff += nb_.k[e];
     slider_.push_back(s);
   }
 }
@@ -81,19 +91,82 @@ rsf::SliderState RsfLoader::state_at(int j, double t) const {
   return rsf::evolve(slider_[j], x_ref_[j], t - t_ref_[j]);
 }
 
+double RsfLoader::unsynced(int j, double t) const {
+  if (t == t_ref_[j]) return unsynced_[j];
+  return unsynced_[j] + rsf::slip(slider_[j], x_ref_[j], t - t_ref_[j]);
+}
+
 void RsfLoader::set(int j, double t, rsf::SliderState x) {
+  set(j, t, x, 0.0, 0.0);
+}
+
+void RsfLoader::set(int j, double t, rsf::SliderState x, double unsynced, double lead) {
   t_ref_[j] = t;
   x_ref_[j] = x;
-  heap_.set(j, t + rsf::time_to_speed(slider_[j], x, ln_vh_));
+  unsynced_[j] = unsynced;
+  lead_[j] = lead;
+  schedule(j);
+}
+
+void RsfLoader::rebase(int j, double t) {
+  if (t == t_ref_[j]) return;
+  unsynced_[j] = unsynced(j, t);
+  x_ref_[j] = state_at(j, t);
+  t_ref_[j] = t;
+}
+
+// The earlier of the time to V_h and the time at which the unsynced slip reaches the lead plus
+// half a quantum.
+void RsfLoader::schedule(int j) {
+  const rsf::Slider& s = slider_[j];
+  double t_vh, t_q;
+  if (std::isinf(quantum_)) {
+    t_vh = rsf::time_to_speed(s, x_ref_[j], ln_vh_);
+    t_q = quantum_;
+  } else {
+    const rsf::Clocks c =
+        rsf::clocks(s, x_ref_[j], ln_vh_, 0.5 * quantum_ + lead_[j] - unsynced_[j]);
+    t_vh = c.to_speed;
+    t_q = c.to_slip;
+  }
+  quantum_due_[j] = t_q < t_vh ? 1 : 0;
+  heap_.set(j, t_ref_[j] + std::min(t_vh, t_q));
 }
 
 void RsfLoader::stress_step(int j, double t, double dtau) {
-  set(j, t, rsf::stress_step(slider_[j], state_at(j, t), dtau));
+  rebase(j, t);
+  x_ref_[j] = rsf::stress_step(slider_[j], x_ref_[j], dtau);
+  schedule(j);
+}
+
+double RsfLoader::sync(int j, double t, bool settle) {
+  rebase(j, t);
+  const double moved = unsynced_[j];
+  unsynced_[j] = 0;
+  position_[j] += moved;
+  double slip = moved - lead_[j];
+  if (std::isinf(quantum_)) {
+    slip = 0;  // no quanta: the creep is left out between events altogether
+  } else if (settle) {
+    lead_[j] = 0;
+  } else {
+    slip += 0.5 * quantum_;
+    lead_[j] = 0.5 * quantum_;
+  }
+  if (slip != 0)
+    for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e)
+      if (nb_.index[e] != j) stress_step(nb_.index[e], t, nb_.k[e] * slip);
+  schedule(j);
+  return slip;
 }
 
 RsfEventEngine::RsfEventEngine(RsfModel m, double tolerance, double v_threshold, double v_handover,
-                               const std::vector<double>& v, const std::vector<double>& theta)
-    : m_(std::move(m)), tol_(tolerance), v_th_(v_threshold), loader_(m_, v_handover) {
+                               double creep_quantum, const std::vector<double>& v,
+                               const std::vector<double>& theta)
+    : m_(std::move(m)),
+      tol_(tolerance),
+      v_th_(v_threshold),
+      loader_(m_, v_handover, creep_quantum) {
   if (!(v_handover < v_threshold))
     throw Error("rsf: the hand-over speed must lie below the seismic threshold");
   const int n = m_.n();
@@ -110,6 +183,11 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
     if (!(t_next < t_end)) {
       t_ = std::max(t_, t_end);
       return std::nullopt;
+    }
+    if (loader_.next_is_quantum()) {
+      loader_.sync(loader_.next_block(), t_next);
+      ++syncs_;
+      continue;
     }
     integrate_event(t_next, t_end);
   }
@@ -133,11 +211,13 @@ bool handed_back(const RsfCycle& c, int j, double ln_vh) {
 }
 }  // namespace
 
-// From t0 on the cycle integrator runs the whole grid from every block's closed-form state,
-// until no event is open and every block is below V_h (or t_end); its events get the run's
-// times and numbers, and every block goes back to its closed form from where it ended.
+// At t0 every block's unsynced creep is passed on (in block order), then the cycle integrator
+// runs the whole grid from every block's closed-form state, until no event is open and every
+// block is below V_h (or t_end); its events get the run's times and numbers, and every block
+// goes back to its closed form from where it ended, its position moved by the integrated slip.
 void RsfEventEngine::integrate_event(double t0, double t_end) {
   const int n = m_.n();
+  for (int j = 0; j < n; ++j) loader_.sync(j, t0, true);
   std::vector<double> v(n), theta(n);
   for (int j = 0; j < n; ++j) {
     const rsf::SliderState x = loader_.state_at(j, t0);
@@ -168,30 +248,42 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
   }
   steps_ += cycle.accepted();
   t_ = t0 + cycle.t();
-  for (int j = 0; j < n; ++j) loader_.set(j, t_, {cycle.ln_v(j), cycle.ln_theta(j)});
+  for (int j = 0; j < n; ++j) {
+    loader_.move(j, cycle.slip(j));
+    loader_.set(j, t_, {cycle.ln_v(j), cycle.ln_theta(j)});
+  }
 }
 
 std::vector<double> RsfEventEngine::snapshot() const {
   if (!pending_.empty()) throw Error("rsf: a checkpoint inside an event");
   std::vector<double> s = {t_, static_cast<double>(events_), static_cast<double>(integrations_),
-                           static_cast<double>(steps_)};
+                           static_cast<double>(steps_), static_cast<double>(syncs_)};
   for (int j = 0; j < loader_.n(); ++j) {
     s.push_back(loader_.t_ref(j));
     s.push_back(loader_.x_ref(j).ln_v);
     s.push_back(loader_.x_ref(j).ln_theta);
+    s.push_back(loader_.unsynced(j, loader_.t_ref(j)));
+    s.push_back(loader_.lead(j));
+    s.push_back(loader_.position(j));
   }
   return s;
 }
 
 void RsfEventEngine::restore(const std::vector<double>& s) {
   const int n = loader_.n();
-  if (s.size() != 4 + 3 * static_cast<std::size_t>(n))
+  constexpr std::size_t head = 5, per_block = 6;
+  if (s.size() != head + per_block * static_cast<std::size_t>(n))
     throw Error("rsf: a checkpoint of another chain's size");
   t_ = s[0];
   events_ = static_cast<std::int64_t>(s[1]);
   integrations_ = static_cast<std::int64_t>(s[2]);
   steps_ = static_cast<std::int64_t>(s[3]);
-  for (int j = 0; j < n; ++j) loader_.set(j, s[4 + 3 * j], {s[5 + 3 * j], s[6 + 3 * j]});
+  syncs_ = static_cast<std::int64_t>(s[4]);
+  for (int j = 0; j < n; ++j) {
+    const double* b = s.data() + head + per_block * j;
+    loader_.set(j, b[0], {b[1], b[2]}, b[3], b[4]);
+    loader_.set_position(j, b[5]);
+  }
   pending_.clear();
 }
 

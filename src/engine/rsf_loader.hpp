@@ -10,9 +10,14 @@
 // closed form from the integrator's slip rate and state, both kept as they are (the elastic
 // stress is the law's at those values, as the closed form's quasi-static balance has it).
 //
+// Between events the neighbours' creep reaches a block in quanta: each block's closed-form
+// slip is passed on as stress steps to its neighbours whenever it reaches rsf.creep_quantum
+// (RsfLoader::sync), and every block is synced when an event starts.
+//
 // Approximations (stated in docs/explanation/rate-and-state.md):
-//   - between events a block is loaded by the plate only: stress moved by the neighbours'
-//     creep is left out (as in RSQSim), and a block's own creep unloads it through
+//   - between events a block is loaded by the plate and by its neighbours' creep in quanta of
+//     slip q (the stress arrives late by up to one quantum's worth, k_c q); the locked
+//     phase's slip is left out; a block's own creep unloads it through
 //     k_eff = k + its coupling springs' sum, in H = b/D_c - k_eff/sigma;
 //   - the closed forms' phases (healing while V theta/D_c < 1, nucleation with
 //     V theta/D_c >> 1 after it) and their quasi-static balance (eta V << a sigma below V_h).
@@ -54,39 +59,75 @@ class IndexedMinHeap {
   std::vector<double> time_;
 };
 
-// Every block's closed form and its time to the hand-over speed.
+// Every block's closed form, its time to the hand-over speed and its creep quanta. A block's
+// closed-form slip since its last sync is its unsynced slip; a sync moves the block's position
+// by it and gives each coupled neighbour i the stress step k_ji times the slip passed on (V_i
+// times exp(dtau/(a sigma)) at theta kept, its clocks recomputed). The block's own unloading
+// k_eff is inside its H, so only neighbours change. The quanta are centred: a block that has
+// passed on exactly its slip (lead 0) is synced when its unsynced slip reaches q/2 and passes
+// on q, half a quantum ahead; after that each sync comes at q and passes on q. The stress its
+// neighbours see then lies within k q/2 of the continuous one, on both sides (error O(q^2) on
+// average, not O(q)), and a settling sync (each event's start) passes on the slip less the
+// lead, so that the stress passed on equals the slip. Each block's heap entry is the earlier
+// of its two times (V_h, or its next quantum).
 class RsfLoader {
  public:
-  RsfLoader(const RsfModel& m, double v_handover);
+  // creep_quantum: q [m], > 0; +inf: the creep is never passed on (left out, as in RSQSim).
+  RsfLoader(const RsfModel& m, double v_handover, double creep_quantum);
   int n() const { return static_cast<int>(slider_.size()); }
   const rsf::Slider& slider(int j) const { return slider_[j]; }
   // Block j's state at time t, not before its last set().
   rsf::SliderState state_at(int j, double t) const;
-  // Block j is in state x at time t: its closed form restarts there.
+  // Block j is in state x at time t with nothing unsynced: its closed form restarts there.
   void set(int j, double t, rsf::SliderState x);
-  // A shear-stress step dtau on block j at time t.
+  // The same with `unsynced` metres of slip not yet synced and a lead (a checkpoint's).
+  void set(int j, double t, rsf::SliderState x, double unsynced, double lead);
+  // A shear-stress step dtau on block j at time t (its unsynced slip kept).
   void stress_step(int j, double t, double dtau);
-  // The next block to reach V_h, and when.
+  // Block j's closed-form slip since its last sync, at time t.
+  double unsynced(int j, double t) const;
+  // Moves block j's position by its unsynced slip at time t and passes a slip on to its
+  // neighbours as stress steps: the quantum's (centred), or, settling, the slip less the lead.
+  // Returns the slip passed on.
+  double sync(int j, double t, bool settle = false);
+  // The slip block j has passed on beyond its position (0 or q/2).
+  double lead(int j) const { return lead_[j]; }
+  // Moves block j's position by an integrated slip (an event's).
+  void move(int j, double slip) { position_[j] += slip; }
+  double position(int j) const { return position_[j]; }
+  void set_position(int j, double x) { position_[j] = x; }  // a checkpoint's
+  // The next block to reach V_h or its quantum, and when; whether it is the quantum.
   int next_block() const { return heap_.top(); }
   double next_time() const { return heap_.top_time(); }
+  bool next_is_quantum() const { return quantum_due_[heap_.top()] != 0; }
   double ln_v_handover() const { return ln_vh_; }
+  double creep_quantum() const { return quantum_; }
   // Where block j's closed form starts (its last set()).
   double t_ref(int j) const { return t_ref_[j]; }
   const rsf::SliderState& x_ref(int j) const { return x_ref_[j]; }
 
  private:
+  void rebase(int j, double t);  // the closed form restarts at t, its slip kept as unsynced
+  void schedule(int j);
+
   std::vector<rsf::Slider> slider_;
+  RsfNeighbours nb_;
   std::vector<double> t_ref_;
   std::vector<rsf::SliderState> x_ref_;
+  std::vector<double> unsynced_, position_;  // slip before t_ref not synced; synced slip
+  std::vector<double> lead_;                 // slip passed on less the synced slip
+  std::vector<char> quantum_due_;
   IndexedMinHeap heap_;
-  double ln_vh_;
+  double ln_vh_, quantum_;
 };
 
 class RsfEventEngine {
  public:
   // Starts at t = 0 with slip rates v and states theta (one value, or one per block).
+  // creep_quantum: the loader's q [m] (+inf: no creep passed on between events).
   RsfEventEngine(RsfModel m, double tolerance, double v_threshold, double v_handover,
-                 const std::vector<double>& v, const std::vector<double>& theta);
+                 double creep_quantum, const std::vector<double>& v,
+                 const std::vector<double>& theta);
 
   // The next seismic event's record, or none when t_end comes first (then t() = t_end).
   std::optional<EventRecord> next(double t_end);
@@ -95,6 +136,7 @@ class RsfEventEngine {
   std::int64_t events() const { return events_; }
   std::int64_t integrations() const { return integrations_; }  // hand-overs to the integrator
   std::int64_t steps() const { return steps_; }                // their accepted steps
+  std::int64_t syncs() const { return syncs_; }                // creep quanta passed on
   const RsfLoader& loader() const { return loader_; }
   const RsfModel& model() const { return m_; }
   // Records of the last integration not yet returned (a checkpoint is taken only at none).
@@ -111,7 +153,7 @@ class RsfEventEngine {
   double tol_, v_th_;
   RsfLoader loader_;
   double t_ = 0;
-  std::int64_t events_ = 0, integrations_ = 0, steps_ = 0;
+  std::int64_t events_ = 0, integrations_ = 0, steps_ = 0, syncs_ = 0;
   std::deque<EventRecord> pending_;
 };
 

@@ -897,6 +897,15 @@ std::vector<ParamSpec> rsf_rows() {
                        "rsf.v_threshold/10, or less so that eta V_h <= 0.01 a sigma")
           .when(rsf_law(), event_driven())
           .later(),
+      positive_or_auto(key::rsf_creep_quantum, at(&SceneValues::rsf, &RsfKeys::creep_quantum), 1,
+                       "m",
+                       "q of the event-driven engine: between events a block's closed-form slip is "
+                       "passed on to its neighbours as stress steps (k_c times it) whenever it "
+                       "reaches q, and at every event; smaller is closer to the continuous "
+                       "integration and slower; auto: 0.1 a sigma/k_c (the least a, the stiffest "
+                       "spring), so that a quantum moves a neighbour's slip rate by at most 10 %")
+          .when(rsf_law(), event_driven())
+          .later(),
       choice(key::rsf_pattern, "uniform", at(&SceneValues::rsf, &RsfKeys::pattern),
              {{"uniform", RsfPattern::Uniform}, {"asperities", RsfPattern::Asperities}},
              "per-block values: uniform (rsf.a, rsf.b everywhere), or asperities: blocks with x "

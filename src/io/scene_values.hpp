@@ -145,6 +145,7 @@ struct RsfKeys {
   RsfPattern pattern = RsfPattern::Uniform;
   int pattern_period = 0, pattern_width = 0;
   std::optional<double> handover_speed;  // drive.mode = events; auto: chosen from V_th and eta
+  std::optional<double> creep_quantum;   // drive.mode = events; auto: from a sigma and k_c
 };
 
 struct SceneValues {

@@ -180,8 +180,17 @@ RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
     // The closed forms between events leave radiation damping out: V_h keeps eta V_h a small
     // share of a sigma (at most 0.1 when given, 0.01 when auto).
     r.event_driven = true;
-    double a_min = HUGE_VAL;
-    for (const rsf::Law& law : m.law) a_min = std::min(a_min, law.params().a);
+    double a_min = HUGE_VAL, dc_min = HUGE_VAL;
+    for (const rsf::Law& law : m.law) {
+      a_min = std::min(a_min, law.params().a);
+      dc_min = std::min(dc_min, law.params().dc);
+    }
+    // Auto: each quantum moves a neighbour's slip rate by at most 10 % (k_c q <= 0.1 a sigma),
+    // and a tenth of the least D_c on a grid without springs (where it passes nothing on).
+    double k_max = 0;
+    for (const LatticeSpring& sp : m.stencil()) k_max = std::max(k_max, std::fabs(sp.k));
+    r.creep_quantum =
+        v.rsf.creep_quantum.value_or(k_max > 0 ? 0.1 * a_min * m.sigma / k_max : dc_min / 10);
     const double damped = m.eta > 0 ? a_min * m.sigma / m.eta : HUGE_VAL;
     r.v_handover = v.rsf.handover_speed.value_or(std::min(r.v_threshold / 10, 0.01 * damped));
     if (v.rsf.handover_speed && m.eta * r.v_handover > 0.1 * a_min * m.sigma)

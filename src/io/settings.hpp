@@ -46,6 +46,7 @@ struct RsfSettings {
   double v_slow = 0;          // rsf.slow_slip_threshold [m/s]; 0: no slow_slip.csv
   bool event_driven = false;  // drive.mode = events (engine/rsf_loader.hpp)
   double v_handover = 0;      // rsf.handover_speed [m/s], auto resolved
+  double creep_quantum = 0;   // rsf.creep_quantum [m], auto resolved
   // The start state of every block: theta_init, or each block's steady state at V_pl.
   std::vector<double> theta_start() const {
     std::vector<double> theta;

@@ -77,6 +77,47 @@ double nucleating_time(const Slider& s, SliderState x, double ln_v_target) {
   return std::log1p((u0 - ut) / (ut + c)) / alpha;
 }
 
+// ln(e^x - 1) for x > 0, without overflow.
+double log_expm1(double x) {
+  return x > 30 ? x + std::log(-std::expm1(-x)) : std::log(std::expm1(x));
+}
+
+// ln(1 + e^l), without overflow.
+double log1p_exp(double l) {
+  return l > 30 ? l + std::log1p(std::exp(-l)) : std::log1p(std::exp(l));
+}
+
+// The nucleating phase's slip over dt: -ln(1 - y)/(alpha c), y = c V0 (e^{alpha dt} - 1),
+// written as V0 (e^{alpha dt} - 1)/alpha times -ln(1 - y)/y (-> 1 as y -> 0, so H -> 0 is
+// smooth), and in logarithms where y < -1 (H < 0, long creep: e^{alpha dt} may overflow).
+double nucleating_slip(const Slider& s, SliderState x, double dt) {
+  if (!(dt > 0)) return 0;
+  const double alpha = alpha_of(s), c = s.h() / (s.a * alpha);
+  const double ln_e = log_expm1(alpha * dt);                   // ln(e^{alpha dt} - 1)
+  const double ln_y = std::log(std::fabs(c)) + x.ln_v + ln_e;  // ln |y|
+  if (c < 0 && ln_y > 0) return log1p_exp(ln_y) / (alpha * -c);
+  const double y = c == 0 ? 0.0 : std::copysign(std::exp(ln_y), c);
+  if (!(y < 1)) return kNever;  // past the instability
+  const double ratio = std::fabs(y) < 1e-8 ? 1 + 0.5 * y : -std::log1p(-y) / y;
+  return std::exp(x.ln_v + ln_e) / alpha * ratio;
+}
+
+// The time in the nucleating phase to the slip `amount`: from 1 - y = e^{-alpha c amount},
+// e^{alpha t} - 1 = (alpha amount/V0) r, r = (1 - e^{-z})/z with z = alpha c amount (r -> 1
+// as H -> 0), in logarithms so that neither e^{alpha t} nor r overflows.
+double nucleating_slip_time(const Slider& s, SliderState x, double amount) {
+  const double alpha = alpha_of(s), c = s.h() / (s.a * alpha), z = alpha * c * amount;
+  double ln_r;
+  if (std::fabs(z) < 1e-8)
+    ln_r = -0.5 * z;
+  else if (z > 0)
+    ln_r = std::log(-std::expm1(-z) / z);
+  else
+    ln_r = log_expm1(-z) - std::log(-z);
+  const double ln_e = std::log(alpha * amount) - x.ln_v + ln_r;  // ln(e^{alpha t} - 1)
+  return log1p_exp(ln_e) / alpha;
+}
+
 }  // namespace
 
 bool locked(const Slider& s, const SliderState& x) {
@@ -93,15 +134,57 @@ SliderState evolve(const Slider& s, SliderState x, double dt) {
   return nucleating_after(s, x, dt);
 }
 
+namespace {
+
+// time_to_speed from a locked state, given its time to nucleation.
+// While locked ln V rises at most as fast as alpha t (b >= 0), so where that reaches the target
+// only after nucleation the search for the locked phase's own time is skipped (same result).
+double locked_time_to_speed(const Slider& s, SliderState x, double ln_v_target, double t_nuc) {
+  const double alpha = alpha_of(s);
+  if (!(s.b_rsf >= 0 && (ln_v_target - x.ln_v) / alpha > t_nuc)) {
+    const double theta0 = std::exp(x.ln_theta);
+    const double t_v = first_root(x.ln_v - ln_v_target, alpha, -s.b_rsf / s.a, theta0);
+    if (t_v <= t_nuc) return t_v;
+  }
+  if (t_nuc == kNever) return kNever;
+  return t_nuc + nucleating_time(s, locked_after(s, x, t_nuc), ln_v_target);
+}
+
+// time_to_slip from a locked state, given its time to nucleation.
+double locked_time_to_slip(const Slider& s, SliderState x, double amount, double t_nuc) {
+  if (t_nuc == kNever) return kNever;
+  return t_nuc + nucleating_slip_time(s, locked_after(s, x, t_nuc), amount);
+}
+
+}  // namespace
+
 double time_to_speed(const Slider& s, SliderState x, double ln_v_target) {
   if (x.ln_v >= ln_v_target) return 0;
   if (!locked(s, x)) return nucleating_time(s, x, ln_v_target);
-  const double theta0 = std::exp(x.ln_theta);
-  const double t_v = first_root(x.ln_v - ln_v_target, alpha_of(s), -s.b_rsf / s.a, theta0);
+  return locked_time_to_speed(s, x, ln_v_target, time_to_nucleation(s, x));
+}
+
+double slip(const Slider& s, SliderState x, double dt) {
+  if (locked(s, x)) {
+    const double t_nuc = time_to_nucleation(s, x);
+    if (!(dt > t_nuc)) return 0;
+    x = locked_after(s, x, t_nuc);
+    dt -= t_nuc;
+  }
+  return nucleating_slip(s, x, dt);
+}
+
+double time_to_slip(const Slider& s, SliderState x, double amount) {
+  if (!(amount > 0)) return 0;
+  if (!locked(s, x)) return nucleating_slip_time(s, x, amount);
+  return locked_time_to_slip(s, x, amount, time_to_nucleation(s, x));
+}
+
+Clocks clocks(const Slider& s, SliderState x, double ln_v_target, double amount) {
+  if (!locked(s, x) || x.ln_v >= ln_v_target || !(amount > 0))
+    return {time_to_speed(s, x, ln_v_target), time_to_slip(s, x, amount)};
   const double t_nuc = time_to_nucleation(s, x);
-  if (t_v <= t_nuc) return t_v;
-  if (t_nuc == kNever) return kNever;
-  return t_nuc + nucleating_time(s, locked_after(s, x, t_nuc), ln_v_target);
+  return {locked_time_to_speed(s, x, ln_v_target, t_nuc), locked_time_to_slip(s, x, amount, t_nuc)};
 }
 
 SliderState stress_step(const Slider& s, SliderState x, double dtau) {

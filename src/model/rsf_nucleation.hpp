@@ -25,6 +25,12 @@
 // |H|) and reaches a speed only below that.
 // A shear-stress step dtau multiplies V by exp(dtau/(a sigma)) at constant theta (the law's
 // direct effect; theta changes only with a normal-stress step, Linker & Dieterich 1992).
+//
+// The slip of the nucleating phase follows from the balance itself: with d ln theta/dt = -V/D_c
+// it reads d ln V/dt = alpha + (H/a) V, so V = (a/H)(d ln V/dt - alpha) and
+//   slip(t) = (a/H) [ln(V(t)/V0) - alpha t] = -ln[1 - c V0 (e^{alpha t} - 1)]/(alpha c),
+// which tends to V0 (e^{alpha t} - 1)/alpha as H -> 0 and to the steady creep's
+// tau_dot t/(sigma |H|) for H < 0. The locked phase's slip (V << V_pl) is left out: zero.
 #pragma once
 
 namespace bkq::rsf {
@@ -49,6 +55,17 @@ SliderState evolve(const Slider& s, SliderState x, double dt);
 // The first time from now at which V reaches exp(ln_v_target) from below (0 if it is there or
 // above already; +inf if never).
 double time_to_speed(const Slider& s, SliderState x, double ln_v_target);
+// The closed form's slip over the next dt seconds (the nucleating phase's only; +inf past the
+// instability).
+double slip(const Slider& s, SliderState x, double dt);
+// The first time from now at which that slip reaches `amount` > 0 (+inf if never).
+double time_to_slip(const Slider& s, SliderState x, double amount);
+// Both: the times to the speed and to the slip, sharing the locked phase's time to nucleation
+// (the same numbers as the two calls).
+struct Clocks {
+  double to_speed = 0, to_slip = 0;
+};
+Clocks clocks(const Slider& s, SliderState x, double ln_v_target, double amount);
 // A shear-stress step dtau [Pa]: V times exp(dtau/(a sigma)), theta kept.
 SliderState stress_step(const Slider& s, SliderState x, double dtau);
 

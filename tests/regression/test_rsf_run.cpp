@@ -83,6 +83,12 @@ TEST(RsfRun, Refusals) {
                  {"rsf.state_law = slip", "drive.mode = events", "allowed: rsf.state_law = aging"});
   expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.handover_speed=2e-3"))),
                  {"rsf.handover_speed = 0.002", "allowed: auto or (1e-06, 0.001)"});
+  // The creep quantum is a positive length up to a metre, and only for drive.mode = events.
+  for (const char* bad : {"0", "-1e-6", "2", "none"})
+    expect_refused(run_bkquake(rsf_args(out, with(ev, std::string("rsf.creep_quantum=") + bad))),
+                   {"rsf.creep_quantum", bad, "(0, 1] or auto"});
+  expect_refused(run_bkquake(rsf_args(out, with(cont, "rsf.creep_quantum=1e-6"))),
+                 {"rsf.creep_quantum", "drive.mode = events"});
   const auto damped = [&](const std::string& c_s) {
     std::vector<std::string> v = with(with(ev, "model.shear_modulus=2e10"), c_s);
     return v;
