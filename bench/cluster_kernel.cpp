@@ -2,7 +2,7 @@
 // contiguous sliding blocks between two stuck ones (issue 20, goal 2: <= 5 ns per sliding
 // block-step). Carlson-langer scene (l = 10, alpha = 2.5, sigma = 0.01, clst91), RK4 at
 // dt = 0.01, through the stepper's public entry points:
-//   BM_Cluster         Stepper::relax_cluster, the register cluster (k <= kMaxCluster = 8
+//   BM_Cluster         SchemeTraits::cluster_kernel, the register cluster (k <= kMaxCluster = 8
 //                      only): the step, the dissipated power and the stick rule;
 //   BM_Held            Stepper::step_held, the fused held-range step alone;
 //   BM_HeldContacts    the same plus what the engine does after it on that path: the copy
@@ -127,7 +127,7 @@ struct ClusterScene {
     r.max_steps = steps;
     r.state = &st;
     r.dissipated = &dissipated;
-    if (!stepper->relax_cluster(forces, r) || r.steps != steps) return -1;
+    if (!stepper->traits().cluster_kernel(forces, r) || r.steps != steps) return -1;
     return r.sliding_block_steps;
   }
   // Does every block slide through the M steps, on the general path?

@@ -16,8 +16,8 @@
 // SCENE: an INI file (keys of continuous runs are dropped; the run is event by event), or the
 // built-in carlson-langer scene. Prints the ratios to the scene's own point per round, and the
 // split by event size of the last round. Without a moving pad it also prints the bound that
-// cuts of the sliding stretch alone would have (LocatedTransitions::stretch_blocks(): a
-// stuck block decouples its two sides for the step), which would need more than this
+// cuts of the sliding stretch alone would have (stretch_blocks of tests/support/located_cuts.hpp:
+// a stuck block decouples its two sides for the step), which would need more than this
 // stepper does.
 
 #include <algorithm>
@@ -38,6 +38,7 @@
 #include "io/settings.hpp"
 #include "model/chain.hpp"
 #include "model/substrate.hpp"
+#include "support/located_cuts.hpp"
 #include "thread_clock.hpp"
 
 namespace {
@@ -91,13 +92,15 @@ double clock_overhead() {
 
 // The pass timed event by event (wall clock, less its own cost), split by event size.
 void split_pass(Config& c, long events, double overhead) {
-  const auto* located = dynamic_cast<const LocatedTransitions*>(c.stepper.get());
+  auto* located = dynamic_cast<LocatedTransitions*>(c.stepper.get());
+  LocatedCutCounts counts;
+  if (located) located->watch_cuts(&counts);
   c.split = {};
   for (long i = 0; i < events; ++i) {
     const auto block_steps0 = c.engine->counters().block_steps;
-    const auto cuts0 = located ? located->cuts() : 0;
-    const auto cut_blocks0 = located ? located->cut_blocks() : 0;
-    const auto stretch_blocks0 = located ? located->stretch_blocks() : 0;
+    const auto cuts0 = counts.cuts;
+    const auto cut_blocks0 = counts.cut_blocks;
+    const auto stretch_blocks0 = counts.stretch_blocks;
     const double t0 = wall_seconds();
     const EventRecord e = c.engine->next_event();
     const double seconds = std::max(0.0, wall_seconds() - t0 - overhead);
@@ -106,11 +109,12 @@ void split_pass(Config& c, long events, double overhead) {
     t.seconds += seconds;
     t.block_steps += static_cast<double>(c.engine->counters().block_steps - block_steps0);
     if (located) {
-      t.cuts += static_cast<double>(located->cuts() - cuts0);
-      t.cut_blocks += static_cast<double>(located->cut_blocks() - cut_blocks0);
-      t.stretch_blocks += static_cast<double>(located->stretch_blocks() - stretch_blocks0);
+      t.cuts += static_cast<double>(counts.cuts - cuts0);
+      t.cut_blocks += static_cast<double>(counts.cut_blocks - cut_blocks0);
+      t.stretch_blocks += static_cast<double>(counts.stretch_blocks - stretch_blocks0);
     }
   }
+  if (located) located->watch_cuts(nullptr);
 }
 
 // µs per bare step of `stepper` over `blocks` sliding blocks of the engine's chain (a range

@@ -41,7 +41,7 @@ namespace {
 // The run's own named state in a checkpoint: what the driver holds besides the chain
 // state (which goes into the checkpoint's engine.state, the steps and episodes done into
 // engine.counters) and the next sample time.
-constexpr const char* kStateName = "continuous";
+constexpr const char* kContinuousStateName = "continuous";
 
 void put_record(StateWriter& w, const EventRecord& e) {
   w.i64(e.event);
@@ -86,10 +86,10 @@ std::string encode_state(const ContinuousSnapshot& d, double next_out) {
 
 // The driver's snapshot from a checkpoint of a continuous run, and the next sample time.
 ContinuousSnapshot decode_state(const Checkpoint& c, double& next_out) {
-  const std::string* bytes = c.find(kStateName);
+  const std::string* bytes = c.find(kContinuousStateName);
   if (!bytes)
     throw Error("--resume: the checkpoint holds no continuous-run state (it is an event run's)");
-  StateReader r(*bytes, kStateName);
+  StateReader r(*bytes, kContinuousStateName);
   ContinuousSnapshot d;
   d.state = c.engine.state;
   next_out = r.f64();
@@ -241,7 +241,7 @@ class ContinuousRun {
         Checkpoint::of_run(req_.scene.hash(), req_.scene.to_ini(), settings_.run.seed, prog_);
     c.engine.counters.steps = done_;
     c.engine.counters.events = episodes_;
-    c.put(kStateName, encode_state(d, next_out_));
+    c.put(kContinuousStateName, encode_state(d, next_out_));
     c.engine.state = std::move(d.state);
     observers_.checkpoint(c);
     if (final)

@@ -60,14 +60,14 @@ StabilityPoint analyse(const Scene& scene, double value, const StabilityOptions&
 
 }  // namespace
 
-SweepSpec parse_sweep(const std::string& text, bool log) {
+StabilitySweep parse_sweep(const std::string& text, bool log) {
   const std::string what = "stability: --sweep " + text;
   const auto eq = text.find('=');
   const auto c1 = text.find(':', eq == std::string::npos ? 0 : eq);
   const auto c2 = c1 == std::string::npos ? c1 : text.find(':', c1 + 1);
   if (eq == std::string::npos || c1 == std::string::npos || c2 == std::string::npos)
     throw Error(what + ": expected KEY=FROM:TO:COUNT, e.g. drive.speed=0.01:1:50");
-  SweepSpec s;
+  StabilitySweep s;
   s.key = text.substr(0, eq);
   s.from = parse_number(text.substr(eq + 1, c1 - eq - 1), what + ": FROM");
   s.to = parse_number(text.substr(c1 + 1, c2 - c1 - 1), what + ": TO");
@@ -166,7 +166,7 @@ std::vector<StabilityPoint> run_stability(const Scene& base, const StabilityOpti
     out.push_back(analyse(scene, scene_values(scene).drive.speed, opt));
     return out;
   }
-  const SweepSpec& s = *opt.sweep;
+  const StabilitySweep& s = *opt.sweep;
   const bool integer = find_param(s.key)->type == ParamType::Integer;
   for (int i = 0; i < s.count; ++i) {
     const double f = s.count > 1 ? static_cast<double>(i) / (s.count - 1) : 0.0;

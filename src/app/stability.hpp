@@ -18,13 +18,13 @@
 namespace bkq {
 
 // --sweep KEY=FROM:TO:COUNT (COUNT values, ends included; geometric with log).
-struct SweepSpec {
+struct StabilitySweep {
   std::string key;
   double from = 0, to = 0;
   int count = 1;
   bool log = false;
 };
-SweepSpec parse_sweep(const std::string& text, bool log);
+StabilitySweep parse_sweep(const std::string& text, bool log);
 
 // FAMILY,INDEX (chain,3  pad,0  1dof,0).
 struct ModeSelect {
@@ -35,7 +35,7 @@ struct ModeSelect {
 ModeSelect parse_mode(const std::string& text, const std::string& what);
 
 struct StabilityOptions {
-  std::optional<SweepSpec> sweep;
+  std::optional<StabilitySweep> sweep;
   bool dense = false;              // the dense state matrix instead of the modal reduction
   std::vector<ModeSelect> shapes;  // modes whose shapes go to modes.csv
 };

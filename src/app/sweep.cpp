@@ -62,7 +62,7 @@ std::string duration_text(double s) {
 }
 
 // A CSV field: as it is, or double-quoted (quotes doubled) when it holds , " or a newline.
-std::string csv_field(const std::string& s) {
+std::string sweep_csv_field(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
   std::string q = "\"";
   for (const char c : s) {
@@ -432,7 +432,7 @@ class Sweep {
       const PointResult& r = results_[p];
       const bool have = r.state != PointResult::State::Pending;
       std::vector<std::string> f{std::to_string(p)};
-      for (const auto& [k, v] : spec_.point_values(p)) f.push_back(csv_field(v));
+      for (const auto& [k, v] : spec_.point_values(p)) f.push_back(sweep_csv_field(v));
       f.push_back(r.state == PointResult::State::Ok       ? "ok"
                   : r.state == PointResult::State::Failed ? "failed"
                                                           : "pending");
@@ -445,7 +445,7 @@ class Sweep {
       f.push_back(num(r.mu_min));
       f.push_back(num(r.mu_max));
       f.push_back(have ? format_real(r.seconds) : "");
-      f.push_back(csv_field(r.error));
+      f.push_back(sweep_csv_field(r.error));
       row(f);
     }
     write_file_atomic((out_ / "sweep.csv").string(), out.str());

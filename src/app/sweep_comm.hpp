@@ -48,6 +48,9 @@ class SweepComm {
 // without MPI started as several ranks throws bkq::Error (exit 2).
 std::unique_ptr<SweepComm> make_sweep_comm(std::string& note);
 
+// One rank whatever the build: make_sweep_comm's answer when not started by a launcher.
+std::unique_ptr<SweepComm> make_one_rank_comm();
+
 // Whether this build has MPI (Boost.MPI over Open MPI): otherwise a sweep runs as one rank.
 bool mpi_available();
 

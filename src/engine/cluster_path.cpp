@@ -12,7 +12,7 @@ bool ClusterPath::ready(const Relaxation& rx, ClusterRelaxation& r) {
   // kClusterKernel). The kernels read j +- 1 and have no dashpots: a coupling of longer
   // range or viscous takes the general step.
   const Ranges ranges = rx.active.ranges();
-  if (!rx.cluster || !rx.traits.cluster_kernels || ranges.size() != 1 || rx.forces.general_kernel())
+  if (!rx.cluster || !rx.traits.cluster_kernel || ranges.size() != 1 || rx.forces.general_kernel())
     return false;
   const Range& range = ranges.front();
   r.lo = range.lo;
@@ -45,7 +45,7 @@ bool ClusterPath::advance(Relaxation& rx, PathReport& out) {
     r.far_min = rx.active.tree().min();
     r.half_dt_cp = 0.5 * dt * rx.forces.params().c_p;
   }
-  if (!rx.stepper.relax_cluster(rx.forces, r)) return false;
+  if (!rx.traits.cluster_kernel(rx.forces, r)) return false;
   // A shrink due inside a lone block's run changed nothing; the one due after the last
   // step, if any, the driver does.
   steps_.all += r.steps;

@@ -474,11 +474,11 @@ void Adaptive::step(const ChainForces& forces, const Substrate& sub, ChainState&
   t_resume_ = st.t;
 }
 
-std::vector<double> Adaptive::carried_state() const {
+std::vector<double> Adaptive::save() const {
   return {h_, t_resume_, last_stick_time_};
 }
 
-void Adaptive::restore_carried_state(std::span<const double> s) {
+void Adaptive::restore(std::span<const double> s) {
   if (s.size() != 3) throw Error("adaptive: the saved stepper state does not fit this scheme");
   h_ = s[0];
   t_resume_ = s[1];

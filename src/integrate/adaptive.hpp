@@ -17,7 +17,7 @@
 
 namespace bkq {
 
-class Adaptive final : public Stepper {
+class Adaptive final : public Stepper, public InStepTransitions, public CarriedState {
  public:
   // tolerance: the local error tolerance, in (0, 1); throws bkq::Error otherwise.
   Adaptive(int n_blocks, double tolerance);
@@ -31,9 +31,12 @@ class Adaptive final : public Stepper {
   double stability_constant() const override { return HUGE_VAL; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override;
-  // The next step size, where the last call ended and the last located re-stick.
-  std::vector<double> carried_state() const override;
-  void restore_carried_state(std::span<const double> s) override;
+  // Its parts: what it saw inside the last step, and what it carries (the next step size,
+  // where the last call ended and the last located re-stick).
+  const InStepTransitions* in_step() const override { return this; }
+  CarriedState* carried() override { return this; }
+  std::vector<double> save() const override;
+  void restore(std::span<const double> s) override;
 
   double tolerance() const { return tol_; }
   // Run with a fixed internal step h and no error control (transitions still located;
@@ -51,11 +54,10 @@ class Adaptive final : public Stepper {
   // Time of the most recent located re-stick (NaN before the first): the end of a slip,
   // where the driver only sees the macro step's end.
   double last_stick_time() const { return last_stick_time_; }
-  double located_stick_time() const override { return last_stick_time_; }
+  double stick_time() const override { return last_stick_time_; }
   // Blocks released inside the last step(), each once (at its first release), in order:
   // a block may have slipped and stuck again before the driver looks at the flags.
-  std::span<const Release> releases() const { return releases_; }
-  std::span<const Release> releases_in_step() const override { return releases_; }
+  std::span<const Release> releases() const override { return releases_; }
 
  private:
   // Stage S (0-based, 1..6; stage 0 is first_stage) from the stages before it: positions

@@ -15,6 +15,14 @@
 
 namespace bkq {
 
+// Method's cluster form (integrate/cluster.hpp), the scheme's traits().cluster_kernel:
+// compiled once, with the scheme, in the scheme's .cpp (extern in its header).
+template <class Method>
+bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) {
+  return forces.params().pad_moves() ? run_cluster<Method, true>(forces, r)
+                                     : run_cluster<Method, false>(forces, r);
+}
+
 template <class Method>
 class ExplicitScheme final : public Stepper {
  public:
@@ -25,7 +33,7 @@ class ExplicitScheme final : public Stepper {
   static constexpr SchemeTraits kTraits{.stick_rule = StickRule::Crossing,
                                         .locatable = true,
                                         .general_kernels = true,
-                                        .cluster_kernels = true,
+                                        .cluster_kernel = &relax_cluster<Method>,
                                         .fused_kernels = Method::fusable,
                                         .stencil_kernel = &run_stencil<Method>};
   std::string_view name() const override { return Method::name; }
@@ -63,11 +71,6 @@ class ExplicitScheme final : public Stepper {
       step_held_ranges<true>(forces, sub, st, dt, ranges);
     else
       step_held_ranges<false>(forces, sub, st, dt, ranges);
-  }
-
-  bool relax_cluster(const ChainForces& forces, ClusterRelaxation& r) const override {
-    return forces.params().pad_moves() ? run_cluster<Method, true>(forces, r)
-                                       : run_cluster<Method, false>(forces, r);
   }
 
  private:

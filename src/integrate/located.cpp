@@ -41,7 +41,7 @@ LocatedTransitions::LocatedTransitions(std::unique_ptr<Stepper> scheme, int n_bl
   releases_.reserve(n_blocks);
 }
 
-void LocatedTransitions::restore_carried_state(std::span<const double> s) {
+void LocatedTransitions::restore(std::span<const double> s) {
   if (s.size() != 1)
     throw Error("located transitions: the saved stepper state does not fit this scheme");
   last_stick_time_ = s[0];
@@ -214,27 +214,6 @@ void LocatedTransitions::halo(const ChainState& st) {
       if (!in_ranges(k)) w0_[k] = w1_[k] = st.w[k];
 }
 
-int LocatedTransitions::sliding_stretch(const ChainState& st, int who, bool periodic) const {
-  // Out from `who` over sliding blocks on each side, then the stuck block that ends the
-  // stretch (none past a free end; a periodic chain wraps, at most once round).
-  int count = 1;
-  for (int side : {-1, 1}) {
-    int j = who;
-    for (int seen = 1; seen < n_; ++seen) {
-      int k = j + side;
-      if (k < 0 || k >= n_) {
-        if (!periodic) break;
-        k = (k + n_) % n_;
-      }
-      if (k == who) break;
-      ++count;
-      if (st.mobile[k] == 0.0) break;
-      j = k;
-    }
-  }
-  return std::min(count, n_);
-}
-
 bool LocatedTransitions::instant_matters(const ChainState& st, int who, Ranges ranges) {
   if (st.mobile[who] == 0.0) return true;  // a failure
   for (const Range& r : ranges)
@@ -313,9 +292,7 @@ void LocatedTransitions::step(const ChainForces& forces, const Substrate& sub, C
       // step that ran past the transition, where the right-hand side has a kink (friction
       // at zero velocity), which limits the interpolant's accuracy there; the real steps
       // end before it, so the polished instant has the scheme's own accuracy.
-      ++cuts_;
-      for (const Range& r : cur) cut_blocks_ += r.hi - r.lo;
-      stretch_blocks_ += sliding_stretch(st, who, periodic);
+      if (watcher_) watcher_->cut(forces, st, who, cur);
       double tau = theta * h;
       restore_start(st, cur);
       scheme_->step(forces, sub, st, tau, cur);

@@ -18,7 +18,7 @@
 // while a failure's instant carries over one to one into the rest of the event (the released
 // block's slip starts then). There the located block (and every other block whose transition has
 // happened by then) changes state by the stick rule below, and the rest of the step proceeds the
-// same way. The work against friction and the block dampers is summed piece by piece (step_work()).
+// same way. The work against friction and the block dampers is summed piece by piece (work()).
 // This is a whole-cluster cut: every block of the ranges is stepped to the transition instant. A
 // per-block cut (only the blocks a transition concerns stepped to it) is not possible within one
 // explicit step, whose stages couple each block to its neighbours at the intermediate times: a
@@ -45,7 +45,7 @@
 //
 // A block released inside a step moves for the rest of it: its neighbours join the step's
 // ranges as stuck blocks (the scheme's stages read their positions), and the caller learns
-// of the release from releases_in_step().
+// of the release from releases() (InStepTransitions).
 #pragma once
 
 #include <cmath>
@@ -58,7 +58,7 @@
 
 namespace bkq {
 
-class LocatedTransitions final : public Stepper {
+class LocatedTransitions final : public Stepper, public InStepTransitions, public CarriedState {
  public:
   // `scheme` must be a Crossing scheme (rk2, rk4, verlet); bkq::Error otherwise.
   LocatedTransitions(std::unique_ptr<Stepper> scheme, int n_blocks);
@@ -75,32 +75,38 @@ class LocatedTransitions final : public Stepper {
   TimeStepLimit time_step_limit(const ModelParams& p) const override {
     return scheme_->time_step_limit(p);
   }
-  std::span<const Release> releases_in_step() const override { return releases_; }
-  double located_stick_time() const override { return last_stick_time_; }
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override;
-  std::vector<double> carried_state() const override { return {last_stick_time_}; }
-  void restore_carried_state(std::span<const double> s) override;
 
+  // Its parts: what it saw inside the last step, and the last located re-stick carried.
+  const InStepTransitions* in_step() const override { return this; }
+  CarriedState* carried() override { return this; }
+  std::span<const Release> releases() const override { return releases_; }
+  double stick_time() const override { return last_stick_time_; }
   // The work done against friction and the block dampers over the last step(): the
   // trapezoidal rule on each piece between two located transitions, with the flags of that
   // piece (the event engine's ledger; over the whole step the rule would straddle them).
-  double step_work() const override { return work_; }
+  double work() const override { return work_; }
+  std::vector<double> save() const override { return {last_stick_time_}; }
+  void restore(std::span<const double> s) override;
 
   // Counters since construction: transitions located inside a step (each one cut), and
   // scheme steps taken (the attempted steps that found a transition included).
   std::int64_t located_transitions() const { return located_; }
   std::int64_t scheme_steps() const { return scheme_steps_; }
-  // Steps cut at a located instant inside them (a transition at a step's very end cuts
-  // nothing), and the blocks of the step's ranges summed over those cuts: each cut steps
-  // them all to the instant (the whole-range cut above), one scheme step more at least.
-  std::int64_t cuts() const { return cuts_; }
-  std::int64_t cut_blocks() const { return cut_blocks_; }
-  // The same sum over the sliding stretch of each cut's block only: the block, the sliding
-  // blocks next to it on either side and the stuck block that ends each side. Without a
-  // moving pad a stuck block decouples the two sides for the step (flags are frozen), so a
-  // cut of that stretch alone would do; this is what such cuts would step (not done).
-  std::int64_t stretch_blocks() const { return stretch_blocks_; }
+
+  // A study's view of each step cut at a located instant inside it (a transition at a
+  // step's very end cuts nothing): the block whose transition cut it and the step's ranges,
+  // the flags those of the step. Tests and benchmarks count with it what the cuts step
+  // (tests/support/located_cuts.hpp); null (the default) watches nothing.
+  class CutWatcher {
+   public:
+    virtual void cut(const ChainForces& forces, const ChainState& st, int who, Ranges ranges) = 0;
+
+   protected:
+    ~CutWatcher() = default;
+  };
+  void watch_cuts(CutWatcher* watcher) { watcher_ = watcher; }
 
  private:
   // Saves (restore: puts back) the start of the step: the blocks of the ranges, the pad.
@@ -137,9 +143,6 @@ class LocatedTransitions final : public Stepper {
   // always, a stick's when every other sliding block of the ranges has stopped by then too
   // (the event may end there, and its duration is the instant). See the header comment.
   static bool instant_matters(const ChainState& st, int who, Ranges ranges);
-  // The blocks of the sliding stretch of `who` (see stretch_blocks()) on a chain of free or
-  // periodic ends.
-  int sliding_stretch(const ChainState& st, int who, bool periodic) const;
   double dense_w(int j, double theta) const;
   double dense_wd(int j, double theta) const;
 
@@ -158,7 +161,8 @@ class LocatedTransitions final : public Stepper {
   std::vector<Release> releases_;
   double last_stick_time_ = std::nan("");
   double work_ = 0;
-  std::int64_t located_ = 0, scheme_steps_ = 0, cuts_ = 0, cut_blocks_ = 0, stretch_blocks_ = 0;
+  std::int64_t located_ = 0, scheme_steps_ = 0;
+  CutWatcher* watcher_ = nullptr;
 };
 
 // The stepper of `scheme` with located transitions (the wrapper above); bkq::Error naming

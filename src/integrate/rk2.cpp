@@ -3,4 +3,5 @@
 
 namespace bkq {
 template class ExplicitScheme<Rk2Method>;
+template bool relax_cluster<Rk2Method>(const ChainForces&, ClusterRelaxation&);
 }  // namespace bkq

@@ -44,6 +44,7 @@ struct Rk2Method {
 };
 
 extern template class ExplicitScheme<Rk2Method>;
+extern template bool relax_cluster<Rk2Method>(const ChainForces&, ClusterRelaxation&);
 using Rk2 = ExplicitScheme<Rk2Method>;
 
 }  // namespace bkq

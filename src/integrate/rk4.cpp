@@ -3,4 +3,5 @@
 
 namespace bkq {
 template class ExplicitScheme<Rk4Method>;
+template bool relax_cluster<Rk4Method>(const ChainForces&, ClusterRelaxation&);
 }  // namespace bkq

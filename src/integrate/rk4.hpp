@@ -59,6 +59,7 @@ struct Rk4Method {
 };
 
 extern template class ExplicitScheme<Rk4Method>;
+extern template bool relax_cluster<Rk4Method>(const ChainForces&, ClusterRelaxation&);
 using Rk4 = ExplicitScheme<Rk4Method>;
 
 }  // namespace bkq

@@ -11,6 +11,7 @@
 namespace bkq {
 
 class ChainForces;
+struct ClusterRelaxation;
 struct StencilRelaxation;
 
 // How a stepper resolves stick and slip transitions (integrate/stepper.hpp says what each
@@ -23,15 +24,17 @@ struct SchemeTraits {
   // located on its dense output instead of at the end of its step. Crossing schemes only.
   bool locatable = false;
   // It is such a wrapper: transitions located on a fixed-step scheme. It reports the work
-  // of each step piece by piece (Stepper::step_work) and covers the neighbours of the
+  // of each step piece by piece (InStepTransitions::work) and covers the neighbours of the
   // blocks it releases inside a step itself.
   bool located_on_fixed_steps = false;
   // Its step works on every force kernel: lattices, couplings beyond the nearest
   // neighbours and dashpots (the others read j +- 1 only).
   bool general_kernels = false;
-  // Its step has a fixed-size form for a few blocks between two that hold
-  // (Stepper::relax_cluster, integrate/cluster.hpp).
-  bool cluster_kernels = false;
+  // Its step written for a fixed-size cluster of a few blocks between two that hold
+  // (integrate/cluster.hpp; with the pad moving, ClusterRelaxation's pad fields set), null
+  // where it has none; it returns false when it has no form for that cluster (the event
+  // engine then takes the general step).
+  bool (*cluster_kernel)(const ChainForces&, ClusterRelaxation&) = nullptr;
   // Its step fuses its stages over ranges whose end blocks hold (Stepper::step_held).
   bool fused_kernels = false;
   // It controls its own step size to integrator.tolerance (the accuracy reference).
@@ -52,7 +55,7 @@ constexpr SchemeTraits located_traits(SchemeTraits scheme) {
   t.general_kernels = false;  // its dense output reads j +- 1
   t.fused_kernels = false;
   t.stencil_kernel = nullptr;
-  t.cluster_kernels = false;  // not compiled for it (docs/developer/build-time.md)
+  t.cluster_kernel = nullptr;  // not compiled for it (docs/developer/build-time.md)
   return t;
 }
 

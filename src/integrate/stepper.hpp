@@ -30,10 +30,50 @@
 
 namespace bkq {
 
-struct ClusterRelaxation;
+// A block that broke loose inside a step, with its position then.
+struct StepRelease {
+  int block;
+  double w;
+};
 
+// What a stepper that resolves transitions inside its step (Projection, Located) saw in its
+// last step(), which the driver cannot see from the flags after it: the blocks that broke
+// loose (each once, with its position then; a block may have stuck again before the step
+// ended), the time of the most recent located re-stick (NaN when none was located: the
+// driver then takes the end of the step) and, with traits().located_on_fixed_steps, the
+// work done against friction and the block dampers, summed piece by piece between located
+// transitions.
+class InStepTransitions {
+ public:
+  virtual std::span<const StepRelease> releases() const = 0;
+  virtual double stick_time() const = 0;
+  virtual double work() const { return 0.0; }
+
+ protected:
+  ~InStepTransitions() = default;
+};
+
+// What a stepper carries from one step() to the next besides the chain state (the adaptive
+// scheme's next step size, the theta-method's reused factorisation), as plain numbers: a
+// continuous run keeps it in its checkpoint and restores it into a fresh stepper of the
+// same scheme and size, which then continues bit for bit. restore throws bkq::Error on data
+// of another shape.
+class CarriedState {
+ public:
+  virtual std::vector<double> save() const = 0;
+  virtual void restore(std::span<const double> saved) = 0;
+
+ protected:
+  ~CarriedState() = default;
+};
+
+// The step itself, its accuracy and stability, and the parts above where a scheme has them
+// (in_step(), carried(): null where it has none). What else a scheme can do is in its
+// traits: the cluster form (traits().cluster_kernel) and the stencil form
+// (traits().stencil_kernel) are functions of the scheme declared there.
 class Stepper {
  public:
+  using Release = StepRelease;
   virtual ~Stepper() = default;
   virtual std::string_view name() const = 0;
   // What this stepper supports (integrate/scheme_traits.hpp), declared once by its scheme.
@@ -56,42 +96,17 @@ class Stepper {
     std::string why;
   };
   virtual TimeStepLimit time_step_limit(const ModelParams& p) const;
-  // Steppers that resolve transitions themselves (Projection, Located) may report what
-  // happened inside their last step(), which the driver cannot see from the flags after it:
-  // the blocks that broke loose (each once, with its position then; a block may have
-  // stuck again before the step ended) and the time of the most recent located re-stick
-  // (NaN when none was located: the driver then takes the end of the step).
-  struct Release {
-    int block;
-    double w;
-  };
-  virtual std::span<const Release> releases_in_step() const { return {}; }
-  virtual double located_stick_time() const { return std::nan(""); }
-  // With traits().located_on_fixed_steps: the work done against friction and the block
-  // dampers over the last step(), summed piece by piece between located transitions.
-  virtual double step_work() const { return 0.0; }
   virtual void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                     Ranges ranges) = 0;
   // step() in the event engine's common situation: the substrate frozen and the two end
   // blocks of every range stuck (so every block advanced is interior and the ranges
-  // interact only through the pad, when it moves). A stepper may fuse its stages there; it must
-  // give the same result as step() bit for bit. By default it is step().
+  // interact only through the pad, when it moves). A stepper may fuse its stages there
+  // (traits().fused_kernels); it must give the same result as step() bit for bit. By
+  // default it is step().
   virtual void step_held(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
                          Ranges ranges) {
     step(forces, sub, st, dt, ranges);
   }
-  // Steps of a few blocks between two stuck ones (or a stuck one and a free chain end),
-  // with this scheme's step written for a fixed-size cluster (integrate/cluster.hpp; with
-  // the pad moving, ClusterRelaxation's pad fields set); false when the stepper has no such
-  // form for that cluster (traits().cluster_kernels; the event engine then uses step()).
-  virtual bool relax_cluster(const ChainForces&, ClusterRelaxation&) const { return false; }
-  // What the stepper carries from one step() to the next besides the chain state (the
-  // adaptive scheme's next step size, the theta-method's reused factorisation), as plain
-  // numbers: a continuous run keeps it in its checkpoint and restores it into a fresh
-  // stepper of the same scheme and size, which then continues bit for bit. Empty for
-  // steppers that carry nothing; restore throws bkq::Error on data of another shape.
-  virtual std::vector<double> carried_state() const { return {}; }
-  virtual void restore_carried_state(std::span<const double>) {}
   // A new stepper of the same scheme and settings for a chain of n_blocks blocks, carrying
   // nothing from this one's steps: the lone-slip record (engine/lone_slip.hpp) integrates
   // its one block with it, whatever the scheme and whether the registry knows it.
@@ -99,6 +114,32 @@ class Stepper {
   // The scheme that takes the steps: this one, or the one a wrapper (located transitions)
   // wraps.
   virtual const Stepper& scheme() const { return *this; }
+
+  // The parts, null where the stepper has none.
+  virtual const InStepTransitions* in_step() const { return nullptr; }
+  virtual CarriedState* carried() { return nullptr; }
+
+  // What the driver reads of them: nothing released, no located stick (NaN), no work
+  // reported and nothing carried where the stepper has no such part.
+  std::span<const Release> releases_in_step() const {
+    const InStepTransitions* t = in_step();
+    return t ? t->releases() : std::span<const Release>{};
+  }
+  double located_stick_time() const {
+    const InStepTransitions* t = in_step();
+    return t ? t->stick_time() : std::nan("");
+  }
+  double step_work() const {
+    const InStepTransitions* t = in_step();
+    return t ? t->work() : 0.0;
+  }
+  std::vector<double> carried_state() {
+    const CarriedState* c = carried();
+    return c ? c->save() : std::vector<double>{};
+  }
+  void restore_carried_state(std::span<const double> saved) {
+    if (CarriedState* c = carried()) c->restore(saved);
+  }
 };
 
 // Keyword -> stepper; an unknown keyword throws bkq::Error listing the valid ones.

@@ -451,7 +451,7 @@ Stepper::TimeStepLimit Theta::time_step_limit(const ModelParams& p) const {
 
 // Layout: n, factored, the scalars, the segment count and (lo, len, cyclic) of each,
 // z, cp, inv, q, gamma_f, diag_f and status_f (n each).
-std::vector<double> Theta::carried_state() const {
+std::vector<double> Theta::save() const {
   std::vector<double> s = {static_cast<double>(n_),
                            factored_ ? 1.0 : 0.0,
                            link_f_,
@@ -470,7 +470,7 @@ std::vector<double> Theta::carried_state() const {
   return s;
 }
 
-void Theta::restore_carried_state(std::span<const double> s) {
+void Theta::restore(std::span<const double> s) {
   const auto n = static_cast<std::size_t>(n_);
   const auto bad = [] { throw Error("theta: the saved stepper state does not fit this chain"); };
   if (s.size() < 9 || s[0] != n_) bad();

@@ -17,7 +17,7 @@
 
 namespace bkq {
 
-class Theta final : public Stepper {
+class Theta final : public Stepper, public CarriedState {
  public:
   explicit Theta(int n_blocks);
   // Transitions projected inside its step, on chains of nearest-neighbour springs.
@@ -31,9 +31,10 @@ class Theta final : public Stepper {
   TimeStepLimit time_step_limit(const ModelParams& p) const override;
   void step(const ChainForces& forces, const Substrate& sub, ChainState& st, double dt,
             Ranges ranges) override;
-  // The factorisation kept across steps (and what it was made of).
-  std::vector<double> carried_state() const override;
-  void restore_carried_state(std::span<const double> s) override;
+  // Its part: the factorisation kept across steps (and what it was made of).
+  CarriedState* carried() override { return this; }
+  std::vector<double> save() const override;
+  void restore(std::span<const double> s) override;
 
   // The implicit weight theta in [1/2, 1] (1/2 by default).
   void set_theta(double theta) { theta_ = theta; }

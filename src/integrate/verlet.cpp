@@ -3,4 +3,5 @@
 
 namespace bkq {
 template class ExplicitScheme<VerletMethod>;
+template bool relax_cluster<VerletMethod>(const ChainForces&, ClusterRelaxation&);
 }  // namespace bkq

@@ -43,6 +43,7 @@ struct VerletMethod {
 };
 
 extern template class ExplicitScheme<VerletMethod>;
+extern template bool relax_cluster<VerletMethod>(const ChainForces&, ClusterRelaxation&);
 using Verlet = ExplicitScheme<VerletMethod>;
 
 }  // namespace bkq

@@ -31,7 +31,7 @@ namespace bkq {
 
 namespace {
 
-constexpr double kMaxInt64 = 9223372036854775807.0;  // 2^63 - 1 (rounds to 2^63 as a double)
+constexpr double kSeedMax = 9223372036854775807.0;  // 2^63 - 1 (rounds to 2^63 as a double)
 // Sane bounds, so that no finite but absurd value reaches the physics: a mass, stiffness,
 // force or velocity scale of the thesis parameterisation; a simulated time (run length,
 // schedule period, output interval), beyond which 64-bit step counts and t + dt in double
@@ -1077,8 +1077,8 @@ std::vector<ParamSpec> run_rows() {
       real(key::run_duration, at(&SceneValues::run, &RunSettings::duration), "1000", '(', 0,
            kLongTime, ']', "time", "simulated time (continuous mode)")
           .when(continuous()),
-      integer(key::run_seed, at(&SceneValues::run, &RunSettings::seed), "20261121", 0, kMaxInt64,
-              "", "random seed (initial disorder)"),
+      integer(key::run_seed, at(&SceneValues::run, &RunSettings::seed), "20261121", 0, kSeedMax, "",
+              "random seed (initial disorder)"),
       real(key::run_initial_disorder, at(&SceneValues::run, &RunSettings::initial_disorder), "0.01",
            '[', 0, 10, ']', "D0", "initial displacements uniform in +-value*D0, D0 = F0 m_u / k_p")
           .when(rate_law(), chain_kinds()),

@@ -15,7 +15,7 @@ namespace bkq {
 
 namespace {
 
-std::string trim(const std::string& s) {
+std::string trim_spaces(const std::string& s) {
   const auto b = s.find_first_not_of(" \t");
   if (b == std::string::npos) return "";
   const auto e = s.find_last_not_of(" \t");
@@ -28,7 +28,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
   while (true) {
     const auto at = s.find(sep, start);
     parts.push_back(
-        trim(s.substr(start, at == std::string::npos ? std::string::npos : at - start)));
+        trim_spaces(s.substr(start, at == std::string::npos ? std::string::npos : at - start)));
     if (at == std::string::npos) return parts;
     start = at + 1;
   }
@@ -55,7 +55,7 @@ int range_count(const std::string& key, const std::string& text, const std::stri
 }  // namespace
 
 std::vector<std::string> expand_sweep_values(const std::string& key, const std::string& text) {
-  const std::string t = trim(text);
+  const std::string t = trim_spaces(text);
   if (t.empty()) throw Error(key + ": empty list of values to sweep");
   if (t.find(':') == std::string::npos) {
     std::vector<std::string> values = split(t, ',');

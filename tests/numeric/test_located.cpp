@@ -44,6 +44,7 @@
 #include "integrate/located.hpp"
 #include "model/chain.hpp"
 #include "model/substrate.hpp"
+#include "support/located_cuts.hpp"
 
 namespace bkq {
 namespace {
@@ -468,13 +469,15 @@ TEST(LocatedCuts, AStickInsideAStepIsOneCutOverTheWholeRange) {
     st.w[2] = -1.0;  // the middle block, released at the threshold, sticks at t = pi
     st.mobile[2] = 1.0;
     auto s = located(scheme, 5);
-    const auto& counters = dynamic_cast<const LocatedTransitions&>(*s);
+    auto& wrapper = dynamic_cast<LocatedTransitions&>(*s);
+    LocatedCutCounts counts;
+    wrapper.watch_cuts(&counts);
     const Driven run = drive(forces, *s, st, M_PI / 10.5, 4.0);
     ASSERT_EQ(run.st.mobile[2], 0.0) << scheme;
-    EXPECT_EQ(counters.cuts(), 1) << scheme;
-    EXPECT_EQ(counters.cut_blocks(), 5) << scheme;
-    EXPECT_EQ(counters.stretch_blocks(), 3) << scheme;
-    EXPECT_EQ(counters.located_transitions(), 1) << scheme;
+    EXPECT_EQ(counts.cuts, 1) << scheme;
+    EXPECT_EQ(counts.cut_blocks, 5) << scheme;
+    EXPECT_EQ(counts.stretch_blocks, 3) << scheme;
+    EXPECT_EQ(wrapper.located_transitions(), 1) << scheme;
   }
 }
 

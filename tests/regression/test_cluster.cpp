@@ -80,7 +80,7 @@ TEST_P(ClusterPath, LocatedTransitionsTakeTheGeneralPath) {
   Sim located({{"model.blocks", "40"},
                {"integrator.scheme", GetParam()},
                {"integrator.transitions", "located"}});
-  EXPECT_FALSE(located.stepper->traits().cluster_kernels);
+  EXPECT_FALSE(located.stepper->traits().cluster_kernel);
   for (int i = 0; i < 500; ++i) located.engine.next_event();
   EXPECT_GT(located.engine.counters().steps, 0);
   EXPECT_EQ(located.engine.cluster_steps().all, 0);

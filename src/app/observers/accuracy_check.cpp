@@ -14,7 +14,7 @@
 namespace bkq {
 
 namespace {
-constexpr const char* kStateName = "accuracy";
+constexpr const char* kAccuracyStateName = "accuracy";
 
 // A value with four significant digits, or all of them where four would print it equal to
 // the threshold it is compared with.
@@ -49,11 +49,11 @@ void AccuracyCheck::on_event(const EventRecord& e) {
 
 void AccuracyCheck::on_resume(const Checkpoint& c) {
   // A checkpoint from before the indicators has none: they restart.
-  find_state(c, kStateName, residual_max_, residual_sum_, residual_n_, steps_max_);
+  find_state(c, kAccuracyStateName, residual_max_, residual_sum_, residual_n_, steps_max_);
 }
 
 void AccuracyCheck::on_checkpoint(Checkpoint& c) {
-  put_state(c, kStateName, residual_max_, residual_sum_, residual_n_, steps_max_);
+  put_state(c, kAccuracyStateName, residual_max_, residual_sum_, residual_n_, steps_max_);
 }
 
 std::vector<AccuracyCheck::Finding> AccuracyCheck::findings() const {

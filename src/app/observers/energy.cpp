@@ -107,12 +107,12 @@ EnergyDiagnostics::EnergyDiagnostics(const ChainForces& forces, std::string samp
 }
 
 namespace {
-constexpr const char* kStateName = "energy";
+constexpr const char* kEnergyStateName = "energy";
 }  // namespace
 
 void EnergyDiagnostics::on_resume(const Checkpoint& c) {
   std::vector<double> windows, rows;
-  if (!find_state(c, kStateName, windows, rows, t_last_))
+  if (!find_state(c, kEnergyStateName, windows, rows, t_last_))
     throw Error("--resume: the checkpoint holds no energy diagnostics (output.energy)");
   means_.restore(windows);
   if (rows.size() % 5 != 0) throw Error("--resume: the checkpoint's energy rows are malformed");
@@ -130,7 +130,7 @@ void EnergyDiagnostics::on_checkpoint(Checkpoint& c) {
   std::vector<double> rows;
   for (const auto& r : rows_)
     rows.insert(rows.end(), {r.t, static_cast<double>(r.samples), r.energy, r.rate, r.braking});
-  put_state(c, kStateName, means_.state(), rows, t_last_);
+  put_state(c, kEnergyStateName, means_.state(), rows, t_last_);
 }
 
 void EnergyDiagnostics::on_start() {
