@@ -48,6 +48,12 @@ void StencilRelaxation::build(const ChainForces& forces, Ranges ranges) {
     slot.assign(n, -1);
     listed_begin.assign(n, -1);
     listed_end.assign(n, -1);
+    marked.assign(n, 0);
+    kept_by_site.assign(n, 0);
+    room_by_site.assign(n, 0.0);
+    drift_by_site.assign(n, 0.0);
+    calls = 0;
+    end_state = nullptr;
     springs.clear();
     site.clear();
   }
@@ -72,22 +78,23 @@ void StencilRelaxation::build(const ChainForces& forces, Ranges ranges) {
       end.push_back(listed_end[j]);
     }
   // Every partner of a sliding site is covered (ActiveSet::cover), which the kernel's
-  // compact springs need; said so here, not assumed.
+  // compact springs need; said so here, not assumed. The refit keeps a covered site that
+  // slides or has a sliding partner (the sites a sliding one covers are its partners:
+  // ActiveSet::cover), which are the sliding sites' partners (the stencils are symmetric).
+  ++builds;
   usable = true;
-  for (std::size_t i = 0; i < site.size() && usable; ++i)
-    if (st.mobile[site[i]] != 0.0)
-      for (int k = begin[i]; k < end[i]; ++k)
-        usable = usable && slot[springs[k].l] >= 0 && (springs[k].r < 0 || slot[springs[k].r] >= 0);
-  // The refit keeps a covered site that slides or has a sliding partner (the sites a
-  // sliding one covers are its partners: ActiveSet::cover).
+  for (std::size_t i = 0; i < site.size(); ++i)
+    if (st.mobile[site[i]] != 0.0) {
+      marked[site[i]] = builds;
+      for (int k = begin[i]; k < end[i]; ++k) {
+        const StencilSpring& s = springs[k];
+        usable = usable && slot[s.l] >= 0 && (s.r < 0 || slot[s.r] >= 0);
+        marked[s.l] = builds;
+        if (s.r >= 0) marked[s.r] = builds;
+      }
+    }
   refit_keeps = true;
-  for (std::size_t i = 0; i < site.size() && refit_keeps; ++i) {
-    bool needed = st.mobile[site[i]] != 0.0;
-    for (int k = begin[i]; k < end[i] && !needed; ++k)
-      needed =
-          st.mobile[springs[k].l] != 0.0 || (springs[k].r >= 0 && st.mobile[springs[k].r] != 0.0);
-    refit_keeps = needed;
-  }
+  for (const int j : site) refit_keeps = refit_keeps && marked[j] == builds;
 }
 
 template bool run_stencil<Rk2Method>(const ChainForces&, StencilRelaxation&);

@@ -16,10 +16,13 @@
 //  - the stick rule and the release test over the covered sites in site order
 //    (settle_contacts), the forces from the chain's positions.
 // A stuck site is tested again only when its force may have reached the threshold: the
-// loop keeps, from its last test (it held), a bound on |force| (the computed value plus the
-// sum's rounding) and adds to it each step sum_p k_p |dx_p| over its sliding partners (its
-// force is linear in their positions; its own position, the pad and the threshold do not
-// move), so a test it skips would have held, and the events are the same bit for bit.
+// loop keeps, from its last test (it held), the room between a bound on |force| (the
+// computed value plus the sum's rounding) and the threshold, and the drift: sum_p k_p |dx_p|
+// over its sliding partners' moves since (its force is linear in their positions; its own
+// position, the pad and the threshold do not move). While the drift is below the room a
+// test would hold, so it is skipped, and the events are the same bit for bit. Room and drift
+// are kept for the next call when nothing moved between the calls (the same event, time
+// and substrate); otherwise the first step tests every stuck site.
 //
 // The loop returns after the first step at whose end a site broke loose, every site is
 // stuck, a speed is not finite, the step budget ran out, or the engine refits its ranges
@@ -66,6 +69,8 @@ struct StencilRelaxation {
   std::vector<int> site, range, place, begin, end;
   std::vector<StencilSpring> springs;
   std::vector<int> listed_begin, listed_end;  // by site; -1: not listed yet
+  std::vector<std::uint64_t> marked;          // by site: == builds, a sliding site or partner
+  std::uint64_t builds = 0;
   const ChainForces* listed_for = nullptr;
   bool refit_keeps = false;
   bool usable = false;  // every partner of a sliding site is covered
@@ -82,8 +87,16 @@ struct StencilRelaxation {
   // The kernel's scratch, kept between calls.
   std::vector<int> slot;  // site -> compact index, -1 elsewhere (size n)
   std::vector<double> w, v, x, y, cw, cv, u, y0, mobile, dir, a, magnitude, magnitude0;
-  // A stuck site's bound on |force| (+inf: test it) and what its partners' moves added since.
-  std::vector<double> bound, drift, w0;
+  // A stuck site's room and drift (above; room -inf: test it, as for a sliding site).
+  std::vector<double> room, drift, w0;
+  // Room and drift by site at the end of the last call (for the sites it covered: kept ==
+  // calls), and where that call left the state.
+  std::vector<double> room_by_site, drift_by_site;
+  std::vector<std::uint64_t> kept_by_site;
+  std::uint64_t calls = 0;
+  const ChainState* end_state = nullptr;
+  double end_t = 0, end_anchor = 0;
+  std::int64_t end_steps = -1;
   std::vector<int> moving;  // compact indices of the sliding sites, in order
   std::vector<int> local_begin;
   std::vector<StencilSpring> local;  // the moving sites' springs in compact indices
@@ -94,7 +107,7 @@ struct StencilRelaxation {
   struct SkipCheck {
     std::int64_t broke = 0;       // skipped, but the test would have released the site
     std::int64_t over_bound = 0;  // |force| above the bound the skip relied on
-    std::int64_t close = 0;       // skipped with less than a tenth of the margin left
+    std::int64_t close = 0;       // skipped with less than a tenth of the room left
   };
   SkipCheck* check = nullptr;
 };
@@ -138,11 +151,17 @@ inline double spring_sum_scaled(const double* x, double xj, const StencilSpring*
   return f;
 }
 
-// A bound on |f| over the rounding of its computation (the spring sum of n springs and the
-// pad's term: at most (n + 4) 2^-53 scale; taken four times over, which also covers the
-// rounding of the bound's own arithmetic).
-inline double force_bound(double f, double scale, int n) {
-  return std::abs(f) + static_cast<double>(n + 4) * 0x1p-51 * scale;
+// The drift's own rounding (its sums, |dx| and k |dx|, each within 2^-52 of exact) for up
+// to ~10^9 steps between tests, and the room's.
+inline constexpr double kDriftGrow = 1 + 0x1p-20;
+
+// The room below `threshold` of a force f computed over n springs with scale: a bound on
+// the rounding of its computation (the spring sum and the pad's term: at most
+// (n + 4) 2^-53 scale, taken four times over, which also covers the rounding of the bound's
+// own arithmetic) added to |f|, over kDriftGrow. A drift below it cannot move f, computed
+// again, above the threshold. Negative or NaN: none.
+inline double force_room(double threshold, double f, double scale, int n) {
+  return (threshold - (std::abs(f) + static_cast<double>(n + 4) * 0x1p-51 * scale)) / kDriftGrow;
 }
 
 // The sliding sites in compact arrays, advanced by a Method's stages.
@@ -216,13 +235,12 @@ inline void compact_springs(StencilRelaxation& r) {
 
 // Tests only: the skipped test of stuck site i taken anyway, and compared with the bound.
 template <class Force>
-void check_skip(StencilRelaxation& r, int i, Force& spring_force, const Friction& fr, double grow) {
+void check_skip(StencilRelaxation& r, int i, Force& spring_force, const Friction& fr) {
   double scale = 0;
   const double f = spring_force(i, scale);
-  const double bound = r.bound[i] + r.drift[i] * grow;
   if (fr.breaks(f)) ++r.check->broke;
-  if (!(std::abs(f) <= bound)) ++r.check->over_bound;
-  if (fr.threshold - bound < 0.1 * (fr.threshold - r.bound[i])) ++r.check->close;
+  if (!(std::abs(f) <= fr.threshold - (r.room[i] - r.drift[i]))) ++r.check->over_bound;
+  if (r.room[i] - r.drift[i] < 0.1 * r.room[i]) ++r.check->close;
 }
 
 template <class Method, class Law>
@@ -235,11 +253,17 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
   for (std::vector<double>* b : {&r.w, &r.v, &r.x, &r.y, &r.cw, &r.cv, &r.u, &r.y0, &r.mobile,
                                  &r.dir, &r.a, &r.magnitude, &r.magnitude0, &r.w0})
     if (static_cast<int>(b->size()) < c) b->resize(c);
-  r.bound.assign(c, INFINITY);  // the first step tests every stuck site
-  r.drift.assign(c, 0.0);
+  r.room.resize(c);
+  r.drift.resize(c);
   r.moving.clear();
+  // Nothing moved since the last call ended: its rooms and drifts hold.
+  const bool carry = r.end_state == &st && r.end_t == st.t && r.end_anchor == r.anchor &&
+                     r.end_steps == r.steps_before;
   for (int i = 0; i < c; ++i) {
     const int j = r.site[i];
+    const bool kept = carry && st.mobile[j] == 0.0 && r.kept_by_site[j] == r.calls;
+    r.room[i] = kept ? r.room_by_site[j] : -INFINITY;
+    r.drift[i] = kept ? r.drift_by_site[j] : 0.0;
     r.w[i] = r.x[i] = st.w[j];
     r.v[i] = st.wd[j];
     r.mobile[i] = st.mobile[j];
@@ -263,9 +287,6 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
            kp * pad;
   };
   const double threshold = fr.threshold;
-  // The drift's own rounding (its sums, |dx| and k |dx|) and the bound's rounding beside it,
-  // for up to ~10^9 steps between tests.
-  constexpr double grow = 1 + 0x1p-20;
   std::int64_t tests = 0, skipped = 0;
   double t = st.t, dissipated = *r.dissipated, max_speed = 0;
   std::int64_t steps = 0, sliding_block_steps = 0;
@@ -319,16 +340,14 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
     // settle_contacts' rule over the covered sites in order.
     sliding = 0;
     for (int i = 0; i < c; ++i) {
-      const bool was_sliding = r.mobile[i] != 0.0;
-      if (!was_sliding) {
-        // NaN or inf in the bound: tested.
-        if (r.bound[i] + r.drift[i] * grow < threshold) {
-          ++skipped;
-          if (r.check != nullptr) check_skip(r, i, spring_force, fr, grow);
-          continue;
-        }
-        ++tests;
+      // A stuck site with room left (a sliding one has none; NaN: tested).
+      if (r.drift[i] < r.room[i]) {
+        ++skipped;
+        if (r.check != nullptr) check_skip(r, i, spring_force, fr);
+        continue;
       }
+      const bool was_sliding = r.mobile[i] != 0.0;
+      if (!was_sliding) ++tests;
       double f = 0, scale = 0;
       const stick::Outcome o =
           stick::settle_one(fr, true, r.mobile[i], r.dir[i], r.y0[i], r.v[i], [&] {
@@ -336,9 +355,11 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
             return f;
           });
       if (!o.slides && !o.breaks) {
-        // Stuck, its force tested (it held): the bound starts again from it.
-        r.bound[i] = force_bound(f, scale, r.end[i] - r.begin[i]);
+        // Stuck, its force tested (it held): the room starts again from it.
+        r.room[i] = force_room(threshold, f, scale, r.end[i] - r.begin[i]);
         r.drift[i] = 0;
+      } else if (o.breaks) {
+        r.room[i] = -INFINITY;
       }
       const double y1 = r.v[i];
       r.v[i] = o.y;
@@ -369,13 +390,21 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
       compact_springs(r);
     }
   }
+  ++r.calls;
   for (int i = 0; i < c; ++i) {
     const int j = r.site[i];
     st.w[j] = r.w[i];
     st.wd[j] = r.v[i];
     st.mobile[j] = r.mobile[i];
     st.dir[j] = r.dir[i];
+    r.kept_by_site[j] = r.calls;
+    r.room_by_site[j] = r.room[i];
+    r.drift_by_site[j] = r.drift[i];
   }
+  r.end_state = &st;
+  r.end_t = t;
+  r.end_anchor = anchor;
+  r.end_steps = r.steps_before + steps;
   st.t = t;
   *r.dissipated = dissipated;
   r.max_speed = max_speed;
