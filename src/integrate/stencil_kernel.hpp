@@ -21,8 +21,9 @@
 // over its sliding partners' moves since (its force is linear in their positions; its own
 // position, the pad and the threshold do not move). While the drift is below the room a
 // test would hold, so it is skipped, and the events are the same bit for bit. Room and drift
-// are kept for the next call when nothing moved between the calls (the same event, time
-// and substrate); otherwise the first step tests every stuck site.
+// are kept for the next call when nothing moved between the calls (the same event, no
+// steps by other paths, the same time and substrate); otherwise the first step tests every
+// stuck site.
 //
 // The loop returns after the first step at whose end a site broke loose, every site is
 // stuck, a speed is not finite, the step budget ran out, or the engine refits its ranges
@@ -61,6 +62,7 @@ struct StencilRelaxation {
   std::int64_t max_steps = 0;     // return after this many steps at most
   std::int64_t steps_before = 0;  // steps of the event before this call
   int refit_every = 1;            // the engine refits its ranges after every this many
+  std::uint64_t event = 0;        // changes between events (ActiveSet::uncovers)
 
   // The structure (build()): the covered sites in order, each one's range and place in it
   // modulo 4 (RangePowerSum's), its springs (springs[begin[i], end[i]), global indices),
@@ -97,6 +99,7 @@ struct StencilRelaxation {
   const ChainState* end_state = nullptr;
   double end_t = 0, end_anchor = 0;
   std::int64_t end_steps = -1;
+  std::uint64_t end_event = 0;
   std::vector<int> moving;  // compact indices of the sliding sites, in order
   std::vector<int> local_begin;
   std::vector<StencilSpring> local;  // the moving sites' springs in compact indices
@@ -257,8 +260,8 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
   r.drift.resize(c);
   r.moving.clear();
   // Nothing moved since the last call ended: its rooms and drifts hold.
-  const bool carry = r.end_state == &st && r.end_t == st.t && r.end_anchor == r.anchor &&
-                     r.end_steps == r.steps_before;
+  const bool carry = r.end_state == &st && r.end_event == r.event && r.end_t == st.t &&
+                     r.end_anchor == r.anchor && r.end_steps == r.steps_before;
   for (int i = 0; i < c; ++i) {
     const int j = r.site[i];
     const bool kept = carry && st.mobile[j] == 0.0 && r.kept_by_site[j] == r.calls;
@@ -405,6 +408,7 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
   r.end_t = t;
   r.end_anchor = anchor;
   r.end_steps = r.steps_before + steps;
+  r.end_event = r.event;
   st.t = t;
   *r.dissipated = dissipated;
   r.max_speed = max_speed;
