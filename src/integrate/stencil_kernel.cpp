@@ -2,6 +2,7 @@
 // stencil_kernel.hpp): compiled here once per scheme and law.
 #include "integrate/stencil_kernel.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include "integrate/rk2.hpp"
@@ -48,11 +49,6 @@ void StencilRelaxation::build(const ChainForces& forces, Ranges ranges) {
     slot.assign(n, -1);
     listed_begin.assign(n, -1);
     listed_end.assign(n, -1);
-    marked.assign(n, 0);
-    kept_by_site.assign(n, 0);
-    room_by_site.assign(n, 0.0);
-    drift_by_site.assign(n, 0.0);
-    calls = 0;
     end_state = nullptr;
     springs.clear();
     site.clear();
@@ -81,20 +77,24 @@ void StencilRelaxation::build(const ChainForces& forces, Ranges ranges) {
   // compact springs need; said so here, not assumed. The refit keeps a covered site that
   // slides or has a sliding partner (the sites a sliding one covers are its partners:
   // ActiveSet::cover), which are the sliding sites' partners (the stencils are symmetric).
-  ++builds;
+  const int c = static_cast<int>(site.size());
+  marked.assign(c, 0);
   usable = true;
-  for (std::size_t i = 0; i < site.size(); ++i)
+  refit_keeps = false;
+  for (int i = 0; i < c; ++i)
     if (st.mobile[site[i]] != 0.0) {
-      marked[site[i]] = builds;
+      marked[i] = 1;
       for (int k = begin[i]; k < end[i]; ++k) {
-        const StencilSpring& s = springs[k];
-        usable = usable && slot[s.l] >= 0 && (s.r < 0 || slot[s.r] >= 0);
-        marked[s.l] = builds;
-        if (s.r >= 0) marked[s.r] = builds;
+        const int l = slot[springs[k].l], r = springs[k].r >= 0 ? slot[springs[k].r] : c;
+        if (l < 0 || r < 0) {
+          usable = false;
+          return;
+        }
+        marked[l] = 1;
+        if (r < c) marked[r] = 1;
       }
     }
-  refit_keeps = true;
-  for (const int j : site) refit_keeps = refit_keeps && marked[j] == builds;
+  refit_keeps = std::find(marked.begin(), marked.end(), 0) == marked.end();
 }
 
 template bool run_stencil<Rk2Method>(const ChainForces&, StencilRelaxation&);

@@ -32,6 +32,7 @@
 // Only Crossing schemes, the pad held and no dashpots (the general path takes the rest).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -71,8 +72,7 @@ struct StencilRelaxation {
   std::vector<int> site, range, place, begin, end;
   std::vector<StencilSpring> springs;
   std::vector<int> listed_begin, listed_end;  // by site; -1: not listed yet
-  std::vector<std::uint64_t> marked;          // by site: == builds, a sliding site or partner
-  std::uint64_t builds = 0;
+  std::vector<unsigned char> marked;          // by covered site: slides or is a partner
   const ChainForces* listed_for = nullptr;
   bool refit_keeps = false;
   bool usable = false;  // every partner of a sliding site is covered
@@ -91,11 +91,10 @@ struct StencilRelaxation {
   std::vector<double> w, v, x, y, cw, cv, u, y0, mobile, dir, a, magnitude, magnitude0;
   // A stuck site's room and drift (above; room -inf: test it, as for a sliding site).
   std::vector<double> room, drift, w0;
-  // Room and drift by site at the end of the last call (for the sites it covered: kept ==
-  // calls), and where that call left the state.
-  std::vector<double> room_by_site, drift_by_site;
-  std::vector<std::uint64_t> kept_by_site;
-  std::uint64_t calls = 0;
+  // The last call's covered sites with their rooms and drifts at its end (compact, so that
+  // nothing by site is touched beyond slot), and where it left the state.
+  std::vector<int> end_site;
+  std::vector<double> end_room, end_drift;
   const ChainState* end_state = nullptr;
   double end_t = 0, end_anchor = 0;
   std::int64_t end_steps = -1;
@@ -262,11 +261,18 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
   // Nothing moved since the last call ended: its rooms and drifts hold.
   const bool carry = r.end_state == &st && r.end_event == r.event && r.end_t == st.t &&
                      r.end_anchor == r.anchor && r.end_steps == r.steps_before;
+  std::fill(r.room.begin(), r.room.begin() + c, -INFINITY);
+  std::fill(r.drift.begin(), r.drift.begin() + c, 0.0);
+  if (carry)
+    for (std::size_t k = 0; k < r.end_site.size(); ++k) {
+      const int j = r.end_site[k], i = r.slot[j];
+      if (i >= 0 && st.mobile[j] == 0.0) {
+        r.room[i] = r.end_room[k];
+        r.drift[i] = r.end_drift[k];
+      }
+    }
   for (int i = 0; i < c; ++i) {
     const int j = r.site[i];
-    const bool kept = carry && st.mobile[j] == 0.0 && r.kept_by_site[j] == r.calls;
-    r.room[i] = kept ? r.room_by_site[j] : -INFINITY;
-    r.drift[i] = kept ? r.drift_by_site[j] : 0.0;
     r.w[i] = r.x[i] = st.w[j];
     r.v[i] = st.wd[j];
     r.mobile[i] = st.mobile[j];
@@ -393,17 +399,16 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
       compact_springs(r);
     }
   }
-  ++r.calls;
   for (int i = 0; i < c; ++i) {
     const int j = r.site[i];
     st.w[j] = r.w[i];
     st.wd[j] = r.v[i];
     st.mobile[j] = r.mobile[i];
     st.dir[j] = r.dir[i];
-    r.kept_by_site[j] = r.calls;
-    r.room_by_site[j] = r.room[i];
-    r.drift_by_site[j] = r.drift[i];
   }
+  r.end_site.assign(r.site.begin(), r.site.end());
+  r.end_room.assign(r.room.begin(), r.room.begin() + c);
+  r.end_drift.assign(r.drift.begin(), r.drift.begin() + c);
   r.end_state = &st;
   r.end_t = t;
   r.end_anchor = anchor;
