@@ -110,6 +110,7 @@ void ActiveSet::uncover_all(const ChainState& st) {
     tree_.set_range(r.lo, r.hi, [&](int j) { return forces_.local_force(w, j); });
   }
   ranges_.clear();
+  ++uncovers_;
 }
 
 }  // namespace bkq

@@ -3,6 +3,7 @@
 // answers "which stuck block fails next" while they are not integrated.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "engine/force_tree.hpp"
@@ -27,6 +28,8 @@ class ActiveSet {
   void shrink(const ChainState& st);
   // Uncovers everything (the end of an event, or the pad's free swing).
   void uncover_all(const ChainState& st);
+  // How many times uncover_all has run: changes at the end of each event.
+  std::uint64_t uncovers() const { return uncovers_; }
 
  private:
   void add_to_ranges(int k);
@@ -37,6 +40,7 @@ class ActiveSet {
   ForceTree tree_;
   std::vector<Range> ranges_;
   std::vector<unsigned char> covered_, need_;
+  std::uint64_t uncovers_ = 0;
 };
 
 }  // namespace bkq

@@ -103,6 +103,7 @@ class EventEngine {
   const LoneSlipStarts& lone_slip_starts() const { return replay_.starts(); }
   std::int64_t pad_held_steps() const { return general_.pad_held_steps(); }
   std::int64_t stencil_steps() const { return stencil_.steps(); }
+  StencilPath& stencil_kernel_path() { return stencil_; }
 
  private:
   double anchor() const { return st_.s + (pad_ ? st_.x : 0.0); }

@@ -23,6 +23,7 @@ bool StencilPath::advance(Relaxation& rx, PathReport& out) {
   // Stop at the step where the general path would give up on the event.
   r_.max_steps = rx.max_steps + 1 - rx.steps;
   r_.steps_before = rx.steps;
+  r_.event = rx.active.uncovers();
   r_.refit_every = kShrinkEvery;
   if (!rx.traits.stencil_kernel(forces, r_)) return false;
   steps_ += r_.steps;

@@ -19,6 +19,11 @@ class StencilPath final : public RelaxationPath {
   bool advance(Relaxation& rx, PathReport& out) override;
   // Steps taken here (a study count).
   std::int64_t steps() const { return steps_; }
+  // Release tests of stuck sites taken and skipped by the kernel's bound (study counts).
+  std::int64_t release_tests() const { return r_.tests; }
+  std::int64_t skipped_tests() const { return r_.skipped; }
+  // Tests only: take each skipped test anyway and count in `check` how it compares.
+  void check_skips(StencilRelaxation::SkipCheck* check) { r_.check = check; }
 
  private:
   StencilRelaxation r_;

@@ -2,6 +2,7 @@
 // stencil_kernel.hpp): compiled here once per scheme and law.
 #include "integrate/stencil_kernel.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include "integrate/rk2.hpp"
@@ -48,6 +49,7 @@ void StencilRelaxation::build(const ChainForces& forces, Ranges ranges) {
     slot.assign(n, -1);
     listed_begin.assign(n, -1);
     listed_end.assign(n, -1);
+    end_state = nullptr;
     springs.clear();
     site.clear();
   }
@@ -72,22 +74,27 @@ void StencilRelaxation::build(const ChainForces& forces, Ranges ranges) {
       end.push_back(listed_end[j]);
     }
   // Every partner of a sliding site is covered (ActiveSet::cover), which the kernel's
-  // compact springs need; said so here, not assumed.
+  // compact springs need; said so here, not assumed. The refit keeps a covered site that
+  // slides or has a sliding partner (the sites a sliding one covers are its partners:
+  // ActiveSet::cover), which are the sliding sites' partners (the stencils are symmetric).
+  const int c = static_cast<int>(site.size());
+  marked.assign(c, 0);
   usable = true;
-  for (std::size_t i = 0; i < site.size() && usable; ++i)
-    if (st.mobile[site[i]] != 0.0)
-      for (int k = begin[i]; k < end[i]; ++k)
-        usable = usable && slot[springs[k].l] >= 0 && (springs[k].r < 0 || slot[springs[k].r] >= 0);
-  // The refit keeps a covered site that slides or has a sliding partner (the sites a
-  // sliding one covers are its partners: ActiveSet::cover).
-  refit_keeps = true;
-  for (std::size_t i = 0; i < site.size() && refit_keeps; ++i) {
-    bool needed = st.mobile[site[i]] != 0.0;
-    for (int k = begin[i]; k < end[i] && !needed; ++k)
-      needed =
-          st.mobile[springs[k].l] != 0.0 || (springs[k].r >= 0 && st.mobile[springs[k].r] != 0.0);
-    refit_keeps = needed;
-  }
+  refit_keeps = false;
+  for (int i = 0; i < c; ++i)
+    if (st.mobile[site[i]] != 0.0) {
+      marked[i] = 1;
+      for (int k = begin[i]; k < end[i]; ++k) {
+        const int l = slot[springs[k].l], r = springs[k].r >= 0 ? slot[springs[k].r] : c;
+        if (l < 0 || r < 0) {
+          usable = false;
+          return;
+        }
+        marked[l] = 1;
+        if (r < c) marked[r] = 1;
+      }
+    }
+  refit_keeps = std::find(marked.begin(), marked.end(), 0) == marked.end();
 }
 
 template bool run_stencil<Rk2Method>(const ChainForces&, StencilRelaxation&);

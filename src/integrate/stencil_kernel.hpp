@@ -15,8 +15,15 @@
 //    RangePowerSum's places (a stuck site's term is 0 and changes no partial sum);
 //  - the stick rule and the release test over the covered sites in site order
 //    (settle_contacts), the forces from the chain's positions.
-// A stuck site whose partners all stayed stuck through a step has the force it had at the
-// end of the step before, when this loop tested it (it held), so it is not tested again.
+// A stuck site is tested again only when its force may have reached the threshold: the
+// loop keeps, from its last test (it held), the room between a bound on |force| (the
+// computed value plus the sum's rounding) and the threshold, and the drift: sum_p k_p |dx_p|
+// over its sliding partners' moves since (its force is linear in their positions; its own
+// position, the pad and the threshold do not move). While the drift is below the room a
+// test would hold, so it is skipped, and the events are the same bit for bit. Room and drift
+// are kept for the next call when nothing moved between the calls (the same event, no
+// steps by other paths, the same time and substrate); otherwise the first step tests every
+// stuck site.
 //
 // The loop returns after the first step at whose end a site broke loose, every site is
 // stuck, a speed is not finite, the step budget ran out, or the engine refits its ranges
@@ -25,6 +32,7 @@
 // Only Crossing schemes, the pad held and no dashpots (the general path takes the rest).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -55,6 +63,7 @@ struct StencilRelaxation {
   std::int64_t max_steps = 0;     // return after this many steps at most
   std::int64_t steps_before = 0;  // steps of the event before this call
   int refit_every = 1;            // the engine refits its ranges after every this many
+  std::uint64_t event = 0;        // changes between events (ActiveSet::uncovers)
 
   // The structure (build()): the covered sites in order, each one's range and place in it
   // modulo 4 (RangePowerSum's), its springs (springs[begin[i], end[i]), global indices),
@@ -63,6 +72,7 @@ struct StencilRelaxation {
   std::vector<int> site, range, place, begin, end;
   std::vector<StencilSpring> springs;
   std::vector<int> listed_begin, listed_end;  // by site; -1: not listed yet
+  std::vector<unsigned char> marked;          // by covered site: slides or is a partner
   const ChainForces* listed_for = nullptr;
   bool refit_keeps = false;
   bool usable = false;  // every partner of a sliding site is covered
@@ -79,10 +89,29 @@ struct StencilRelaxation {
   // The kernel's scratch, kept between calls.
   std::vector<int> slot;  // site -> compact index, -1 elsewhere (size n)
   std::vector<double> w, v, x, y, cw, cv, u, y0, mobile, dir, a, magnitude, magnitude0;
-  std::vector<unsigned char> dirty;
+  // A stuck site's room and drift (above; room -inf: test it, as for a sliding site).
+  std::vector<double> room, drift, w0;
+  // The last call's covered sites with their rooms and drifts at its end (compact, so that
+  // nothing by site is touched beyond slot), and where it left the state.
+  std::vector<int> end_site;
+  std::vector<double> end_room, end_drift;
+  const ChainState* end_state = nullptr;
+  double end_t = 0, end_anchor = 0;
+  std::int64_t end_steps = -1;
+  std::uint64_t end_event = 0;
   std::vector<int> moving;  // compact indices of the sliding sites, in order
   std::vector<int> local_begin;
   std::vector<StencilSpring> local;  // the moving sites' springs in compact indices
+
+  // Release tests of stuck sites taken and skipped by the bound (a study count).
+  std::int64_t tests = 0, skipped = 0;
+  // Tests only: each skipped test is taken anyway and compared with the bound.
+  struct SkipCheck {
+    std::int64_t broke = 0;       // skipped, but the test would have released the site
+    std::int64_t over_bound = 0;  // |force| above the bound the skip relied on
+    std::int64_t close = 0;       // skipped with less than a tenth of the room left
+  };
+  SkipCheck* check = nullptr;
 };
 
 // The springs of site j in the order ChainForces::neighbour_force sums them.
@@ -102,6 +131,39 @@ inline double spring_sum(const double* x, double xj, const StencilSpring* s,
     f += s->k * d;
   }
   return f;
+}
+
+// spring_sum's f, the same bits, and scale += sum_s |k_s| (|x_l - x_j| [+ |x_r - x_j|]), which
+// bounds the sum's rounding: |f - exact| <= (n + 2) 2^-53 scale over n springs.
+inline double spring_sum_scaled(const double* x, double xj, const StencilSpring* s,
+                                const StencilSpring* end, double& scale) {
+  double f = 0, a = 0;
+  for (; s != end; ++s) {
+    const double dl = x[s->l] - xj;
+    double d = dl, e = std::abs(dl);
+    if (s->r >= 0) {
+      const double dr = x[s->r] - xj;
+      d += dr;
+      e += std::abs(dr);
+    }
+    f += s->k * d;
+    a += std::abs(s->k) * e;
+  }
+  scale += a;
+  return f;
+}
+
+// The drift's own rounding (its sums, |dx| and k |dx|, each within 2^-52 of exact) for up
+// to ~10^9 steps between tests, and the room's.
+inline constexpr double kDriftGrow = 1 + 0x1p-20;
+
+// The room below `threshold` of a force f computed over n springs with scale: a bound on
+// the rounding of its computation (the spring sum and the pad's term: at most
+// (n + 4) 2^-53 scale, taken four times over, which also covers the rounding of the bound's
+// own arithmetic) added to |f|, over kDriftGrow. A drift below it cannot move f, computed
+// again, above the threshold. Negative or NaN: none.
+inline double force_room(double threshold, double f, double scale, int n) {
+  return (threshold - (std::abs(f) + static_cast<double>(n + 4) * 0x1p-51 * scale)) / kDriftGrow;
 }
 
 // The sliding sites in compact arrays, advanced by a Method's stages.
@@ -173,6 +235,16 @@ inline void compact_springs(StencilRelaxation& r) {
   r.local_begin.push_back(static_cast<int>(r.local.size()));
 }
 
+// Tests only: the skipped test of stuck site i taken anyway, and compared with the bound.
+template <class Force>
+void check_skip(StencilRelaxation& r, int i, Force& spring_force, const Friction& fr) {
+  double scale = 0;
+  const double f = spring_force(i, scale);
+  if (fr.breaks(f)) ++r.check->broke;
+  if (!(std::abs(f) <= fr.threshold - (r.room[i] - r.drift[i]))) ++r.check->over_bound;
+  if (r.room[i] - r.drift[i] < 0.1 * r.room[i]) ++r.check->close;
+}
+
 template <class Method, class Law>
 void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& r) {
   ChainState& st = *r.state;
@@ -181,10 +253,24 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
   const double damper = p.c_u / p.m_u, kp = p.k_p, anchor = r.anchor, dt = r.dt;
   const int c = static_cast<int>(r.site.size());
   for (std::vector<double>* b : {&r.w, &r.v, &r.x, &r.y, &r.cw, &r.cv, &r.u, &r.y0, &r.mobile,
-                                 &r.dir, &r.a, &r.magnitude, &r.magnitude0})
+                                 &r.dir, &r.a, &r.magnitude, &r.magnitude0, &r.w0})
     if (static_cast<int>(b->size()) < c) b->resize(c);
-  r.dirty.assign(c, 1);  // the first step tests every stuck site
+  r.room.resize(c);
+  r.drift.resize(c);
   r.moving.clear();
+  // Nothing moved since the last call ended: its rooms and drifts hold.
+  const bool carry = r.end_state == &st && r.end_event == r.event && r.end_t == st.t &&
+                     r.end_anchor == r.anchor && r.end_steps == r.steps_before;
+  std::fill(r.room.begin(), r.room.begin() + c, -INFINITY);
+  std::fill(r.drift.begin(), r.drift.begin() + c, 0.0);
+  if (carry)
+    for (std::size_t k = 0; k < r.end_site.size(); ++k) {
+      const int j = r.end_site[k], i = r.slot[j];
+      if (i >= 0 && st.mobile[j] == 0.0) {
+        r.room[i] = r.end_room[k];
+        r.drift[i] = r.end_drift[k];
+      }
+    }
   for (int i = 0; i < c; ++i) {
     const int j = r.site[i];
     r.w[i] = r.x[i] = st.w[j];
@@ -199,12 +285,18 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
   compact_springs(r);
   double* w_all = st.w.data();
   // The spring force on covered site i from the chain's positions (spring_force's).
-  auto spring_force = [&](int i) {
+  // With scale (spring_sum_scaled's, the pad's term added) for the bound on its rounding.
+  auto spring_force = [&](int i, double& scale) {
     const int j = r.site[i];
     const double wj = w_all[j];
-    return spring_sum(w_all, wj, r.springs.data() + r.begin[i], r.springs.data() + r.end[i]) -
-           kp * (wj - anchor);
+    const double pad = wj - anchor;
+    scale = std::abs(kp) * std::abs(pad);
+    return spring_sum_scaled(w_all, wj, r.springs.data() + r.begin[i], r.springs.data() + r.end[i],
+                             scale) -
+           kp * pad;
   };
+  const double threshold = fr.threshold;
+  std::int64_t tests = 0, skipped = 0;
   double t = st.t, dissipated = *r.dissipated, max_speed = 0;
   std::int64_t steps = 0, sliding_block_steps = 0;
   int sliding = 0;
@@ -217,16 +309,25 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
       const int i = r.moving[s];
       r.y0[i] = r.v[i];
       r.magnitude0[i] = r.magnitude[i];
-      for (int k = r.local_begin[s]; k < r.local_begin[s + 1]; ++k) {
-        r.dirty[r.local[k].l] = 1;
-        if (r.local[k].r >= 0) r.dirty[r.local[k].r] = 1;
-      }
+      r.w0[i] = r.w[i];
     }
     layout.begin_step();
     Method::advance(layout, dt);
     t += dt;
     ++steps;
-    for (const int i : r.moving) w_all[r.site[i]] = r.w[i];  // the forces below read them
+    // The forces below read the new positions; each partner of a sliding site gets k |dx|
+    // per spring that reaches it (the stencils are symmetric: j's spring to i is i's to j).
+    for (int s = 0; s < m; ++s) {
+      const int i = r.moving[s];
+      w_all[r.site[i]] = r.w[i];
+      const double dx = std::abs(r.w[i] - r.w0[i]);
+      for (int k = r.local_begin[s]; k < r.local_begin[s + 1]; ++k) {
+        const StencilSpring& sp = r.local[k];
+        const double d = std::abs(sp.k) * dx;
+        r.drift[sp.l] += d;
+        if (sp.r >= 0) r.drift[sp.r] += d;
+      }
+    }
 
     // dissipated_power's sum: range by range, in RangePowerSum's places.
     double power = 0;
@@ -248,11 +349,27 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
     // settle_contacts' rule over the covered sites in order.
     sliding = 0;
     for (int i = 0; i < c; ++i) {
+      // A stuck site with room left (a sliding one has none; NaN: tested).
+      if (r.drift[i] < r.room[i]) {
+        ++skipped;
+        if (r.check != nullptr) check_skip(r, i, spring_force, fr);
+        continue;
+      }
       const bool was_sliding = r.mobile[i] != 0.0;
-      if (!was_sliding && !r.dirty[i]) continue;
-      r.dirty[i] = 0;
-      const stick::Outcome o = stick::settle_one(fr, true, r.mobile[i], r.dir[i], r.y0[i], r.v[i],
-                                                 [&] { return spring_force(i); });
+      if (!was_sliding) ++tests;
+      double f = 0, scale = 0;
+      const stick::Outcome o =
+          stick::settle_one(fr, true, r.mobile[i], r.dir[i], r.y0[i], r.v[i], [&] {
+            f = spring_force(i, scale);
+            return f;
+          });
+      if (!o.slides && !o.breaks) {
+        // Stuck, its force tested (it held): the room starts again from it.
+        r.room[i] = force_room(threshold, f, scale, r.end[i] - r.begin[i]);
+        r.drift[i] = 0;
+      } else if (o.breaks) {
+        r.room[i] = -INFINITY;
+      }
       const double y1 = r.v[i];
       r.v[i] = o.y;
       r.mobile[i] = o.mobile;
@@ -289,12 +406,22 @@ void stencil_steps(const ChainForces& forces, const Law law, StencilRelaxation& 
     st.mobile[j] = r.mobile[i];
     st.dir[j] = r.dir[i];
   }
+  r.end_site.assign(r.site.begin(), r.site.end());
+  r.end_room.assign(r.room.begin(), r.room.begin() + c);
+  r.end_drift.assign(r.drift.begin(), r.drift.begin() + c);
+  r.end_state = &st;
+  r.end_t = t;
+  r.end_anchor = anchor;
+  r.end_steps = r.steps_before + steps;
+  r.end_event = r.event;
   st.t = t;
   *r.dissipated = dissipated;
   r.max_speed = max_speed;
   r.steps = steps;
   r.sliding_block_steps = sliding_block_steps;
   r.sliding = sliding;
+  r.tests += tests;
+  r.skipped += skipped;
 }
 
 }  // namespace stencil_detail
