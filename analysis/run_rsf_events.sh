@@ -5,9 +5,9 @@
 #   analysis/run_rsf_events.sh [OUT_DIR]        (default runs/rsf-events)
 #
 # The chain of 100 (data/scenes/rsf/chain100-asperities.ini) at V_pl = 1e-9 m/s and at
-# 1e-6 m/s, and the 16 x 8 lattice (data/scenes/rsf/lattice-patches.ini, 1e-6 m/s): each run
-# continuously from two starts (rsf.v_init = V_pl and 1.1 V_pl) and event-driven at the auto
-# hand-over speed (both starts on the chain, one on the lattice) and at 3 V_pl. Then `bkquake seismicity` on every folder and
+# 1e-6 m/s, each continuously from two starts (rsf.v_init = V_pl and 1.1 V_pl) and event-driven
+# at the auto hand-over speed (both starts) and at 3 V_pl; and the 16 x 8 lattice
+# (data/scenes/rsf/lattice-patches.ini, 1e-6 m/s) continuously from the two starts. Then `bkquake seismicity` on every folder and
 # `bkquake compare` of each set, written to OUT_DIR/compare-*.txt. Each run's user CPU
 # seconds go to OUT_DIR/NAME.cpu. A folder that already holds summary.json is kept, so the
 # script resumes where it stopped.
@@ -57,12 +57,11 @@ kept c2-6 "$C" "${F6[@]}" --set run.duration=4e4 --set rsf.v_init=1.1e-6
 events ea1-6 "$C" "${F6[@]}" --set run.events=5000
 events ea2-6 "$C" "${F6[@]}" --set run.events=5000 --set rsf.v_init=1.1e-6
 events eh-6 "$C" "${F6[@]}" --set run.events=5000 --set rsf.handover_speed=3e-6
-# The 16 x 8 lattice at 1e-6 m/s over 5e4 s; event-driven at the auto hand-over from one
-# start only, and to 800 events: on the lattice it makes about 5 events a CPU second.
+# The 16 x 8 lattice at 1e-6 m/s over 5e4 s, continuously from two starts only: bkquake
+# refuses drive.mode = events on lattices (their event-driven events are not the continuous
+# ones; the docs page keeps the event-driven runs made before the refusal).
 kept lc1 "$L" --set run.duration=5e4
 kept lc2 "$L" --set run.duration=5e4 --set rsf.v_init=1.1e-6
-events leh "$L" --set run.events=6000 --set rsf.handover_speed=3e-6
-events lea1 "$L" --set run.events=800
 # Aftershocks beside: velocity-weakening BK (the Carlson-Langer chain of 100) and OFC with
 # relaxation (docs/explanation/ofc.md).
 kept vw data/scenes/carlson-langer.ini --set run.events=200000
@@ -81,7 +80,7 @@ seis() {
 }
 seis -6.5 c1-9 c2-9 ea1-9 ea2-9 eh-9
 seis -6.5 c1-6 c2-6 ea1-6 ea2-6 eh-6
-seis -6.5 lc1 lc2 leh lea1
+seis -6.5 lc1 lc2
 seis 5 ofc
 [ -f "$OUT/vw/seismicity/seismicity.json" ] || "$B" seismicity "$OUT/vw" >"$OUT/vw.seismicity.log"
 
@@ -93,5 +92,4 @@ compare_set() {
 }
 compare_set 9 -6.5 "$OUT"/{c1-9,c2-9,ea1-9,ea2-9,eh-9} --from 4e-3 --to 4e-2
 compare_set 6 -6.5 "$OUT"/{c1-6,c2-6,ea1-6,ea2-6,eh-6} --from 4e-3 --to 4e-2
-compare_set lattice -6.5 "$OUT"/{lc1,lc2,leh} --from 5e-3 --to 5e-2
-compare_set lattice-auto -6.5 "$OUT"/{lc1,lc2,leh,lea1} --from 2e-3 --to 2e-2
+compare_set lattice -6.5 "$OUT"/{lc1,lc2} --from 5e-3 --to 5e-2

@@ -944,6 +944,14 @@ void rate_and_state(const Scene& s, const std::string& where) {
                 " with drive.mode = events: the event-driven engine's closed form between events "
                 "is the aging law's; allowed: rsf.state_law = aging, or drive.mode = continuous" +
                 where);
+  // Measured: on lattices the event-driven catalogue is not the continuous one (validation
+  // page "Event-driven against continuous rate-and-state").
+  if (v.drive.mode == DriveMode::Events && v.model.rows > 1)
+    throw Error("model.rows = " + s.text(key::model_rows) +
+                " with drive.mode = events and friction.law = rsf: on lattices the event-driven "
+                "engine does not reproduce the continuous integration's events; allowed: "
+                "model.rows = 1, or drive.mode = continuous" +
+                where);
   if (v.drive.mode == DriveMode::Events && v.rsf.handover_speed &&
       !(*v.rsf.handover_speed<v.rsf.v_threshold&& * v.rsf.handover_speed> v.drive.speed))
     throw Error("rsf.handover_speed = " + s.text(key::rsf_handover_speed) +
