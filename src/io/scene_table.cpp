@@ -952,6 +952,15 @@ void rate_and_state(const Scene& s, const std::string& where) {
                 "engine does not reproduce the continuous integration's events; allowed: "
                 "model.rows = 1, or drive.mode = continuous" +
                 where);
+  // Measured: a uniform chain's event-driven events are not the continuous ones (its blocks
+  // spend the interseismic time near steady sliding, where the closed forms are poor).
+  if (v.drive.mode == DriveMode::Events && v.model.kind == ModelChoice::Bk && v.model.blocks != 1 &&
+      v.rsf.pattern == RsfPattern::Uniform && v.rsf.blocks.empty())
+    throw Error("rsf.pattern = " + s.text(key::rsf_pattern) +
+                " with drive.mode = events on a chain: on a uniform chain the event-driven "
+                "engine does not reproduce the continuous integration's events; allowed: "
+                "rsf.pattern = asperities, rsf.blocks = FILE, or drive.mode = continuous" +
+                where);
   if (v.drive.mode == DriveMode::Events && v.rsf.handover_speed &&
       !(*v.rsf.handover_speed<v.rsf.v_threshold&& * v.rsf.handover_speed> v.drive.speed))
     throw Error("rsf.handover_speed = " + s.text(key::rsf_handover_speed) +

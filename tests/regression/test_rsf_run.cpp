@@ -81,10 +81,16 @@ TEST(RsfRun, Refusals) {
   const std::vector<std::string> ev = {"drive.mode=events", "drive.speed=1e-6", "run.events=5"};
   expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.state_law=slip"))),
                  {"rsf.state_law = slip", "drive.mode = events", "allowed: rsf.state_law = aging"});
+  // So are uniform chains, for the same reason.
+  expect_refused(
+      run_bkquake(rsf_args(out, with(with(ev, "model.kind=bk"), "model.blocks=4"))),
+      {"rsf.pattern = uniform", "drive.mode = events", "allowed: rsf.pattern = asperities"});
   // Lattices are refused: their event-driven catalogue is not the continuous one.
-  expect_refused(run_bkquake(rsf_args(
-                     out, with(with(with(ev, "model.kind=bk"), "model.rows=2"), "model.blocks=4"))),
-                 {"model.rows = 2", "drive.mode = events", "allowed: model.rows = 1"});
+  expect_refused(
+      run_bkquake(rsf_args(
+          out, with(with(with(with(ev, "model.kind=bk"), "model.rows=2"), "model.blocks=4"),
+                    "rsf.pattern=asperities"))),
+      {"model.rows = 2", "drive.mode = events", "allowed: model.rows = 1"});
   expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.handover_speed=2e-3"))),
                  {"rsf.handover_speed = 0.002", "allowed: auto or (1e-06, 0.001)"});
   // The creep quantum is a positive length up to a metre, and only for drive.mode = events.
