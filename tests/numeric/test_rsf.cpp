@@ -1,19 +1,16 @@
 // Rate-and-state friction: the law (model/laws/rsf.hpp), the cycle integrator
 // (engine/rsf_cycle.hpp) and the linear stability (stats/rsf_stability.hpp) against QDYN's
 // stick-slip case, the velocity step's closed forms, the steady-state fixed point, the
-// linearisation's eigenvalues, the single block in an uncoupled chain, the two forms, and the
-// event detector on a peak that crosses V_th inside one step.
+// linearisation's eigenvalues, the single block in an uncoupled chain, and the two forms.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
-#include <optional>
 #include <vector>
 
 #include "engine/rsf_cycle.hpp"
-#include "engine/rsf_events.hpp"
 #include "model/laws/rsf.hpp"
 #include "stats/rsf_stability.hpp"
 #include "stats/stability.hpp"
@@ -282,38 +279,6 @@ TEST(RsfLaw, RegularisedAndLogFormsAgreeWhereFrictionFarExceedsA) {
   const Cycles a = run_cycles(reg, 4000), b = run_cycles(lg, 4000);
   EXPECT_NEAR(a.period() / b.period(), 1, 1e-7);
   EXPECT_NEAR(a.f_min / b.f_min, 1, 1e-7);
-}
-
-TEST(RsfEvents, AnEventInsideOneStepStartsBeforeItsPeakAndEndsAfterIt) {
-  // Find a step whose Hermite cubic of ln V peaks inside it, above both ends (a loose
-  // tolerance makes the steps long).
-  RsfCycle probe(qdyn_model(), 1e-4, {2e-5}, {10});
-  double t_step = -1, ln_level = 0;
-  while (probe.t() < 4000 && t_step < 0) {
-    probe.step(4000);
-    const auto &y0 = probe.y_prev(), &d0 = probe.dy_prev(), &y1 = probe.y(), &d1 = probe.dy();
-    if (!(d0[1] > 0 && d1[1] <= 0)) continue;
-    const Extremum e = hermite_extremum(probe.t_prev(), y0[1], d0[1], probe.t(), y1[1], d1[1]);
-    const double ends = std::max(y0[1], y1[1]);
-    if (e.x > ends + 1e-6) t_step = probe.t(), ln_level = 0.5 * (e.x + ends);
-  }
-  ASSERT_GT(t_step, 0) << "no step peaked inside it";
-  // The same integration, observed with V_th between the step's ends and its peak.
-  RsfCycle c(qdyn_model(), 1e-4, {2e-5}, {10});
-  RsfEventDetector detector(std::exp(ln_level));
-  std::optional<EventRecord> e;
-  while (c.t() < t_step && !e) {
-    c.step(4000);
-    e = detector.observe(c);
-  }
-  ASSERT_TRUE(e.has_value());
-  EXPECT_EQ(c.t(), t_step);
-  EXPECT_GT(e->hypocentre_time, c.t_prev());
-  EXPECT_LT(e->hypocentre_time, e->peak_time);
-  EXPECT_GT(e->duration, e->peak_time - e->hypocentre_time);
-  EXPECT_LT(e->hypocentre_time + e->duration, c.t());
-  EXPECT_GT(e->moment, 0);
-  EXPECT_EQ(e->blocks, 1);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -434,6 +435,40 @@ TEST(RsfEventDetector, EventInsideOneStepStartsBeforeItEnds) {
   EXPECT_GT(inside, 0);  // some threshold was crossed both ways inside one step
 }
 
+// The same with V_th placed between a step's ends and the peak of its cubic: the crossings
+// lie inside that step, on either side of the peak.
+TEST(RsfEventDetector, AnEventInsideOneStepStartsBeforeItsPeakAndEndsAfterIt) {
+  // Find a step whose Hermite cubic of ln V peaks inside it, above both ends (a loose
+  // tolerance makes the steps long).
+  RsfCycle probe(test::qdyn_stickslip(1), 1e-4, {2e-5}, {10});
+  double t_step = -1, ln_level = 0;
+  while (probe.t() < 4000 && t_step < 0) {
+    probe.step(4000);
+    const auto &y0 = probe.y_prev(), &d0 = probe.dy_prev(), &y1 = probe.y(), &d1 = probe.dy();
+    if (!(d0[1] > 0 && d1[1] <= 0)) continue;
+    const Extremum e = hermite_extremum(probe.t_prev(), y0[1], d0[1], probe.t(), y1[1], d1[1]);
+    const double ends = std::max(y0[1], y1[1]);
+    if (e.x > ends + 1e-6) t_step = probe.t(), ln_level = 0.5 * (e.x + ends);
+  }
+  ASSERT_GT(t_step, 0) << "no step peaked inside it";
+  // The same integration, observed with V_th between the step's ends and its peak.
+  RsfCycle c(test::qdyn_stickslip(1), 1e-4, {2e-5}, {10});
+  RsfEventDetector detector(std::exp(ln_level));
+  std::optional<EventRecord> e;
+  while (c.t() < t_step && !e) {
+    c.step(4000);
+    e = detector.observe(c);
+  }
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(c.t(), t_step);
+  EXPECT_GT(e->hypocentre_time, c.t_prev());
+  EXPECT_LT(e->hypocentre_time, e->peak_time);
+  EXPECT_GT(e->duration, e->peak_time - e->hypocentre_time);
+  EXPECT_LT(e->hypocentre_time + e->duration, c.t());
+  EXPECT_GT(e->moment, 0);
+  EXPECT_EQ(e->blocks, 1);
+}
+
 TEST(RsfLoader, HeapKeepsTheEarliestOnTopWithTiesByIndex) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 10);
@@ -474,15 +509,19 @@ TEST(RsfEventEngine, HandOverKeepsSlipRateAndStateAndResumesExactly) {
     EXPECT_EQ(x.ln_v, a.loader().x_ref(j).ln_v);
     EXPECT_EQ(x.ln_theta, a.loader().x_ref(j).ln_theta);
   }
+  // A new engine restored from a's snapshot: a's next three events and it's are the same.
+  const auto expect_restored_follows = [&](RsfEventEngine& b) {
+    b.restore(a.snapshot());
+    for (int k = 0; k < 3; ++k) {
+      const auto ea = a.next(1e5), eb = b.next(1e5);
+      ASSERT_EQ(ea.has_value(), eb.has_value());
+      if (!ea) break;
+      EXPECT_EQ(ea->hypocentre_time, eb->hypocentre_time);
+      EXPECT_EQ(ea->moment, eb->moment);
+    }
+  };
   RsfEventEngine b(m, 1e-8, 1e-3, 1e-4, 1e-6, {1e-8}, theta);
-  b.restore(a.snapshot());
-  for (int k = 0; k < 3; ++k) {
-    const auto ea = a.next(1e5), eb = b.next(1e5);
-    ASSERT_EQ(ea.has_value(), eb.has_value());
-    if (!ea) break;
-    EXPECT_EQ(ea->hypocentre_time, eb->hypocentre_time);
-    EXPECT_EQ(ea->moment, eb->moment);
-  }
+  ASSERT_NO_FATAL_FAILURE(expect_restored_follows(b));
   // Stopped between two events, after some quanta (unsynced slip and leads not zero): a
   // snapshot there resumes to the same events and positions too.
   const std::int64_t syncs = a.syncs();
@@ -496,14 +535,7 @@ TEST(RsfEventEngine, HandOverKeepsSlipRateAndStateAndResumesExactly) {
   for (int j = 0; j < 4; ++j) lead += a.loader().lead(j);
   EXPECT_GT(lead, 0);
   RsfEventEngine c(m, 1e-8, 1e-3, 1e-4, 1e-6, {1e-8}, theta);
-  c.restore(a.snapshot());
-  for (int k = 0; k < 3; ++k) {
-    const auto ea = a.next(1e5), ec = c.next(1e5);
-    ASSERT_EQ(ea.has_value(), ec.has_value());
-    if (!ea) break;
-    EXPECT_EQ(ea->hypocentre_time, ec->hypocentre_time);
-    EXPECT_EQ(ea->moment, ec->moment);
-  }
+  ASSERT_NO_FATAL_FAILURE(expect_restored_follows(c));
   for (int j = 0; j < 4; ++j) EXPECT_EQ(a.loader().position(j), c.loader().position(j));
 }
 
