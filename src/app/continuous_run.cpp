@@ -267,13 +267,11 @@ class ContinuousRun {
     save();
     accuracy_->set_run_energy_residual(driver_->energy_balance().residual(driver_->energy()));
     observers_.end(run_end(sig));
-    std::fprintf(stderr,
-                 "bkquake: stopped by %s at t = %s of %s (%lld of %lld steps); checkpoint in "
-                 "'%s'; to continue: bkquake run %s --out %s --resume\n",
-                 sig == SIGINT ? "SIGINT" : "SIGTERM", format_real(driver_->state().t).c_str(),
-                 format_real(duration_).c_str(), static_cast<long long>(done_),
-                 static_cast<long long>(steps_), files_.current().c_str(),
-                 out_.path("scene.ini").c_str(), out_.dir().c_str());
+    print_stop_notice(sig,
+                      "at t = " + format_real(driver_->state().t) + " of " +
+                          format_real(duration_) + " (" + std::to_string(done_) + " of " +
+                          std::to_string(steps_) + " steps)",
+                      files_.current(), out_.path("scene.ini"), out_.dir());
     return 128 + sig;
   }
 

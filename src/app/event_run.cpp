@@ -331,14 +331,12 @@ class EventRun {
   int stop(int sig) {
     save_engine();
     observers_.end(run_end(sig));
-    std::fprintf(stderr,
-                 "bkquake: stopped by %s after %lld of %lld events (%lld of %lld transient); "
-                 "checkpoint in '%s'; "
-                 "to continue: bkquake run %s --out %s --resume\n",
-                 sig == SIGINT ? "SIGINT" : "SIGTERM", static_cast<long long>(prog_.events_done),
-                 static_cast<long long>(events_), static_cast<long long>(prog_.transient_done),
-                 static_cast<long long>(transient_), files_.current().c_str(),
-                 out_.path("scene.ini").c_str(), out_.dir().c_str());
+    print_stop_notice(sig,
+                      "after " + std::to_string(prog_.events_done) + " of " +
+                          std::to_string(events_) + " events (" +
+                          std::to_string(prog_.transient_done) + " of " +
+                          std::to_string(transient_) + " transient)",
+                      files_.current(), out_.path("scene.ini"), out_.dir());
     return 128 + sig;
   }
 

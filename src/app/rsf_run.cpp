@@ -355,12 +355,9 @@ class RsfRun {
     if (const int sig = signals.received(); sig != 0 && cycle_.t() < duration_) {
       save();
       obs_.end(run_end(sig));
-      std::fprintf(stderr,
-                   "bkquake: stopped by %s at t = %s of %s s; checkpoint in '%s'; to continue: "
-                   "bkquake run %s --out %s --resume\n",
-                   sig == SIGINT ? "SIGINT" : "SIGTERM", format_real(cycle_.t()).c_str(),
-                   format_real(duration_).c_str(), files_.current().c_str(),
-                   out_.path("scene.ini").c_str(), out_.dir().c_str());
+      print_stop_notice(
+          sig, "at t = " + format_real(cycle_.t()) + " of " + format_real(duration_) + " s",
+          files_.current(), out_.path("scene.ini"), out_.dir());
       return 128 + sig;
     }
     obs_.end(run_end(0));
@@ -524,12 +521,10 @@ class RsfEventRun {
     if (const int sig = signals.received(); sig != 0 && prog_.events_done < events_ && !quiet) {
       save();
       obs_.end(run_end(sig));
-      std::fprintf(stderr,
-                   "bkquake: stopped by %s after %lld of %lld events; checkpoint in '%s'; to "
-                   "continue: bkquake run %s --out %s --resume\n",
-                   sig == SIGINT ? "SIGINT" : "SIGTERM", static_cast<long long>(prog_.events_done),
-                   static_cast<long long>(events_), files_.current().c_str(),
-                   out_.path("scene.ini").c_str(), out_.dir().c_str());
+      print_stop_notice(sig,
+                        "after " + std::to_string(prog_.events_done) + " of " +
+                            std::to_string(events_) + " events",
+                        files_.current(), out_.path("scene.ini"), out_.dir());
       return 128 + sig;
     }
     obs_.end(run_end(0));

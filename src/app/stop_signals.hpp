@@ -21,7 +21,9 @@
 
 #include <cerrno>
 #include <csignal>
+#include <cstdio>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "io/folder_lock.hpp"
@@ -140,5 +142,16 @@ class StopSignals {
   struct sigaction old_term_ {};
   sigset_t old_mask_{};
 };
+
+// What a run stopped by a signal prints: where it stopped (`progress`, e.g. "after 5 of 10
+// events"), its checkpoint and the command that continues it.
+inline void print_stop_notice(int sig, const std::string& progress, const std::string& checkpoint,
+                              const std::string& scene_ini, const std::string& dir) {
+  std::fprintf(stderr,
+               "bkquake: stopped by %s %s; checkpoint in '%s'; to continue: bkquake run %s "
+               "--out %s --resume\n",
+               sig == SIGINT ? "SIGINT" : "SIGTERM", progress.c_str(), checkpoint.c_str(),
+               scene_ini.c_str(), dir.c_str());
+}
 
 }  // namespace bkq
