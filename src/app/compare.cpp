@@ -4,13 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <ostream>
-#include <sstream>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "io/catalog_reader.hpp"
+#include "io/ini.hpp"
 #include "io/json.hpp"
 
 namespace bkq {
@@ -18,13 +17,6 @@ namespace bkq {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 fs::path catalog_of(const std::string& run) {
   const fs::path dir(run);
@@ -72,7 +64,7 @@ void read_window(const CompareRequest& req, CompareRun& run, std::vector<double>
 std::optional<CompareAftershocks> aftershocks_of(const std::string& folder) {
   const fs::path json = fs::path(folder) / "seismicity" / "seismicity.json";
   if (!fs::is_regular_file(json)) return std::nullopt;
-  const std::string t = slurp(json), o = json.string();
+  const std::string o = json.string(), t = read_text_file(o, "seismicity result");
   CompareAftershocks a;
   a.rule = json_string_at(t, "mainshocks.rule", o).value_or("");
   a.mainshocks = json_number_at(t, "mainshocks.count", o).value_or(0);
