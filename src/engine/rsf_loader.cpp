@@ -12,7 +12,22 @@ namespace bkq {
 
 namespace {
 bool handed_back(const RsfCycle& c, int j, double ln_vh);
+
+// Where the closed forms are poor (d theta/dt = 1 - Omega with Omega = V theta/D_c near 1),
+// a velocity-weakening block is left to the integrator: it is handed over when its locked
+// phase reaches Omega = kOmegaIn (or is in [kOmegaIn, kOmegaOut) nucleating), and handed back
+// below kOmegaBack or, accelerating, from kOmegaOut on: the locked form's d theta/dt = 1 is
+// then at most twice the law's 1 - Omega, the nucleation form's -Omega within 11 % of it.
+const double kLnOmegaBack = std::log(0.25), kLnOmegaIn = std::log(0.5),
+             kLnOmegaOut = std::log(10.0);
+// A velocity-strengthening block goes back to its steady-state phase within this of
+// Omega = 1 (or locked, Omega < 1).
+constexpr double kLnOmegaSteady = 0.05;
+
+double ln_omega(const rsf::Slider& s, const rsf::SliderState& x) {
+  return x.ln_v + x.ln_theta - std::log(s.dc);
 }
+}  // namespace
 
 IndexedMinHeap::IndexedMinHeap(int n)
     : heap_(n), pos_(n), time_(n, std::numeric_limits<double>::infinity()) {
@@ -129,6 +144,14 @@ void RsfLoader::schedule(int j) {
     t_vh = c.to_speed;
     t_q = c.to_slip;
   }
+  // A velocity-weakening block nearing steady state goes to the integrator (kOmegaIn).
+  if (!s.strengthening()) {
+    const double lo = ln_omega(s, x_ref_[j]);
+    if (rsf::locked(s, x_ref_[j]))
+      t_vh = std::min(t_vh, rsf::time_to_omega(s, x_ref_[j], kLnOmegaIn));
+    else if (lo < kLnOmegaOut)
+      t_vh = 0;
+  }
   quantum_due_[j] = t_q < t_vh ? 1 : 0;
   heap_.set(j, t_ref_[j] + std::min(t_vh, t_q));
 }
@@ -196,18 +219,20 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
   return e;
 }
 
-// Whether block j can go back to its closed form: below V_h, and not decelerating while the
-// closed form would have it nucleate (V theta/D_c >= 1, where it only accelerates) -- such a
-// block, slowed by its neighbours or by healing the nucleation form leaves out, would be handed
-// straight back to the integrator. Near steady state (ln Omega < 0.05) a decelerating block
-// goes back once it is a decade below V_h, so that a creeping barrier ends the integration.
+// Whether block j can go back to its closed form: below V_h and where its closed form holds.
+// A velocity-strengthening block (a > b): locked (Omega < 1), or within kLnOmegaSteady of
+// steady state, where its steady-state phase takes it. A velocity-weakening one: below
+// kOmegaBack (locked, healing), or accelerating from kOmegaOut on (nucleating); in between the
+// closed forms are poor (and the nucleation form, accelerating only, would hand a decelerating
+// block straight back), so it stays with the integrator.
 namespace {
 bool handed_back(const RsfCycle& c, int j, double ln_vh) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
-  if (c.dy()[c.n() + j] >= 0) return true;
-  const double ln_omega = ln_v + c.ln_theta(j) - std::log(c.model().law[j].params().dc);
-  return ln_omega < 0 || (ln_omega < 0.05 && ln_v < ln_vh - std::log(10.0));
+  const rsf::Params& p = c.model().law[j].params();
+  const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
+  if (p.a > p.b_rsf) return lo < kLnOmegaSteady;
+  return lo < kLnOmegaBack || (lo >= kLnOmegaOut && c.dy()[c.n() + j] >= 0);
 }
 }  // namespace
 
