@@ -14,10 +14,10 @@ namespace {
 bool handed_back(const RsfCycle& c, int j, double ln_vh);
 
 // Where the closed forms are poor (d theta/dt = 1 - Omega with Omega = V theta/D_c near 1),
-// a velocity-weakening block is left to the integrator: it is handed over when its locked
-// phase reaches Omega = kOmegaIn (or is in [kOmegaIn, kOmegaOut) nucleating), and handed back
-// below kOmegaBack or, accelerating, from kOmegaOut on: the locked form's d theta/dt = 1 is
-// then at most twice the law's 1 - Omega, the nucleation form's -Omega within 11 % of it.
+// a velocity-weakening block that nucleates on its own is left to the integrator: it is handed over
+// when its locked phase reaches Omega = kOmegaIn (or is in [kOmegaIn, kOmegaOut) nucleating), and
+// handed back below kOmegaBack or, accelerating, from kOmegaOut on: the locked form's d theta/dt =
+// 1 is then at most twice the law's 1 - Omega, the nucleation form's -Omega within 11 % of it.
 const double kLnOmegaBack = std::log(0.25), kLnOmegaIn = std::log(0.5),
              kLnOmegaOut = std::log(10.0);
 // A velocity-strengthening block goes back to its steady-state phase within this of
@@ -26,6 +26,17 @@ constexpr double kLnOmegaSteady = 0.05;
 
 double ln_omega(const rsf::Slider& s, const rsf::SliderState& x) {
   return x.ln_v + x.ln_theta - std::log(s.dc);
+}
+
+// Whether block j's steady sliding is unstable on its own springs: sigma (b - a)/D_c above
+// the unloading stiffness of a block inside the grid, k + twice the stencil's springs. Only
+// such a block is kept with the integrator near V theta/D_c = 1: it passes through there on its
+// way to an event, where a stable one (a weaker asperity) may creep there for good.
+bool nucleates_alone(const RsfModel& m, int j) {
+  const rsf::Params& p = m.law[j].params();
+  double k_eff = m.k;
+  for (const auto& spring : m.stencil()) k_eff += 2 * spring.k;
+  return m.sigma * (p.b_rsf - p.a) / p.dc > k_eff;
 }
 }  // namespace
 
@@ -98,6 +109,7 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
     s.k_eff = m.k;
     for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) s.k_eff += nb_.k[e];
     slider_.push_back(s);
+    nucleates_alone_.push_back(nucleates_alone(m, j) ? 1 : 0);
   }
 }
 
@@ -145,7 +157,7 @@ void RsfLoader::schedule(int j) {
     t_q = c.to_slip;
   }
   // A velocity-weakening block nearing steady state goes to the integrator (kOmegaIn).
-  if (!s.strengthening()) {
+  if (nucleates_alone_[j]) {
     const double lo = ln_omega(s, x_ref_[j]);
     if (rsf::locked(s, x_ref_[j]))
       t_vh = std::min(t_vh, rsf::time_to_omega(s, x_ref_[j], kLnOmegaIn));
@@ -221,18 +233,23 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
 
 // Whether block j can go back to its closed form: below V_h and where its closed form holds.
 // A velocity-strengthening block (a > b): locked (Omega < 1), or within kLnOmegaSteady of
-// steady state, where its steady-state phase takes it. A velocity-weakening one: below
-// kOmegaBack (locked, healing), or accelerating from kOmegaOut on (nucleating); in between the
-// closed forms are poor (and the nucleation form, accelerating only, would hand a decelerating
-// block straight back), so it stays with the integrator.
+// steady state, where its steady-state phase takes it. A velocity-weakening one that nucleates
+// on its own: below kOmegaBack (locked, healing), or accelerating from kOmegaOut on
+// (nucleating); in between the closed forms are poor, so it stays with the integrator. Any
+// other: accelerating or locked, or near steady state (ln Omega < 0.05) a decade below V_h, so
+// that one creeping there ends the integration (not decelerating while the nucleation form,
+// accelerating only, would send it straight back).
 namespace {
 bool handed_back(const RsfCycle& c, int j, double ln_vh) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
   const rsf::Params& p = c.model().law[j].params();
   const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
+  const bool accelerating = c.dy()[c.n() + j] >= 0;
   if (p.a > p.b_rsf) return lo < kLnOmegaSteady;
-  return lo < kLnOmegaBack || (lo >= kLnOmegaOut && c.dy()[c.n() + j] >= 0);
+  if (nucleates_alone(c.model(), j))
+    return lo < kLnOmegaBack || (lo >= kLnOmegaOut && accelerating);
+  return accelerating || lo < 0 || (lo < 0.05 && ln_v < ln_vh - std::log(10.0));
 }
 }  // namespace
 

@@ -113,6 +113,7 @@ class RsfLoader {
   void schedule(int j);
 
   std::vector<rsf::Slider> slider_;
+  std::vector<char> nucleates_alone_;  // handed over near V theta/D_c = 1
   RsfNeighbours nb_;
   std::vector<double> t_ref_;
   std::vector<rsf::SliderState> x_ref_;
