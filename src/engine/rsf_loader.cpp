@@ -156,13 +156,17 @@ void RsfLoader::schedule(int j) {
     t_vh = c.to_speed;
     t_q = c.to_slip;
   }
-  // A velocity-weakening block nearing steady state goes to the integrator (kOmegaIn).
+  // A velocity-weakening block nearing steady state goes to the integrator (kOmegaIn), and so
+  // does a velocity-strengthening one away from it (both only as an integration's end left
+  // them: see handed_back).
+  const double lo = ln_omega(s, x_ref_[j]);
   if (nucleates_alone_[j]) {
-    const double lo = ln_omega(s, x_ref_[j]);
     if (rsf::locked(s, x_ref_[j]))
       t_vh = std::min(t_vh, rsf::time_to_omega(s, x_ref_[j], kLnOmegaIn));
     else if (lo < kLnOmegaOut)
       t_vh = 0;
+  } else if (s.strengthening() && lo >= kLnOmegaSteady) {
+    t_vh = 0;
   }
   quantum_due_[j] = t_q < t_vh ? 1 : 0;
   heap_.set(j, t_ref_[j] + std::min(t_vh, t_q));
@@ -239,16 +243,21 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
 // other: accelerating or locked, or near steady state (ln Omega < 0.05) a decade below V_h, so
 // that one creeping there ends the integration (not decelerating while the nucleation form,
 // accelerating only, would send it straight back).
+// On a grid some block may always be near V theta/D_c = 1 (asperities nucleating in turn), so
+// once the integration has lasted the block's t_a = a sigma/(k V_pl) it goes back below V_h
+// whatever its state: its events are then returned, and a block still where its closed form is
+// poor is scheduled at once (RsfLoader::schedule), so that the integration goes on from there.
 namespace {
 bool handed_back(const RsfCycle& c, int j, double ln_vh) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
-  const rsf::Params& p = c.model().law[j].params();
+  const RsfModel& m = c.model();
+  const rsf::Params& p = m.law[j].params();
+  if (c.t() >= p.a * m.sigma / (m.k * m.v_pl)) return true;
   const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
   const bool accelerating = c.dy()[c.n() + j] >= 0;
   if (p.a > p.b_rsf) return lo < kLnOmegaSteady;
-  if (nucleates_alone(c.model(), j))
-    return lo < kLnOmegaBack || (lo >= kLnOmegaOut && accelerating);
+  if (nucleates_alone(m, j)) return lo < kLnOmegaBack || (lo >= kLnOmegaOut && accelerating);
   return accelerating || lo < 0 || (lo < 0.05 && ln_v < ln_vh - std::log(10.0));
 }
 }  // namespace
