@@ -14,12 +14,17 @@ namespace {
 bool handed_back(const RsfCycle& c, int j, double ln_vh);
 
 // Where the closed forms are poor (d theta/dt = 1 - Omega with Omega = V theta/D_c near 1),
-// a velocity-weakening block that nucleates on its own is left to the integrator: it is handed over
-// when its locked phase reaches Omega = kOmegaIn (or is in [kOmegaIn, kOmegaOut) nucleating), and
-// handed back below kOmegaBack or, accelerating, from kOmegaOut on: the locked form's d theta/dt =
-// 1 is then at most twice the law's 1 - Omega, the nucleation form's -Omega within 11 % of it.
-const double kLnOmegaBack = std::log(0.25), kLnOmegaIn = std::log(0.5),
+// a velocity-weakening block that nucleates on its own is left to the integrator: it is handed
+// over when its locked phase reaches Omega = kOmegaIn (or is in [kOmegaIn, kOmegaOut)
+// nucleating), and handed back below kOmegaBack or, accelerating, from kOmegaOut on: the locked
+// form's d theta/dt = 1 is then within 11 % of the law's 1 - Omega, and so is the nucleation
+// form's -Omega. (With kOmegaIn = 1/2 the 16 x 8 lattice's rows broke, after some 10 mm of
+// plate motion, into two-site events.)
+const double kLnOmegaBack = std::log(0.05), kLnOmegaIn = std::log(0.1),
              kLnOmegaOut = std::log(10.0);
+// The locked form leaves out the block's creep and its unloading k_eff V (V << V_pl): a block
+// goes back to it only below kSlowLocked V_pl.
+constexpr double kSlowLocked = 3;
 // A velocity-strengthening block goes back to its steady-state phase within this of
 // Omega = 1 (or locked, Omega < 1).
 constexpr double kLnOmegaSteady = 0.05;
@@ -236,29 +241,34 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
 }
 
 // Whether block j can go back to its closed form: below V_h and where its closed form holds.
-// A velocity-strengthening block (a > b): locked (Omega < 1), or within kLnOmegaSteady of
-// steady state, where its steady-state phase takes it. A velocity-weakening one that nucleates
-// on its own: below kOmegaBack (locked, healing), or accelerating from kOmegaOut on
-// (nucleating); in between the closed forms are poor, so it stays with the integrator. Any
-// other: accelerating or locked, or near steady state (ln Omega < 0.05) a decade below V_h, so
-// that one creeping there ends the integration (not decelerating while the nucleation form,
-// accelerating only, would send it straight back).
+// Locked (below kOmegaBack, or Omega < 1 for a > b) only below kSlowLocked V_pl. A velocity-
+// strengthening block (a > b): within kLnOmegaSteady of steady state, where its steady-state
+// phase takes it. A velocity-weakening one that nucleates on its own: accelerating from
+// kOmegaOut on (nucleating); in between the closed forms are poor, so it stays with the
+// integrator. Any other: accelerating, locked, or near steady state (ln Omega < 0.05) a decade
+// below V_h, so that one creeping there ends the integration (not decelerating while the
+// nucleation form, accelerating only, would send it straight back).
 // On a grid some block may always be near V theta/D_c = 1 (asperities nucleating in turn), so
-// once the integration has lasted the block's t_a = a sigma/(k V_pl) it goes back below V_h
-// whatever its state: its events are then returned, and a block still where its closed form is
-// poor is scheduled at once (RsfLoader::schedule), so that the integration goes on from there.
+// once the integration has lasted the block's t_a = a sigma/(k V_pl) such a block (from
+// kOmegaIn on) and a velocity-strengthening one away from steady state go back below V_h: the
+// events are then returned, and RsfLoader::schedule sends them straight back, so that the
+// integration goes on from there.
 namespace {
 bool handed_back(const RsfCycle& c, int j, double ln_vh) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
   const RsfModel& m = c.model();
   const rsf::Params& p = m.law[j].params();
-  if (c.t() >= p.a * m.sigma / (m.k * m.v_pl)) return true;
+  const bool cut = c.t() >= p.a * m.sigma / (m.k * m.v_pl);
+  const bool slow = ln_v < std::log(kSlowLocked * m.v_pl);
   const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
   const bool accelerating = c.dy()[c.n() + j] >= 0;
-  if (p.a > p.b_rsf) return lo < kLnOmegaSteady;
-  if (nucleates_alone(m, j)) return lo < kLnOmegaBack || (lo >= kLnOmegaOut && accelerating);
-  return accelerating || lo < 0 || (lo < 0.05 && ln_v < ln_vh - std::log(10.0));
+  if (p.a > p.b_rsf) return lo < 0 ? slow : lo < kLnOmegaSteady || cut;
+  if (nucleates_alone(m, j)) {
+    if (lo < kLnOmegaBack) return slow;
+    return lo < kLnOmegaOut ? cut && lo >= kLnOmegaIn : accelerating;
+  }
+  return accelerating || (lo < 0 && slow) || (lo < 0.05 && ln_v < ln_vh - std::log(10.0));
 }
 }  // namespace
 

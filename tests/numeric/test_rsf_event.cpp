@@ -746,7 +746,7 @@ TEST(RsfEventEngine, FirstEventsAgreeWithTheContinuousIntegration) {
 // (NucleationFormIsWrongNearSteadyState; the full law: no event for 20 t_a): the engine hands
 // it to the integrator (its V theta/D_c lies between the hand-over bounds), in integrations
 // of t_a each, and makes no event over 20 t_a, where its nucleation form would run away within t_a;
-// the loader schedules a healed one's hand-over where its locked phase reaches V theta/D_c = 1/2,
+// the loader schedules a healed one's hand-over where its locked phase reaches V theta/D_c = 1/10,
 // before it would reach V_h.
 TEST(RsfEventEngine, VelocityWeakeningBlockNearSteadyStateStaysWithTheIntegrator) {
   RsfModel m = test::qdyn_stickslip(1);
@@ -765,12 +765,12 @@ TEST(RsfEventEngine, VelocityWeakeningBlockNearSteadyStateStaysWithTheIntegrator
   RsfLoader loader(m, 3 * m.v_pl, HUGE_VAL);
   const rsf::SliderState healed{std::log(1e-9), std::log(100.0)};
   loader.set(0, 0, healed);
-  const double t_half = rsf::time_to_omega(loader.slider(0), healed, std::log(0.5));
-  EXPECT_GT(t_half, 0);
-  EXPECT_LT(t_half, rsf::time_to_speed(loader.slider(0), healed, std::log(3 * m.v_pl)));
-  EXPECT_EQ(loader.next_time(), t_half);
-  const rsf::SliderState there = rsf::evolve(loader.slider(0), healed, t_half);
-  EXPECT_NEAR(there.ln_v + there.ln_theta - std::log(1e-5), std::log(0.5), 1e-9);
+  const double t_in = rsf::time_to_omega(loader.slider(0), healed, std::log(0.1));
+  EXPECT_GT(t_in, 0);
+  EXPECT_LT(t_in, rsf::time_to_speed(loader.slider(0), healed, std::log(3 * m.v_pl)));
+  EXPECT_EQ(loader.next_time(), t_in);
+  const rsf::SliderState there = rsf::evolve(loader.slider(0), healed, t_in);
+  EXPECT_NEAR(there.ln_v + there.ln_theta - std::log(1e-5), std::log(0.1), 1e-9);
 }
 
 // A chain of 12 with velocity-weakening asperities among velocity-strengthening barriers (a and
