@@ -12,7 +12,38 @@ namespace bkq {
 
 namespace {
 bool handed_back(const RsfCycle& c, int j, double ln_vh);
+
+// Where the closed forms are poor (d theta/dt = 1 - Omega with Omega = V theta/D_c near 1),
+// a velocity-weakening block that nucleates on its own is left to the integrator: it is handed
+// over when its locked phase reaches Omega = kOmegaIn (or is in [kOmegaIn, kOmegaOut)
+// nucleating), and handed back below kOmegaBack or, accelerating, from kOmegaOut on: the locked
+// form's d theta/dt = 1 is then within 11 % of the law's 1 - Omega, and so is the nucleation
+// form's -Omega. (With kOmegaIn = 1/2 the 16 x 8 lattice's rows broke, after some 10 mm of
+// plate motion, into two-site events.)
+const double kLnOmegaBack = std::log(0.05), kLnOmegaIn = std::log(0.1),
+             kLnOmegaOut = std::log(10.0);
+// The locked form leaves out the block's creep and its unloading k_eff V (V << V_pl): a block
+// goes back to it only below kSlowLocked V_pl.
+constexpr double kSlowLocked = 3;
+// A velocity-strengthening block goes back to its steady-state phase within this of
+// Omega = 1 (or locked, Omega < 1).
+constexpr double kLnOmegaSteady = 0.05;
+
+double ln_omega(const rsf::Slider& s, const rsf::SliderState& x) {
+  return x.ln_v + x.ln_theta - std::log(s.dc);
 }
+
+// Whether block j's steady sliding is unstable on its own springs: sigma (b - a)/D_c above
+// the unloading stiffness of a block inside the grid, k + twice the stencil's springs. Only
+// such a block is kept with the integrator near V theta/D_c = 1: it passes through there on its
+// way to an event, where a stable one (a weaker asperity) may creep there for good.
+bool nucleates_alone(const RsfModel& m, int j) {
+  const rsf::Params& p = m.law[j].params();
+  double k_eff = m.k;
+  for (const auto& spring : m.stencil()) k_eff += 2 * spring.k;
+  return m.sigma * (p.b_rsf - p.a) / p.dc > k_eff;
+}
+}  // namespace
 
 IndexedMinHeap::IndexedMinHeap(int n)
     : heap_(n), pos_(n), time_(n, std::numeric_limits<double>::infinity()) {
@@ -83,6 +114,7 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
     s.k_eff = m.k;
     for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) s.k_eff += nb_.k[e];
     slider_.push_back(s);
+    nucleates_alone_.push_back(nucleates_alone(m, j) ? 1 : 0);
   }
 }
 
@@ -128,6 +160,18 @@ void RsfLoader::schedule(int j) {
         rsf::clocks(s, x_ref_[j], ln_vh_, 0.5 * quantum_ + lead_[j] - unsynced_[j]);
     t_vh = c.to_speed;
     t_q = c.to_slip;
+  }
+  // A velocity-weakening block nearing steady state goes to the integrator (kOmegaIn), and so
+  // does a velocity-strengthening one away from it (both only as an integration's end left
+  // them: see handed_back).
+  const double lo = ln_omega(s, x_ref_[j]);
+  if (nucleates_alone_[j]) {
+    if (rsf::locked(s, x_ref_[j]))
+      t_vh = std::min(t_vh, rsf::time_to_omega(s, x_ref_[j], kLnOmegaIn));
+    else if (lo < kLnOmegaOut)
+      t_vh = 0;
+  } else if (s.strengthening() && lo >= kLnOmegaSteady) {
+    t_vh = 0;
   }
   quantum_due_[j] = t_q < t_vh ? 1 : 0;
   heap_.set(j, t_ref_[j] + std::min(t_vh, t_q));
@@ -196,18 +240,35 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
   return e;
 }
 
-// Whether block j can go back to its closed form: below V_h, and not decelerating while the
-// closed form would have it nucleate (V theta/D_c >= 1, where it only accelerates) -- such a
-// block, slowed by its neighbours or by healing the nucleation form leaves out, would be handed
-// straight back to the integrator. Near steady state (ln Omega < 0.05) a decelerating block
-// goes back once it is a decade below V_h, so that a creeping barrier ends the integration.
+// Whether block j can go back to its closed form: below V_h and where its closed form holds.
+// Locked (below kOmegaBack, or Omega < 1 for a > b) only below kSlowLocked V_pl. A velocity-
+// strengthening block (a > b): within kLnOmegaSteady of steady state, where its steady-state
+// phase takes it. A velocity-weakening one that nucleates on its own: accelerating from
+// kOmegaOut on (nucleating); in between the closed forms are poor, so it stays with the
+// integrator. Any other: accelerating, locked, or near steady state (ln Omega < 0.05) a decade
+// below V_h, so that one creeping there ends the integration (not decelerating while the
+// nucleation form, accelerating only, would send it straight back).
+// On a grid some block may always be near V theta/D_c = 1 (asperities nucleating in turn), so
+// once the integration has lasted the block's t_a = a sigma/(k V_pl) such a block (from
+// kOmegaIn on) and a velocity-strengthening one away from steady state go back below V_h: the
+// events are then returned, and RsfLoader::schedule sends them straight back, so that the
+// integration goes on from there.
 namespace {
 bool handed_back(const RsfCycle& c, int j, double ln_vh) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
-  if (c.dy()[c.n() + j] >= 0) return true;
-  const double ln_omega = ln_v + c.ln_theta(j) - std::log(c.model().law[j].params().dc);
-  return ln_omega < 0 || (ln_omega < 0.05 && ln_v < ln_vh - std::log(10.0));
+  const RsfModel& m = c.model();
+  const rsf::Params& p = m.law[j].params();
+  const bool cut = c.t() >= p.a * m.sigma / (m.k * m.v_pl);
+  const bool slow = ln_v < std::log(kSlowLocked * m.v_pl);
+  const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
+  const bool accelerating = c.dy()[c.n() + j] >= 0;
+  if (p.a > p.b_rsf) return lo < 0 ? slow : lo < kLnOmegaSteady || cut;
+  if (nucleates_alone(m, j)) {
+    if (lo < kLnOmegaBack) return slow;
+    return lo < kLnOmegaOut ? cut && lo >= kLnOmegaIn : accelerating;
+  }
+  return accelerating || (lo < 0 && slow) || (lo < 0.05 && ln_v < ln_vh - std::log(10.0));
 }
 }  // namespace
 

@@ -4,10 +4,11 @@
 // only the entries of the blocks it touched. At that time the whole grid is handed to the
 // cycle integrator (engine/rsf_cycle.hpp: the scene's dynamics, quasi-dynamic or inertial,
 // the full aging law), which runs until the seismic detector (engine/rsf_events.hpp) has
-// closed its events and every block is below V_h again, and none is decelerating while its
-// closed form would have it nucleate (V theta/D_c >= 1: the nucleation form only
-// accelerates, so such a block would come straight back); each block then goes back to its
-// closed form from the integrator's slip rate and state, both kept as they are (the elastic
+// closed its events and every block is below V_h again and where its closed form holds (a
+// velocity-weakening block is also handed over when V theta/D_c nears 1, where neither the
+// locked nor the nucleation form does, and kept until it is well below or above 1; a
+// velocity-strengthening one goes back near steady state or locked); each block then goes back to
+// its closed form from the integrator's slip rate and state, both kept as they are (the elastic
 // stress is the law's at those values, as the closed form's quasi-static balance has it).
 //
 // Between events the neighbours' creep reaches a block in quanta: each block's closed-form
@@ -19,8 +20,9 @@
 //     slip q (the stress arrives late by up to one quantum's worth, k_c q); the locked
 //     phase's slip is left out; a block's own creep unloads it through
 //     k_eff = k + its coupling springs' sum, in H = b/D_c - k_eff/sigma;
-//   - the closed forms' phases (healing while V theta/D_c < 1, nucleation with
-//     V theta/D_c >> 1 after it) and their quasi-static balance (eta V << a sigma below V_h).
+//   - the closed forms' phases (healing while V theta/D_c < 1, then nucleation with
+//     V theta/D_c >> 1, or steady state for a > b) and their quasi-static balance
+//     (eta V << a sigma below V_h).
 #pragma once
 
 #include <cstdint>
@@ -61,15 +63,15 @@ class IndexedMinHeap {
 
 // Every block's closed form, its time to the hand-over speed and its creep quanta. A block's
 // closed-form slip since its last sync is its unsynced slip; a sync moves the block's position
-// by it and gives each coupled neighbour i the stress step k_ji times the slip passed on (V_i
-// times exp(dtau/(a sigma)) at theta kept, its clocks recomputed). The block's own unloading
-// k_eff is inside its H, so only neighbours change. The quanta are centred: a block that has
-// passed on exactly its slip (lead 0) is synced when its unsynced slip reaches q/2 and passes
-// on q, half a quantum ahead; after that each sync comes at q and passes on q. The stress its
-// neighbours see then lies within k q/2 of the continuous one, on both sides (error O(q^2) on
-// average, not O(q)), and a settling sync (each event's start) passes on the slip less the
-// lead, so that the stress passed on equals the slip. Each block's heap entry is the earlier
-// of its two times (V_h, or its next quantum).
+// by it and gives each coupled neighbour i the stress step k_ji times the slip passed on
+// (rsf::stress_step: V_i times exp(dtau/(a sigma)) at theta kept, or along steady state; its clocks
+// recomputed). The block's own unloading k_eff is inside its H, so only neighbours change. The
+// quanta are centred: a block that has passed on exactly its slip (lead 0) is synced when its
+// unsynced slip reaches q/2 and passes on q, half a quantum ahead; after that each sync comes at q
+// and passes on q. The stress its neighbours see then lies within k q/2 of the continuous one, on
+// both sides (error O(q^2) on average, not O(q)), and a settling sync (each event's start) passes
+// on the slip less the lead, so that the stress passed on equals the slip. Each block's heap entry
+// is the earlier of its two times (V_h, or its next quantum).
 class RsfLoader {
  public:
   // creep_quantum: q [m], > 0; +inf: the creep is never passed on (left out, as in RSQSim).
@@ -111,6 +113,7 @@ class RsfLoader {
   void schedule(int j);
 
   std::vector<rsf::Slider> slider_;
+  std::vector<char> nucleates_alone_;  // handed over near V theta/D_c = 1
   RsfNeighbours nb_;
   std::vector<double> t_ref_;
   std::vector<rsf::SliderState> x_ref_;

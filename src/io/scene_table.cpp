@@ -944,22 +944,17 @@ void rate_and_state(const Scene& s, const std::string& where) {
                 " with drive.mode = events: the event-driven engine's closed form between events "
                 "is the aging law's; allowed: rsf.state_law = aging, or drive.mode = continuous" +
                 where);
-  // Measured: on lattices the event-driven catalogue is not the continuous one (validation
-  // page "Event-driven against continuous rate-and-state").
-  if (v.drive.mode == DriveMode::Events && v.model.rows > 1)
-    throw Error("model.rows = " + s.text(key::model_rows) +
-                " with drive.mode = events and friction.law = rsf: on lattices the event-driven "
-                "engine does not reproduce the continuous integration's events; allowed: "
-                "model.rows = 1, or drive.mode = continuous" +
-                where);
-  // Measured: a uniform chain's event-driven events are not the continuous ones (its blocks
-  // spend the interseismic time near steady sliding, where the closed forms are poor).
-  if (v.drive.mode == DriveMode::Events && v.model.kind == ModelChoice::Bk && v.model.blocks != 1 &&
-      v.rsf.pattern == RsfPattern::Uniform && v.rsf.blocks.empty())
-    throw Error("rsf.pattern = " + s.text(key::rsf_pattern) +
-                " with drive.mode = events on a chain: on a uniform chain the event-driven "
-                "engine does not reproduce the continuous integration's events; allowed: "
-                "rsf.pattern = asperities, rsf.blocks = FILE, or drive.mode = continuous" +
+  // Measured: on lattices the event-driven catalogue is the continuous one handing over at
+  // 3 V_pl, not at the auto V_h (validation page "Event-driven against continuous
+  // rate-and-state").
+  if (v.drive.mode == DriveMode::Events && v.model.rows > 1 &&
+      !(v.rsf.handover_speed && *v.rsf.handover_speed <= 3 * v.drive.speed * (1 + 1e-12)))
+    throw Error("rsf.handover_speed = " +
+                (v.rsf.handover_speed ? s.text(key::rsf_handover_speed) : std::string("auto")) +
+                " with drive.mode = events on a lattice (model.rows = " + s.text(key::model_rows) +
+                "): on lattices the event-driven engine reproduces the continuous integration's "
+                "events handing over at up to 3 drive.speed only; allowed: rsf.handover_speed "
+                "up to 3 drive.speed, or drive.mode = continuous" +
                 where);
   if (v.drive.mode == DriveMode::Events && v.rsf.handover_speed &&
       !(*v.rsf.handover_speed<v.rsf.v_threshold&& * v.rsf.handover_speed> v.drive.speed))

@@ -10,6 +10,7 @@ namespace bkq::rsf {
 namespace {
 
 constexpr double kNever = std::numeric_limits<double>::infinity();
+constexpr double kSteadySlack = 1e-9;  // ln(V theta/D_c) taken as steady state
 
 // The first t > 0 where f(t) = f0 + alpha t + beta ln(1 + t/theta0) reaches 0, f0 < 0,
 // alpha >= 0: f is monotone (beta >= 0) or convex with its minimum at -beta/alpha - theta0,
@@ -118,10 +119,69 @@ double nucleating_slip_time(const Slider& s, SliderState x, double amount) {
   return log1p_exp(ln_e) / alpha;
 }
 
+// The steady-state phase of a velocity-strengthening block (a > b): theta = D_c/V, so
+// (a - b) sigma d ln V/dt = tau_dot - k_eff V, d ln V/dt = beta (1 - V/V_inf) with
+// beta = tau_dot/((a - b) sigma) and V_inf = tau_dot/k_eff: the logistic
+// V(t) = V_inf/(1 + (V_inf/V0 - 1) e^{-beta t}), slip (V_inf/beta) ln[1 + (V0/V_inf)(e^{beta t} -
+// 1)].
+double beta_of(const Slider& s) {
+  return s.stressing_rate / ((s.a - s.b_rsf) * s.sigma);
+}
+
+double ln_v_inf(const Slider& s) {
+  return std::log(s.stressing_rate / s.k_eff);
+}
+
+SliderState steady_after(const Slider& s, SliderState x, double dt) {
+  const double lvi = ln_v_inf(s), d = lvi - x.ln_v, bt = beta_of(s) * dt;
+  // ln(1 + A e^{-beta t}), A = V_inf/V0 - 1 = e^d - 1, in logarithms where A > 0.
+  double ln_den;
+  if (d > 0)
+    ln_den = log1p_exp(log_expm1(d) - bt);
+  else
+    ln_den = std::log1p(std::expm1(d) * std::exp(-bt));
+  const double ln_v = lvi - ln_den;
+  return {ln_v, std::log(s.dc) - ln_v};
+}
+
+double steady_time(const Slider& s, SliderState x, double ln_v_target) {
+  if (x.ln_v >= ln_v_target) return 0;
+  const double lvi = ln_v_inf(s);
+  if (!(ln_v_target < lvi)) return kNever;  // the creep tends to V_inf and stays below it
+  return (log_expm1(lvi - x.ln_v) - log_expm1(lvi - ln_v_target)) / beta_of(s);
+}
+
+double steady_slip(const Slider& s, SliderState x, double dt) {
+  if (!(dt > 0)) return 0;
+  const double beta = beta_of(s), lvi = ln_v_inf(s);
+  return std::exp(lvi) / beta * log1p_exp(x.ln_v - lvi + log_expm1(beta * dt));
+}
+
+// From e^{beta t} - 1 = (V_inf/V0)(e^{beta amount/V_inf} - 1).
+double steady_slip_time(const Slider& s, SliderState x, double amount) {
+  const double beta = beta_of(s), lvi = ln_v_inf(s);
+  return log1p_exp(lvi - x.ln_v + log_expm1(beta * amount * std::exp(-lvi))) / beta;
+}
+
+// The phase after the locked one: steady state (a > b) or nucleating (a <= b).
+SliderState sliding_after(const Slider& s, SliderState x, double dt) {
+  return s.strengthening() ? steady_after(s, x, dt) : nucleating_after(s, x, dt);
+}
+double sliding_time(const Slider& s, SliderState x, double ln_v_target) {
+  return s.strengthening() ? steady_time(s, x, ln_v_target) : nucleating_time(s, x, ln_v_target);
+}
+double sliding_slip(const Slider& s, SliderState x, double dt) {
+  return s.strengthening() ? steady_slip(s, x, dt) : nucleating_slip(s, x, dt);
+}
+double sliding_slip_time(const Slider& s, SliderState x, double amount) {
+  return s.strengthening() ? steady_slip_time(s, x, amount) : nucleating_slip_time(s, x, amount);
+}
+
 }  // namespace
 
 bool locked(const Slider& s, const SliderState& x) {
-  return x.ln_v + x.ln_theta - std::log(s.dc) < 0;
+  // A steady-state block's theta = D_c/V holds to rounding: it stays steady.
+  return x.ln_v + x.ln_theta - std::log(s.dc) < (s.strengthening() ? -kSteadySlack : 0.0);
 }
 
 SliderState evolve(const Slider& s, SliderState x, double dt) {
@@ -131,7 +191,7 @@ SliderState evolve(const Slider& s, SliderState x, double dt) {
     x = locked_after(s, x, t_nuc);
     dt -= t_nuc;
   }
-  return nucleating_after(s, x, dt);
+  return sliding_after(s, x, dt);
 }
 
 namespace {
@@ -147,20 +207,20 @@ double locked_time_to_speed(const Slider& s, SliderState x, double ln_v_target, 
     if (t_v <= t_nuc) return t_v;
   }
   if (t_nuc == kNever) return kNever;
-  return t_nuc + nucleating_time(s, locked_after(s, x, t_nuc), ln_v_target);
+  return t_nuc + sliding_time(s, locked_after(s, x, t_nuc), ln_v_target);
 }
 
 // time_to_slip from a locked state, given its time to nucleation.
 double locked_time_to_slip(const Slider& s, SliderState x, double amount, double t_nuc) {
   if (t_nuc == kNever) return kNever;
-  return t_nuc + nucleating_slip_time(s, locked_after(s, x, t_nuc), amount);
+  return t_nuc + sliding_slip_time(s, locked_after(s, x, t_nuc), amount);
 }
 
 }  // namespace
 
 double time_to_speed(const Slider& s, SliderState x, double ln_v_target) {
   if (x.ln_v >= ln_v_target) return 0;
-  if (!locked(s, x)) return nucleating_time(s, x, ln_v_target);
+  if (!locked(s, x)) return sliding_time(s, x, ln_v_target);
   return locked_time_to_speed(s, x, ln_v_target, time_to_nucleation(s, x));
 }
 
@@ -171,12 +231,12 @@ double slip(const Slider& s, SliderState x, double dt) {
     x = locked_after(s, x, t_nuc);
     dt -= t_nuc;
   }
-  return nucleating_slip(s, x, dt);
+  return sliding_slip(s, x, dt);
 }
 
 double time_to_slip(const Slider& s, SliderState x, double amount) {
   if (!(amount > 0)) return 0;
-  if (!locked(s, x)) return nucleating_slip_time(s, x, amount);
+  if (!locked(s, x)) return sliding_slip_time(s, x, amount);
   return locked_time_to_slip(s, x, amount, time_to_nucleation(s, x));
 }
 
@@ -188,7 +248,17 @@ Clocks clocks(const Slider& s, SliderState x, double ln_v_target, double amount)
 }
 
 SliderState stress_step(const Slider& s, SliderState x, double dtau) {
+  if (s.strengthening() && !locked(s, x)) {
+    const double ln_v = x.ln_v + dtau / ((s.a - s.b_rsf) * s.sigma);
+    return {ln_v, std::log(s.dc) - ln_v};
+  }
   return {x.ln_v + dtau / (s.a * s.sigma), x.ln_theta};
+}
+
+double time_to_omega(const Slider& s, SliderState x, double ln_omega) {
+  const double ln_omega0 = x.ln_v + x.ln_theta - std::log(s.dc);
+  if (!locked(s, x) || ln_omega0 >= ln_omega) return 0;
+  return first_root(ln_omega0 - ln_omega, alpha_of(s), 1 - s.b_rsf / s.a, std::exp(x.ln_theta));
 }
 
 }  // namespace bkq::rsf

@@ -13,23 +13,35 @@
 //                            k_eff V left out of the balance (V << V_pl while locked), so
 //                            ln V = ln V0 + tau_dot t/(a sigma) - (b/a) ln(1 + t/theta0),
 //                            theta = theta0 + t;
-//   nucleating (Omega >= 1)  d theta/dt = -V theta/D_c (the aging law with V theta/D_c >> 1),
+//   sliding (Omega >= 1), by the sign of a - b:
+//     nucleating (a <= b)    d theta/dt = -V theta/D_c (the aging law with V theta/D_c >> 1),
 //                            which with H = b/D_c - k_eff/sigma gives, u = 1/V,
 //                            u(t) = (u0 + c) exp(-alpha t) - c, alpha = tau_dot/(a sigma),
 //                            c = H/(a alpha), slip = -(1/(alpha c)) ln[1 - c V0 (e^{alpha t} - 1)],
-//                            ln theta = ln theta0 - slip/D_c.
+//                            ln theta = ln theta0 - slip/D_c;
+//     steady state (a > b)   theta = D_c/V (the aging law's fixed point, which a velocity-
+//                            strengthening block is drawn to), so (a - b) sigma d ln V/dt =
+//                            tau_dot - k_eff V: the logistic V(t) = V_inf/(1 + (V_inf/V0 - 1)
+//                            e^{-beta t}), V_inf = tau_dot/k_eff, beta = tau_dot/((a - b) sigma),
+//                            slip (V_inf/beta) ln[1 + (V0/V_inf)(e^{beta t} - 1)]. A velocity-
+//                            strengthening block with Omega > 1 is taken at steady state at its V.
 //
-// A block locked goes over to nucleating when Omega reaches 1, and stays nucleating until the
-// engine takes it over. With H > 0 the slip rate runs away at t_inst = ln(1 + 1/(c V0))/alpha
-// (Dieterich 1994, eq. 9's form); with H <= 0 it tends to the steady creep V = tau_dot/(sigma
-// |H|) and reaches a speed only below that.
+// A block locked goes over to sliding when Omega reaches 1, and stays there until the engine
+// takes it over. With H > 0 a nucleating block's slip rate runs away at t_inst =
+// ln(1 + 1/(c V0))/alpha (Dieterich 1994, eq. 9's form); with H <= 0 it tends to the creep
+// V = tau_dot/(sigma |H|), which is not the aging law's (that is V_inf: the nucleation form drops
+// the 1 of d theta/dt = 1 - Omega, wrong near steady state; hence the steady-state phase for
+// velocity-strengthening blocks, and velocity-weakening blocks near Omega = 1 left to the engine's
+// integrator, engine/rsf_loader.hpp).
 // A shear-stress step dtau multiplies V by exp(dtau/(a sigma)) at constant theta (the law's
-// direct effect; theta changes only with a normal-stress step, Linker & Dieterich 1992).
+// direct effect; theta changes only with a normal-stress step, Linker & Dieterich 1992); in the
+// steady-state phase it moves V along steady state, by exp(dtau/((a - b) sigma)), theta = D_c/V
+// (the evolution over D_c of slip that follows the direct effect, taken at once).
 //
 // The slip of the nucleating phase follows from the balance itself: with d ln theta/dt = -V/D_c
 // it reads d ln V/dt = alpha + (H/a) V, so V = (a/H)(d ln V/dt - alpha) and
 //   slip(t) = (a/H) [ln(V(t)/V0) - alpha t] = -ln[1 - c V0 (e^{alpha t} - 1)]/(alpha c),
-// which tends to V0 (e^{alpha t} - 1)/alpha as H -> 0 and to the steady creep's
+// which tends to V0 (e^{alpha t} - 1)/alpha as H -> 0 and to the creep's
 // tau_dot t/(sigma |H|) for H < 0. The locked phase's slip (V << V_pl) is left out: zero.
 #pragma once
 
@@ -42,6 +54,7 @@ struct Slider {
   double stressing_rate = 2e3;                             // tau_dot [Pa/s], > 0
   double k_eff = 2e9;                                      // unloading stiffness [Pa/m]
   double h() const { return b_rsf / dc - k_eff / sigma; }  // H [1/m]
+  bool strengthening() const { return a > b_rsf; }         // steady state, not nucleation
 };
 
 struct SliderState {
@@ -55,7 +68,7 @@ SliderState evolve(const Slider& s, SliderState x, double dt);
 // The first time from now at which V reaches exp(ln_v_target) from below (0 if it is there or
 // above already; +inf if never).
 double time_to_speed(const Slider& s, SliderState x, double ln_v_target);
-// The closed form's slip over the next dt seconds (the nucleating phase's only; +inf past the
+// The closed form's slip over the next dt seconds (the sliding phase's only; +inf past the
 // instability).
 double slip(const Slider& s, SliderState x, double dt);
 // The first time from now at which that slip reaches `amount` > 0 (+inf if never).
@@ -66,7 +79,11 @@ struct Clocks {
   double to_speed = 0, to_slip = 0;
 };
 Clocks clocks(const Slider& s, SliderState x, double ln_v_target, double amount);
-// A shear-stress step dtau [Pa]: V times exp(dtau/(a sigma)), theta kept.
+// A shear-stress step dtau [Pa]: V times exp(dtau/(a sigma)), theta kept; in the steady-state
+// phase V times exp(dtau/((a - b) sigma)), theta = D_c/V.
 SliderState stress_step(const Slider& s, SliderState x, double dtau);
+// The first time from now at which a locked block's V theta/D_c reaches exp(ln_omega) <= 1
+// (0 if it is there or above, or not locked; +inf if never).
+double time_to_omega(const Slider& s, SliderState x, double ln_omega);
 
 }  // namespace bkq::rsf

@@ -31,13 +31,29 @@ rsf::Slider qdyn_slider() {
   return s;
 }
 
+// A velocity-strengthening barrier of the shipped lattice (QDYN's block with a and b swapped)
+// with the lattice's unloading stiffness k + 4 k_c = 6e9 Pa/m.
+rsf::Slider barrier_slider() {
+  rsf::Slider s = qdyn_slider();
+  s.a = 0.025;
+  s.b_rsf = 0.01;
+  s.k_eff = 6e9;
+  return s;
+}
+
 // The two phases' equations themselves (healing with k_eff V left out while V theta/D_c < 1,
-// then d theta/dt = -V theta/D_c for good), by classical RK4 in steps that move ln V or
-// ln theta by at most 1e-3: the time ln V reaches `target` (linear in the last step).
+// then for good d theta/dt = -V theta/D_c, or theta = D_c/V for a velocity-strengthening
+// block), by classical RK4 in steps that move ln V or ln theta by at most 1e-3: the time ln V
+// reaches `target` (linear in the last step).
 double integrate_phases(const rsf::Slider& s, rsf::SliderState x, double target) {
   bool nucleating = !rsf::locked(s, x);
   const auto rhs = [&](double lv, double lt, double& dlv, double& dlt) {
     const double v = std::exp(lv);
+    if (nucleating && s.strengthening()) {
+      dlv = (s.stressing_rate - s.k_eff * v) / ((s.a - s.b_rsf) * s.sigma);
+      dlt = -dlv;
+      return;
+    }
     dlt = nucleating ? -v / s.dc : std::exp(-lt);
     const double unload = nucleating ? s.k_eff * v : 0.0;
     dlv = (s.stressing_rate - unload - s.b_rsf * s.sigma * dlt) / (s.a * s.sigma);
@@ -74,11 +90,21 @@ double integrate_phases(const rsf::Slider& s, rsf::SliderState x, double target)
 }
 
 TEST(RsfNucleation, ClosedFormEqualsTheIntegrationOfTheLawItSolves) {
-  const rsf::Slider s = qdyn_slider();
-  const double target = std::log(1e-4);
-  // Nucleating from V theta/D_c = 10, and locked from a healed block (both phases).
-  for (const rsf::SliderState x : {rsf::SliderState{std::log(1e-7), std::log(10 * 1e-5 / 1e-7)},
-                                   rsf::SliderState{std::log(1e-9), std::log(100.0)}}) {
+  // Nucleating from V theta/D_c = 10, and locked from a healed block (both phases); a
+  // velocity-strengthening barrier the same, to half its steady creep V_inf = tau_dot/k_eff
+  // (from below at steady state, and from a healed block: locked, then steady state).
+  const rsf::Slider vs = barrier_slider();
+  const double v_inf = vs.stressing_rate / vs.k_eff;
+  const struct {
+    rsf::Slider s;
+    rsf::SliderState x;
+    double target;
+  } cases[] = {
+      {qdyn_slider(), {std::log(1e-7), std::log(10 * 1e-5 / 1e-7)}, std::log(1e-4)},
+      {qdyn_slider(), {std::log(1e-9), std::log(100.0)}, std::log(1e-4)},
+      {vs, {std::log(0.01 * v_inf), std::log(vs.dc / (0.01 * v_inf))}, std::log(0.5 * v_inf)},
+      {vs, {std::log(1e-9), std::log(100.0)}, std::log(0.5 * v_inf)}};
+  for (const auto& [s, x, target] : cases) {
     const double closed = rsf::time_to_speed(s, x, target);
     const double numeric = integrate_phases(s, x, target);
     ASSERT_GT(numeric, 0);
@@ -226,6 +252,157 @@ TEST(RsfNucleation, ClosedFormSlipEqualsTheIntegratedSlip) {
   ASSERT_TRUE(std::isfinite(t_nuc));
   EXPECT_EQ(rsf::slip(base, healed, 0.99 * t_nuc), 0);
   EXPECT_GT(rsf::slip(base, healed, 1.01 * t_nuc), 0);
+}
+
+// Why the nucleation form alone is wrong near steady state (V theta/D_c ~ 1), against the full
+// aging law (the cycle integrator on one quasi-static block whose spring is k_eff and whose
+// plate rate is tau_dot/k_eff, so that it is loaded and unloaded as the closed form's block):
+//  - a velocity-strengthening barrier (the lattice's: a = 0.025, b = 0.01, k_eff = 6e9 Pa/m)
+//    creeps at the law's V_inf = tau_dot/k_eff; the nucleation form, which drops the 1 of
+//    d theta/dt = 1 - V theta/D_c, would creep at tau_dot/(sigma |H|), six times as fast. The
+//    steady-state phase that replaces it creeps at V_inf: from a tenth of it at steady state,
+//    after 10 relaxation times (a - b) sigma/tau_dot its slip rate and slip lie within 1 % of
+//    the law's (the law overshoots V_inf by 0.8 % there);
+//  - a velocity-weakening block sliding near steady state (QDYN's block with the uniform
+//    chain's k_eff = k + 2 k_c = 6e9 Pa/m, below k_crit = 7.5e9: unstable, but its slip rate
+//    grows by e only every 8 t_a from 1e-3 off V_inf) slides on within 2 % of V_inf for 20 t_a
+//    (t_a = a sigma/tau_dot) under the full law, where the nucleation form runs away within
+//    t_a: the engine keeps such a block with the integrator
+//    (RsfEventEngine.VelocityWeakeningBlockNearSteadyStateStaysWithTheIntegrator).
+TEST(RsfNucleation, NucleationFormIsWrongNearSteadyState) {
+  const auto full_law = [](const rsf::Slider& s, double v0, double theta0, double t_end) {
+    RsfModel m = test::qdyn_stickslip(1);
+    rsf::Params p = m.law[0].params();
+    p.a = s.a;
+    p.b_rsf = s.b_rsf;
+    m.law[0] = rsf::Law(p);
+    m.eta = 0;
+    m.k = s.k_eff;
+    m.v_pl = s.stressing_rate / s.k_eff;
+    RsfCycle c(m, 1e-10, {v0}, {theta0});
+    while (c.t() < t_end) c.step(t_end);
+    return std::pair<double, double>{std::exp(c.ln_v(0)), c.slip(0)};
+  };
+  // The barrier from a tenth of V_inf at steady state, over ten relaxation times (a - b) sigma /
+  // tau_dot.
+  const rsf::Slider vs = barrier_slider();
+  const double v_inf = vs.stressing_rate / vs.k_eff;
+  const double t_relax = (vs.a - vs.b_rsf) * vs.sigma / vs.stressing_rate;
+  const double v0 = 0.1 * v_inf;
+  const rsf::SliderState x0{std::log(v0), std::log(vs.dc / v0)};
+  const auto [v_full, slip_full] = full_law(vs, v0, vs.dc / v0, 10 * t_relax);
+  EXPECT_NEAR(v_full / v_inf, 1, 0.01);
+  const double nucleation_creep = vs.stressing_rate / (vs.sigma * -vs.h());
+  EXPECT_GT(nucleation_creep / v_inf, 5);
+  EXPECT_NEAR(std::exp(rsf::evolve(vs, x0, 10 * t_relax).ln_v) / v_full, 1, 0.01);
+  EXPECT_NEAR(rsf::slip(vs, x0, 10 * t_relax) / slip_full, 1, 0.01);
+  // The velocity-weakening block at steady state.
+  rsf::Slider vw = qdyn_slider();
+  vw.k_eff = 6e9;
+  const double vw_inf = vw.stressing_rate / vw.k_eff, t_a = vw.a * vw.sigma / vw.stressing_rate;
+  const double v_start = vw_inf * (1 + 1e-3);
+  const auto [v_vw, slip_vw] = full_law(vw, v_start, vw.dc / vw_inf, 20 * t_a);
+  EXPECT_NEAR(v_vw / vw_inf, 1, 0.02);
+  EXPECT_NEAR(slip_vw / (vw_inf * 20 * t_a), 1, 0.02);
+  const double runaway =
+      rsf::time_to_speed(vw, {std::log(v_start), std::log(vw.dc / vw_inf)}, std::log(1e-3));
+  EXPECT_LT(runaway, t_a);
+}
+
+// The steady-state phase's slip, integrated: (a - b) sigma d ln V/dt = tau_dot - k_eff V,
+// d slip/dt = V, by RK4 in steps that move ln V by at most 1e-4 (and at most a tenth of the
+// relaxation time), over dt seconds.
+double integrate_steady_slip(const rsf::Slider& s, double ln_v, double dt) {
+  const double as = (s.a - s.b_rsf) * s.sigma;
+  const auto f = [&](double lv) { return (s.stressing_rate - s.k_eff * std::exp(lv)) / as; };
+  double t = 0, slip = 0;
+  while (t < dt) {
+    const double h =
+        std::min({dt - t, 1e-4 / (std::fabs(f(ln_v)) + 1e-300), 0.1 * as / s.stressing_rate});
+    const double k1 = f(ln_v), k2 = f(ln_v + 0.5 * h * k1), k3 = f(ln_v + 0.5 * h * k2),
+                 k4 = f(ln_v + h * k3);
+    const double s1 = std::exp(ln_v), s2 = std::exp(ln_v + 0.5 * h * k1),
+                 s3 = std::exp(ln_v + 0.5 * h * k2), s4 = std::exp(ln_v + h * k3);
+    slip += h / 6 * (s1 + 2 * s2 + 2 * s3 + s4);
+    ln_v += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    t += h;
+  }
+  return slip;
+}
+
+// The steady-state phase's slip equals the integration of its balance, from below and from
+// above V_inf, also long after the creep has settled at V_inf; time_to_slip inverts it; a
+// stress step moves V along steady state (times exp(dtau/((a - b) sigma)), theta = D_c/V) and
+// the time to a speed follows from the new rate; no speed at or above V_inf is ever reached
+// from below it.
+TEST(RsfNucleation, SteadyStatePhaseEqualsTheIntegrationOfItsBalance) {
+  const rsf::Slider s = barrier_slider();
+  const double v_inf = s.stressing_rate / s.k_eff;
+  const double t_relax = (s.a - s.b_rsf) * s.sigma / s.stressing_rate;
+  for (const double v0 : {1e-3 * v_inf, 0.5 * v_inf, 4 * v_inf}) {
+    const rsf::SliderState x{std::log(v0), std::log(s.dc / v0)};
+    ASSERT_FALSE(rsf::locked(s, x));
+    for (const double dt : {0.1 * t_relax, t_relax, 30 * t_relax}) {
+      const double closed = rsf::slip(s, x, dt), numeric = integrate_steady_slip(s, x.ln_v, dt);
+      EXPECT_NEAR(closed / numeric, 1, 1e-8) << "v0 " << v0 << " dt " << dt;
+      EXPECT_NEAR(rsf::time_to_slip(s, x, closed) / dt, 1, 1e-10);
+      const rsf::SliderState y = rsf::evolve(s, x, dt);
+      EXPECT_NEAR(y.ln_v + y.ln_theta, std::log(s.dc), 1e-12);  // theta = D_c/V
+    }
+  }
+  // Settled: V_inf, and the slip grows at V_inf, where e^{beta t} overflows.
+  const rsf::SliderState x{std::log(0.1 * v_inf), std::log(s.dc / (0.1 * v_inf))};
+  const double late = 1e4 * t_relax;
+  EXPECT_NEAR(std::exp(rsf::evolve(s, x, late).ln_v) / v_inf, 1, 1e-12);
+  EXPECT_NEAR((rsf::slip(s, x, late + t_relax) - rsf::slip(s, x, late)) / (t_relax * v_inf), 1,
+              1e-9);
+  EXPECT_NEAR(rsf::time_to_slip(s, x, rsf::slip(s, x, late)) / late, 1, 1e-10);
+  EXPECT_TRUE(std::isinf(rsf::time_to_speed(s, x, std::log(v_inf))));
+  EXPECT_TRUE(std::isinf(rsf::time_to_speed(s, x, std::log(2 * v_inf))));
+  // A stress step.
+  for (const double dtau : {-3e4, 1e4, 5e4}) {
+    const rsf::SliderState y = rsf::stress_step(s, x, dtau);
+    EXPECT_NEAR(y.ln_v - x.ln_v, dtau / ((s.a - s.b_rsf) * s.sigma), 1e-12);
+    EXPECT_NEAR(y.ln_v + y.ln_theta, std::log(s.dc), 1e-12);
+    const double target = std::log(0.9 * v_inf);
+    if (y.ln_v < target) {
+      EXPECT_NEAR(rsf::time_to_speed(s, y, target) / integrate_phases(s, y, target), 1, 1e-5);
+    }
+  }
+  // Locked (V theta/D_c < 1) it is the direct effect, as for any block.
+  const rsf::SliderState healed{std::log(1e-9), std::log(100.0)};
+  EXPECT_NEAR(rsf::stress_step(s, healed, 1e4).ln_v - healed.ln_v, 1e4 / (s.a * s.sigma), 1e-12);
+}
+
+// The full aging law (the cycle integrator, quasi-static, one block loaded and unloaded as the
+// closed form's) against the velocity-strengthening barrier's closed form, from a healed,
+// locked block (locked, then steady state): the law overshoots steady state (V theta/D_c up
+// to 2.9) where the closed form goes over to it at V theta/D_c = 1, so their slip rates differ
+// by up to a factor 1.6 one relaxation time (a - b) sigma/tau_dot after that; after 10 their
+// slip rates and slips agree within 2 % (-1.4 % and -0.04 % when written: the locked phase's
+// slip, left out, and the transient's offset each other).
+TEST(RsfNucleation, SteadyStatePhaseWithinTheFullAgingLawsBound) {
+  const rsf::Slider s = barrier_slider();
+  RsfModel m = test::qdyn_stickslip(1);
+  rsf::Params p = m.law[0].params();
+  p.a = s.a;
+  p.b_rsf = s.b_rsf;
+  m.law[0] = rsf::Law(p);
+  m.eta = 0;
+  m.k = s.k_eff;
+  m.v_pl = s.stressing_rate / s.k_eff;
+  const double t_relax = (s.a - s.b_rsf) * s.sigma / s.stressing_rate;
+  const rsf::SliderState healed{std::log(1e-9), std::log(100.0)};
+  const double t_nuc = rsf::time_to_slip(s, healed, 1e-300);
+  ASSERT_TRUE(std::isfinite(t_nuc));
+  RsfCycle c(m, 1e-10, {1e-9}, {100.0});
+  const double t_end = t_nuc + 10 * t_relax;
+  const double t_mid = t_nuc + t_relax;
+  while (c.t() < t_mid) c.step(t_mid);
+  EXPECT_LT(std::fabs(rsf::evolve(s, healed, t_mid).ln_v - c.ln_v(0)), std::log(2.0));
+  while (c.t() < t_end) c.step(t_end);
+  EXPECT_NEAR(std::exp(rsf::evolve(s, healed, t_end).ln_v - c.ln_v(0)), 1, 0.02);
+  EXPECT_NEAR(rsf::slip(s, healed, t_end) / c.slip(0), 1, 0.02);
 }
 
 // Three coupled blocks in the loader: a sync moves the synced block's position by its
@@ -488,12 +665,16 @@ TEST(RsfLoader, HeapKeepsTheEarliestOnTopWithTiesByIndex) {
   }
 }
 
-// An event of a 4-block chain: every block goes back to its closed form at the integrator's
-// end with its slip rate and state as the integrator left them (below V_h), and an uninterrupted
-// engine equals one restored from a snapshot.
+// An event of a 4-block chain (two asperities, two barriers): every block goes back to its closed
+// form at the integrator's end with its slip rate and state as the integrator left them (below
+// V_h), and an uninterrupted engine equals one restored from a snapshot.
 TEST(RsfEventEngine, HandOverKeepsSlipRateAndStateAndResumesExactly) {
   RsfModel m = test::qdyn_stickslip(4);
   m.k_c = 2e9;
+  // Velocity-strengthening blocks 1 and 3 (a and b swapped) creep between events.
+  rsf::Params vs = m.law[0].params();
+  std::swap(vs.a, vs.b_rsf);
+  m.law[1] = m.law[3] = rsf::Law(vs);
   const std::vector<double> theta = {1.0, 3.0, 10.0, 30.0};
   RsfEventEngine a(m, 1e-8, 1e-3, 1e-4, 1e-6, {1e-8}, theta);
   const auto e = a.next(1e5);
@@ -524,13 +705,13 @@ TEST(RsfEventEngine, HandOverKeepsSlipRateAndStateAndResumesExactly) {
   ASSERT_NO_FATAL_FAILURE(expect_restored_follows(b));
   // Stopped between two events, after some quanta (unsynced slip and leads not zero): a
   // snapshot there resumes to the same events and positions too.
+  // (Stopping just past each next time, hand-overs and their events included, until five
+  // quanta have been passed on: the last thing done is a quantum.)
   const std::int64_t syncs = a.syncs();
-  double t_stop = a.t();
-  while (a.syncs() < syncs + 5 && a.loader().next_is_quantum() && !a.pending()) {
-    t_stop = std::nextafter(a.loader().next_time(), HUGE_VAL);
-    ASSERT_FALSE(a.next(t_stop).has_value());
-  }
-  ASSERT_GT(a.syncs(), syncs);
+  for (int i = 0; i < 10000 && a.syncs() < syncs + 5; ++i)
+    if (a.next(std::nextafter(a.loader().next_time(), HUGE_VAL)))
+      while (a.pending()) a.next(1e5);
+  ASSERT_EQ(a.syncs(), syncs + 5);
   double lead = 0;
   for (int j = 0; j < 4; ++j) lead += a.loader().lead(j);
   EXPECT_GT(lead, 0);
@@ -558,6 +739,69 @@ TEST(RsfEventEngine, FirstEventsAgreeWithTheContinuousIntegration) {
     }
     EXPECT_NEAR(e->hypocentre_time / ec->hypocentre_time, 1, 0.02) << "event " << k;
     EXPECT_NEAR(e->moment / ec->moment, 1, 0.01) << "event " << k;
+  }
+}
+
+// A velocity-weakening block near steady state, unstable on its own spring but slowly
+// (NucleationFormIsWrongNearSteadyState; the full law: no event for 20 t_a): the engine hands
+// it to the integrator (its V theta/D_c lies between the hand-over bounds), in integrations
+// of t_a each, and makes no event over 20 t_a, where its nucleation form would run away within t_a;
+// the loader schedules a healed one's hand-over where its locked phase reaches V theta/D_c = 1/10,
+// before it would reach V_h.
+TEST(RsfEventEngine, VelocityWeakeningBlockNearSteadyStateStaysWithTheIntegrator) {
+  RsfModel m = test::qdyn_stickslip(1);
+  m.eta = 0;
+  m.k = 6e9;
+  m.v_pl = 2e3 / m.k;
+  const double t_a = 0.01 * m.sigma / (m.k * m.v_pl);
+  RsfEventEngine ev(m, 1e-8, 1e-3, 3 * m.v_pl, 1e-6, {m.v_pl * (1 + 1e-3)}, {1e-5 / m.v_pl});
+  EXPECT_FALSE(ev.next(20 * t_a).has_value());
+  // An integration ends after t_a (so that a grid's events come out while some block is
+  // always near steady state, at the first step past it), and the block comes straight back:
+  // 10 to 20 of them.
+  EXPECT_GE(ev.integrations(), 10);
+  EXPECT_LE(ev.integrations(), 20);
+  EXPECT_EQ(ev.t(), 20 * t_a);
+  RsfLoader loader(m, 3 * m.v_pl, HUGE_VAL);
+  const rsf::SliderState healed{std::log(1e-9), std::log(100.0)};
+  loader.set(0, 0, healed);
+  const double t_in = rsf::time_to_omega(loader.slider(0), healed, std::log(0.1));
+  EXPECT_GT(t_in, 0);
+  EXPECT_LT(t_in, rsf::time_to_speed(loader.slider(0), healed, std::log(3 * m.v_pl)));
+  EXPECT_EQ(loader.next_time(), t_in);
+  const rsf::SliderState there = rsf::evolve(loader.slider(0), healed, t_in);
+  EXPECT_NEAR(there.ln_v + there.ln_theta - std::log(1e-5), std::log(0.1), 1e-9);
+}
+
+// A chain of 12 with velocity-weakening asperities among velocity-strengthening barriers (a and
+// b swapped on blocks 4..7): the event-driven engine handing over at 3 V_pl makes the same
+// first events as the continuous integration (hypocentre times within 2 %, moments within 5 %)
+// from the same state, where the barriers creep in their steady-state phase between events.
+TEST(RsfEventEngine, BarriersInSteadyStateKeepTheFirstEventsOfTheContinuousRun) {
+  RsfModel m = test::qdyn_stickslip(12);
+  m.k_c = 2e9;
+  rsf::Params vs = m.law[0].params();
+  std::swap(vs.a, vs.b_rsf);
+  for (int j = 4; j < 8; ++j) m.law[j] = rsf::Law(vs);
+  std::vector<double> v(12), theta(12);
+  for (int j = 0; j < 12; ++j) {
+    v[j] = 1e-6 * (1 + 0.5 * std::sin(1.3 * j));
+    theta[j] = 10;
+  }
+  RsfEventEngine ev(m, 1e-8, 1e-3, 3e-6, 1e-6, v, theta);
+  RsfCycle c(m, 1e-8, v, theta);
+  RsfEventDetector det(1e-3);
+  for (int k = 0; k < 4; ++k) {
+    const auto e = ev.next(1e5);
+    ASSERT_TRUE(e.has_value());
+    std::optional<EventRecord> ec;
+    while (!ec) {
+      c.step();
+      ec = det.observe(c);
+    }
+    EXPECT_NEAR(e->hypocentre_time / ec->hypocentre_time, 1, 0.02) << "event " << k;
+    EXPECT_NEAR(e->moment / ec->moment, 1, 0.05) << "event " << k;
+    EXPECT_EQ(e->trigger, ec->trigger) << "event " << k;
   }
 }
 

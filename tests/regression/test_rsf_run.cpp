@@ -81,16 +81,22 @@ TEST(RsfRun, Refusals) {
   const std::vector<std::string> ev = {"drive.mode=events", "drive.speed=1e-6", "run.events=5"};
   expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.state_law=slip"))),
                  {"rsf.state_law = slip", "drive.mode = events", "allowed: rsf.state_law = aging"});
-  // So are uniform chains, for the same reason.
-  expect_refused(
-      run_bkquake(rsf_args(out, with(with(ev, "model.kind=bk"), "model.blocks=4"))),
-      {"rsf.pattern = uniform", "drive.mode = events", "allowed: rsf.pattern = asperities"});
-  // Lattices are refused: their event-driven catalogue is not the continuous one.
-  expect_refused(
-      run_bkquake(rsf_args(
-          out, with(with(with(with(ev, "model.kind=bk"), "model.rows=2"), "model.blocks=4"),
-                    "rsf.pattern=asperities"))),
-      {"model.rows = 2", "drive.mode = events", "allowed: model.rows = 1"});
+  // Lattices hand over at up to 3 V_pl: there the event-driven catalogue is the continuous
+  // one, at the auto V_h it is not. Uniform chains run.
+  const std::vector<std::string> lattice =
+      with(with(with(with(ev, "model.kind=bk"), "model.rows=2"), "model.blocks=4"),
+           "rsf.pattern=asperities");
+  expect_refused(run_bkquake(rsf_args(out, lattice)),
+                 {"rsf.handover_speed = auto", "model.rows = 2", "drive.mode = events",
+                  "allowed: rsf.handover_speed up to 3 drive.speed"});
+  expect_refused(run_bkquake(rsf_args(out, with(lattice, "rsf.handover_speed=4e-6"))),
+                 {"rsf.handover_speed = 4e-06", "allowed: rsf.handover_speed up to 3 drive.speed"});
+  for (const auto& runs : {with(lattice, "rsf.handover_speed=3e-6"),
+                           with(with(ev, "model.kind=bk"), "model.blocks=4")}) {
+    const auto r = run_bkquake(rsf_args(tmp.file("ok"), runs));
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::filesystem::remove_all(tmp.path() / "ok");
+  }
   expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.handover_speed=2e-3"))),
                  {"rsf.handover_speed = 0.002", "allowed: auto or (1e-06, 0.001)"});
   // The creep quantum is a positive length up to a metre, and only for drive.mode = events.
