@@ -311,7 +311,8 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
   t_ = t0 + cycle.t();
   for (int j = 0; j < n; ++j) {
     loader_.move(j, cycle.slip(j));
-    loader_.set(j, t_, {cycle.ln_v(j), cycle.ln_theta(j)});
+    loader_.set(j, t_,
+                rsf::onto_steady_state(loader_.slider(j), {cycle.ln_v(j), cycle.ln_theta(j)}));
   }
 }
 

@@ -9,7 +9,9 @@
 // locked nor the nucleation form does, and kept until it is well below or above 1; a
 // velocity-strengthening one goes back near steady state or locked); each block then goes back to
 // its closed form from the integrator's slip rate and state, both kept as they are (the elastic
-// stress is the law's at those values, as the closed form's quasi-static balance has it).
+// stress is the law's at those values, as the closed form's quasi-static balance has it), except
+// that a velocity-strengthening block above steady state enters its steady-state phase at
+// constant friction (rsf::onto_steady_state: its stress kept, theta at D_c/V).
 //
 // Between events the neighbours' creep reaches a block in quanta: each block's closed-form
 // slip is passed on as stress steps to its neighbours whenever it reaches rsf.creep_quantum

@@ -247,6 +247,13 @@ Clocks clocks(const Slider& s, SliderState x, double ln_v_target, double amount)
   return {locked_time_to_speed(s, x, ln_v_target, t_nuc), locked_time_to_slip(s, x, amount, t_nuc)};
 }
 
+SliderState onto_steady_state(const Slider& s, SliderState x) {
+  const double ln_omega = x.ln_v + x.ln_theta - std::log(s.dc);
+  if (!s.strengthening() || !(ln_omega > 0)) return x;
+  const double ln_v = x.ln_v + s.b_rsf / (s.a - s.b_rsf) * ln_omega;
+  return {ln_v, std::log(s.dc) - ln_v};
+}
+
 SliderState stress_step(const Slider& s, SliderState x, double dtau) {
   if (s.strengthening() && !locked(s, x)) {
     const double ln_v = x.ln_v + dtau / ((s.a - s.b_rsf) * s.sigma);

@@ -73,6 +73,12 @@ double time_to_speed(const Slider& s, SliderState x, double ln_v_target);
 double slip(const Slider& s, SliderState x, double dt);
 // The first time from now at which that slip reaches `amount` > 0 (+inf if never).
 double time_to_slip(const Slider& s, SliderState x, double amount);
+// Where a velocity-strengthening block above steady state (Omega > 1, e.g. handed back by the
+// integrator after an event's stress step) enters its steady-state phase: at constant friction
+// a ln V + b ln theta (its stress kept), theta evolved to D_c/V, so V_ss = V Omega^{b/(a-b)}.
+// Taking it at its V instead (theta jumping to D_c/V) would drop its stress by b sigma ln Omega
+// and leave out the afterslip that theta's evolution drives. Any other state is returned as is.
+SliderState onto_steady_state(const Slider& s, SliderState x);
 // Both: the times to the speed and to the slip, sharing the locked phase's time to nucleation
 // (the same numbers as the two calls).
 struct Clocks {

@@ -381,6 +381,40 @@ TEST(RsfNucleation, SteadyStatePhaseEqualsTheIntegrationOfItsBalance) {
 // by up to a factor 1.6 one relaxation time (a - b) sigma/tau_dot after that; after 10 their
 // slip rates and slips agree within 2 % (-1.4 % and -0.04 % when written: the locked phase's
 // slip, left out, and the transient's offset each other).
+// A barrier above steady state (Omega > 1, as after an event's stress step) enters its
+// steady-state phase where the full aging law takes it at constant stress: friction
+// a ln V + b ln theta kept, theta evolved to D_c/V (RK4 of d ln theta/dt = 1/theta - V/D_c with
+// V from the constant friction). Other states are returned as they are.
+TEST(RsfNucleation, StrengtheningBlockAboveSteadyStateEntersItAtConstantFriction) {
+  const rsf::Slider s = barrier_slider();
+  const double v = s.stressing_rate / s.k_eff;
+  for (const double ln_omega : {0.5, 2.0, 5.0}) {
+    const rsf::SliderState x{std::log(v), std::log(s.dc / v) + ln_omega};
+    const rsf::SliderState y = rsf::onto_steady_state(s, x);
+    EXPECT_NEAR(y.ln_v + y.ln_theta, std::log(s.dc), 1e-12);
+    const double friction = s.a * x.ln_v + s.b_rsf * x.ln_theta;
+    EXPECT_NEAR(s.a * y.ln_v + s.b_rsf * y.ln_theta, friction, 1e-12);
+    const auto rate = [&](double lt) {
+      return std::exp(-lt) - std::exp((friction - s.b_rsf * lt) / s.a) / s.dc;
+    };
+    double lt = x.ln_theta;
+    const double h = 1e-3 * s.dc / std::exp(y.ln_v);
+    for (int i = 0; i < 200000; ++i) {
+      const double k1 = rate(lt), k2 = rate(lt + 0.5 * h * k1), k3 = rate(lt + 0.5 * h * k2),
+                   k4 = rate(lt + h * k3);
+      lt += h * (k1 + 2 * k2 + 2 * k3 + k4) / 6;
+    }
+    EXPECT_NEAR(lt, y.ln_theta, 1e-6) << "ln Omega " << ln_omega;
+    EXPECT_GT(y.ln_v, x.ln_v);  // theta's evolution speeds it up: the afterslip
+  }
+  const rsf::SliderState below{std::log(v), std::log(s.dc / v) - 1};
+  EXPECT_EQ(rsf::onto_steady_state(s, below).ln_theta, below.ln_theta);
+  rsf::Slider weakening = s;
+  std::swap(weakening.a, weakening.b_rsf);
+  const rsf::SliderState above{std::log(v), std::log(s.dc / v) + 2};
+  EXPECT_EQ(rsf::onto_steady_state(weakening, above).ln_v, above.ln_v);
+}
+
 TEST(RsfNucleation, SteadyStatePhaseWithinTheFullAgingLawsBound) {
   const rsf::Slider s = barrier_slider();
   RsfModel m = test::qdyn_stickslip(1);
