@@ -240,6 +240,20 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
   return e;
 }
 
+// Whether the integration has lasted block j's t_a = a sigma/(k V_pl), where handed_back()
+// sends blocks back from where their closed forms are poor. A velocity-strengthening block
+// handed back then keeps its state (its theta goes to D_c/V at its V); one handed back earlier
+// enters steady state at constant friction (rsf::onto_steady_state). Projecting at the cut as
+// well sent the 16 x 8 lattice from one start into a cycle of two-site events after 70 mm of
+// plate motion (docs/validation/rsf-events.md).
+namespace {
+template <class Cycle>
+bool cut_short(const Cycle& c, int j) {
+  const RsfModel& m = c.model();
+  return c.t() >= m.law[j].params().a * m.sigma / (m.k * m.v_pl);
+}
+}  // namespace
+
 // Whether block j can go back to its closed form: below V_h and where its closed form holds.
 // Locked (below kOmegaBack, or Omega < 1 for a > b) only below kSlowLocked V_pl. A velocity-
 // strengthening block (a > b): within kLnOmegaSteady of steady state, where its steady-state
@@ -259,7 +273,7 @@ bool handed_back(const RsfCycle& c, int j, double ln_vh) {
   if (!(ln_v < ln_vh)) return false;
   const RsfModel& m = c.model();
   const rsf::Params& p = m.law[j].params();
-  const bool cut = c.t() >= p.a * m.sigma / (m.k * m.v_pl);
+  const bool cut = cut_short(c, j);
   const bool slow = ln_v < std::log(kSlowLocked * m.v_pl);
   const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
   const bool accelerating = c.dy()[c.n() + j] >= 0;
@@ -311,8 +325,8 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
   t_ = t0 + cycle.t();
   for (int j = 0; j < n; ++j) {
     loader_.move(j, cycle.slip(j));
-    loader_.set(j, t_,
-                rsf::onto_steady_state(loader_.slider(j), {cycle.ln_v(j), cycle.ln_theta(j)}));
+    const rsf::SliderState x{cycle.ln_v(j), cycle.ln_theta(j)};
+    loader_.set(j, t_, cut_short(cycle, j) ? x : rsf::onto_steady_state(loader_.slider(j), x));
   }
 }
 
