@@ -11,7 +11,8 @@
 namespace bkq {
 
 namespace {
-bool handed_back(const RsfCycle& c, int j, double ln_vh);
+template <class Cycle>
+bool handed_back(const Cycle& c, int j, double ln_vh);
 }
 
 IndexedMinHeap::IndexedMinHeap(int n)
@@ -155,9 +156,33 @@ double RsfLoader::sync(int j, double t, bool settle) {
   }
   if (slip != 0)
     for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e)
-      if (nb_.index[e] != j) stress_step(nb_.index[e], t, nb_.k[e] * slip);
+      if (nb_.index[e] != j) {
+        const int i = nb_.index[e];
+        if (held(i))
+          held_stress_[i] += nb_.k[e] * slip;
+        else
+          stress_step(i, t, nb_.k[e] * slip);
+      }
   schedule(j);
   return slip;
+}
+
+void RsfLoader::hold(int j) {
+  if (held_.empty()) {
+    held_.assign(n(), 0);
+    held_stress_.assign(n(), 0.0);
+  }
+  held_[j] = 1;
+  held_stress_[j] = 0;
+  heap_.set(j, std::numeric_limits<double>::infinity());
+}
+
+double RsfLoader::release(int j) {
+  if (!held(j)) return 0;
+  held_[j] = 0;
+  const double s = held_stress_[j];
+  held_stress_[j] = 0;
+  return s;
 }
 
 RsfEventEngine::RsfEventEngine(RsfModel m, double tolerance, double v_threshold, double v_handover,
@@ -189,7 +214,10 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
       ++syncs_;
       continue;
     }
-    integrate_event(t_next, t_end);
+    if (active_blocks())
+      integrate_active(loader_.next_block(), t_next, t_end);
+    else
+      integrate_event(t_next, t_end);
   }
   EventRecord e = pending_.front();
   pending_.pop_front();
@@ -202,7 +230,8 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
 // straight back to the integrator. Near steady state (ln Omega < 0.05) a decelerating block
 // goes back once it is a decade below V_h, so that a creeping barrier ends the integration.
 namespace {
-bool handed_back(const RsfCycle& c, int j, double ln_vh) {
+template <class Cycle>
+bool handed_back(const Cycle& c, int j, double ln_vh) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
   if (c.dy()[c.n() + j] >= 0) return true;
@@ -251,6 +280,27 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
   for (int j = 0; j < n; ++j) {
     loader_.move(j, cycle.slip(j));
     loader_.set(j, t_, {cycle.ln_v(j), cycle.ln_theta(j)});
+  }
+}
+
+// Only the active blocks are integrated (engine/rsf_active.hpp); its events get the run's
+// times and numbers as integrate_event's do.
+void RsfEventEngine::integrate_active(int first, double t0, double t_end) {
+  if (!active_) active_ = std::make_unique<RsfActiveIntegration>(m_, tol_, v_th_);
+  const double ln_vh = loader_.ln_v_handover();
+  ++integrations_;
+  const std::int64_t steps0 = active_->accepted(), syncs0 = active_->syncs();
+  t_ = active_->run(loader_, first, t0, t_end, [ln_vh](const RsfActiveIntegration& a, int j) {
+    return handed_back(a, j, ln_vh);
+  });
+  steps_ += active_->accepted() - steps0;
+  syncs_ += active_->syncs() - syncs0;
+  for (EventRecord e : active_->events()) {
+    e.event = ++events_;
+    e.hypocentre_time += t0;
+    e.peak_time += t0;
+    e.load = m_.v_pl * e.hypocentre_time;
+    pending_.push_back(e);
   }
 }
 
