@@ -25,7 +25,9 @@ RsfActiveIntegration::RsfActiveIntegration(const RsfModel& m, double tolerance, 
       stamp_(m.n(), 0),
       held_(m.n(), 0.0),
       slip_at_join_(m.n(), 0.0),
-      passed_(nb_.index.size(), 0.0) {}
+      passed_(nb_.index.size(), 0.0),
+      seen_(m.n()),
+      max_rate_(m.n(), 0.0) {}
 
 double RsfActiveIntegration::value(int i, int comp0) const {
   const int n = m_.n(), comp = i / n, j = i % n;
@@ -70,7 +72,17 @@ void RsfActiveIntegration::activate(RsfLoader& loader, int j, double t_abs, doub
     passed_[e] = slot_[i] >= 0 ? y_[3 * slot_[i]] : held_[i];
   }
   loader.sync(j, t_abs, true);
-  const rsf::SliderState x = loader.state_at(j, t_abs);
+  rsf::SliderState x = loader.state_at(j, t_abs);
+  // A velocity-strengthening block that crept on in the nucleation form has let theta fall as
+  // ln theta0 - slip/D_c, far below steady state (V theta/D_c << 1, where the aging law would
+  // heal it at once and the step size collapse): it starts at the steady state of its stress,
+  // a ln V + b ln theta kept.
+  const rsf::Params& p = m_.law[j].params();
+  if (p.a > p.b_rsf && x.ln_v + x.ln_theta - std::log(p.dc) < -1) {
+    const double ln_v = (p.a * x.ln_v + p.b_rsf * (x.ln_theta - std::log(p.dc))) / (p.a - p.b_rsf);
+    x = {ln_v, std::log(p.dc) - ln_v};
+    ++resets_;
+  }
   loader.hold(j);
   if (joined_step_[j] < 0) touched_.push_back(j);
   joined_step_[j] = static_cast<int>(steps_in_run_);
@@ -248,14 +260,22 @@ double RsfActiveIntegration::step(double t_max) {
 
 double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double t_end,
                                  const HandBack& handed_back) {
+  if (max_rate_[0] == 0)
+    for (int j = 0; j < m_.n(); ++j) {
+      const rsf::Slider& s = loader.slider(j);
+      max_rate_[j] = s.stressing_rate / (s.a * s.sigma) +
+                     std::max(0.0, s.h()) * std::exp(loader.ln_v_handover()) / s.a;
+    }
   t_ = t_prev_ = 0;
   steps_in_run_ = 0;
   events_.clear();
   const double ln_vh = loader.ln_v_handover();
-  // What the loader has due by now: quanta passed on, blocks at V_h taken in.
+  // What the loader has due by now: quanta passed on, blocks at V_h taken in. Due is read on
+  // the integration's clock (a time that rounds to within it of t_ is due), so that a step to
+  // the next loader time always moves t_.
   const auto take_due = [&](double now) {
     bool joined = false;
-    while (loader.next_time() <= now) {
+    while (loader.next_time() - t0 <= t_) {
       const int b = loader.next_block();
       if (loader.next_is_quantum()) {
         loader.sync(b, now);
@@ -274,10 +294,7 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
   std::vector<int> leaving;
   while (true) {
     // Up to the loader's next time, at the latest.
-    const double t_next = std::min(t_end, loader.next_time());
-    double t_max = t_next - t0;
-    if (t0 + t_max < t_next) t_max = std::nextafter(t_max, HUGE_VAL);
-    step(t_max);
+    step(std::min(t_end, loader.next_time()) - t0);
     ++steps_in_run_;
     slot_steps_ += static_cast<std::int64_t>(id_.size());
     for (int s = 0; s < static_cast<int>(id_.size()); ++s)
@@ -286,7 +303,7 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
                     " s (lower integrator.tolerance)");
     if (auto e = detector_.observe(span())) events_.push_back(*e);
     const double now = t0 + t_;
-    if (now >= t_end) break;
+    if (t_ >= t_end - t0) break;
     bool changed = take_due(now);
     // Inactive neighbours the active blocks' slip brings to V_h.
     joining.clear();

@@ -27,6 +27,7 @@
 // friction there (sigma f + eta V), as the cycle integrator does at its start.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -70,7 +71,8 @@ class RsfActiveIntegration {
   std::int64_t accepted() const { return accepted_; }      // steps, all integrations
   std::int64_t slot_steps() const { return slot_steps_; }  // sum of active blocks per step
   std::int64_t activations() const { return activations_; }
-  std::int64_t syncs() const { return syncs_; }  // quanta passed on during integrations
+  std::int64_t syncs() const { return syncs_; }    // quanta passed on during integrations
+  std::int64_t resets() const { return resets_; }  // barriers started at steady state
 
  private:
   double value(int i, int comp0) const;
@@ -93,6 +95,13 @@ class RsfActiveIntegration {
   std::vector<double> held_, slip_at_join_;
   std::vector<double> passed_;  // per spring e of block i's row: slip of index[e] i has had
   std::vector<int> touched_;    // blocks that joined in this integration
+  // The activation test's last closed-form ln V of each block, when, and the loader's start
+  // it came from; the rise since is bounded by max_rate_ (below V_h) until that start changes.
+  struct Seen {
+    double t = -HUGE_VAL, ln_v = 0, t_ref = 0, x_ln_v = 0, x_ln_theta = 0;
+  };
+  std::vector<Seen> seen_;
+  std::vector<double> max_rate_;
   int stamp_now_ = 0;
   // Per slot: the block, tau0, the state (3 a slot) and the stages.
   std::vector<int> id_;
@@ -102,7 +111,8 @@ class RsfActiveIntegration {
   std::vector<double> ck_;
   double t_ = 0, t_prev_ = 0, h_ = 0;
   std::int64_t steps_in_run_ = 0;
-  std::int64_t accepted_ = 0, rejected_ = 0, slot_steps_ = 0, activations_ = 0, syncs_ = 0;
+  std::int64_t accepted_ = 0, rejected_ = 0, slot_steps_ = 0, activations_ = 0, syncs_ = 0,
+               resets_ = 0;
   std::vector<EventRecord> events_;
 };
 
