@@ -436,6 +436,7 @@ class RsfEventFigures : public RunObserver {
     r.set("handover_speed", v_handover_);
     r.set("creep_quantum", e_.loader().creep_quantum());
     r.set("event_integration", e_.active_blocks() ? "active" : "whole");
+    if (e_.active_blocks()) r.set("active_block_steps", e_.active_block_steps());
     r.set("integrations", e_.integrations());
     r.set("syncs", e_.syncs());
     r.set("steps", e_.steps());

@@ -293,7 +293,9 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
   std::vector<std::pair<int, double>> joining;
   std::vector<int> leaving;
   while (true) {
-    // Up to the loader's next time, at the latest.
+    // Stress steps passed on since (a joining block's creep, a leaving block's slip) may have
+    // made a block due now; then up to the loader's next time, at the latest.
+    if (take_due(t0 + t_)) rebuild();
     step(std::min(t_end, loader.next_time()) - t0);
     ++steps_in_run_;
     slot_steps_ += static_cast<std::int64_t>(id_.size());
