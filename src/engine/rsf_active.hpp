@@ -24,7 +24,10 @@
 // The integration ends when no block is active and no event is open (or at t_end, where every
 // active block goes back). The seismic detector reads the active slots (RsfStepSpan).
 // Inertial dynamics: each block's tau0 is set when it joins so that its stress balances its
-// friction there (sigma f + eta V), as the cycle integrator does at its start.
+// friction there (sigma f + eta V), as the cycle integrator does at its start; this is not
+// checked against the whole grid, and the engine integrates inertial scenes on the whole grid.
+// A velocity-strengthening block whose nucleation form has let theta fall far below steady
+// state (V theta/D_c < 1/e) joins at the steady state of its stress (a ln V + b ln theta kept).
 #pragma once
 
 #include <cmath>

@@ -289,12 +289,14 @@ void RsfEventEngine::integrate_active(int first, double t0, double t_end) {
   if (!active_) active_ = std::make_unique<RsfActiveIntegration>(m_, tol_, v_th_);
   const double ln_vh = loader_.ln_v_handover();
   ++integrations_;
-  const std::int64_t steps0 = active_->accepted(), syncs0 = active_->syncs();
+  const std::int64_t steps0 = active_->accepted(), syncs0 = active_->syncs(),
+                     slots0 = active_->slot_steps();
   t_ = active_->run(loader_, first, t0, t_end, [ln_vh](const RsfActiveIntegration& a, int j) {
     return handed_back(a, j, ln_vh);
   });
   steps_ += active_->accepted() - steps0;
   syncs_ += active_->syncs() - syncs0;
+  active_block_steps_ += active_->slot_steps() - slots0;
   for (EventRecord e : active_->events()) {
     e.event = ++events_;
     e.hypocentre_time += t0;
@@ -316,14 +318,17 @@ std::vector<double> RsfEventEngine::snapshot() const {
     s.push_back(loader_.lead(j));
     s.push_back(loader_.position(j));
   }
+  s.push_back(static_cast<double>(active_block_steps_));  // last: absent from older checkpoints
   return s;
 }
 
 void RsfEventEngine::restore(const std::vector<double>& s) {
   const int n = loader_.n();
   constexpr std::size_t head = 5, per_block = 6;
-  if (s.size() != head + per_block * static_cast<std::size_t>(n))
+  const std::size_t size = head + per_block * static_cast<std::size_t>(n);
+  if (s.size() != size && s.size() != size + 1)
     throw Error("rsf: a checkpoint of another chain's size");
+  active_block_steps_ = s.size() == size + 1 ? static_cast<std::int64_t>(s.back()) : 0;
   t_ = s[0];
   events_ = static_cast<std::int64_t>(s[1]);
   integrations_ = static_cast<std::int64_t>(s[2]);

@@ -162,7 +162,7 @@ class RsfEventEngine {
   bool active_blocks() const { return active_blocks_ && m_.dynamics == RsfDynamics::QuasiDynamic; }
   // Active blocks summed over the integrations' steps (the mean active set is this / steps()
   // over the steps of active-block integrations); 0 for the whole grid.
-  std::int64_t active_block_steps() const { return active_ ? active_->slot_steps() : 0; }
+  std::int64_t active_block_steps() const { return active_block_steps_; }
 
   // The state between two events, as numbers (a checkpoint's), and back.
   std::vector<double> snapshot() const;
@@ -179,6 +179,7 @@ class RsfEventEngine {
   std::int64_t events_ = 0, integrations_ = 0, steps_ = 0, syncs_ = 0;
   std::deque<EventRecord> pending_;
   bool active_blocks_ = false;
+  std::int64_t active_block_steps_ = 0;
   std::unique_ptr<RsfActiveIntegration> active_;
 };
 

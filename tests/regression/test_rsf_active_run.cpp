@@ -16,7 +16,7 @@ using test::run_bkquake;
 
 // The shipped event-driven chain (20 blocks here), each event on its active blocks, stopped by
 // SIGTERM after its first checkpoint and resumed: the catalogue and histogram of the run
-// never stopped.
+// never stopped, and its count of active blocks over the steps.
 TEST(RsfActiveRun, KilledAndResumedGivesTheSameBytes) {
   test::TempDir tmp;
   const std::string scene = std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-events.ini";
@@ -54,6 +54,14 @@ TEST(RsfActiveRun, KilledAndResumedGivesTheSameBytes) {
               read_file(tmp.file(std::string("whole/") + f)))
         << f;
   EXPECT_FALSE(std::filesystem::exists(checkpoint));
+  // The active blocks summed over the steps go through the checkpoint too.
+  const auto counter = [&](const std::string& dir) {
+    const std::string text = read_file(tmp.file(dir + "/summary.json"));
+    const std::size_t at = text.find("\"active_block_steps\": ");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find(',', at) - at);
+  };
+  EXPECT_FALSE(counter("whole").empty());
+  EXPECT_EQ(counter("cut"), counter("whole"));
 }
 
 }  // namespace
