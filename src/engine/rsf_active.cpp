@@ -326,7 +326,14 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
     leaving.clear();
     for (const int j : id_)
       if (joined_step_[j] < steps_in_run_ && handed_back(*this, j)) leaving.push_back(j);
+    // A block handed back once the run has lasted its t_a (the hand-back test's cut) ends the
+    // run when no event is open, as the whole grid's integration ends there: what is due then
+    // starts the next one, so that its events are returned.
+    bool cut = false;
+    for (const int j : leaving)
+      cut = cut || t_ >= m_.law[j].params().a * m_.sigma / (m_.k * m_.v_pl);
     for (const int j : leaving) release(loader, j, now);
+    if (cut && !detector_.in_event()) break;
     if (!leaving.empty()) {
       take_due(now);
       rebuild();
