@@ -6,7 +6,9 @@
 // theta = 10 s), over T seconds of simulated time.
 //
 // Prints each engine's events, CPU seconds and events per CPU second side by side and their
-// ratio (the event-driven engine once per creep quantum given, and with none: "off"), then the
+// ratio (the event-driven engine once per creep quantum given, and with none: "off"; each
+// event integrated on the whole grid and on its active blocks only, engine/rsf_active.hpp, with
+// the mean number of blocks that integration carries per step, what bounds its ratio), then the
 // magnitude distributions' Kolmogorov-Smirnov distance between each event-driven run and the
 // continuous one, beside the distance between two continuous runs from different rough starts
 // (phase 1.3 j and 0.7 j); events before T/5 are left out. Then what bounds the speed-up: the
@@ -42,6 +44,7 @@ struct Result {
   std::vector<double> magnitudes;  // after the transient
   long long events = 0, steps = 0, syncs = 0;
   double cpu = 0;
+  double mean_active = NAN;  // active-block engine: blocks integrated per step
   // Continuous only: steps and CPU while the fastest block is below V_h, and at or above it.
   long long steps_below = 0, steps_above = 0;
   double cpu_below = 0, cpu_above = 0;
@@ -89,9 +92,11 @@ Result continuous(const RsfModel& m, double duration, double phase, double v_h) 
   return r;
 }
 
-Result event_driven(const RsfModel& m, double duration, double phase, double v_h, double q) {
+Result event_driven(const RsfModel& m, double duration, double phase, double v_h, double q,
+                    bool active) {
   Result r;
   RsfEventEngine engine(m, 1e-8, 1e-3, v_h, q, rough(m.n(), m.v_pl, phase), {10});
+  engine.set_active_blocks(active);
   const double t0 = bench::thread_seconds();
   while (auto e = engine.next(duration))
     if (e->hypocentre_time > duration / 5) r.magnitudes.push_back(e->magnitude);
@@ -99,6 +104,7 @@ Result event_driven(const RsfModel& m, double duration, double phase, double v_h
   r.events = engine.events();
   r.steps = engine.steps();
   r.syncs = engine.syncs();
+  if (active) r.mean_active = static_cast<double>(engine.active_block_steps()) / r.steps;
   return r;
 }
 
@@ -172,24 +178,26 @@ int main(int argc, char** argv) {
       "continuous steps with the fastest block below V_h: %lld (%.3f CPU s), at or above: %lld "
       "(%.3f CPU s); ceiling on the speed-up at equal events: total/above = %.1fx\n",
       c1.steps_below, c1.cpu_below, c1.steps_above, c1.cpu_above, c1.cpu / c1.cpu_above);
-  std::printf("%-22s %9s %9s %10s %13s %7s %10s %10s %9s\n", "engine", "events", "CPU [s]",
-              "events/CPU s", "ratio", "KS", "mean M", "steps", "syncs");
+  std::printf("%-30s %9s %9s %10s %13s %7s %10s %10s %9s %8s\n", "engine", "events", "CPU [s]",
+              "events/CPU s", "ratio", "KS", "mean M", "steps", "syncs", "active");
   const auto row = [&](const char* name, const Result& r, double ks_value) {
-    std::printf("%-22s %9lld %9.3f %10.2f %12.1fx %7.3f %10.3f %10lld %9lld\n", name, r.events,
-                r.cpu, r.events / r.cpu, (r.events / r.cpu) / (c1.events / c1.cpu), ks_value,
-                mean(r.magnitudes), r.steps, r.syncs);
+    std::printf("%-30s %9lld %9.3f %10.2f %12.1fx %7.3f %10.3f %10lld %9lld %8.2f\n", name,
+                r.events, r.cpu, r.events / r.cpu, (r.events / r.cpu) / (c1.events / c1.cpu),
+                ks_value, mean(r.magnitudes), r.steps, r.syncs, r.mean_active);
   };
   row("continuous", c1, 0.0);
   row("continuous, other start", c2, ks(c2.magnitudes, c1.magnitudes));
-  for (const double q : quanta) {
-    const Result e = event_driven(m, duration, 1.3, v_h, q);
-    char name[64];
-    if (std::isinf(q))
-      std::snprintf(name, sizeof name, "events, q off");
-    else
-      std::snprintf(name, sizeof name, "events, q = %g", q);
-    row(name, e, ks(e.magnitudes, c1.magnitudes));
-  }
+  for (const double q : quanta)
+    for (const bool active : {false, true}) {
+      const Result e = event_driven(m, duration, 1.3, v_h, q, active);
+      char name[64];
+      const char* how = active ? "active blocks" : "whole grid";
+      if (std::isinf(q))
+        std::snprintf(name, sizeof name, "events, %s, q off", how);
+      else
+        std::snprintf(name, sizeof name, "events, %s, q = %g", how, q);
+      row(name, e, ks(e.magnitudes, c1.magnitudes));
+    }
   std::printf(
       "magnitudes counted after T/5 (%zu and %zu continuous events); KS to the first "
       "continuous run\n",

@@ -435,6 +435,8 @@ class RsfEventFigures : public RunObserver {
     r.set("scheme", "dopri5");
     r.set("handover_speed", v_handover_);
     r.set("creep_quantum", e_.loader().creep_quantum());
+    r.set("event_integration", e_.active_blocks() ? "active" : "whole");
+    if (e_.active_blocks()) r.set("active_block_steps", e_.active_block_steps());
     r.set("integrations", e_.integrations());
     r.set("syncs", e_.syncs());
     r.set("steps", e_.steps());
@@ -464,6 +466,7 @@ class RsfEventRun {
                 settings.rsf.theta_start()),
         transient_(settings.run.transient_events),
         events_(settings.run.events) {
+    engine_.set_active_blocks(settings.rsf.active_blocks);
     if (resumed) {
       restore_rsf_state(*resumed, [&](StateReader& r) { engine_.restore(r.f64s()); });
       prog_ = resumed->progress;

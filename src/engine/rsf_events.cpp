@@ -39,27 +39,75 @@ struct StepEnds {
     return crossing(t0, y0[k], d0[k], t1, y1[k], d1[k], level, lo, hi);
   }
 
+  // What observe() reads, by slot s (here every block, slot s = block s).
+  int count() const { return n; }
+  int id(int s) const { return s; }
+  double lnv0(int s) const { return y0[n + s]; }
+  double lnv1(int s) const { return y1[n + s]; }
+  double dlnv0(int s) const { return d0[n + s]; }
+  double dlnv1(int s) const { return d1[n + s]; }
+  double lnv_crossing(int s, double level, double lo, double hi) const {
+    return crossing_of(n + s, level, lo, hi);
+  }
+  double slip_of(int j, double t) const { return at(j, t); }
+
   const int n;
   const std::vector<double>&y0, &d0, &y1, &d1;
+  const double t0, t1;
+};
+
+// The active-block integrator's last step: slot s is block id[s], 3 numbers a slot; a block
+// not integrated has its slip held.
+struct SpanEnds {
+  explicit SpanEnds(const RsfStepSpan& p) : p(p), n(p.n), t0(p.t0), t1(p.t1) {}
+  int count() const { return p.count; }
+  int id(int s) const { return p.id[s]; }
+  double lnv0(int s) const { return p.y0[3 * s + 1]; }
+  double lnv1(int s) const { return p.y1[3 * s + 1]; }
+  double dlnv0(int s) const { return p.d0[3 * s + 1]; }
+  double dlnv1(int s) const { return p.d1[3 * s + 1]; }
+  double lnv_crossing(int s, double level, double lo, double hi) const {
+    const int k = 3 * s + 1;
+    return crossing(t0, p.y0[k], p.d0[k], t1, p.y1[k], p.d1[k], level, lo, hi);
+  }
+  double slip_of(int j, double t) const {
+    const int s = p.slot[j];
+    if (s < 0) return p.held_slip[j];
+    const int k = 3 * s;
+    return hermite_value(t0, p.y0[k], p.d0[k], t1, p.y1[k], p.d1[k], t);
+  }
+
+  const RsfStepSpan& p;
+  const int n;
   const double t0, t1;
 };
 
 }  // namespace
 
 std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
-  const StepEnds s(c);
-  const int n = s.n;
-  const auto& y0 = s.y0;
-  const auto& d0 = s.d0;
-  const auto& y1 = s.y1;
-  const auto& d1 = s.d1;
+  return observe_ends(StepEnds(c), c.model());
+}
+
+std::optional<EventRecord> RsfEventDetector::observe(const RsfStepSpan& span) {
+  return observe_ends(SpanEnds(span), *span.model);
+}
+
+void RsfEventDetector::activated(int j, double slip) {
+  if (!in_event_ || slip0_event_[j] == events_ + 1) return;
+  slip0_[j] = slip;
+  slip0_event_[j] = events_ + 1;
+}
+
+template <class Ends>
+std::optional<EventRecord> RsfEventDetector::observe_ends(const Ends& s, const RsfModel& m) {
+  const int n = s.n, count = s.count();
   const double t0 = s.t0, t1 = s.t1;
-  // Block j's largest ln V in the step (inside it where ln V turns over) and when.
-  const auto peak_of = [&](int j) {
-    const double a = y0[n + j], b = y1[n + j];
+  // Slot k's largest ln V in the step (inside it where ln V turns over) and when.
+  const auto peak_of = [&](int k) {
+    const double a = s.lnv0(k), b = s.lnv1(k);
     Extremum p = a > b ? Extremum{t0, a} : Extremum{t1, b};
-    if (d0[n + j] > 0 && d1[n + j] <= 0) {
-      const Extremum e = hermite_extremum(t0, a, d0[n + j], t1, b, d1[n + j]);
+    if (s.dlnv0(k) > 0 && s.dlnv1(k) <= 0) {
+      const Extremum e = hermite_extremum(t0, a, s.dlnv0(k), t1, b, s.dlnv1(k));
       if (e.x > p.x) p = e;
     }
     return p;
@@ -67,29 +115,39 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
   if (!in_event_) {
     int first = -1;
     double t_first = t1;
-    for (int j = 0; j < n; ++j) {
-      const double a = y0[n + j];
-      const Extremum p = peak_of(j);
+    for (int k = 0; k < count; ++k) {
+      const double a = s.lnv0(k);
+      const Extremum p = peak_of(k);
       if (p.x < ln_vth_) continue;
       // Up through V_th; before the step's peak where the step ends below it again.
-      const double up_by = y1[n + j] >= ln_vth_ ? t1 : p.t;
-      const double tc = a >= ln_vth_ ? t0 : s.crossing_of(n + j, ln_vth_, t0, up_by);
-      if (first < 0 || tc < t_first) first = j, t_first = tc;
+      const double up_by = s.lnv1(k) >= ln_vth_ ? t1 : p.t;
+      const double tc = a >= ln_vth_ ? t0 : s.lnv_crossing(k, ln_vth_, t0, up_by);
+      // Ties go to the lower block (the slots need not be in block order).
+      if (first < 0 || tc < t_first || (tc == t_first && s.id(k) < first))
+        first = s.id(k), t_first = tc;
     }
     if (first < 0) return std::nullopt;
     in_event_ = true;
     times_.hypocentre = t_first;
     trigger_ = first;
     ln_peak_ = -HUGE_VAL;
-    seismic_.assign(n, 0);
+    for (const int j : seismic_ids_) seismic_[j] = 0;
+    seismic_ids_.clear();
+    if (seismic_.size() != static_cast<std::size_t>(n)) seismic_.assign(n, 0);
     slip0_.resize(n);
-    for (int j = 0; j < n; ++j) slip0_[j] = s.at(j, t_first);
+    slip0_event_.resize(n, 0);
+    for (int k = 0; k < count; ++k) {
+      slip0_[s.id(k)] = s.slip_of(s.id(k), t_first);
+      slip0_event_[s.id(k)] = events_ + 1;
+    }
   }
   double top = -HUGE_VAL;
-  for (int j = 0; j < n; ++j) {
-    top = std::max(top, y1[n + j]);
-    const Extremum p = peak_of(j);
+  for (int k = 0; k < count; ++k) {
+    top = std::max(top, s.lnv1(k));
+    const Extremum p = peak_of(k);
     if (p.x < ln_vth_) continue;
+    const int j = s.id(k);
+    if (!seismic_[j]) seismic_ids_.push_back(j);
     seismic_[j] = 1;
     if (p.x > ln_peak_) ln_peak_ = p.x, times_.peak = p.t;
   }
@@ -97,30 +155,28 @@ std::optional<EventRecord> RsfEventDetector::observe(const RsfCycle& c) {
   // Every block is below V_th again: the event ends at the last downward crossing, after the
   // step's peak for a block that rose above V_th and fell back inside this step.
   double t_end = std::max(t0, times_.hypocentre);
-  for (int j = 0; j < n; ++j) {
-    if (!seismic_[j]) continue;
-    const Extremum p = peak_of(j);
+  for (int k = 0; k < count; ++k) {
+    if (!seismic_[s.id(k)]) continue;
+    const Extremum p = peak_of(k);
     if (p.x < ln_vth_) continue;
-    const double from = y0[n + j] >= ln_vth_ ? t0 : p.t;
-    t_end = std::max(t_end, s.crossing_of(n + j, ln_vth_, from, t1));
+    const double from = s.lnv0(k) >= ln_vth_ ? t0 : p.t;
+    t_end = std::max(t_end, s.lnv_crossing(k, ln_vth_, from, t1));
   }
   EventRecord e;
   e.event = ++events_;
-  e.load = c.model().v_pl * times_.hypocentre;
+  e.load = m.v_pl * times_.hypocentre;
   e.trigger = trigger_;
   e.first_block = n;
   e.last_block = -1;
-  std::vector<int> slipped;
-  for (int j = 0; j < n; ++j) {
-    if (!seismic_[j]) continue;
+  std::sort(seismic_ids_.begin(), seismic_ids_.end());
+  for (const int j : seismic_ids_) {
     ++e.blocks;
-    e.moment += s.at(j, t_end) - slip0_[j];
+    e.moment += s.slip_of(j, t_end) - slip0_[j];
     e.first_block = std::min(e.first_block, j);
     e.last_block = std::max(e.last_block, j);
-    slipped.push_back(j);
   }
   // A lattice's event: the trigger and the bounding box as (x along strike, y across).
-  if (c.model().rows > 1) place_on_lattice(e, trigger_, slipped, c.model().nx());
+  if (m.rows > 1) place_on_lattice(e, trigger_, seismic_ids_, m.nx());
   e.magnitude = std::log(e.moment);
   e.duration = t_end - times_.hypocentre;
   e.max_speed = std::exp(ln_peak_);
@@ -145,6 +201,9 @@ void RsfEventDetector::restart(const RsfCycle& c, double t) {
     seismic_[j] = ln_v >= ln_vth_ ? 1 : 0;
     if (ln_v > fastest) fastest = ln_v, trigger_ = j;
   }
+  seismic_ids_.clear();
+  for (int j = 0; j < n; ++j)
+    if (seismic_[j]) seismic_ids_.push_back(j);
 }
 
 std::optional<RsfSlowEpisode> RsfSlowSlipDetector::observe(const RsfCycle& c) {
@@ -198,7 +257,11 @@ void RsfEventDetector::restore(const std::vector<double>& s) {
   const std::size_t n = (s.size() - 6) / 2;
   slip0_.assign(s.begin() + 6, s.begin() + 6 + static_cast<std::ptrdiff_t>(n));
   seismic_.clear();
-  for (std::size_t i = 0; i < n; ++i) seismic_.push_back(s[6 + n + i] != 0 ? 1 : 0);
+  seismic_ids_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    seismic_.push_back(s[6 + n + i] != 0 ? 1 : 0);
+    if (seismic_.back()) seismic_ids_.push_back(static_cast<int>(i));
+  }
 }
 
 }  // namespace bkq

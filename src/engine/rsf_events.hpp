@@ -23,6 +23,19 @@
 
 namespace bkq {
 
+// One step of the active-block integrator (engine/rsf_active.hpp) as the detector reads it:
+// `count` slots, slot s holding block id[s] with (slip, ln V, ln theta) at y[3s..3s+2] and
+// their rates in d, at the step's start (y0, d0, t0) and end (y1, d1, t1); slot[j] is block
+// j's slot or -1, and a block in none has its slip held at held_slip[j].
+struct RsfStepSpan {
+  const RsfModel* model = nullptr;
+  int n = 0, count = 0;
+  const int *id = nullptr, *slot = nullptr;
+  const double *y0 = nullptr, *d0 = nullptr, *y1 = nullptr, *d1 = nullptr;
+  const double* held_slip = nullptr;
+  double t0 = 0, t1 = 0;
+};
+
 struct RsfEventTimes {
   double hypocentre = 0;  // t at the first crossing of V_th
   double peak = 0;        // t of the peak slip rate
@@ -33,6 +46,11 @@ class RsfEventDetector {
   explicit RsfEventDetector(double v_threshold) : ln_vth_(std::log(v_threshold)) {}
   // After every accepted step of `c`: the record of an event that ended in it.
   std::optional<EventRecord> observe(const RsfCycle& c);
+  // The same for a step of the active-block integrator: only its slots are read, and a block
+  // that joins it during an event must be announced (activated(), with its slip then, which it
+  // has held since the event's start unless it was integrated then).
+  std::optional<EventRecord> observe(const RsfStepSpan& span);
+  void activated(int j, double slip);
   bool in_event() const { return in_event_; }
   const RsfEventTimes& times() const { return times_; }
   std::int64_t events() const { return events_; }
@@ -52,8 +70,13 @@ class RsfEventDetector {
   int trigger_ = 0;
   RsfEventTimes times_;
   double ln_peak_ = 0;
-  std::vector<double> slip0_;  // every block's slip at the event's start
-  std::vector<char> seismic_;  // blocks above V_th during the event
+  std::vector<double> slip0_;              // every block's slip at the event's start
+  std::vector<char> seismic_;              // blocks above V_th during the event
+  std::vector<int> seismic_ids_;           // the same, as a list
+  std::vector<std::int64_t> slip0_event_;  // the event whose start slip0_[j] is (activated())
+
+  template <class Ends>
+  std::optional<EventRecord> observe_ends(const Ends& s, const RsfModel& m);
 };
 
 // Slow-slip and afterslip episodes: intervals in which some block slips faster than V_slow

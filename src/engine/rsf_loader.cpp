@@ -11,7 +11,8 @@
 namespace bkq {
 
 namespace {
-bool handed_back(const RsfCycle& c, int j, double ln_vh);
+template <class Cycle>
+bool handed_back(const Cycle& c, int j, double ln_vh);
 
 // Where the closed forms are poor (d theta/dt = 1 - Omega with Omega = V theta/D_c near 1),
 // a velocity-weakening block that nucleates on its own is left to the integrator: it is handed
@@ -199,9 +200,40 @@ double RsfLoader::sync(int j, double t, bool settle) {
   }
   if (slip != 0)
     for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e)
-      if (nb_.index[e] != j) stress_step(nb_.index[e], t, nb_.k[e] * slip);
+      if (nb_.index[e] != j) {
+        const int i = nb_.index[e];
+        if (held(i))
+          held_stress_[i] += nb_.k[e] * slip;
+        else
+          stress_step(i, t, nb_.k[e] * slip);
+      }
   schedule(j);
   return slip;
+}
+
+void RsfLoader::hold(int j) {
+  if (held_.empty()) {
+    held_.assign(n(), 0);
+    held_stress_.assign(n(), 0.0);
+  }
+  held_[j] = 1;
+  held_stress_[j] = 0;
+  heap_.set(j, std::numeric_limits<double>::infinity());
+}
+
+double RsfLoader::release(int j) {
+  if (!held(j)) return 0;
+  held_[j] = 0;
+  const double s = held_stress_[j];
+  held_stress_[j] = 0;
+  return s;
+}
+
+double RsfLoader::take_held_stress(int j) {
+  if (!held(j)) return 0;
+  const double s = held_stress_[j];
+  held_stress_[j] = 0;
+  return s;
 }
 
 RsfEventEngine::RsfEventEngine(RsfModel m, double tolerance, double v_threshold, double v_handover,
@@ -233,7 +265,10 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
       ++syncs_;
       continue;
     }
-    integrate_event(t_next, t_end);
+    if (active_blocks())
+      integrate_active(loader_.next_block(), t_next, t_end);
+    else
+      integrate_event(t_next, t_end);
   }
   EventRecord e = pending_.front();
   pending_.pop_front();
@@ -268,7 +303,8 @@ bool cut_short(const Cycle& c, int j) {
 // events are then returned, and RsfLoader::schedule sends them straight back, so that the
 // integration goes on from there.
 namespace {
-bool handed_back(const RsfCycle& c, int j, double ln_vh) {
+template <class Cycle>
+bool handed_back(const Cycle& c, int j, double ln_vh) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
   const RsfModel& m = c.model();
@@ -330,6 +366,29 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
   }
 }
 
+// Only the active blocks are integrated (engine/rsf_active.hpp); its events get the run's
+// times and numbers as integrate_event's do.
+void RsfEventEngine::integrate_active(int first, double t0, double t_end) {
+  if (!active_) active_ = std::make_unique<RsfActiveIntegration>(m_, tol_, v_th_);
+  const double ln_vh = loader_.ln_v_handover();
+  ++integrations_;
+  const std::int64_t steps0 = active_->accepted(), syncs0 = active_->syncs(),
+                     slots0 = active_->slot_steps();
+  t_ = active_->run(loader_, first, t0, t_end, [ln_vh](const RsfActiveIntegration& a, int j) {
+    return handed_back(a, j, ln_vh);
+  });
+  steps_ += active_->accepted() - steps0;
+  syncs_ += active_->syncs() - syncs0;
+  active_block_steps_ += active_->slot_steps() - slots0;
+  for (EventRecord e : active_->events()) {
+    e.event = ++events_;
+    e.hypocentre_time += t0;
+    e.peak_time += t0;
+    e.load = m_.v_pl * e.hypocentre_time;
+    pending_.push_back(e);
+  }
+}
+
 std::vector<double> RsfEventEngine::snapshot() const {
   if (!pending_.empty()) throw Error("rsf: a checkpoint inside an event");
   std::vector<double> s = {t_, static_cast<double>(events_), static_cast<double>(integrations_),
@@ -342,14 +401,17 @@ std::vector<double> RsfEventEngine::snapshot() const {
     s.push_back(loader_.lead(j));
     s.push_back(loader_.position(j));
   }
+  s.push_back(static_cast<double>(active_block_steps_));  // last: absent from older checkpoints
   return s;
 }
 
 void RsfEventEngine::restore(const std::vector<double>& s) {
   const int n = loader_.n();
   constexpr std::size_t head = 5, per_block = 6;
-  if (s.size() != head + per_block * static_cast<std::size_t>(n))
+  const std::size_t size = head + per_block * static_cast<std::size_t>(n);
+  if (s.size() != size && s.size() != size + 1)
     throw Error("rsf: a checkpoint of another chain's size");
+  active_block_steps_ = s.size() == size + 1 ? static_cast<std::int64_t>(s.back()) : 0;
   t_ = s[0];
   events_ = static_cast<std::int64_t>(s[1]);
   integrations_ = static_cast<std::int64_t>(s[2]);

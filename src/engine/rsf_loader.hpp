@@ -29,10 +29,12 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "engine/event_record.hpp"
+#include "engine/rsf_active.hpp"
 #include "engine/rsf_cycle.hpp"
 #include "model/rsf_nucleation.hpp"
 
@@ -110,6 +112,16 @@ class RsfLoader {
   double t_ref(int j) const { return t_ref_[j]; }
   const rsf::SliderState& x_ref(int j) const { return x_ref_[j]; }
 
+  // Block j is with the active-block integrator (engine/rsf_active.hpp): its heap entry is
+  // parked at +inf, and the stress steps its neighbours' syncs would give it are summed
+  // instead; release() ends that and returns the sum (the caller set()s the block, then
+  // passes the sum on as a stress step).
+  void hold(int j);
+  double release(int j);
+  // The stress summed for held block j so far, and the sum restarted (the block stays held).
+  double take_held_stress(int j);
+  bool held(int j) const { return !held_.empty() && held_[j] != 0; }
+
  private:
   void rebase(int j, double t);  // the closed form restarts at t, its slip kept as unsynced
   void schedule(int j);
@@ -124,6 +136,8 @@ class RsfLoader {
   std::vector<char> quantum_due_;
   IndexedMinHeap heap_;
   double ln_vh_, quantum_;
+  std::vector<char> held_;           // empty until the first hold()
+  std::vector<double> held_stress_;  // stress steps summed for held blocks [Pa]
 };
 
 class RsfEventEngine {
@@ -147,12 +161,23 @@ class RsfEventEngine {
   // Records of the last integration not yet returned (a checkpoint is taken only at none).
   bool pending() const { return !pending_.empty(); }
 
+  // How an event is integrated: the whole grid (the default), or its active blocks only
+  // (engine/rsf_active.hpp), quasi-dynamic scenes only: inertial ones stay with the whole
+  // grid (the active-block path's inertial events are not checked). The choice is not part
+  // of a snapshot.
+  void set_active_blocks(bool on) { active_blocks_ = on; }
+  bool active_blocks() const { return active_blocks_ && m_.dynamics == RsfDynamics::QuasiDynamic; }
+  // Active blocks summed over the integrations' steps (the mean active set is this / steps()
+  // over the steps of active-block integrations); 0 for the whole grid.
+  std::int64_t active_block_steps() const { return active_block_steps_; }
+
   // The state between two events, as numbers (a checkpoint's), and back.
   std::vector<double> snapshot() const;
   void restore(const std::vector<double>& s);
 
  private:
   void integrate_event(double t0, double t_end);
+  void integrate_active(int first, double t0, double t_end);
 
   RsfModel m_;
   double tol_, v_th_;
@@ -160,6 +185,9 @@ class RsfEventEngine {
   double t_ = 0;
   std::int64_t events_ = 0, integrations_ = 0, steps_ = 0, syncs_ = 0;
   std::deque<EventRecord> pending_;
+  bool active_blocks_ = false;
+  std::int64_t active_block_steps_ = 0;
+  std::unique_ptr<RsfActiveIntegration> active_;
 };
 
 }  // namespace bkq

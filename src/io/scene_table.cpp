@@ -906,6 +906,14 @@ std::vector<ParamSpec> rsf_rows() {
                        "spring), so that a quantum moves a neighbour's slip rate by at most 10 %")
           .when(rsf_law(), event_driven())
           .later(),
+      choice(key::rsf_event_integration, "whole", at(&SceneValues::rsf, &RsfKeys::active_blocks),
+             {{"whole", false}, {"active", true}},
+             "how the event-driven engine integrates an event: whole (every block, from the "
+             "first to reach rsf.handover_speed until all are below it) or active (only the "
+             "blocks above it or not yet handed back, each back to its closed form on its own; "
+             "quasi-dynamic scenes, inertial ones integrate the whole grid)")
+          .when(rsf_law(), event_driven())
+          .later(),
       choice(key::rsf_pattern, "uniform", at(&SceneValues::rsf, &RsfKeys::pattern),
              {{"uniform", RsfPattern::Uniform}, {"asperities", RsfPattern::Asperities}},
              "per-block values: uniform (rsf.a, rsf.b everywhere), or asperities: blocks with x "

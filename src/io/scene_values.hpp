@@ -146,6 +146,7 @@ struct RsfKeys {
   int pattern_period = 0, pattern_width = 0;
   std::optional<double> handover_speed;  // drive.mode = events; auto: chosen from V_th and eta
   std::optional<double> creep_quantum;   // drive.mode = events; auto: from a sigma and k_c
+  bool active_blocks = false;            // rsf.event_integration = active
 };
 
 struct SceneValues {

@@ -39,14 +39,15 @@ struct LatticeShape {
 struct RsfSettings {
   bool on = false;
   RsfModel chain;
-  double tolerance = 1e-8;    // integrator.tolerance
-  double v_threshold = 1e-3;  // rsf.v_threshold [m/s]
-  double v_init = 2e-5;       // rsf.v_init [m/s]
-  double theta_init = 0;      // rsf.theta_init [s]; 0: auto, each block's D_c/V_pl
-  double v_slow = 0;          // rsf.slow_slip_threshold [m/s]; 0: no slow_slip.csv
-  bool event_driven = false;  // drive.mode = events (engine/rsf_loader.hpp)
-  double v_handover = 0;      // rsf.handover_speed [m/s], auto resolved
-  double creep_quantum = 0;   // rsf.creep_quantum [m], auto resolved
+  double tolerance = 1e-8;     // integrator.tolerance
+  double v_threshold = 1e-3;   // rsf.v_threshold [m/s]
+  double v_init = 2e-5;        // rsf.v_init [m/s]
+  double theta_init = 0;       // rsf.theta_init [s]; 0: auto, each block's D_c/V_pl
+  double v_slow = 0;           // rsf.slow_slip_threshold [m/s]; 0: no slow_slip.csv
+  bool event_driven = false;   // drive.mode = events (engine/rsf_loader.hpp)
+  double v_handover = 0;       // rsf.handover_speed [m/s], auto resolved
+  double creep_quantum = 0;    // rsf.creep_quantum [m], auto resolved
+  bool active_blocks = false;  // rsf.event_integration = active
   // The start state of every block: theta_init, or each block's steady state at V_pl.
   std::vector<double> theta_start() const {
     std::vector<double> theta;

@@ -1,0 +1,150 @@
+// The event-driven rate-and-state engine's active-block integration (engine/rsf_active.hpp)
+// against its whole-grid integration, the growth of the active set and the slip a block
+// passes on when it goes back to its closed form.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "engine/rsf_active.hpp"
+#include "engine/rsf_loader.hpp"
+#include "support/qdyn_stickslip.hpp"
+
+namespace bkq {
+namespace {
+
+// Asperities (QDYN's block) among barriers (a and b swapped), `width` blocks each, springs
+// 2e9 Pa/m; `rows` rows with springs 1e9 Pa/m along and across.
+RsfModel asperity_grid(int n, int width, int rows = 1) {
+  RsfModel m = test::qdyn_stickslip(n);
+  m.rows = rows;
+  m.springs = rows == 1 ? LatticeStencil{{1, 0, 2e9}} : LatticeStencil{{1, 0, 1e9}, {0, 1, 1e9}};
+  rsf::Params barrier = m.law[0].params();
+  std::swap(barrier.a, barrier.b_rsf);
+  for (int j = 0; j < n; ++j)
+    if ((j % m.nx()) % (2 * width) >= width) m.law[j] = rsf::Law(barrier);
+  return m;
+}
+
+// The whole-grid and the active-block engine from the same nucleating state (V theta/D_c =
+// 1000, where the closed forms hold): the first `count` events have the same trigger and
+// blocks, hypocentre times within 1e-3 and moments within 1e-2 (3.6e-4 and 4.4e-3 at most on
+// the chain, 6e-4 and 3e-3 on the lattice when written). Skipping the activation of
+// neighbours would make them single-block events.
+void expect_same_first_events(const RsfModel& m, int count) {
+  const int n = m.n();
+  std::vector<double> v0(n), theta(n);
+  for (int j = 0; j < n; ++j) {
+    v0[j] = 3e-8 * (1 + 0.8 * std::sin(1.3 * j));
+    theta[j] = 1e3 * 1e-5 / v0[j];
+  }
+  RsfEventEngine whole(m, 1e-8, 1e-3, 1e-4, 1e-6, v0, theta);
+  RsfEventEngine active(m, 1e-8, 1e-3, 1e-4, 1e-6, v0, theta);
+  active.set_active_blocks(true);
+  ASSERT_TRUE(active.active_blocks());
+  int several = 0;
+  for (int k = 0; k < count; ++k) {
+    const auto a = whole.next(1e5), b = active.next(1e5);
+    ASSERT_TRUE(a && b) << k;
+    EXPECT_EQ(a->trigger, b->trigger) << k;
+    EXPECT_EQ(a->blocks, b->blocks) << k;
+    EXPECT_EQ(a->first_block, b->first_block) << k;
+    EXPECT_EQ(a->last_block, b->last_block) << k;
+    EXPECT_NEAR(b->hypocentre_time / a->hypocentre_time, 1, 1e-3) << k;
+    EXPECT_NEAR(b->moment / a->moment, 1, 1e-2) << k;
+    several += a->blocks > 1;
+  }
+  EXPECT_GT(several, 0);
+  // Fewer blocks than N in a step on average: the point of it.
+  EXPECT_GT(active.active_block_steps(), 0);
+  EXPECT_LT(static_cast<double>(active.active_block_steps()) / active.steps(), 0.5 * n);
+}
+
+TEST(RsfActive, SameFirstEventsAsTheWholeGridOnAChain) {
+  expect_same_first_events(asperity_grid(20, 3), 4);
+}
+
+TEST(RsfActive, SameFirstEventsAsTheWholeGridOnALattice) {
+  expect_same_first_events(asperity_grid(24, 3, 4), 3);
+}
+
+// A hand-back test for the direct runs below: a decade below V_h.
+bool below_vh(const RsfActiveIntegration& a, int j) {
+  return a.ln_v(j) < std::log(1e-4) - std::log(10.0);
+}
+
+// Two coupled blocks: block 0 reaches V_h first; block 1, nucleating slowly, would reach it on
+// its own only long after the integration ends. Block 0's slip brings it to V_h: it joins
+// (two activations) and the event has both blocks. Without the coupling it stays out.
+TEST(RsfActive, TheActiveSetGrowsToANeighbourTheStressBringsToTheHandOverSpeed) {
+  for (const double k_c : {2e9, 0.0}) {
+    RsfModel m = test::qdyn_stickslip(2);
+    m.springs = {{1, 0, k_c}};
+    m.k_c = k_c;
+    RsfLoader loader(m, 1e-4, HUGE_VAL);
+    loader.set(0, 0, {std::log(5e-5), std::log(1e3 * 1e-5 / 5e-5)});
+    loader.set(1, 0, {std::log(1e-6), std::log(1e3 * 1e-5 / 1e-6)});
+    ASSERT_EQ(loader.next_block(), 0);
+    const double t0 = loader.next_time();
+    const double t1_alone =
+        loader.state_at(1, t0).ln_v < std::log(1e-4)
+            ? t0 + rsf::time_to_speed(loader.slider(1), loader.state_at(1, t0), std::log(1e-4))
+            : t0;
+    RsfActiveIntegration a(m, 1e-8, 1e-3);
+    const double t_end = a.run(loader, 0, t0, 1e5, below_vh);
+    ASSERT_FALSE(a.events().empty());
+    if (k_c > 0) {
+      EXPECT_LT(t_end, t1_alone);  // block 1 did not join on its own clock
+      EXPECT_EQ(a.activations(), 2);
+      EXPECT_EQ(a.events()[0].blocks, 2);
+      EXPECT_GT(a.slot_steps(), a.accepted());  // two blocks in some steps
+    } else {
+      EXPECT_EQ(a.activations(), 1);
+      EXPECT_EQ(a.events()[0].blocks, 1);
+      EXPECT_EQ(a.slot_steps(), a.accepted());
+    }
+    for (int j = 0; j < 2; ++j) EXPECT_FALSE(loader.held(j));
+  }
+}
+
+// Three coupled blocks, the middle one nucleating and the outer ones locked far below V_h, no
+// creep quanta: the middle block's event is integrated alone and, when it goes back, its slip
+// delta reaches each neighbour as the stress step k_c delta (its slip rate times
+// exp(k_c delta/(a sigma)) against the same loader without the event). Their sum is
+// 2 k_c delta, the stress its slip put on them (2.3 % less if its creep before the event were
+// counted in, 2 k_c delta more if the stress were passed twice).
+TEST(RsfActive, ABlockHandedBackPassesItsSlipOnAsStress) {
+  RsfModel m = test::qdyn_stickslip(3);
+  const double k_c = 2e9;
+  m.springs = {{1, 0, k_c}};
+  RsfLoader loader(m, 1e-4, HUGE_VAL);
+  for (const int j : {0, 2}) loader.set(j, 0, {std::log(1e-12), std::log(1e3)});
+  loader.set(1, 0, {std::log(5e-5), std::log(1e3 * 1e-5 / 5e-5)});
+  ASSERT_EQ(loader.next_block(), 1);
+  const RsfLoader before = loader;
+  RsfActiveIntegration a(m, 1e-8, 1e-3);
+  const double t0 = loader.next_time();
+  const double t_end = a.run(loader, 1, t0, 1e5, below_vh);
+  ASSERT_EQ(a.activations(), 1);
+  ASSERT_EQ(a.events().size(), 1u);
+  // Its position moved by its creep before t0 (not passed on: no quanta) and the slip since.
+  const double slip = loader.position(1) - before.unsynced(1, t0);
+  EXPECT_GT(before.unsynced(1, t0), 0);
+  EXPECT_GT(slip, 1e-5);
+  EXPECT_EQ(loader.position(0), 0);
+  double passed = 0;
+  for (const int j : {0, 2}) {
+    const rsf::SliderState x = loader.state_at(j, t_end), x0 = before.state_at(j, t_end);
+    EXPECT_EQ(x.ln_theta, x0.ln_theta);
+    passed += m.law[j].params().a * m.sigma * (x.ln_v - x0.ln_v);
+  }
+  EXPECT_NEAR(passed, 2 * k_c * slip, 1e-9 * k_c * slip);
+  // The event's moment is that slip, from the event's start on (less than all of it).
+  EXPECT_GT(a.events()[0].moment, 0.5 * slip);
+  EXPECT_LE(a.events()[0].moment, slip);
+}
+
+}  // namespace
+}  // namespace bkq
