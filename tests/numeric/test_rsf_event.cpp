@@ -198,12 +198,13 @@ TEST(RsfNucleation, PopulationAfterAStressStepFollowsDieterichsRate) {
 
 // The nucleating phase's slip, integrated: d ln V/dt = alpha + (H/a) V, d slip/dt = V by RK4
 // in steps that move ln V by at most 1e-4, over dt seconds.
-double integrate_slip(const rsf::Slider& s, double ln_v, double dt) {
-  const double alpha = s.stressing_rate / (s.a * s.sigma), ha = s.h() / s.a;
-  const auto f = [&](double lv) { return alpha + ha * std::exp(lv); };
+// RK4 of d ln V/dt = f(ln V) with the slip its integral of V, over dt seconds, each step at
+// most step(f) long.
+template <class Rate, class Step>
+double integrate_log_rate_slip(const Rate& f, const Step& step, double ln_v, double dt) {
   double t = 0, slip = 0;
   while (t < dt) {
-    const double h = std::min(dt - t, 1e-4 / (std::fabs(f(ln_v)) + alpha));
+    const double h = std::min(dt - t, step(f(ln_v)));
     const double k1 = f(ln_v), k2 = f(ln_v + 0.5 * h * k1), k3 = f(ln_v + 0.5 * h * k2),
                  k4 = f(ln_v + h * k3);
     const double s1 = std::exp(ln_v), s2 = std::exp(ln_v + 0.5 * h * k1),
@@ -213,6 +214,13 @@ double integrate_slip(const rsf::Slider& s, double ln_v, double dt) {
     t += h;
   }
   return slip;
+}
+
+double integrate_slip(const rsf::Slider& s, double ln_v, double dt) {
+  const double alpha = s.stressing_rate / (s.a * s.sigma), ha = s.h() / s.a;
+  const auto f = [&](double lv) { return alpha + ha * std::exp(lv); };
+  const auto step = [&](double rate) { return 1e-4 / (std::fabs(rate) + alpha); };
+  return integrate_log_rate_slip(f, step, ln_v, dt);
 }
 
 // The closed-form slip of the nucleating phase equals the integration of the balance it comes
@@ -315,19 +323,10 @@ TEST(RsfNucleation, NucleationFormIsWrongNearSteadyState) {
 double integrate_steady_slip(const rsf::Slider& s, double ln_v, double dt) {
   const double as = (s.a - s.b_rsf) * s.sigma;
   const auto f = [&](double lv) { return (s.stressing_rate - s.k_eff * std::exp(lv)) / as; };
-  double t = 0, slip = 0;
-  while (t < dt) {
-    const double h =
-        std::min({dt - t, 1e-4 / (std::fabs(f(ln_v)) + 1e-300), 0.1 * as / s.stressing_rate});
-    const double k1 = f(ln_v), k2 = f(ln_v + 0.5 * h * k1), k3 = f(ln_v + 0.5 * h * k2),
-                 k4 = f(ln_v + h * k3);
-    const double s1 = std::exp(ln_v), s2 = std::exp(ln_v + 0.5 * h * k1),
-                 s3 = std::exp(ln_v + 0.5 * h * k2), s4 = std::exp(ln_v + h * k3);
-    slip += h / 6 * (s1 + 2 * s2 + 2 * s3 + s4);
-    ln_v += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-    t += h;
-  }
-  return slip;
+  const auto step = [&](double rate) {
+    return std::min(1e-4 / (std::fabs(rate) + 1e-300), 0.1 * as / s.stressing_rate);
+  };
+  return integrate_log_rate_slip(f, step, ln_v, dt);
 }
 
 // The steady-state phase's slip equals the integration of its balance, from below and from
