@@ -583,6 +583,14 @@ TEST(RsfLoader, QuantaConvergeToTheCoupledClosedFormEquations) {
   EXPECT_LT(last, 1e-6);
 }
 
+// Steps the continuous integration until the detector closes its next event.
+EventRecord next_continuous_event(RsfCycle& c, RsfEventDetector& det) {
+  while (true) {
+    c.step();
+    if (auto e = det.observe(c)) return *e;
+  }
+}
+
 // The same three blocks in the engine against the continuous integration (the full aging law,
 // quasi-dynamic): without the creep the first event's hypocentre time is more than 5 % off
 // (9.3 % when written); with quanta of D_c/10, D_c/100 and D_c/1000 it lies within 1e-3 of
@@ -596,14 +604,10 @@ TEST(RsfEventEngine, QuantaBringTheFirstEventToTheContinuousOne) {
   for (double v : v0) theta.push_back(1e3 * 1e-5 / v);
   RsfCycle c(m, 1e-10, v0, theta);
   RsfEventDetector det(1e-3);
-  std::optional<EventRecord> ec;
-  while (!ec) {
-    c.step();
-    ec = det.observe(c);
-  }
+  const EventRecord ec = next_continuous_event(c, det);
   const auto first = [&](double q) {
     RsfEventEngine ev(m, 1e-10, 1e-3, 1e-4, q, v0, theta);
-    return ev.next(1e5)->hypocentre_time / ec->hypocentre_time - 1;
+    return ev.next(1e5)->hypocentre_time / ec.hypocentre_time - 1;
   };
   EXPECT_GT(std::fabs(first(HUGE_VAL)), 0.05);
   for (const double q : {1e-6, 1e-7, 1e-8}) EXPECT_LT(std::fabs(first(q)), 1e-3) << "q " << q;
@@ -618,12 +622,7 @@ TEST(RsfEventDetector, EventInsideOneStepStartsBeforeItEnds) {
   {
     RsfCycle c(m, 1e-8, {1e-9}, {100.0});
     RsfEventDetector det(1e-3);
-    std::optional<EventRecord> e;
-    while (!e) {
-      c.step();
-      e = det.observe(c);
-    }
-    peak = e->max_speed;
+    peak = next_continuous_event(c, det).max_speed;
   }
   int inside = 0;
   for (const double below : {1e-3, 1e-5, 1e-7, 1e-9}) {
@@ -765,13 +764,9 @@ TEST(RsfEventEngine, FirstEventsAgreeWithTheContinuousIntegration) {
   for (int k = 0; k < 3; ++k) {
     const auto e = ev.next(1e5);
     ASSERT_TRUE(e.has_value());
-    std::optional<EventRecord> ec;
-    while (!ec) {
-      c.step();
-      ec = det.observe(c);
-    }
-    EXPECT_NEAR(e->hypocentre_time / ec->hypocentre_time, 1, 0.02) << "event " << k;
-    EXPECT_NEAR(e->moment / ec->moment, 1, 0.01) << "event " << k;
+    const EventRecord ec = next_continuous_event(c, det);
+    EXPECT_NEAR(e->hypocentre_time / ec.hypocentre_time, 1, 0.02) << "event " << k;
+    EXPECT_NEAR(e->moment / ec.moment, 1, 0.01) << "event " << k;
   }
 }
 
@@ -827,14 +822,10 @@ TEST(RsfEventEngine, BarriersInSteadyStateKeepTheFirstEventsOfTheContinuousRun) 
   for (int k = 0; k < 4; ++k) {
     const auto e = ev.next(1e5);
     ASSERT_TRUE(e.has_value());
-    std::optional<EventRecord> ec;
-    while (!ec) {
-      c.step();
-      ec = det.observe(c);
-    }
-    EXPECT_NEAR(e->hypocentre_time / ec->hypocentre_time, 1, 0.02) << "event " << k;
-    EXPECT_NEAR(e->moment / ec->moment, 1, 0.05) << "event " << k;
-    EXPECT_EQ(e->trigger, ec->trigger) << "event " << k;
+    const EventRecord ec = next_continuous_event(c, det);
+    EXPECT_NEAR(e->hypocentre_time / ec.hypocentre_time, 1, 0.02) << "event " << k;
+    EXPECT_NEAR(e->moment / ec.moment, 1, 0.05) << "event " << k;
+    EXPECT_EQ(e->trigger, ec.trigger) << "event " << k;
   }
 }
 
