@@ -11,7 +11,7 @@
 namespace bkq {
 
 namespace {
-bool handed_back(const RsfCycle& c, int j, double ln_vh);
+bool handed_back(const RsfCycle& c, int j, double ln_vh, bool unstable_alone);
 
 // Where the closed forms are poor (d theta/dt = 1 - Omega with Omega = V theta/D_c near 1),
 // a velocity-weakening block that nucleates on its own is left to the integrator: it is handed
@@ -29,15 +29,11 @@ constexpr double kSlowLocked = 3;
 // Omega = 1 (or locked, Omega < 1).
 constexpr double kLnOmegaSteady = 0.05;
 
-double ln_omega(const rsf::Slider& s, const rsf::SliderState& x) {
-  return x.ln_v + x.ln_theta - std::log(s.dc);
-}
-
 // Whether block j's steady sliding is unstable on its own springs: sigma (b - a)/D_c above
 // the unloading stiffness of a block inside the grid, k + twice the stencil's springs. Only
 // such a block is kept with the integrator near V theta/D_c = 1: it passes through there on its
 // way to an event, where a stable one (a weaker asperity) may creep there for good.
-bool nucleates_alone(const RsfModel& m, int j) {
+bool unstable_on_own_springs(const RsfModel& m, int j) {
   const rsf::Params& p = m.law[j].params();
   double k_eff = m.k;
   for (const auto& spring : m.stencil()) k_eff += 2 * spring.k;
@@ -114,7 +110,7 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
     s.k_eff = m.k;
     for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) s.k_eff += nb_.k[e];
     slider_.push_back(s);
-    nucleates_alone_.push_back(nucleates_alone(m, j) ? 1 : 0);
+    nucleates_alone_.push_back(unstable_on_own_springs(m, j) ? 1 : 0);
   }
 }
 
@@ -164,7 +160,7 @@ void RsfLoader::schedule(int j) {
   // A velocity-weakening block nearing steady state goes to the integrator (kOmegaIn), and so
   // does a velocity-strengthening one away from it (both only as an integration's end left
   // them: see handed_back).
-  const double lo = ln_omega(s, x_ref_[j]);
+  const double lo = rsf::ln_omega(s, x_ref_[j]);
   if (nucleates_alone_[j]) {
     if (rsf::locked(s, x_ref_[j]))
       t_vh = std::min(t_vh, rsf::time_to_omega(s, x_ref_[j], kLnOmegaIn));
@@ -268,7 +264,7 @@ bool cut_short(const Cycle& c, int j) {
 // events are then returned, and RsfLoader::schedule sends them straight back, so that the
 // integration goes on from there.
 namespace {
-bool handed_back(const RsfCycle& c, int j, double ln_vh) {
+bool handed_back(const RsfCycle& c, int j, double ln_vh, bool unstable_alone) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
   const RsfModel& m = c.model();
@@ -278,7 +274,7 @@ bool handed_back(const RsfCycle& c, int j, double ln_vh) {
   const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
   const bool accelerating = c.dy()[c.n() + j] >= 0;
   if (p.a > p.b_rsf) return lo < 0 ? slow : lo < kLnOmegaSteady || cut;
-  if (nucleates_alone(m, j)) {
+  if (unstable_alone) {
     if (lo < kLnOmegaBack) return slow;
     return lo < kLnOmegaOut ? cut && lo >= kLnOmegaIn : accelerating;
   }
@@ -318,7 +314,8 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
     if (t0 + cycle.t() >= t_end) break;
     if (detector.in_event()) continue;
     bool done = true;
-    for (int j = 0; j < n && done; ++j) done = handed_back(cycle, j, ln_vh);
+    for (int j = 0; j < n && done; ++j)
+      done = handed_back(cycle, j, ln_vh, loader_.nucleates_alone(j));
     if (done) break;
   }
   steps_ += cycle.accepted();
