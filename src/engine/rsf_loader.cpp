@@ -12,7 +12,7 @@ namespace bkq {
 
 namespace {
 template <class Cycle>
-bool handed_back(const Cycle& c, int j, double ln_vh);
+bool handed_back(const Cycle& c, int j, double ln_vh, bool unstable_alone);
 
 // Where the closed forms are poor (d theta/dt = 1 - Omega with Omega = V theta/D_c near 1),
 // a velocity-weakening block that nucleates on its own is left to the integrator: it is handed
@@ -30,15 +30,11 @@ constexpr double kSlowLocked = 3;
 // Omega = 1 (or locked, Omega < 1).
 constexpr double kLnOmegaSteady = 0.05;
 
-double ln_omega(const rsf::Slider& s, const rsf::SliderState& x) {
-  return x.ln_v + x.ln_theta - std::log(s.dc);
-}
-
 // Whether block j's steady sliding is unstable on its own springs: sigma (b - a)/D_c above
 // the unloading stiffness of a block inside the grid, k + twice the stencil's springs. Only
 // such a block is kept with the integrator near V theta/D_c = 1: it passes through there on its
 // way to an event, where a stable one (a weaker asperity) may creep there for good.
-bool nucleates_alone(const RsfModel& m, int j) {
+bool unstable_on_own_springs(const RsfModel& m, int j) {
   const rsf::Params& p = m.law[j].params();
   double k_eff = m.k;
   for (const auto& spring : m.stencil()) k_eff += 2 * spring.k;
@@ -115,7 +111,7 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
     s.k_eff = m.k;
     for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) s.k_eff += nb_.k[e];
     slider_.push_back(s);
-    nucleates_alone_.push_back(nucleates_alone(m, j) ? 1 : 0);
+    nucleates_alone_.push_back(unstable_on_own_springs(m, j) ? 1 : 0);
   }
 }
 
@@ -165,7 +161,7 @@ void RsfLoader::schedule(int j) {
   // A velocity-weakening block nearing steady state goes to the integrator (kOmegaIn), and so
   // does a velocity-strengthening one away from it (both only as an integration's end left
   // them: see handed_back).
-  const double lo = ln_omega(s, x_ref_[j]);
+  const double lo = rsf::ln_omega(s, x_ref_[j]);
   if (nucleates_alone_[j]) {
     if (rsf::locked(s, x_ref_[j]))
       t_vh = std::min(t_vh, rsf::time_to_omega(s, x_ref_[j], kLnOmegaIn));
@@ -304,7 +300,7 @@ bool cut_short(const Cycle& c, int j) {
 // integration goes on from there.
 namespace {
 template <class Cycle>
-bool handed_back(const Cycle& c, int j, double ln_vh) {
+bool handed_back(const Cycle& c, int j, double ln_vh, bool unstable_alone) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
   const RsfModel& m = c.model();
@@ -314,7 +310,7 @@ bool handed_back(const Cycle& c, int j, double ln_vh) {
   const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
   const bool accelerating = c.dy()[c.n() + j] >= 0;
   if (p.a > p.b_rsf) return lo < 0 ? slow : lo < kLnOmegaSteady || cut;
-  if (nucleates_alone(m, j)) {
+  if (unstable_alone) {
     if (lo < kLnOmegaBack) return slow;
     return lo < kLnOmegaOut ? cut && lo >= kLnOmegaIn : accelerating;
   }
@@ -354,7 +350,8 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
     if (t0 + cycle.t() >= t_end) break;
     if (detector.in_event()) continue;
     bool done = true;
-    for (int j = 0; j < n && done; ++j) done = handed_back(cycle, j, ln_vh);
+    for (int j = 0; j < n && done; ++j)
+      done = handed_back(cycle, j, ln_vh, loader_.nucleates_alone(j));
     if (done) break;
   }
   steps_ += cycle.accepted();
@@ -374,8 +371,8 @@ void RsfEventEngine::integrate_active(int first, double t0, double t_end) {
   ++integrations_;
   const std::int64_t steps0 = active_->accepted(), syncs0 = active_->syncs(),
                      slots0 = active_->slot_steps();
-  t_ = active_->run(loader_, first, t0, t_end, [ln_vh](const RsfActiveIntegration& a, int j) {
-    return handed_back(a, j, ln_vh);
+  t_ = active_->run(loader_, first, t0, t_end, [this, ln_vh](const RsfActiveIntegration& a, int j) {
+    return handed_back(a, j, ln_vh, loader_.nucleates_alone(j));
   });
   steps_ += active_->accepted() - steps0;
   syncs_ += active_->syncs() - syncs0;

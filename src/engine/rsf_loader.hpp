@@ -108,6 +108,9 @@ class RsfLoader {
   bool next_is_quantum() const { return quantum_due_[heap_.top()] != 0; }
   double ln_v_handover() const { return ln_vh_; }
   double creep_quantum() const { return quantum_; }
+  // Block j's steady sliding is unstable on its own springs: near V theta/D_c = 1 it is left to
+  // the integrator.
+  bool nucleates_alone(int j) const { return nucleates_alone_[j] != 0; }
   // Where block j's closed form starts (its last set()).
   double t_ref(int j) const { return t_ref_[j]; }
   const rsf::SliderState& x_ref(int j) const { return x_ref_[j]; }

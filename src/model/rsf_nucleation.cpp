@@ -50,8 +50,7 @@ SliderState locked_after(const Slider& s, SliderState x, double dt) {
 
 // Seconds from a locked state to Omega = 1.
 double time_to_nucleation(const Slider& s, SliderState x) {
-  return first_root(x.ln_v + x.ln_theta - std::log(s.dc), alpha_of(s), 1 - s.b_rsf / s.a,
-                    std::exp(x.ln_theta));
+  return first_root(ln_omega(s, x), alpha_of(s), 1 - s.b_rsf / s.a, std::exp(x.ln_theta));
 }
 
 // The nucleating phase dt on.
@@ -179,9 +178,13 @@ double sliding_slip_time(const Slider& s, SliderState x, double amount) {
 
 }  // namespace
 
+double ln_omega(const Slider& s, const SliderState& x) {
+  return x.ln_v + x.ln_theta - std::log(s.dc);
+}
+
 bool locked(const Slider& s, const SliderState& x) {
   // A steady-state block's theta = D_c/V holds to rounding: it stays steady.
-  return x.ln_v + x.ln_theta - std::log(s.dc) < (s.strengthening() ? -kSteadySlack : 0.0);
+  return ln_omega(s, x) < (s.strengthening() ? -kSteadySlack : 0.0);
 }
 
 SliderState evolve(const Slider& s, SliderState x, double dt) {
@@ -248,9 +251,9 @@ Clocks clocks(const Slider& s, SliderState x, double ln_v_target, double amount)
 }
 
 SliderState onto_steady_state(const Slider& s, SliderState x) {
-  const double ln_omega = x.ln_v + x.ln_theta - std::log(s.dc);
-  if (!s.strengthening() || !(ln_omega > 0)) return x;
-  const double ln_v = x.ln_v + s.b_rsf / (s.a - s.b_rsf) * ln_omega;
+  const double lo = ln_omega(s, x);
+  if (!s.strengthening() || !(lo > 0)) return x;
+  const double ln_v = x.ln_v + s.b_rsf / (s.a - s.b_rsf) * lo;
   return {ln_v, std::log(s.dc) - ln_v};
 }
 
@@ -262,10 +265,10 @@ SliderState stress_step(const Slider& s, SliderState x, double dtau) {
   return {x.ln_v + dtau / (s.a * s.sigma), x.ln_theta};
 }
 
-double time_to_omega(const Slider& s, SliderState x, double ln_omega) {
-  const double ln_omega0 = x.ln_v + x.ln_theta - std::log(s.dc);
-  if (!locked(s, x) || ln_omega0 >= ln_omega) return 0;
-  return first_root(ln_omega0 - ln_omega, alpha_of(s), 1 - s.b_rsf / s.a, std::exp(x.ln_theta));
+double time_to_omega(const Slider& s, SliderState x, double ln_target) {
+  const double ln_omega0 = ln_omega(s, x);
+  if (!locked(s, x) || ln_omega0 >= ln_target) return 0;
+  return first_root(ln_omega0 - ln_target, alpha_of(s), 1 - s.b_rsf / s.a, std::exp(x.ln_theta));
 }
 
 }  // namespace bkq::rsf

@@ -61,6 +61,8 @@ struct SliderState {
   double ln_v = 0, ln_theta = 0;
 };
 
+// ln Omega = ln(V theta/D_c), which sets the phase.
+double ln_omega(const Slider& s, const SliderState& x);
 bool locked(const Slider& s, const SliderState& x);  // Omega = V theta/D_c < 1
 
 // The state dt seconds on (dt >= 0; the slip rate is +inf past the instability).
@@ -88,8 +90,8 @@ Clocks clocks(const Slider& s, SliderState x, double ln_v_target, double amount)
 // A shear-stress step dtau [Pa]: V times exp(dtau/(a sigma)), theta kept; in the steady-state
 // phase V times exp(dtau/((a - b) sigma)), theta = D_c/V.
 SliderState stress_step(const Slider& s, SliderState x, double dtau);
-// The first time from now at which a locked block's V theta/D_c reaches exp(ln_omega) <= 1
+// The first time from now at which a locked block's V theta/D_c reaches exp(ln_target) <= 1
 // (0 if it is there or above, or not locked; +inf if never).
-double time_to_omega(const Slider& s, SliderState x, double ln_omega);
+double time_to_omega(const Slider& s, SliderState x, double ln_target);
 
 }  // namespace bkq::rsf

@@ -198,12 +198,13 @@ TEST(RsfNucleation, PopulationAfterAStressStepFollowsDieterichsRate) {
 
 // The nucleating phase's slip, integrated: d ln V/dt = alpha + (H/a) V, d slip/dt = V by RK4
 // in steps that move ln V by at most 1e-4, over dt seconds.
-double integrate_slip(const rsf::Slider& s, double ln_v, double dt) {
-  const double alpha = s.stressing_rate / (s.a * s.sigma), ha = s.h() / s.a;
-  const auto f = [&](double lv) { return alpha + ha * std::exp(lv); };
+// RK4 of d ln V/dt = f(ln V) with the slip its integral of V, over dt seconds, each step at
+// most step(f) long.
+template <class Rate, class Step>
+double integrate_log_rate_slip(const Rate& f, const Step& step, double ln_v, double dt) {
   double t = 0, slip = 0;
   while (t < dt) {
-    const double h = std::min(dt - t, 1e-4 / (std::fabs(f(ln_v)) + alpha));
+    const double h = std::min(dt - t, step(f(ln_v)));
     const double k1 = f(ln_v), k2 = f(ln_v + 0.5 * h * k1), k3 = f(ln_v + 0.5 * h * k2),
                  k4 = f(ln_v + h * k3);
     const double s1 = std::exp(ln_v), s2 = std::exp(ln_v + 0.5 * h * k1),
@@ -213,6 +214,13 @@ double integrate_slip(const rsf::Slider& s, double ln_v, double dt) {
     t += h;
   }
   return slip;
+}
+
+double integrate_slip(const rsf::Slider& s, double ln_v, double dt) {
+  const double alpha = s.stressing_rate / (s.a * s.sigma), ha = s.h() / s.a;
+  const auto f = [&](double lv) { return alpha + ha * std::exp(lv); };
+  const auto step = [&](double rate) { return 1e-4 / (std::fabs(rate) + alpha); };
+  return integrate_log_rate_slip(f, step, ln_v, dt);
 }
 
 // The closed-form slip of the nucleating phase equals the integration of the balance it comes
@@ -315,19 +323,10 @@ TEST(RsfNucleation, NucleationFormIsWrongNearSteadyState) {
 double integrate_steady_slip(const rsf::Slider& s, double ln_v, double dt) {
   const double as = (s.a - s.b_rsf) * s.sigma;
   const auto f = [&](double lv) { return (s.stressing_rate - s.k_eff * std::exp(lv)) / as; };
-  double t = 0, slip = 0;
-  while (t < dt) {
-    const double h =
-        std::min({dt - t, 1e-4 / (std::fabs(f(ln_v)) + 1e-300), 0.1 * as / s.stressing_rate});
-    const double k1 = f(ln_v), k2 = f(ln_v + 0.5 * h * k1), k3 = f(ln_v + 0.5 * h * k2),
-                 k4 = f(ln_v + h * k3);
-    const double s1 = std::exp(ln_v), s2 = std::exp(ln_v + 0.5 * h * k1),
-                 s3 = std::exp(ln_v + 0.5 * h * k2), s4 = std::exp(ln_v + h * k3);
-    slip += h / 6 * (s1 + 2 * s2 + 2 * s3 + s4);
-    ln_v += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-    t += h;
-  }
-  return slip;
+  const auto step = [&](double rate) {
+    return std::min(1e-4 / (std::fabs(rate) + 1e-300), 0.1 * as / s.stressing_rate);
+  };
+  return integrate_log_rate_slip(f, step, ln_v, dt);
 }
 
 // The steady-state phase's slip equals the integration of its balance, from below and from
@@ -584,6 +583,14 @@ TEST(RsfLoader, QuantaConvergeToTheCoupledClosedFormEquations) {
   EXPECT_LT(last, 1e-6);
 }
 
+// Steps the continuous integration until the detector closes its next event.
+EventRecord next_continuous_event(RsfCycle& c, RsfEventDetector& det) {
+  while (true) {
+    c.step();
+    if (auto e = det.observe(c)) return *e;
+  }
+}
+
 // The same three blocks in the engine against the continuous integration (the full aging law,
 // quasi-dynamic): without the creep the first event's hypocentre time is more than 5 % off
 // (9.3 % when written); with quanta of D_c/10, D_c/100 and D_c/1000 it lies within 1e-3 of
@@ -597,14 +604,10 @@ TEST(RsfEventEngine, QuantaBringTheFirstEventToTheContinuousOne) {
   for (double v : v0) theta.push_back(1e3 * 1e-5 / v);
   RsfCycle c(m, 1e-10, v0, theta);
   RsfEventDetector det(1e-3);
-  std::optional<EventRecord> ec;
-  while (!ec) {
-    c.step();
-    ec = det.observe(c);
-  }
+  const EventRecord ec = next_continuous_event(c, det);
   const auto first = [&](double q) {
     RsfEventEngine ev(m, 1e-10, 1e-3, 1e-4, q, v0, theta);
-    return ev.next(1e5)->hypocentre_time / ec->hypocentre_time - 1;
+    return ev.next(1e5)->hypocentre_time / ec.hypocentre_time - 1;
   };
   EXPECT_GT(std::fabs(first(HUGE_VAL)), 0.05);
   for (const double q : {1e-6, 1e-7, 1e-8}) EXPECT_LT(std::fabs(first(q)), 1e-3) << "q " << q;
@@ -619,12 +622,7 @@ TEST(RsfEventDetector, EventInsideOneStepStartsBeforeItEnds) {
   {
     RsfCycle c(m, 1e-8, {1e-9}, {100.0});
     RsfEventDetector det(1e-3);
-    std::optional<EventRecord> e;
-    while (!e) {
-      c.step();
-      e = det.observe(c);
-    }
-    peak = e->max_speed;
+    peak = next_continuous_event(c, det).max_speed;
   }
   int inside = 0;
   for (const double below : {1e-3, 1e-5, 1e-7, 1e-9}) {
@@ -766,13 +764,9 @@ TEST(RsfEventEngine, FirstEventsAgreeWithTheContinuousIntegration) {
   for (int k = 0; k < 3; ++k) {
     const auto e = ev.next(1e5);
     ASSERT_TRUE(e.has_value());
-    std::optional<EventRecord> ec;
-    while (!ec) {
-      c.step();
-      ec = det.observe(c);
-    }
-    EXPECT_NEAR(e->hypocentre_time / ec->hypocentre_time, 1, 0.02) << "event " << k;
-    EXPECT_NEAR(e->moment / ec->moment, 1, 0.01) << "event " << k;
+    const EventRecord ec = next_continuous_event(c, det);
+    EXPECT_NEAR(e->hypocentre_time / ec.hypocentre_time, 1, 0.02) << "event " << k;
+    EXPECT_NEAR(e->moment / ec.moment, 1, 0.01) << "event " << k;
   }
 }
 
@@ -828,14 +822,10 @@ TEST(RsfEventEngine, BarriersInSteadyStateKeepTheFirstEventsOfTheContinuousRun) 
   for (int k = 0; k < 4; ++k) {
     const auto e = ev.next(1e5);
     ASSERT_TRUE(e.has_value());
-    std::optional<EventRecord> ec;
-    while (!ec) {
-      c.step();
-      ec = det.observe(c);
-    }
-    EXPECT_NEAR(e->hypocentre_time / ec->hypocentre_time, 1, 0.02) << "event " << k;
-    EXPECT_NEAR(e->moment / ec->moment, 1, 0.05) << "event " << k;
-    EXPECT_EQ(e->trigger, ec->trigger) << "event " << k;
+    const EventRecord ec = next_continuous_event(c, det);
+    EXPECT_NEAR(e->hypocentre_time / ec.hypocentre_time, 1, 0.02) << "event " << k;
+    EXPECT_NEAR(e->moment / ec.moment, 1, 0.05) << "event " << k;
+    EXPECT_EQ(e->trigger, ec.trigger) << "event " << k;
   }
 }
 
