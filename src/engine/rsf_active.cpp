@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <string>
 #include <utility>
@@ -14,6 +15,12 @@
 namespace bkq {
 
 using namespace dopri;  // engine/dormand_prince.hpp
+
+namespace {
+// The stress [a sigma] the active blocks' slip builds up on an inactive neighbour before it is
+// passed to its closed form: its clock is then late by at most a 5 % change in its slip rate.
+constexpr double kPassOn = 0.05;
+}  // namespace
 
 RsfActiveIntegration::RsfActiveIntegration(const RsfModel& m, double tolerance, double v_threshold)
     : m_(m),
@@ -65,14 +72,17 @@ RsfStepSpan RsfActiveIntegration::span() const {
 }
 
 void RsfActiveIntegration::activate(RsfLoader& loader, int j, double t_abs, double dtau) {
-  if (dtau != 0) loader.stress_step(j, t_abs, dtau);
   // It has had every neighbour's slip so far.
   for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) {
     const int i = nb_.index[e];
     passed_[e] = slot_[i] >= 0 ? y_[3 * slot_[i]] : held_[i];
   }
   loader.sync(j, t_abs, true);
+  // The active blocks' stress reaches it at once: the direct effect, theta kept (the loader's
+  // step along steady state is for a barrier's slow loading, not for a step it is integrated
+  // through).
   rsf::SliderState x = loader.state_at(j, t_abs);
+  x.ln_v += dtau / (m_.law[j].params().a * m_.sigma);
   // A velocity-strengthening block that crept on in the nucleation form has let theta fall as
   // ln theta0 - slip/D_c, far below steady state (V theta/D_c << 1, where the aging law would
   // heal it at once and the step size collapse): it starts at the steady state of its stress,
@@ -140,7 +150,7 @@ void RsfActiveIntegration::release(RsfLoader& loader, int j, double t_abs) {
         dtau += nb_.k[f] * (slip - passed_[f]);
         passed_[f] = slip;
       }
-    if (dtau != 0) loader.stress_step(i, t_abs, dtau);
+    if (dtau != 0) loader.sudden_stress_step(i, t_abs, dtau);
   }
   // It has had its neighbours' slip so far (its stress is the law's at its state).
   for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) {
@@ -272,7 +282,6 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
   t_ = t_prev_ = 0;
   steps_in_run_ = 0;
   events_.clear();
-  const double ln_vh = loader.ln_v_handover();
   // What the loader has due by now: quanta passed on, blocks at V_h taken in. Due is read on
   // the integration's clock (a time that rounds to within it of t_ is due), so that a step to
   // the next loader time always moves t_.
@@ -304,7 +313,6 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
   activate(loader, first, t0, 0.0);
   take_due(t0);
   rebuild();
-  std::vector<std::pair<int, double>> joining;
   std::vector<int> leaving;
   while (true) {
     // Stress steps passed on since (a joining block's creep, a leaving block's slip) may have
@@ -321,25 +329,30 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
     const double now = t0 + t_;
     if (t_ >= t_end - t0) break;
     bool changed = take_due(now);
-    // Inactive neighbours the active blocks' slip brings to V_h.
-    joining.clear();
+    // The active blocks' slip reaches their inactive neighbours' clocks as sudden stress steps
+    // (the direct effect) once it has built up to kPassOn a sigma; one brought to V_h, or a
+    // barrier taken away from steady state, is due and joins at once.
     ++stamp_now_;
-    for (const int j : id_)
+    for (std::size_t s = 0; s < id_.size(); ++s) {
+      const int j = id_[s];
       for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) {
         const int i = nb_.index[e];
         if (slot_[i] >= 0 || stamp_[i] == stamp_now_) continue;
         stamp_[i] = stamp_now_;
         const double dtau = owed(i);
-        if (!(dtau > 0)) continue;
-        const double ln_v = loader.state_at(i, now).ln_v + dtau / (m_.law[i].params().a * m_.sigma);
-        if (ln_v >= ln_vh) joining.emplace_back(i, dtau);
+        if (!(std::fabs(dtau) >= kPassOn * m_.law[i].params().a * m_.sigma)) continue;
+        loader.sudden_stress_step(i, now, dtau);
+        for (int f = nb_.start[i]; f < nb_.start[i + 1]; ++f)
+          if (slot_[nb_.index[f]] >= 0) passed_[f] = y_[3 * slot_[nb_.index[f]]];
       }
-    for (const auto& [i, dtau] : joining) activate(loader, i, now, owed(i));
-    if (changed || !joining.empty()) rebuild();
+    }
+    changed = take_due(now) || changed;
+    if (changed) rebuild();
     // Blocks back to their closed forms (not in the step they joined).
     leaving.clear();
-    for (const int j : id_)
-      if (joined_step_[j] < steps_in_run_ && handed_back(*this, j)) leaving.push_back(j);
+    if (!detector_.in_event())
+      for (const int j : id_)
+        if (joined_step_[j] < steps_in_run_ && handed_back(*this, j)) leaving.push_back(j);
     // A block handed back once the run has lasted its t_a (the hand-back test's cut) ends the
     // run when no event is open, as the whole grid's integration ends there: what is due then
     // starts the next one, so that its events are returned.

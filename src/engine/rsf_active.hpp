@@ -63,6 +63,7 @@ class RsfActiveIntegration {
   Column y() const { return {this, 0}; }
   Column dy() const { return {this, 3}; }
   double friction_stress(int j) const;
+  bool in_event() const { return detector_.in_event(); }
 
   using HandBack = std::function<bool(const RsfActiveIntegration&, int)>;
   // One integration from block `first` reaching V_h at t0 (absolute times) until no block is

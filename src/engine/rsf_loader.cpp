@@ -12,7 +12,7 @@ namespace bkq {
 
 namespace {
 template <class Cycle>
-bool handed_back(const Cycle& c, int j, double ln_vh, bool unstable_alone);
+bool handed_back(const Cycle& c, int j, double ln_vh, bool unstable_alone, bool may_cut);
 
 // Where the closed forms are poor (d theta/dt = 1 - Omega with Omega = V theta/D_c near 1),
 // a velocity-weakening block that nucleates on its own is left to the integrator: it is handed
@@ -90,6 +90,7 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
     : nb_(rsf_neighbours(m)),
       t_ref_(m.n(), 0.0),
       x_ref_(m.n()),
+      t_nuc_(m.n(), 0.0),
       unsynced_(m.n(), 0.0),
       position_(m.n(), 0.0),
       lead_(m.n(), 0.0),
@@ -117,12 +118,12 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
 
 rsf::SliderState RsfLoader::state_at(int j, double t) const {
   if (t == t_ref_[j]) return x_ref_[j];
-  return rsf::evolve(slider_[j], x_ref_[j], t - t_ref_[j]);
+  return rsf::evolve(slider_[j], x_ref_[j], t - t_ref_[j], t_nuc_[j]);
 }
 
 double RsfLoader::unsynced(int j, double t) const {
   if (t == t_ref_[j]) return unsynced_[j];
-  return unsynced_[j] + rsf::slip(slider_[j], x_ref_[j], t - t_ref_[j]);
+  return unsynced_[j] + rsf::slip(slider_[j], x_ref_[j], t - t_ref_[j], t_nuc_[j]);
 }
 
 void RsfLoader::set(int j, double t, rsf::SliderState x) {
@@ -141,6 +142,8 @@ void RsfLoader::rebase(int j, double t) {
   if (t == t_ref_[j]) return;
   unsynced_[j] = unsynced(j, t);
   x_ref_[j] = state_at(j, t);
+  // The locked phase's clock runs on (schedule() recomputes it after a stress step).
+  t_nuc_[j] = std::max(0.0, t_nuc_[j] - (t - t_ref_[j]));
   t_ref_[j] = t;
 }
 
@@ -148,6 +151,7 @@ void RsfLoader::rebase(int j, double t) {
 // half a quantum.
 void RsfLoader::schedule(int j) {
   const rsf::Slider& s = slider_[j];
+  t_nuc_[j] = rsf::time_to_nucleation(s, x_ref_[j]);
   double t_vh, t_q;
   if (std::isinf(quantum_)) {
     t_vh = rsf::time_to_speed(s, x_ref_[j], ln_vh_);
@@ -177,6 +181,12 @@ void RsfLoader::schedule(int j) {
 void RsfLoader::stress_step(int j, double t, double dtau) {
   rebase(j, t);
   x_ref_[j] = rsf::stress_step(slider_[j], x_ref_[j], dtau);
+  schedule(j);
+}
+
+void RsfLoader::sudden_stress_step(int j, double t, double dtau) {
+  rebase(j, t);
+  x_ref_[j].ln_v += dtau / (slider_[j].a * slider_[j].sigma);
   schedule(j);
 }
 
@@ -297,15 +307,17 @@ bool cut_short(const Cycle& c, int j) {
 // once the integration has lasted the block's t_a = a sigma/(k V_pl) such a block (from
 // kOmegaIn on) and a velocity-strengthening one away from steady state go back below V_h: the
 // events are then returned, and RsfLoader::schedule sends them straight back, so that the
-// integration goes on from there.
+// integration goes on from there. The cut applies only where may_cut (no event open: the
+// active-block integration, which hands blocks back one by one, would otherwise send them back
+// and take them in again at every step of an event).
 namespace {
 template <class Cycle>
-bool handed_back(const Cycle& c, int j, double ln_vh, bool unstable_alone) {
+bool handed_back(const Cycle& c, int j, double ln_vh, bool unstable_alone, bool may_cut) {
   const double ln_v = c.ln_v(j);
   if (!(ln_v < ln_vh)) return false;
   const RsfModel& m = c.model();
   const rsf::Params& p = m.law[j].params();
-  const bool cut = cut_short(c, j);
+  const bool cut = may_cut && cut_short(c, j);
   const bool slow = ln_v < std::log(kSlowLocked * m.v_pl);
   const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
   const bool accelerating = c.dy()[c.n() + j] >= 0;
@@ -351,7 +363,7 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
     if (detector.in_event()) continue;
     bool done = true;
     for (int j = 0; j < n && done; ++j)
-      done = handed_back(cycle, j, ln_vh, loader_.nucleates_alone(j));
+      done = handed_back(cycle, j, ln_vh, loader_.nucleates_alone(j), true);
     if (done) break;
   }
   steps_ += cycle.accepted();
@@ -372,7 +384,7 @@ void RsfEventEngine::integrate_active(int first, double t0, double t_end) {
   const std::int64_t steps0 = active_->accepted(), syncs0 = active_->syncs(),
                      slots0 = active_->slot_steps();
   t_ = active_->run(loader_, first, t0, t_end, [this, ln_vh](const RsfActiveIntegration& a, int j) {
-    return handed_back(a, j, ln_vh, loader_.nucleates_alone(j));
+    return handed_back(a, j, ln_vh, loader_.nucleates_alone(j), !a.in_event());
   });
   steps_ += active_->accepted() - steps0;
   syncs_ += active_->syncs() - syncs0;

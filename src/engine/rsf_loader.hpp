@@ -90,6 +90,10 @@ class RsfLoader {
   void set(int j, double t, rsf::SliderState x, double unsynced, double lead);
   // A shear-stress step dtau on block j at time t (its unsynced slip kept).
   void stress_step(int j, double t, double dtau);
+  // A sudden step (an integrated event's slip passed on): the direct effect only, V times
+  // exp(dtau/(a sigma)) at theta kept, in every phase; a barrier it takes away from steady state
+  // is then due to the integrator, which evolves its theta.
+  void sudden_stress_step(int j, double t, double dtau);
   // Block j's closed-form slip since its last sync, at time t.
   double unsynced(int j, double t) const;
   // Moves block j's position by its unsynced slip at time t and passes a slip on to its
@@ -134,6 +138,7 @@ class RsfLoader {
   RsfNeighbours nb_;
   std::vector<double> t_ref_;
   std::vector<rsf::SliderState> x_ref_;
+  std::vector<double> t_nuc_;                // x_ref_'s time to the end of its locked phase
   std::vector<double> unsynced_, position_;  // slip before t_ref not synced; synced slip
   std::vector<double> lead_;                 // slip passed on less the synced slip
   std::vector<char> quantum_due_;

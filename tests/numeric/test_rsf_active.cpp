@@ -28,17 +28,21 @@ RsfModel asperity_grid(int n, int width, int rows = 1) {
   return m;
 }
 
-// The whole-grid and the active-block engine from the same nucleating state (V theta/D_c =
-// 1000, where the closed forms hold): the first `count` events have the same trigger and
-// blocks, hypocentre times within 1e-3 and moments within 1e-2 (3.6e-4 and 4.4e-3 at most on
-// the chain, 6e-4 and 3e-3 on the lattice when written). Skipping the activation of
-// neighbours would make them single-block events.
+// The whole-grid and the active-block engine from the same state (the asperities nucleating,
+// V theta/D_c = 1000, the barriers at steady state: where the closed forms hold): the first
+// `count` events have the same trigger and blocks, hypocentre times within 1e-2 and moments
+// within 2e-2 (when written: 3e-4 and 1.2e-2 at most on the chain; on the lattice 2e-4 and
+// 3e-3 for the first event, 7.9e-3 and 8e-3 for the two after 350 s of closed-form creep in
+// between, which the active path's held neighbours change). Skipping the activation of
+// neighbours would make them single-block events; a barrier's step along steady state where
+// it joins or where an event's slip reaches it would add blocks and an aftershock.
 void expect_same_first_events(const RsfModel& m, int count) {
   const int n = m.n();
   std::vector<double> v0(n), theta(n);
   for (int j = 0; j < n; ++j) {
     v0[j] = 3e-8 * (1 + 0.8 * std::sin(1.3 * j));
-    theta[j] = 1e3 * 1e-5 / v0[j];
+    const rsf::Params& p = m.law[j].params();
+    theta[j] = (p.a > p.b_rsf ? 1.0 : 1e3) * p.dc / v0[j];
   }
   RsfEventEngine whole(m, 1e-8, 1e-3, 1e-4, 1e-6, v0, theta);
   RsfEventEngine active(m, 1e-8, 1e-3, 1e-4, 1e-6, v0, theta);
@@ -52,8 +56,8 @@ void expect_same_first_events(const RsfModel& m, int count) {
     EXPECT_EQ(a->blocks, b->blocks) << k;
     EXPECT_EQ(a->first_block, b->first_block) << k;
     EXPECT_EQ(a->last_block, b->last_block) << k;
-    EXPECT_NEAR(b->hypocentre_time / a->hypocentre_time, 1, 1e-3) << k;
-    EXPECT_NEAR(b->moment / a->moment, 1, 1e-2) << k;
+    EXPECT_NEAR(b->hypocentre_time / a->hypocentre_time, 1, 1e-2) << k;
+    EXPECT_NEAR(b->moment / a->moment, 1, 2e-2) << k;
     several += a->blocks > 1;
   }
   EXPECT_GT(several, 0);
@@ -115,9 +119,12 @@ TEST(RsfActive, TheActiveSetGrowsToANeighbourTheStressBringsToTheHandOverSpeed) 
 // exp(k_c delta/(a sigma)) against the same loader without the event). Their sum is
 // 2 k_c delta, the stress its slip put on them (2.3 % less if its creep before the event were
 // counted in, 2 k_c delta more if the stress were passed twice).
+// k_c = 3e9 Pa/m makes the middle block's steady sliding stable on its springs (sigma (b - a)/D_c
+// = 7.5e9 < k + 2 k_c), so that the loader does not take it straight back near V theta/D_c = 1
+// where this test's hand-back (a decade below V_h) lets it go.
 TEST(RsfActive, ABlockHandedBackPassesItsSlipOnAsStress) {
   RsfModel m = test::qdyn_stickslip(3);
-  const double k_c = 2e9;
+  const double k_c = 3e9;
   m.springs = {{1, 0, k_c}};
   RsfLoader loader(m, 1e-4, HUGE_VAL);
   for (const int j : {0, 2}) loader.set(j, 0, {std::log(1e-12), std::log(1e3)});
