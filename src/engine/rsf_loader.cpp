@@ -90,7 +90,6 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
     : nb_(rsf_neighbours(m)),
       t_ref_(m.n(), 0.0),
       x_ref_(m.n()),
-      t_nuc_(m.n(), 0.0),
       unsynced_(m.n(), 0.0),
       position_(m.n(), 0.0),
       lead_(m.n(), 0.0),
@@ -118,12 +117,12 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
 
 rsf::SliderState RsfLoader::state_at(int j, double t) const {
   if (t == t_ref_[j]) return x_ref_[j];
-  return rsf::evolve(slider_[j], x_ref_[j], t - t_ref_[j], t_nuc_[j]);
+  return rsf::evolve(slider_[j], x_ref_[j], t - t_ref_[j]);
 }
 
 double RsfLoader::unsynced(int j, double t) const {
   if (t == t_ref_[j]) return unsynced_[j];
-  return unsynced_[j] + rsf::slip(slider_[j], x_ref_[j], t - t_ref_[j], t_nuc_[j]);
+  return unsynced_[j] + rsf::slip(slider_[j], x_ref_[j], t - t_ref_[j]);
 }
 
 void RsfLoader::set(int j, double t, rsf::SliderState x) {
@@ -142,8 +141,6 @@ void RsfLoader::rebase(int j, double t) {
   if (t == t_ref_[j]) return;
   unsynced_[j] = unsynced(j, t);
   x_ref_[j] = state_at(j, t);
-  // The locked phase's clock runs on (schedule() recomputes it after a stress step).
-  t_nuc_[j] = std::max(0.0, t_nuc_[j] - (t - t_ref_[j]));
   t_ref_[j] = t;
 }
 
@@ -151,7 +148,6 @@ void RsfLoader::rebase(int j, double t) {
 // half a quantum.
 void RsfLoader::schedule(int j) {
   const rsf::Slider& s = slider_[j];
-  t_nuc_[j] = rsf::time_to_nucleation(s, x_ref_[j]);
   double t_vh, t_q;
   if (std::isinf(quantum_)) {
     t_vh = rsf::time_to_speed(s, x_ref_[j], ln_vh_);

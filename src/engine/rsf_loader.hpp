@@ -138,7 +138,6 @@ class RsfLoader {
   RsfNeighbours nb_;
   std::vector<double> t_ref_;
   std::vector<rsf::SliderState> x_ref_;
-  std::vector<double> t_nuc_;                // x_ref_'s time to the end of its locked phase
   std::vector<double> unsynced_, position_;  // slip before t_ref not synced; synced slip
   std::vector<double> lead_;                 // slip passed on less the synced slip
   std::vector<char> quantum_due_;

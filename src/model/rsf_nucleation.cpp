@@ -48,6 +48,11 @@ SliderState locked_after(const Slider& s, SliderState x, double dt) {
   return {x.ln_v + alpha_of(s) * dt - (s.b_rsf / s.a) * grow, x.ln_theta + grow};
 }
 
+// Seconds from a locked state to Omega = 1.
+double time_to_nucleation(const Slider& s, SliderState x) {
+  return first_root(ln_omega(s, x), alpha_of(s), 1 - s.b_rsf / s.a, std::exp(x.ln_theta));
+}
+
 // The nucleating phase dt on.
 SliderState nucleating_after(const Slider& s, SliderState x, double dt) {
   const double alpha = alpha_of(s), c = s.h() / (s.a * alpha), v0 = std::exp(x.ln_v);
@@ -182,17 +187,9 @@ bool locked(const Slider& s, const SliderState& x) {
   return ln_omega(s, x) < (s.strengthening() ? -kSteadySlack : 0.0);
 }
 
-double time_to_nucleation(const Slider& s, SliderState x) {
-  if (!locked(s, x)) return 0;
-  return first_root(ln_omega(s, x), alpha_of(s), 1 - s.b_rsf / s.a, std::exp(x.ln_theta));
-}
-
 SliderState evolve(const Slider& s, SliderState x, double dt) {
-  return evolve(s, x, dt, time_to_nucleation(s, x));
-}
-
-SliderState evolve(const Slider& s, SliderState x, double dt, double t_nuc) {
   if (locked(s, x)) {
+    const double t_nuc = time_to_nucleation(s, x);
     if (dt <= t_nuc) return locked_after(s, x, dt);
     x = locked_after(s, x, t_nuc);
     dt -= t_nuc;
@@ -231,11 +228,8 @@ double time_to_speed(const Slider& s, SliderState x, double ln_v_target) {
 }
 
 double slip(const Slider& s, SliderState x, double dt) {
-  return slip(s, x, dt, time_to_nucleation(s, x));
-}
-
-double slip(const Slider& s, SliderState x, double dt, double t_nuc) {
   if (locked(s, x)) {
+    const double t_nuc = time_to_nucleation(s, x);
     if (!(dt > t_nuc)) return 0;
     x = locked_after(s, x, t_nuc);
     dt -= t_nuc;

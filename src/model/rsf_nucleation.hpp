@@ -67,18 +67,12 @@ bool locked(const Slider& s, const SliderState& x);  // Omega = V theta/D_c < 1
 
 // The state dt seconds on (dt >= 0; the slip rate is +inf past the instability).
 SliderState evolve(const Slider& s, SliderState x, double dt);
-// Seconds from x to the end of the locked phase (Omega = 1; 0 if not locked, +inf if never).
-// The loader keeps it per block, so that evolve and slip need no root search.
-double time_to_nucleation(const Slider& s, SliderState x);
-// evolve and slip given x's time_to_nucleation (the same numbers).
-SliderState evolve(const Slider& s, SliderState x, double dt, double t_nuc);
 // The first time from now at which V reaches exp(ln_v_target) from below (0 if it is there or
 // above already; +inf if never).
 double time_to_speed(const Slider& s, SliderState x, double ln_v_target);
 // The closed form's slip over the next dt seconds (the sliding phase's only; +inf past the
 // instability).
 double slip(const Slider& s, SliderState x, double dt);
-double slip(const Slider& s, SliderState x, double dt, double t_nuc);
 // The first time from now at which that slip reaches `amount` > 0 (+inf if never).
 double time_to_slip(const Slider& s, SliderState x, double amount);
 // Where a velocity-strengthening block above steady state (Omega > 1, e.g. handed back by the

@@ -114,8 +114,9 @@ TEST(RsfActive, TheActiveSetGrowsToANeighbourTheStressBringsToTheHandOverSpeed) 
 }
 
 // Three coupled blocks, the middle one nucleating and the outer ones locked far below V_h, no
-// creep quanta: the middle block's event is integrated alone and, when it goes back, its slip
-// delta reaches each neighbour as the stress step k_c delta (its slip rate times
+// creep quanta: the middle block's event is integrated alone and its slip delta reaches each
+// neighbour as stress steps summing to k_c delta (during the event, each time it has built up
+// to 0.05 a sigma, and the rest when it goes back) (its slip rate times
 // exp(k_c delta/(a sigma)) against the same loader without the event). Their sum is
 // 2 k_c delta, the stress its slip put on them (2.3 % less if its creep before the event were
 // counted in, 2 k_c delta more if the stress were passed twice).
@@ -127,7 +128,8 @@ TEST(RsfActive, ABlockHandedBackPassesItsSlipOnAsStress) {
   const double k_c = 3e9;
   m.springs = {{1, 0, k_c}};
   RsfLoader loader(m, 1e-4, HUGE_VAL);
-  for (const int j : {0, 2}) loader.set(j, 0, {std::log(1e-12), std::log(1e3)});
+  // Locked even after the whole step (V theta/D_c ~ 0.02), so that theta is kept throughout.
+  for (const int j : {0, 2}) loader.set(j, 0, {std::log(1e-13), std::log(1e2)});
   loader.set(1, 0, {std::log(5e-5), std::log(1e3 * 1e-5 / 5e-5)});
   ASSERT_EQ(loader.next_block(), 1);
   const RsfLoader before = loader;
@@ -144,7 +146,7 @@ TEST(RsfActive, ABlockHandedBackPassesItsSlipOnAsStress) {
   double passed = 0;
   for (const int j : {0, 2}) {
     const rsf::SliderState x = loader.state_at(j, t_end), x0 = before.state_at(j, t_end);
-    EXPECT_EQ(x.ln_theta, x0.ln_theta);
+    EXPECT_NEAR(x.ln_theta, x0.ln_theta, 1e-12);  // kept, to the rounding of its restarts
     passed += m.law[j].params().a * m.sigma * (x.ln_v - x0.ln_v);
   }
   EXPECT_NEAR(passed, 2 * k_c * slip, 1e-9 * k_c * slip);

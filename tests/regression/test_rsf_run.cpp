@@ -91,8 +91,16 @@ TEST(RsfRun, Refusals) {
                   "allowed: rsf.handover_speed up to 3 drive.speed"});
   expect_refused(run_bkquake(rsf_args(out, with(lattice, "rsf.handover_speed=4e-6"))),
                  {"rsf.handover_speed = 4e-06", "allowed: rsf.handover_speed up to 3 drive.speed"});
-  for (const auto& runs : {with(lattice, "rsf.handover_speed=3e-6"),
-                           with(with(ev, "model.kind=bk"), "model.blocks=4")}) {
+  // So does an event integrated on its active blocks, on chains too.
+  const std::vector<std::string> active =
+      with(with(with(ev, "model.kind=bk"), "model.blocks=4"), "rsf.event_integration=active");
+  expect_refused(
+      run_bkquake(rsf_args(out, active)),
+      {"rsf.handover_speed = auto", "rsf.event_integration = active",
+       "allowed: rsf.handover_speed up to 3 drive.speed, or rsf.event_integration = whole"});
+  for (const auto& runs :
+       {with(lattice, "rsf.handover_speed=3e-6"), with(with(ev, "model.kind=bk"), "model.blocks=4"),
+        with(active, "rsf.handover_speed=3e-6")}) {
     const auto r = run_bkquake(rsf_args(tmp.file("ok"), runs));
     EXPECT_EQ(r.status, 0) << r.err;
     std::filesystem::remove_all(tmp.path() / "ok");
