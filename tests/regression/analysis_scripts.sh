@@ -52,3 +52,10 @@ q analysis/run_coupling_fronts.sh 20 0
 # (default runs/rsf-events).
 # Not run here: analysis/run_lattice.sh runs the shipped lattice scenes at their own sizes
 # (about 30 CPU-minutes); it writes under runs/lattice.
+# A rough-D_c file without roughness is the scene's own asperity pattern: the same catalogue.
+$P analysis/make_rough_blocks.py --nx 16 --ny 8 --period 4 --width 3 --rough 0 > runs/flat.csv
+L="data/scenes/rsf/lattice-patches.ini --set drive.mode=events --set rsf.handover_speed=3e-6"
+L="$L --set run.events=20 --set run.transient_events=0"
+q $B run $L --out runs/lp
+q $B run $L --set rsf.pattern=uniform --set rsf.blocks=runs/flat.csv --out runs/lf
+cmp runs/lp/catalog.csv runs/lf/catalog.csv
