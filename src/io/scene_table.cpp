@@ -910,8 +910,9 @@ std::vector<ParamSpec> rsf_rows() {
              {{"whole", false}, {"active", true}},
              "how the event-driven engine integrates an event: whole (every block, from the "
              "first to reach rsf.handover_speed until all are below it) or active (only the "
-             "blocks above it or not yet handed back, each back to its closed form on its own; "
-             "quasi-dynamic scenes, inertial ones integrate the whole grid)")
+             "blocks above it or not yet handed back, each back to its closed form on its own "
+             "outside events; with rsf.handover_speed up to 3 drive.speed; quasi-dynamic "
+             "scenes, inertial ones integrate the whole grid)")
           .when(rsf_law(), event_driven())
           .later(),
       choice(key::rsf_pattern, "uniform", at(&SceneValues::rsf, &RsfKeys::pattern),
