@@ -12,8 +12,12 @@
 //   VW nucleating       Omega in [1, 100], V in [0.1, 100] V_pl;
 //   VS locked           the barrier, Omega in [1e-4, 0.9];
 //   VS steady state     the barrier, theta = D_c/V, V in [0.01, 10] V_pl.
-// evolve and slip are asked for dt log-uniform in [1e-2, 1e3] s (times the slowness). Each
-// figure is the smallest of five timings of `--repeat` passes over `--states` states.
+// evolve and slip are asked for dt log-uniform in [1e-2, 1e3] s (times the slowness).
+// "schedule" is the loader's three calls (clocks, time_to_omega), "one pass" rsf::next_clock,
+// which it calls now; "root" is the time to nucleation of the set's locked states alone, by
+// rsf::first_root and by the search it replaced (kept here: bracketed by doubling, then Newton
+// to a bracket of 1e-15), with the largest relative difference between the two. Each figure is
+// the smallest of five timings of `--repeat` passes over `--states` states.
 //
 //   build/rsf_roots [--states N] [--repeat R]
 //     defaults: N = 4096, R = 50
@@ -24,6 +28,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -104,6 +109,32 @@ Set make_set(Kind kind, double v_pl, int n, std::mt19937_64& rng) {
   return set;
 }
 
+// The search rsf::first_root replaced: the first t > 0 where f0 + alpha t + beta ln(1 +
+// t/theta0) reaches 0, bracketed by doubling, then Newton kept inside the bracket.
+double old_first_root(double f0, double alpha, double beta, double theta0) {
+  const double never = std::numeric_limits<double>::infinity();
+  if (f0 >= 0) return 0;
+  const auto f = [&](double t) { return f0 + alpha * t + beta * std::log1p(t / theta0); };
+  if (alpha <= 0) return beta > 0 ? theta0 * std::expm1(-f0 / beta) : never;
+  double lo = beta < 0 ? std::max(0.0, -beta / alpha - theta0) : 0.0;
+  double hi = lo + std::max(theta0, 1 / alpha);
+  for (int i = 0; f(hi) <= 0; ++i) {
+    if (i > 2000 || !std::isfinite(hi)) return never;
+    lo = hi;
+    hi *= 2;
+  }
+  double t = hi;
+  for (int i = 0; i < 200; ++i) {
+    const double ft = f(t);
+    (ft > 0 ? hi : lo) = t;
+    double next = t - ft / (alpha + beta / (theta0 + t));
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next == t || hi - lo <= 1e-15 * hi) return next;
+    t = next;
+  }
+  return t;
+}
+
 volatile double sink = 0;
 
 // CPU ns per call of f over the set's cases, the smallest of five timings.
@@ -134,8 +165,9 @@ int main(int argc, char** argv) {
   const double ln_omega_in = std::log(0.1);
   std::mt19937_64 rng(20261129);
   std::printf("CPU ns per call, %d states a set, smallest of 5 timings of %d passes\n", n, repeat);
-  std::printf("%-10s %-17s %9s %9s %9s %9s %9s\n", "V_pl", "states", "clocks", "to_omega", "evolve",
-              "slip", "schedule");
+  std::printf("%-10s %-17s %9s %9s %9s %9s %9s %9s %9s %9s %9s\n", "V_pl", "states", "clocks",
+              "to_omega", "evolve", "slip", "schedule", "one pass", "root old", "root new",
+              "max diff");
   for (const double v_pl : {1e-6, 1e-9}) {
     for (const Kind kind :
          {Kind::kFar, Kind::kNear, Kind::kNucleating, Kind::kVsLocked, Kind::kVsSteady}) {
@@ -163,8 +195,30 @@ int main(int argc, char** argv) {
           t_vh = std::min(t_vh, rsf::time_to_omega(s, c.x, ln_omega_in));
         return std::min(t_vh, k.to_slip) + (k.to_slip < t_vh ? 1 : 0);
       });
-      std::printf("%-10g %-17s %9.1f %9.1f %9.1f %9.1f %9.1f\n", v_pl, set.name.c_str(), t_clocks,
-                  t_omega, t_evolve, t_slip, t_schedule);
+      const double t_one_pass = ns_per_call(set, repeat, [&](const Case& c) {
+        const rsf::NextClock k =
+            rsf::next_clock(s, c.x, ln_vh, amount, set.weakening ? ln_omega_in : 0.0);
+        return k.time + (k.slip ? 1 : 0);
+      });
+      // The time to nucleation's root problem of each state (f0 >= 0, not locked: 0 at once).
+      const double alpha = s.stressing_rate / (s.a * s.sigma), beta = 1 - s.b_rsf / s.a;
+      const auto f0 = [&](const Case& c) { return rsf::ln_omega(s, c.x); };
+      const double t_old = ns_per_call(set, repeat, [&](const Case& c) {
+        return old_first_root(f0(c), alpha, beta, std::exp(c.x.ln_theta));
+      });
+      const double t_new = ns_per_call(set, repeat, [&](const Case& c) {
+        return rsf::first_root(f0(c), alpha, beta, std::exp(c.x.ln_theta));
+      });
+      double diff = 0;
+      for (const Case& c : set.cases) {
+        const double theta0 = std::exp(c.x.ln_theta);
+        const double t1 = old_first_root(f0(c), alpha, beta, theta0);
+        const double t2 = rsf::first_root(f0(c), alpha, beta, theta0);
+        if (t1 != t2) diff = std::max(diff, std::fabs(t2 - t1) / std::fabs(t1));
+      }
+      std::printf("%-10g %-17s %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1e\n", v_pl,
+                  set.name.c_str(), t_clocks, t_omega, t_evolve, t_slip, t_schedule, t_one_pass,
+                  t_old, t_new, diff);
     }
   }
   return 0;
