@@ -148,30 +148,22 @@ void RsfLoader::rebase(int j, double t) {
 // half a quantum.
 void RsfLoader::schedule(int j) {
   const rsf::Slider& s = slider_[j];
-  double t_vh, t_q;
-  if (std::isinf(quantum_)) {
-    t_vh = rsf::time_to_speed(s, x_ref_[j], ln_vh_);
-    t_q = quantum_;
-  } else {
-    const rsf::Clocks c =
-        rsf::clocks(s, x_ref_[j], ln_vh_, 0.5 * quantum_ + lead_[j] - unsynced_[j]);
-    t_vh = c.to_speed;
-    t_q = c.to_slip;
-  }
+  const rsf::SliderState& x = x_ref_[j];
   // A velocity-weakening block nearing steady state goes to the integrator (kOmegaIn), and so
   // does a velocity-strengthening one away from it (both only as an integration's end left
   // them: see handed_back).
-  const double lo = rsf::ln_omega(s, x_ref_[j]);
-  if (nucleates_alone_[j]) {
-    if (rsf::locked(s, x_ref_[j]))
-      t_vh = std::min(t_vh, rsf::time_to_omega(s, x_ref_[j], kLnOmegaIn));
-    else if (lo < kLnOmegaOut)
-      t_vh = 0;
-  } else if (s.strengthening() && lo >= kLnOmegaSteady) {
-    t_vh = 0;
+  const double lo = rsf::ln_omega(s, x);
+  if (nucleates_alone_[j] ? !rsf::locked(s, x) && lo < kLnOmegaOut
+                          : s.strengthening() && lo >= kLnOmegaSteady) {
+    quantum_due_[j] = 0;
+    heap_.set(j, t_ref_[j]);
+    return;
   }
-  quantum_due_[j] = t_q < t_vh ? 1 : 0;
-  heap_.set(j, t_ref_[j] + std::min(t_vh, t_q));
+  const double amount = std::isinf(quantum_) ? quantum_ : 0.5 * quantum_ + lead_[j] - unsynced_[j];
+  const rsf::NextClock c =
+      rsf::next_clock(s, x, ln_vh_, amount, nucleates_alone_[j] ? kLnOmegaIn : 0.0);
+  quantum_due_[j] = c.slip ? 1 : 0;
+  heap_.set(j, t_ref_[j] + c.time);
 }
 
 void RsfLoader::stress_step(int j, double t, double dtau) {

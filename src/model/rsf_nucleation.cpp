@@ -12,13 +12,10 @@ namespace {
 constexpr double kNever = std::numeric_limits<double>::infinity();
 constexpr double kSteadySlack = 1e-9;  // ln(V theta/D_c) taken as steady state
 
-// The first t > 0 where f(t) = f0 + alpha t + beta ln(1 + t/theta0) reaches 0, f0 < 0,
-// alpha >= 0: f is monotone (beta >= 0) or convex with its minimum at -beta/alpha - theta0,
-// so the root lies on the rising branch. Bracketed, then Newton kept inside the bracket.
-double first_root(double f0, double alpha, double beta, double theta0) {
-  if (f0 >= 0) return 0;
+// The old search, kept for what the fast paths below cannot take (non-finite intermediates at
+// extreme arguments): bracketed by doubling, then Newton kept inside the bracket.
+double bracketed_root(double f0, double alpha, double beta, double theta0) {
   const auto f = [&](double t) { return f0 + alpha * t + beta * std::log1p(t / theta0); };
-  if (alpha <= 0) return beta > 0 ? theta0 * std::expm1(-f0 / beta) : kNever;
   double lo = beta < 0 ? std::max(0.0, -beta / alpha - theta0) : 0.0;
   double hi = lo + std::max(theta0, 1 / alpha);
   for (int i = 0; f(hi) <= 0; ++i) {
@@ -37,6 +34,94 @@ double first_root(double f0, double alpha, double beta, double theta0) {
   }
   return t;
 }
+
+// The roots' relative error: the old search's bracket width. Halley's method converges
+// cubically, e' = C e^3 with C = (f'')^2/(4 (f')^2) - f'''/(6 f') near the root, so once the
+// step taken is d (and |f f''| <= f'^2, where that estimate holds) the error left is at most
+// about (f''^2/(4 f'^2) + |f'''/(6 f')|) |d|^3 (the terms' sizes: their difference can vanish
+// away from the root): the iteration stops there, a log short of the step that would only
+// confirm it.
+constexpr double kRootTolerance = 1e-15;
+
+// Halley's step from x for g(x) = 0 with g' = d1 > 0, g'' = d2, g''' = d3, kept inside the
+// bracket (lo, hi) (else Newton's step, else the midpoint), and whether it is the last.
+struct RootStep {
+  double next;
+  bool done;
+};
+RootStep root_step(double x, double g, double d1, double d2, double d3, double& lo, double& hi,
+                   double tolerance) {
+  (g < 0 ? lo : hi) = x;
+  const double step = 2 * g * d1 / (2 * d1 * d1 - g * d2);
+  double next = x - step;
+  if (!(next > lo && next < hi)) {
+    next = x - g / d1;
+    if (!(next > lo && next < hi)) next = std::isinf(hi) ? 2 * lo : 0.5 * (lo + hi);
+    return {next, next == x};
+  }
+  const double c = d2 * d2 / (4 * d1 * d1) + std::fabs(d3 / (6 * d1));
+  return {next, next == x || (std::fabs(g * d2) <= d1 * d1 &&
+                              c * step * step * std::fabs(step) <= tolerance)};
+}
+
+// beta < 0: f is convex in t, its minimum at t_min = -beta/alpha - theta0, and the root lies
+// right of both t_min and F/alpha (F = -f0: there alpha t = F and the log term is negative).
+// From t0 = max(F/alpha, t_min) the fixed point t1 = (F - beta ln(1 + t0/theta0))/alpha is a
+// lower bound too, strictly right of t_min (as F > 0), and the log it needs is f(t0)'s; Halley
+// starts from t0 where f'(t0) >= alpha/2 (the linear term dominates), else from t1, so that
+// f' > 0 at every iterate (all lie right of the start).
+double convex_root(double f0, double alpha, double beta, double theta0) {
+  const double big_f = -f0;
+  const double t0 = std::max(big_f / alpha, -beta / alpha - theta0);
+  double l = std::log1p(t0 / theta0), t = t0;
+  bool known = alpha + beta / (theta0 + t0) >= 0.5 * alpha;  // l is ln(1 + t/theta0)
+  if (!known) t = (big_f - beta * l) / alpha;
+  double lo = t0, hi = kNever;
+  for (int i = 0; i < 100; ++i) {
+    if (!known) l = std::log1p(t / theta0);
+    known = false;
+    const double y = theta0 + t, f = alpha * t + beta * l - big_f;
+    const double d1 = alpha + beta / y, d2 = -beta / (y * y), d3 = 2 * beta / (y * y * y);
+    if (!std::isfinite(f) || !(d1 > 0)) break;
+    const RootStep r = root_step(t, f, d1, d2, d3, lo, hi, kRootTolerance * t);
+    if (r.done) return r.next;
+    t = r.next;
+  }
+  return bracketed_root(f0, alpha, beta, theta0);
+}
+
+// beta > 0: f is concave in t but convex and rising in s = ln(1 + t/theta0),
+// g(s) = f0 + alpha theta0 (e^s - 1) + beta s, whose root lies above 0 and below both
+// ln(1 + F/(alpha theta0)) (the log term left out) and F/beta (the linear one): Halley from the
+// smaller, t = theta0 (e^s - 1), whose relative error is the error in s over 1 - e^{-s}.
+double concave_root(double f0, double alpha, double beta, double theta0) {
+  const double big_f = -f0, a = alpha * theta0;
+  double s = std::min(std::log1p(big_f / a), big_f / beta), lo = 0, hi = kNever;
+  for (int i = 0; i < 100; ++i) {
+    const double e = std::expm1(s);
+    const double g = a * e + beta * s - big_f, d2 = a * (e + 1), d1 = d2 + beta;
+    if (!std::isfinite(g) || !std::isfinite(d1)) break;
+    const RootStep r = root_step(s, g, d1, d2, d2, lo, hi, -kRootTolerance * std::expm1(-s));
+    if (r.done) {
+      const double t = theta0 * std::expm1(r.next);
+      if (std::isfinite(t)) return t;
+      break;
+    }
+    s = r.next;
+  }
+  return bracketed_root(f0, alpha, beta, theta0);
+}
+
+}  // namespace
+
+double first_root(double f0, double alpha, double beta, double theta0) {
+  if (f0 >= 0) return 0;
+  if (alpha <= 0) return beta > 0 ? theta0 * std::expm1(-f0 / beta) : kNever;
+  if (beta == 0) return -f0 / alpha;
+  return beta < 0 ? convex_root(f0, alpha, beta, theta0) : concave_root(f0, alpha, beta, theta0);
+}
+
+namespace {
 
 double alpha_of(const Slider& s) {
   return s.stressing_rate / (s.a * s.sigma);
@@ -187,10 +272,15 @@ bool locked(const Slider& s, const SliderState& x) {
   return ln_omega(s, x) < (s.strengthening() ? -kSteadySlack : 0.0);
 }
 
+// While locked, ln(V theta/D_c) = f(t) of first_root rises through 0 once (f(0) < 0, f monotone
+// or convex), so the locked form dt on says itself whether dt lies before the time to
+// nucleation: evolve and slip look for that time only where it does not.
 SliderState evolve(const Slider& s, SliderState x, double dt) {
   if (locked(s, x)) {
+    const SliderState y = locked_after(s, x, dt);
+    if (!(ln_omega(s, y) > 0)) return y;
     const double t_nuc = time_to_nucleation(s, x);
-    if (dt <= t_nuc) return locked_after(s, x, dt);
+    if (dt <= t_nuc) return y;
     x = locked_after(s, x, t_nuc);
     dt -= t_nuc;
   }
@@ -229,6 +319,7 @@ double time_to_speed(const Slider& s, SliderState x, double ln_v_target) {
 
 double slip(const Slider& s, SliderState x, double dt) {
   if (locked(s, x)) {
+    if (!(ln_omega(s, locked_after(s, x, dt)) > 0)) return 0;
     const double t_nuc = time_to_nucleation(s, x);
     if (!(dt > t_nuc)) return 0;
     x = locked_after(s, x, t_nuc);
@@ -269,6 +360,33 @@ double time_to_omega(const Slider& s, SliderState x, double ln_target) {
   const double ln_omega0 = ln_omega(s, x);
   if (!locked(s, x) || ln_omega0 >= ln_target) return 0;
   return first_root(ln_omega0 - ln_target, alpha_of(s), 1 - s.b_rsf / s.a, std::exp(x.ln_theta));
+}
+
+NextClock next_clock(const Slider& s, SliderState x, double ln_v_target, double amount,
+                     double ln_omega_target) {
+  const bool omega = ln_omega_target < 0 && locked(s, x);
+  if (omega && x.ln_v < ln_v_target && amount > 0) {
+    const double t_omega = time_to_omega(s, x, ln_omega_target);
+    if (t_omega < kNever) {
+      // The speed only while locked can come first (after nucleation it is later than
+      // t_omega), and only where ln V, rising at most alpha t, can reach it by t_omega.
+      const double alpha = alpha_of(s);
+      if (s.b_rsf >= 0 && (ln_v_target - x.ln_v) / alpha > t_omega) return {t_omega, false};
+      const double t_v =
+          first_root(x.ln_v - ln_v_target, alpha, -s.b_rsf / s.a, std::exp(x.ln_theta));
+      return {std::min(t_omega, t_v), false};
+    }
+  }
+  double to_speed, to_slip = kNever;
+  if (std::isinf(amount)) {
+    to_speed = time_to_speed(s, x, ln_v_target);
+  } else {
+    const Clocks c = clocks(s, x, ln_v_target, amount);
+    to_speed = c.to_speed;
+    to_slip = c.to_slip;
+  }
+  if (omega) to_speed = std::min(to_speed, time_to_omega(s, x, ln_omega_target));
+  return {std::min(to_speed, to_slip), to_slip < to_speed};
 }
 
 }  // namespace bkq::rsf

@@ -57,6 +57,13 @@ struct Slider {
   bool strengthening() const { return a > b_rsf; }         // steady state, not nucleation
 };
 
+// The first t > 0 at which f(t) = f0 + alpha t + beta ln(1 + t/theta0) reaches 0 (0 if f0 >= 0,
+// +inf if never), theta0 > 0: the locked phase's clocks, ln V or ln(V theta/D_c) reaching a
+// target (beta = -b/a or 1 - b/a). To a relative 1e-15: Halley's method from bounds on the
+// root, in t where f is convex (beta < 0, the root on its rising branch) and in
+// s = ln(1 + t/theta0) where it is concave (beta > 0).
+double first_root(double f0, double alpha, double beta, double theta0);
+
 struct SliderState {
   double ln_v = 0, ln_theta = 0;
 };
@@ -93,5 +100,19 @@ SliderState stress_step(const Slider& s, SliderState x, double dtau);
 // The first time from now at which a locked block's V theta/D_c reaches exp(ln_target) <= 1
 // (0 if it is there or above, or not locked; +inf if never).
 double time_to_omega(const Slider& s, SliderState x, double ln_target);
+
+// What the event-driven loader asks of a block each time its state changes, in one pass: the
+// earliest of the times to the speed exp(ln_v_target), to the slip `amount` (+inf: none) and,
+// while locked, to V theta/D_c = exp(ln_omega_target) (< 0; 0 or above: none), and whether the
+// earliest is the slip's (strictly before the others). The same values as the minimum of
+// clocks (or time_to_speed, without a slip) and time_to_omega, with the roots that cannot give
+// it left out: a locked block reaches Omega = exp(ln_omega_target) < 1 before it nucleates, so
+// before it slips and before it reaches the speed in the sliding phase.
+struct NextClock {
+  double time = 0;
+  bool slip = false;
+};
+NextClock next_clock(const Slider& s, SliderState x, double ln_v_target, double amount,
+                     double ln_omega_target);
 
 }  // namespace bkq::rsf
