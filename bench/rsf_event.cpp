@@ -17,9 +17,10 @@
 // integrates too); total CPU / the CPU above V_h is the ceiling on the speed-up at equal events.
 //
 //   build/rsf_event [--chain N] [--duration T] [--speed V_pl] [--handover V_h]
-//                   [--quantum q[,q2,...]] [--asperities]
+//                   [--quantum q[,q2,...]] [--asperities] [--rough r]
 //     defaults: N = 100, T = 2000 s, V_pl = 1e-6 m/s, q = 1e-6 m (the scene's auto, D_c/10);
-//     the handover speed is the scene's auto, min(V_th/10, 0.01 a sigma/eta)
+//     the handover speed is the scene's auto, min(V_th/10, 0.01 a sigma/eta); --rough r spreads
+//     each block's D_c by a factor in [1 - r, 1 + r] (default 0)
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +28,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -138,6 +140,7 @@ int main(int argc, char** argv) {
   double duration = 2000, v_pl = 1e-6, v_h = 0;
   std::vector<double> quanta;
   bool asperities = false;
+  double rough_dc = 0;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--chain") == 0 && i + 1 < argc)
       n = std::atoi(argv[++i]);
@@ -156,8 +159,11 @@ int main(int argc, char** argv) {
                                        : std::atof(item.c_str()));
         p = comma + 1;
       }
-    } else if (std::strcmp(argv[i], "--asperities") == 0)
+    } else if (std::strcmp(argv[i], "--asperities") == 0) {
       asperities = true;
+    } else if (std::strcmp(argv[i], "--rough") == 0 && i + 1 < argc) {
+      rough_dc = std::atof(argv[++i]);
+    }
   }
   if (quanta.empty()) quanta = {1e-6};
   RsfModel m = test::qdyn_stickslip(n);
@@ -169,9 +175,20 @@ int main(int argc, char** argv) {
     for (int j = 0; j < n; ++j)
       if (j % 10 >= 5) m.law[j] = rsf::Law(barrier);
   }
+  // Identical blocks keep equivalent ones in step in the continuous integration; a rough D_c
+  // (each block's times U[1 - r, 1 + r], a fixed seed) breaks that symmetry.
+  if (rough_dc > 0) {
+    std::mt19937_64 draw(1);
+    for (int j = 0; j < n; ++j) {
+      rsf::Params p = m.law[j].params();
+      const double u = static_cast<double>(draw() >> 11) * 0x1p-53;  // [0, 1), portable
+      p.dc *= 1 + rough_dc * (2 * u - 1);
+      m.law[j] = rsf::Law(p);
+    }
+  }
   if (v_h == 0) v_h = std::min(1e-4, 0.01 * 0.01 * m.sigma / m.eta);
-  std::printf("chain %d%s, V_pl = %g m/s, %g s simulated, V_h = %g m/s\n", n,
-              asperities ? " (asperities)" : "", v_pl, duration, v_h);
+  std::printf("chain %d%s, D_c spread %g, V_pl = %g m/s, %g s simulated, V_h = %g m/s\n", n,
+              asperities ? " (asperities)" : "", rough_dc, v_pl, duration, v_h);
   const Result c1 = continuous(m, duration, 1.3, v_h);
   const Result c2 = continuous(m, duration, 0.7, v_h);
   std::printf(

@@ -911,7 +911,8 @@ std::vector<ParamSpec> rsf_rows() {
              "how the event-driven engine integrates an event: whole (every block, from the "
              "first to reach rsf.handover_speed until all are below it) or active (only the "
              "blocks above it or not yet handed back, each back to its closed form on its own "
-             "outside events; with rsf.handover_speed up to 3 drive.speed; quasi-dynamic "
+             "outside events; needs rsf.blocks and rsf.handover_speed up to 3 drive.speed; "
+             "quasi-dynamic "
              "scenes, inertial ones integrate the whole grid)")
           .when(rsf_law(), event_driven())
           .later(),
@@ -976,6 +977,16 @@ void rate_and_state(const Scene& s, const std::string& where) {
                 "rsf.event_integration = whole" +
                 where);
   }
+  // Measured: identical blocks (a pattern, no per-block file) stay in step in the continuous
+  // integration, equivalent asperities failing together; the active-block integration falls out
+  // of step at once (validation page, "Rough scenes: blocks out of step").
+  if (v.drive.mode == DriveMode::Events && v.rsf.active_blocks && v.rsf.blocks.empty())
+    throw Error("rsf.event_integration = active with rsf.pattern = " + s.text(key::rsf_pattern) +
+                " and no rsf.blocks: on identical blocks the continuous integration keeps "
+                "equivalent blocks in step, which the active-block integration does not follow; "
+                "allowed: per-block values from rsf.blocks (e.g. a rough D_c from "
+                "analysis/make_rough_blocks.py), or rsf.event_integration = whole" +
+                where);
   if (v.drive.mode == DriveMode::Events && v.rsf.handover_speed &&
       !(*v.rsf.handover_speed<v.rsf.v_threshold&& * v.rsf.handover_speed> v.drive.speed))
     throw Error("rsf.handover_speed = " + s.text(key::rsf_handover_speed) +

@@ -14,18 +14,23 @@ namespace {
 using test::read_file;
 using test::run_bkquake;
 
-// The shipped event-driven chain (20 blocks here), each event on its active blocks, stopped by
+// The shipped event-driven chain with its rough D_c (the active-block integration needs
+// per-block values), each event on its active blocks, stopped by
 // SIGTERM after its first checkpoint and resumed: the catalogue and histogram of the run
 // never stopped, and its count of active blocks over the steps.
 TEST(RsfActiveRun, KilledAndResumedGivesTheSameBytes) {
   test::TempDir tmp;
-  const std::string scene = std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-events.ini";
+  const std::string scenes = std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/";
+  const std::string scene = scenes + "chain-events.ini",
+                    rough = scenes + "chain-events-rough-blocks.csv";
   const auto args = [&](const std::string& out, std::vector<std::string> more) {
     std::vector<std::string> a = {"run",
                                   scene,
                                   "--quiet",
                                   "--set",
-                                  "model.blocks=20",
+                                  "rsf.pattern=uniform",
+                                  "--set",
+                                  "rsf.blocks=" + rough,
                                   "--set",
                                   "rsf.event_integration=active",
                                   "--set",

@@ -92,8 +92,11 @@ TEST(RsfRun, Refusals) {
   expect_refused(run_bkquake(rsf_args(out, with(lattice, "rsf.handover_speed=4e-6"))),
                  {"rsf.handover_speed = 4e-06", "allowed: rsf.handover_speed up to 3 drive.speed"});
   // So does an event integrated on its active blocks, on chains too.
-  const std::vector<std::string> active =
-      with(with(with(ev, "model.kind=bk"), "model.blocks=4"), "rsf.event_integration=active");
+  // (per-block values: on identical blocks it is refused, below)
+  const std::vector<std::string> active = with(
+      with(with(with(ev, "model.kind=bk"), "model.blocks=100"), "rsf.event_integration=active"),
+      "rsf.blocks=" + std::string(BKQUAKE_SOURCE_DIR) +
+          "/data/scenes/rsf/chain-events-rough-blocks.csv");
   expect_refused(
       run_bkquake(rsf_args(out, active)),
       {"rsf.handover_speed = auto", "rsf.event_integration = active",
