@@ -3,6 +3,11 @@
 // (engine/rsf_cycle.hpp) and the active-block one (engine/rsf_active.hpp).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
 namespace bkq::dopri {
 
 constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
@@ -17,5 +22,40 @@ constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192, b5 = -218
                  b6 = 11.0 / 84;
 constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
                  e6 = 22.0 / 525, e7 = -1.0 / 40;
+
+// One step's stages from (t, y), k[0] = y' there (FSAL): k[1]..k[5], the 5th-order solution
+// into ytmp and its derivative into k[6] (the next step's k[0]), and the embedded error
+// estimate h sum e_i k_i into err. rhs(t, y, dy) on raw arrays of y's size.
+template <class Rhs>
+void stages(double t, double h, const std::vector<double>& y, std::vector<double> (&k)[7],
+            std::vector<double>& ytmp, std::vector<double>& err, Rhs&& rhs) {
+  const std::size_t size = y.size();
+  const auto stage = [&](std::vector<double>& out, double c, auto combine) {
+    for (std::size_t i = 0; i < size; ++i) ytmp[i] = y[i] + h * combine(i);
+    rhs(t + c * h, ytmp.data(), out.data());
+  };
+  auto &k1 = k[0], &k2 = k[1], &k3 = k[2], &k4 = k[3], &k5 = k[4], &k6 = k[5], &k7 = k[6];
+  stage(k2, c2, [&](std::size_t i) { return a21 * k1[i]; });
+  stage(k3, c3, [&](std::size_t i) { return a31 * k1[i] + a32 * k2[i]; });
+  stage(k4, c4, [&](std::size_t i) { return a41 * k1[i] + a42 * k2[i] + a43 * k3[i]; });
+  stage(k5, c5,
+        [&](std::size_t i) { return a51 * k1[i] + a52 * k2[i] + a53 * k3[i] + a54 * k4[i]; });
+  stage(k6, 1.0, [&](std::size_t i) {
+    return a61 * k1[i] + a62 * k2[i] + a63 * k3[i] + a64 * k4[i] + a65 * k5[i];
+  });
+  stage(k7, 1.0, [&](std::size_t i) {
+    return b1 * k1[i] + b3 * k3[i] + b4 * k4[i] + b5 * k5[i] + b6 * k6[i];
+  });
+  for (std::size_t i = 0; i < size; ++i)
+    err[i] = h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
+}
+
+// The step-size control: the factor 0.9 err^(-1/5) on h, within [0.2, 5] after an accepted
+// step (at most 1 if a rejection came before it), within [0.2, 1] after a rejection.
+inline double grow_factor(double err, bool accepted, bool rejected_before) {
+  const double grow = err > 0 ? 0.9 * std::pow(err, -0.2) : 5.0;
+  if (!accepted) return std::max(0.2, std::min(1.0, grow));
+  return std::min(rejected_before ? 1.0 : 5.0, std::max(0.2, grow));
+}
 
 }  // namespace bkq::dopri

@@ -14,8 +14,6 @@
 
 namespace bkq {
 
-using namespace dopri;  // engine/dormand_prince.hpp
-
 namespace {
 // The stress [a sigma] the active blocks' slip builds up on an inactive neighbour before it is
 // passed to its closed form: its clock is then late by at most a 5 % change in its slip rate.
@@ -218,8 +216,7 @@ void RsfActiveIntegration::rhs(double t, const double* y, double* dy) {
 // RsfCycle::step over the slots (the same scheme, error norm and step-size control).
 double RsfActiveIntegration::step(double t_max) {
   const std::size_t size = y_.size();
-  std::vector<double>& k1 = k_[0];
-  k1 = dy_;
+  k_[0] = dy_;
   bool rejected = false;
   while (true) {
     const bool clipped = t_ + h_ >= t_max;
@@ -227,47 +224,31 @@ double RsfActiveIntegration::step(double t_max) {
     if (!(h > 0) || t_ + h == t_)
       throw Error("rsf: the step size fell below the clock's resolution at t = " +
                   std::to_string(t_) + " s into an event (rsf.dc, integrator.tolerance)");
-    const auto stage = [&](std::vector<double>& out, double c, auto combine) {
-      for (std::size_t i = 0; i < size; ++i) ytmp_[i] = y_[i] + h * combine(i);
-      rhs(t_ + c * h, ytmp_.data(), out.data());
-    };
-    auto &k2 = k_[1], &k3 = k_[2], &k4 = k_[3], &k5 = k_[4], &k6 = k_[5], &k7 = k_[6];
-    stage(k2, c2, [&](std::size_t i) { return a21 * k1[i]; });
-    stage(k3, c3, [&](std::size_t i) { return a31 * k1[i] + a32 * k2[i]; });
-    stage(k4, c4, [&](std::size_t i) { return a41 * k1[i] + a42 * k2[i] + a43 * k3[i]; });
-    stage(k5, c5,
-          [&](std::size_t i) { return a51 * k1[i] + a52 * k2[i] + a53 * k3[i] + a54 * k4[i]; });
-    stage(k6, 1.0, [&](std::size_t i) {
-      return a61 * k1[i] + a62 * k2[i] + a63 * k3[i] + a64 * k4[i] + a65 * k5[i];
-    });
-    stage(k7, 1.0, [&](std::size_t i) {
-      return b1 * k1[i] + b3 * k3[i] + b4 * k4[i] + b5 * k5[i] + b6 * k6[i];
-    });
+    dopri::stages(t_, h, y_, k_, ytmp_, err_,
+                  [&](double t, const double* y, double* dy) { rhs(t, y, dy); });
     double err = 0;
     for (std::size_t i = 0; i < size; ++i) {
-      const double ei =
-          h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
+      const double ei = err_[i];
       const double scale =
           i % 3 == 0 ? tol_ * (m_.law[id_[i / 3]].params().dc + std::fabs(ytmp_[i])) : tol_;
       err = std::max(err, std::fabs(ei) / scale);
     }
     if (!std::isfinite(err)) err = 1e10;
-    const double grow = err > 0 ? 0.9 * std::pow(err, -0.2) : 5.0;
     if (err <= 1) {
       t_prev_ = t_;
       y_prev_.swap(y_);
       dy_prev_.swap(dy_);
       y_.swap(ytmp_);
-      dy_ = k7;
+      dy_ = k_[6];
       t_ = clipped ? t_max : t_ + h;
       ++accepted_;
-      const double next = h * std::min(rejected ? 1.0 : 5.0, std::max(0.2, grow));
+      const double next = h * dopri::grow_factor(err, true, rejected);
       if (!clipped || next < h_) h_ = next;
       return h;
     }
     ++rejected_;
     rejected = true;
-    h_ = h * std::max(0.2, std::min(1.0, grow));
+    h_ = h * dopri::grow_factor(err, false, rejected);
   }
 }
 

@@ -190,28 +190,26 @@ TEST(RsfRun, KilledAndResumedRunGivesTheSameBytes) {
                               {"catalog.csv", "histogram.csv", "rsf_blocks.csv", "slow_slip.csv"});
 }
 
+// The shipped event-driven chain's run arguments, 400 events checkpointed every 50, with
+// `sets` (section.key=value) added.
+auto event_run_args(std::vector<std::string> sets) {
+  sets.insert(sets.end(),
+              {"run.events=400", "run.transient_events=20", "run.checkpoint_events=50"});
+  return [sets](const std::string& out, std::vector<std::string> more) {
+    std::vector<std::string> a = {
+        "run", std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-events.ini", "--quiet"};
+    for (const auto& set : sets) a.insert(a.end(), {"--set", set});
+    a.insert(a.end(), {"--out", out});
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+}
+
 // The shipped event-driven chain (20 blocks here), stopped by SIGTERM after its first
 // checkpoint and resumed, writes the catalogue and histogram of the run never stopped.
 TEST(RsfRun, EventDrivenKilledAndResumedGivesTheSameBytes) {
   test::TempDir tmp;
-  const std::string scene = std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-events.ini";
-  auto args = [&](const std::string& out, std::vector<std::string> more) {
-    std::vector<std::string> a = {"run",
-                                  scene,
-                                  "--quiet",
-                                  "--set",
-                                  "model.blocks=20",
-                                  "--set",
-                                  "run.events=400",
-                                  "--set",
-                                  "run.transient_events=20",
-                                  "--set",
-                                  "run.checkpoint_events=50",
-                                  "--out",
-                                  out};
-    a.insert(a.end(), more.begin(), more.end());
-    return a;
-  };
+  const auto args = event_run_args({"model.blocks=20"});
   const auto whole = run_bkquake(args(tmp.file("whole"), {}));
   ASSERT_EQ(whole.status, 0) << whole.err;
   const std::string catalog = read_file(tmp.file("whole/catalog.csv"));
@@ -223,6 +221,29 @@ TEST(RsfRun, EventDrivenKilledAndResumedGivesTheSameBytes) {
             std::string::npos);
   EXPECT_NE(whole.out.find("event-driven run to t = "), std::string::npos) << whole.out;
   expect_resumed_equals_whole(tmp, args, {"catalog.csv", "histogram.csv"});
+}
+
+// The same with each event on its active blocks (engine/rsf_active.hpp; the chain with its
+// rough D_c, as that integration needs per-block values): the same bytes, and the count of
+// active blocks over the steps goes through the checkpoint too.
+TEST(RsfRun, ActiveBlocksKilledAndResumedGiveTheSameBytes) {
+  test::TempDir tmp;
+  const auto args = event_run_args({"rsf.pattern=uniform",
+                                    "rsf.blocks=" + std::string(BKQUAKE_SOURCE_DIR) +
+                                        "/data/scenes/rsf/chain-events-rough-blocks.csv",
+                                    "rsf.event_integration=active"});
+  const auto whole = run_bkquake(args(tmp.file("whole"), {}));
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  EXPECT_NE(read_file(tmp.file("whole/summary.json")).find("\"event_integration\": \"active\""),
+            std::string::npos);
+  expect_resumed_equals_whole(tmp, args, {"catalog.csv", "histogram.csv"});
+  const auto counter = [&](const std::string& dir) {
+    const std::string text = read_file(tmp.file(dir + "/summary.json"));
+    const std::size_t at = text.find("\"active_block_steps\": ");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find(',', at) - at);
+  };
+  EXPECT_FALSE(counter("whole").empty());
+  EXPECT_EQ(counter("cut"), counter("whole"));
 }
 
 // rsf.blocks: per-block a, b and D_c. Two uncoupled blocks, one with QDYN's law and one with
