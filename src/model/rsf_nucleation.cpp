@@ -12,7 +12,7 @@ namespace {
 constexpr double kNever = std::numeric_limits<double>::infinity();
 constexpr double kSteadySlack = 1e-9;  // ln(V theta/D_c) taken as steady state
 
-// The old search, kept for what the fast paths below cannot take (non-finite intermediates at
+// A slower search for what the fast paths below cannot take (non-finite intermediates at
 // extreme arguments): bracketed by doubling, then Newton kept inside the bracket.
 double bracketed_root(double f0, double alpha, double beta, double theta0) {
   const auto f = [&](double t) { return f0 + alpha * t + beta * std::log1p(t / theta0); };
