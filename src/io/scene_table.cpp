@@ -954,21 +954,24 @@ void rate_and_state(const Scene& s, const std::string& where) {
                 " with drive.mode = events: the event-driven engine's closed form between events "
                 "is the aging law's; allowed: rsf.state_law = aging, or drive.mode = continuous" +
                 where);
-  // Measured: on lattices, and with each event integrated on its active blocks, the
-  // event-driven catalogue is the continuous one handing over at 3 V_pl, not at the auto V_h
+  // Measured: on lattices of identical blocks, and with each event integrated on its active
+  // blocks, the event-driven catalogue is the continuous one handing over at 3 V_pl, not at the
+  // auto V_h; a lattice with per-block values (rsf.blocks) runs the same at either
   // (validation page "Event-driven against continuous rate-and-state").
-  const bool slow_handover = v.model.rows > 1 || v.rsf.active_blocks;
+  const bool identical_lattice = v.model.rows > 1 && v.rsf.blocks.empty();
+  const bool slow_handover = identical_lattice || v.rsf.active_blocks;
   if (v.drive.mode == DriveMode::Events && slow_handover &&
       !(v.rsf.handover_speed && *v.rsf.handover_speed <= 3 * v.drive.speed * (1 + 1e-12))) {
     const std::string vh =
         v.rsf.handover_speed ? s.text(key::rsf_handover_speed) : std::string("auto");
-    if (v.model.rows > 1)
+    if (identical_lattice)
       throw Error(
           "rsf.handover_speed = " + vh +
           " with drive.mode = events on a lattice (model.rows = " + s.text(key::model_rows) +
-          "): on lattices the event-driven engine reproduces the continuous integration's "
-          "events handing over at up to 3 drive.speed only; allowed: rsf.handover_speed "
-          "up to 3 drive.speed, or drive.mode = continuous" +
+          ") of identical blocks: there the event-driven engine reproduces the "
+          "continuous integration's events handing over at up to 3 drive.speed only; "
+          "allowed: rsf.handover_speed up to 3 drive.speed, per-block values from "
+          "rsf.blocks, or drive.mode = continuous" +
           where);
     throw Error("rsf.handover_speed = " + vh +
                 " with rsf.event_integration = active: events integrated on their active blocks "

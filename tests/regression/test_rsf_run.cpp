@@ -91,6 +91,21 @@ TEST(RsfRun, Refusals) {
                   "allowed: rsf.handover_speed up to 3 drive.speed"});
   expect_refused(run_bkquake(rsf_args(out, with(lattice, "rsf.handover_speed=4e-6"))),
                  {"rsf.handover_speed = 4e-06", "allowed: rsf.handover_speed up to 3 drive.speed"});
+  // A lattice with per-block values runs at the auto V_h (the 4 x 2 lattice's asperity pattern
+  // from a file).
+  const std::string blocks =
+      tmp.write("lattice.csv",
+                "block,a,b,dc\n0,0.01,0.025,1e-5\n1,0.01,0.025,1.02e-5\n2,0.025,0.01,0.98e-5\n"
+                "3,0.025,0.01,1e-5\n4,0.01,0.025,1.01e-5\n5,0.01,0.025,0.99e-5\n6,0.025,0.01,1e-5\n"
+                "7,0.025,0.01,1.03e-5\n");
+  {
+    const auto r = run_bkquake(
+        rsf_args(tmp.file("ok"),
+                 with(with(with(with(ev, "model.kind=bk"), "model.rows=2"), "model.blocks=4"),
+                      "rsf.blocks=" + blocks)));
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::filesystem::remove_all(tmp.path() / "ok");
+  }
   // So does an event integrated on its active blocks, on chains too.
   // (per-block values: on identical blocks it is refused, below)
   const std::vector<std::string> active = with(
