@@ -894,7 +894,9 @@ std::vector<ParamSpec> rsf_rows() {
                        "V_h of the event-driven engine: below it a block follows its closed form "
                        "between events, and an event is integrated from the first block to reach "
                        "it until every block is below it again; below rsf.v_threshold; auto: "
-                       "rsf.v_threshold/10, or less so that eta V_h <= 0.01 a sigma")
+                       "rsf.v_threshold/10, or less so that eta V_h <= 0.01 a sigma; at most 3 "
+                       "drive.speed on a lattice of identical blocks (no rsf.blocks) and with "
+                       "rsf.event_integration = active")
           .when(rsf_law(), event_driven())
           .later(),
       positive_or_auto(key::rsf_creep_quantum, at(&SceneValues::rsf, &RsfKeys::creep_quantum), 1,
