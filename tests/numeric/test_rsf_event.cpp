@@ -41,6 +41,20 @@ rsf::Slider barrier_slider() {
   return s;
 }
 
+// One block under the full aging law with slider s's a, b, unloading stiffness and stressing
+// rate (QDYN's block otherwise, no radiation damping), for the cycle integrator.
+RsfModel full_law_block(const rsf::Slider& s) {
+  RsfModel m = test::qdyn_stickslip(1);
+  rsf::Params p = m.law[0].params();
+  p.a = s.a;
+  p.b_rsf = s.b_rsf;
+  m.law[0] = rsf::Law(p);
+  m.eta = 0;
+  m.k = s.k_eff;
+  m.v_pl = s.stressing_rate / s.k_eff;
+  return m;
+}
+
 // The two phases' equations themselves (healing with k_eff V left out while V theta/D_c < 1,
 // then for good d theta/dt = -V theta/D_c, or theta = D_c/V for a velocity-strengthening
 // block), by classical RK4 in steps that move ln V or ln theta by at most 1e-3: the time ln V
@@ -279,15 +293,7 @@ TEST(RsfNucleation, ClosedFormSlipEqualsTheIntegratedSlip) {
 //    (RsfEventEngine.VelocityWeakeningBlockNearSteadyStateStaysWithTheIntegrator).
 TEST(RsfNucleation, NucleationFormIsWrongNearSteadyState) {
   const auto full_law = [](const rsf::Slider& s, double v0, double theta0, double t_end) {
-    RsfModel m = test::qdyn_stickslip(1);
-    rsf::Params p = m.law[0].params();
-    p.a = s.a;
-    p.b_rsf = s.b_rsf;
-    m.law[0] = rsf::Law(p);
-    m.eta = 0;
-    m.k = s.k_eff;
-    m.v_pl = s.stressing_rate / s.k_eff;
-    RsfCycle c(m, 1e-10, {v0}, {theta0});
+    RsfCycle c(full_law_block(s), 1e-10, {v0}, {theta0});
     while (c.t() < t_end) c.step(t_end);
     return std::pair<double, double>{std::exp(c.ln_v(0)), c.slip(0)};
   };
@@ -416,14 +422,7 @@ TEST(RsfNucleation, StrengtheningBlockAboveSteadyStateEntersItAtConstantFriction
 
 TEST(RsfNucleation, SteadyStatePhaseWithinTheFullAgingLawsBound) {
   const rsf::Slider s = barrier_slider();
-  RsfModel m = test::qdyn_stickslip(1);
-  rsf::Params p = m.law[0].params();
-  p.a = s.a;
-  p.b_rsf = s.b_rsf;
-  m.law[0] = rsf::Law(p);
-  m.eta = 0;
-  m.k = s.k_eff;
-  m.v_pl = s.stressing_rate / s.k_eff;
+  const RsfModel m = full_law_block(s);
   const double t_relax = (s.a - s.b_rsf) * s.sigma / s.stressing_rate;
   const rsf::SliderState healed{std::log(1e-9), std::log(100.0)};
   const double t_nuc = rsf::time_to_slip(s, healed, 1e-300);
