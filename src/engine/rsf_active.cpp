@@ -30,9 +30,7 @@ RsfActiveIntegration::RsfActiveIntegration(const RsfModel& m, double tolerance, 
       stamp_(m.n(), 0),
       held_(m.n(), 0.0),
       slip_at_join_(m.n(), 0.0),
-      passed_(nb_.index.size(), 0.0),
-      seen_(m.n()),
-      max_rate_(m.n(), 0.0) {}
+      passed_(nb_.index.size(), 0.0) {}
 
 double RsfActiveIntegration::value(int i, int comp0) const {
   const int n = m_.n(), comp = i / n, j = i % n;
@@ -254,12 +252,6 @@ double RsfActiveIntegration::step(double t_max) {
 
 double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double t_end,
                                  const HandBack& handed_back) {
-  if (max_rate_[0] == 0)
-    for (int j = 0; j < m_.n(); ++j) {
-      const rsf::Slider& s = loader.slider(j);
-      max_rate_[j] = s.stressing_rate / (s.a * s.sigma) +
-                     std::max(0.0, s.h()) * std::exp(loader.ln_v_handover()) / s.a;
-    }
   t_ = t_prev_ = 0;
   steps_in_run_ = 0;
   events_.clear();

@@ -30,7 +30,6 @@
 // state (V theta/D_c < 1/e) joins at the steady state of its stress (a ln V + b ln theta kept).
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -99,13 +98,6 @@ class RsfActiveIntegration {
   std::vector<double> held_, slip_at_join_;
   std::vector<double> passed_;  // per spring e of block i's row: slip of index[e] i has had
   std::vector<int> touched_;    // blocks that joined in this integration
-  // The activation test's last closed-form ln V of each block, when, and the loader's start
-  // it came from; the rise since is bounded by max_rate_ (below V_h) until that start changes.
-  struct Seen {
-    double t = -HUGE_VAL, ln_v = 0, t_ref = 0, x_ln_v = 0, x_ln_theta = 0;
-  };
-  std::vector<Seen> seen_;
-  std::vector<double> max_rate_;
   int stamp_now_ = 0;
   // Per slot: the block, tau0, the state (3 a slot) and the stages.
   std::vector<int> id_;
