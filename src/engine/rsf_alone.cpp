@@ -7,16 +7,15 @@
 
 #include "core/error.hpp"
 #include "engine/dormand_prince.hpp"
+#include "integrate/dopri5_dense.hpp"
 
 namespace bkq::rsf {
 
 namespace {
 
-// One component of the dense output between points p and e (h apart) at fraction th.
+// One component of the dense output between points p and e at fraction th.
 double dense_value(const AloneSlider::Point& p, const AloneSlider::Point& e, int i, double th) {
-  const double h = e.dt - p.dt, diff = e.y[i] - p.y[i], bspl = h * p.dy[i] - diff;
-  const double r4 = diff - h * e.dy[i] - bspl, th1 = 1 - th;
-  return p.y[i] + th * (diff + th1 * (bspl + th * (r4 + th1 * e.dense[i])));
+  return dopri::dense(p.y[i], e.y[i], p.dy[i], e.dy[i], e.dense[i], e.dt - p.dt, th);
 }
 
 // The time after p at which component i of the dense output reaches `target`, between p
@@ -24,7 +23,7 @@ double dense_value(const AloneSlider::Point& p, const AloneSlider::Point& e, int
 // root, kept inside a bracket that bisection narrows where Newton would leave it.
 double dense_root(const AloneSlider::Point& p, const AloneSlider::Point& e, int i, double target) {
   const double h = e.dt - p.dt, diff = e.y[i] - p.y[i], bspl = h * p.dy[i] - diff;
-  const double r4 = diff - h * e.dy[i] - bspl, r5 = e.dense[i];
+  const double r4 = diff - h * e.dy[i] - bspl, r5 = h * e.dense[i];
   // y(th) = y0 + c1 th + c2 th^2 + c3 th^3 + c4 th^4
   const double c1 = diff + bspl, c2 = r4 + r5 - bspl, c3 = -(r4 + 2 * r5), c4 = r5;
   double lo = 0, hi = 1, th = (target - p.y[i]) / diff;
@@ -64,15 +63,11 @@ double AloneSlider::step(const Slider& s, const Point& p, double h, Point& out) 
     if (!(e <= err)) err = e;  // NaN, a step past a runaway, wins
   }
   out.dt = p.dt + h;
-  // The dense output's coefficients (Hairer, Norsett & Wanner's DOPRI5).
-  constexpr double d1 = -12715105075.0 / 11282082432.0, d3 = 87487479700.0 / 32700410799.0,
-                   d4 = -10690763975.0 / 1880347072.0, d5 = 701980252875.0 / 199316789632.0,
-                   d6 = -1453857185.0 / 822651844.0, d7 = 69997945.0 / 29380423.0;
   for (int i = 0; i < 3; ++i) {
     out.y[i] = ytmp_[i];
     out.dy[i] = k_[6][i];
-    out.dense[i] = h * (d1 * k_[0][i] + d3 * k_[2][i] + d4 * k_[3][i] + d5 * k_[4][i] +
-                        d6 * k_[5][i] + d7 * k_[6][i]);
+    out.dense[i] = 0;
+    for (int l = 0; l < 7; ++l) out.dense[i] += dopri::kDense[l] * k_[l][i];
   }
   return std::isfinite(err) ? err : 1e10;
 }

@@ -37,7 +37,7 @@ class AloneSlider {
   // An accepted step's end, dt from the forecast's start.
   struct Point {
     double dt = 0, y[3] = {0, 0, 0}, dy[3] = {0, 0, 0};  // (slip, ln V, ln theta) and rates
-    double dense[3] = {0, 0, 0};  // the step to here: its dense output's fifth coefficient
+    double dense[3] = {0, 0, 0};  // the step to here: sum d_l k_l (integrate/dopri5_dense.hpp)
   };
   struct Limits {
     double ln_v_target = 0;  // ln V reaching it: Exit::Speed
