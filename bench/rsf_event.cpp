@@ -7,8 +7,10 @@
 //
 // Prints each engine's events, CPU seconds and events per CPU second side by side and their
 // ratio (the event-driven engine once per creep quantum given, and with none: "off"; each
-// event integrated on the whole grid and on its active blocks only, engine/rsf_active.hpp, with
-// the mean number of blocks that integration carries per step, what bounds its ratio), then the
+// event integrated on the whole grid, on its active blocks only, engine/rsf_active.hpp, with
+// the mean number of blocks that integration carries per step, what bounds its ratio, and on
+// its active blocks with blocks away from their closed forms integrated alone below V_a,
+// engine/rsf_alone.hpp, with the steps of those single-block integrations), then the
 // magnitude distributions' Kolmogorov-Smirnov distance between each event-driven run and the
 // continuous one, beside the distance between two continuous runs from different rough starts
 // (phase 1.3 j and 0.7 j); events before T/5 are left out. Then what bounds the speed-up: the
@@ -17,10 +19,11 @@
 // integrates too); total CPU / the CPU above V_h is the ceiling on the speed-up at equal events.
 //
 //   build/rsf_event [--chain N] [--duration T] [--speed V_pl] [--handover V_h]
-//                   [--quantum q[,q2,...]] [--asperities] [--rough r]
+//                   [--quantum q[,q2,...]] [--asperities] [--rough r] [--alone V_a]
 //     defaults: N = 100, T = 2000 s, V_pl = 1e-6 m/s, q = 1e-6 m (the scene's auto, D_c/10);
 //     the handover speed is the scene's auto, min(V_th/10, 0.01 a sigma/eta); --rough r spreads
-//     each block's D_c by a factor in [1 - r, 1 + r] (default 0)
+//     each block's D_c by a factor in [1 - r, 1 + r] (default 0); V_a defaults to the scene's
+//     auto, min(100 V_pl, V_th/10, 0.01 a sigma/eta)
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +49,8 @@ struct Result {
   std::vector<double> magnitudes;  // after the transient
   long long events = 0, steps = 0, syncs = 0;
   double cpu = 0;
-  double mean_active = NAN;  // active-block engine: blocks integrated per step
+  double mean_active = NAN;   // active-block engine: blocks integrated per step
+  long long alone_steps = 0;  // the single-block integrations' steps
   // Continuous only: steps and CPU while the fastest block is below V_h, and at or above it.
   long long steps_below = 0, steps_above = 0;
   double cpu_below = 0, cpu_above = 0;
@@ -94,11 +98,13 @@ Result continuous(const RsfModel& m, double duration, double phase, double v_h) 
   return r;
 }
 
+// active: each event on its active blocks; v_alone > 0: blocks alone below it.
 Result event_driven(const RsfModel& m, double duration, double phase, double v_h, double q,
-                    bool active) {
+                    bool active, double v_alone = 0) {
   Result r;
   RsfEventEngine engine(m, 1e-8, 1e-3, v_h, q, rough(m.n(), m.v_pl, phase), {10});
   engine.set_active_blocks(active);
+  if (v_alone > 0) engine.set_alone_speed(v_alone);
   const double t0 = bench::thread_seconds();
   while (auto e = engine.next(duration))
     if (e->hypocentre_time > duration / 5) r.magnitudes.push_back(e->magnitude);
@@ -107,6 +113,7 @@ Result event_driven(const RsfModel& m, double duration, double phase, double v_h
   r.steps = engine.steps();
   r.syncs = engine.syncs();
   if (active) r.mean_active = static_cast<double>(engine.active_block_steps()) / r.steps;
+  r.alone_steps = engine.loader().alone_steps();
   return r;
 }
 
@@ -137,7 +144,7 @@ double mean(const std::vector<double>& x) {
 
 int main(int argc, char** argv) {
   int n = 100;
-  double duration = 2000, v_pl = 1e-6, v_h = 0;
+  double duration = 2000, v_pl = 1e-6, v_h = 0, v_alone = 0;
   std::vector<double> quanta;
   bool asperities = false;
   double rough_dc = 0;
@@ -150,6 +157,8 @@ int main(int argc, char** argv) {
       v_pl = std::atof(argv[++i]);
     else if (std::strcmp(argv[i], "--handover") == 0 && i + 1 < argc)
       v_h = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--alone") == 0 && i + 1 < argc)
+      v_alone = std::atof(argv[++i]);
     else if (std::strcmp(argv[i], "--quantum") == 0 && i + 1 < argc) {
       const std::string list = argv[++i];
       for (std::size_t p = 0; p < list.size();) {
@@ -187,28 +196,33 @@ int main(int argc, char** argv) {
     }
   }
   if (v_h == 0) v_h = std::min(1e-4, 0.01 * 0.01 * m.sigma / m.eta);
-  std::printf("chain %d%s, D_c spread %g, V_pl = %g m/s, %g s simulated, V_h = %g m/s\n", n,
-              asperities ? " (asperities)" : "", rough_dc, v_pl, duration, v_h);
+  if (v_alone == 0) v_alone = std::min({100 * v_pl, 1e-4, 0.01 * 0.01 * m.sigma / m.eta});
+  std::printf(
+      "chain %d%s, D_c spread %g, V_pl = %g m/s, %g s simulated, V_h = %g m/s, V_a = %g m/s\n", n,
+      asperities ? " (asperities)" : "", rough_dc, v_pl, duration, v_h, v_alone);
   const Result c1 = continuous(m, duration, 1.3, v_h);
   const Result c2 = continuous(m, duration, 0.7, v_h);
   std::printf(
       "continuous steps with the fastest block below V_h: %lld (%.3f CPU s), at or above: %lld "
       "(%.3f CPU s); ceiling on the speed-up at equal events: total/above = %.1fx\n",
       c1.steps_below, c1.cpu_below, c1.steps_above, c1.cpu_above, c1.cpu / c1.cpu_above);
-  std::printf("%-30s %9s %9s %10s %13s %7s %10s %10s %9s %8s\n", "engine", "events", "CPU [s]",
-              "events/CPU s", "ratio", "KS", "mean M", "steps", "syncs", "active");
+  std::printf("%-36s %9s %9s %10s %13s %7s %10s %10s %9s %8s %11s\n", "engine", "events", "CPU [s]",
+              "events/CPU s", "ratio", "KS", "mean M", "steps", "syncs", "active", "alone steps");
   const auto row = [&](const char* name, const Result& r, double ks_value) {
-    std::printf("%-30s %9lld %9.3f %10.2f %12.1fx %7.3f %10.3f %10lld %9lld %8.2f\n", name,
+    std::printf("%-36s %9lld %9.3f %10.2f %12.1fx %7.3f %10.3f %10lld %9lld %8.2f %11lld\n", name,
                 r.events, r.cpu, r.events / r.cpu, (r.events / r.cpu) / (c1.events / c1.cpu),
-                ks_value, mean(r.magnitudes), r.steps, r.syncs, r.mean_active);
+                ks_value, mean(r.magnitudes), r.steps, r.syncs, r.mean_active, r.alone_steps);
   };
   row("continuous", c1, 0.0);
   row("continuous, other start", c2, ks(c2.magnitudes, c1.magnitudes));
   for (const double q : quanta)
-    for (const bool active : {false, true}) {
-      const Result e = event_driven(m, duration, 1.3, v_h, q, active);
+    for (const int how_ : {0, 1, 2}) {
+      const bool active = how_ > 0;
+      const Result e = event_driven(m, duration, 1.3, v_h, q, active, how_ == 2 ? v_alone : 0);
       char name[64];
-      const char* how = active ? "active blocks" : "whole grid";
+      const char* how = how_ == 2 ? "active blocks, alone"
+                        : active  ? "active blocks"
+                                  : "whole grid";
       if (std::isinf(q))
         std::snprintf(name, sizeof name, "events, %s, q off", how);
       else

@@ -436,7 +436,11 @@ class RsfEventFigures : public RunObserver {
     r.set("handover_speed", v_handover_);
     r.set("creep_quantum", e_.loader().creep_quantum());
     r.set("event_integration", e_.active_blocks() ? "active" : "whole");
-    if (e_.active_blocks()) r.set("active_block_steps", e_.active_block_steps());
+    if (e_.active_blocks()) {
+      r.set("active_block_steps", e_.active_block_steps());
+      r.set("alone_speed", e_.alone_speed());
+      r.set("alone_steps", static_cast<std::int64_t>(e_.loader().alone_steps()));
+    }
     r.set("integrations", e_.integrations());
     r.set("syncs", e_.syncs());
     r.set("steps", e_.steps());
@@ -467,6 +471,8 @@ class RsfEventRun {
         transient_(settings.run.transient_events),
         events_(settings.run.events) {
     engine_.set_active_blocks(settings.rsf.active_blocks);
+    if (engine_.active_blocks() && settings.rsf.v_alone > 0)
+      engine_.set_alone_speed(settings.rsf.v_alone);
     if (resumed) {
       restore_rsf_state(*resumed, [&](StateReader& r) { engine_.restore(r.f64s()); });
       prog_ = resumed->progress;

@@ -25,12 +25,12 @@ constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -
 
 // One step's stages from (t, y), k[0] = y' there (FSAL): k[1]..k[5], the 5th-order solution
 // into ytmp and its derivative into k[6] (the next step's k[0]), and the embedded error
-// estimate h sum e_i k_i into err. rhs(t, y, dy) on raw arrays of y's size.
-template <class Rhs>
-void stages(double t, double h, const std::vector<double>& y, std::vector<double> (&k)[7],
-            std::vector<double>& ytmp, std::vector<double>& err, Rhs&& rhs) {
+// estimate h sum e_i k_i into err. rhs(t, y, dy) on raw arrays of y's size. Vec: a
+// std::vector<double>, or a std::array<double, n> (one slider's state: loops of fixed length).
+template <class Vec, class Rhs>
+void stages(double t, double h, const Vec& y, Vec (&k)[7], Vec& ytmp, Vec& err, Rhs&& rhs) {
   const std::size_t size = y.size();
-  const auto stage = [&](std::vector<double>& out, double c, auto combine) {
+  const auto stage = [&](Vec& out, double c, auto combine) {
     for (std::size_t i = 0; i < size; ++i) ytmp[i] = y[i] + h * combine(i);
     rhs(t + c * h, ytmp.data(), out.data());
   };

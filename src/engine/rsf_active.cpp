@@ -262,7 +262,9 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
     bool joined = false;
     while (loader.next_time() - t0 <= t_) {
       const int b = loader.next_block();
-      if (loader.next_is_quantum()) {
+      if (loader.next_is_phase()) {
+        loader.rephase();
+      } else if (loader.next_is_quantum()) {
         loader.sync(b, now);
         ++syncs_;
         // The quantum reaches its active neighbours at once: a stress step on the slot.

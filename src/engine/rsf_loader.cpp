@@ -12,7 +12,8 @@ namespace bkq {
 
 namespace {
 template <class Cycle>
-bool handed_back(const Cycle& c, int j, double ln_vh, bool unstable_alone, bool may_cut);
+bool handed_back(const Cycle& c, int j, double ln_vh, double ln_va, bool unstable_alone,
+                 bool may_cut);
 
 // Where the closed forms are poor (d theta/dt = 1 - Omega with Omega = V theta/D_c near 1),
 // a velocity-weakening block that nucleates on its own is left to the integrator: it is handed
@@ -29,6 +30,12 @@ constexpr double kSlowLocked = 3;
 // A velocity-strengthening block goes back to its steady-state phase within this of
 // Omega = 1 (or locked, Omega < 1).
 constexpr double kLnOmegaSteady = 0.05;
+// A block taken alone near steady sliding joins an integration at v_alone and goes back to
+// being alone below v_alone/3 (not straight back and forth).
+const double kLnAloneBack = std::log(3.0);
+// ln V below the locked form's limit (kSlowLocked V_pl) at which a block taken alone goes back
+// to it.
+constexpr double kLockedMargin = 1e-6;
 
 // Whether block j's steady sliding is unstable on its own springs: sigma (b - a)/D_c above
 // the unloading stiffness of a block inside the grid, k + twice the stencil's springs. Only
@@ -93,9 +100,12 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
       unsynced_(m.n(), 0.0),
       position_(m.n(), 0.0),
       lead_(m.n(), 0.0),
-      quantum_due_(m.n(), 0),
+      clock_(m.n(), kDue),
       heap_(m.n()),
+      path_(m.n()),
+      in_alone_(m.n(), 0),
       ln_vh_(std::log(v_handover)),
+      v_pl_(m.v_pl),
       quantum_(creep_quantum) {
   if (!(m.v_pl > 0) || !(m.k > 0))
     throw Error("rsf: the event-driven engine needs a loader (k > 0, V_pl > 0)");
@@ -117,12 +127,32 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
 
 rsf::SliderState RsfLoader::state_at(int j, double t) const {
   if (t == t_ref_[j]) return x_ref_[j];
+  if (in_alone_[j]) {
+    const rsf::AloneSlider::Point p = alone_.at(slider_[j], path_[j], t - t_ref_[j]);
+    return {p.y[1], p.y[2]};
+  }
   return rsf::evolve(slider_[j], x_ref_[j], t - t_ref_[j]);
 }
 
 double RsfLoader::unsynced(int j, double t) const {
   if (t == t_ref_[j]) return unsynced_[j];
+  if (in_alone_[j]) return unsynced_[j] + alone_.at(slider_[j], path_[j], t - t_ref_[j]).y[0];
   return unsynced_[j] + rsf::slip(slider_[j], x_ref_[j], t - t_ref_[j]);
+}
+
+void RsfLoader::integrate_alone(double v_alone, double tolerance) {
+  alone_ = rsf::AloneSlider(tolerance);
+  alone_on_ = true;
+  ln_va_ = std::log(v_alone);
+  ln_slow_ = std::log(kSlowLocked * v_pl_);
+  for (int j = 0; j < n(); ++j)
+    if (!held(j)) schedule(j);
+}
+
+void RsfLoader::rephase() {
+  const int j = heap_.top();
+  rebase(j, heap_.top_time());
+  schedule(j);
 }
 
 void RsfLoader::set(int j, double t, rsf::SliderState x) {
@@ -139,8 +169,14 @@ void RsfLoader::set(int j, double t, rsf::SliderState x, double unsynced, double
 
 void RsfLoader::rebase(int j, double t) {
   if (t == t_ref_[j]) return;
-  unsynced_[j] = unsynced(j, t);
-  x_ref_[j] = state_at(j, t);
+  if (in_alone_[j]) {
+    const rsf::AloneSlider::Point p = alone_.at(slider_[j], path_[j], t - t_ref_[j]);
+    unsynced_[j] += p.y[0];
+    x_ref_[j] = {p.y[1], p.y[2]};
+  } else {
+    unsynced_[j] = unsynced(j, t);
+    x_ref_[j] = state_at(j, t);
+  }
   t_ref_[j] = t;
 }
 
@@ -153,16 +189,43 @@ void RsfLoader::schedule(int j) {
   // does a velocity-strengthening one away from it (both only as an integration's end left
   // them: see handed_back).
   const double lo = rsf::ln_omega(s, x);
+  const double amount = std::isinf(quantum_) ? quantum_ : 0.5 * quantum_ + lead_[j] - unsynced_[j];
+  // Taken alone: a velocity-weakening block below the hand-over to the integrator that neither
+  // nucleates (Omega >= kOmegaOut) nor is locked and slow (Omega < kOmegaBack, below
+  // kSlowLocked V_pl less a margin, so that the locked form's clock to kSlowLocked V_pl lands
+  // here and not back in the locked form).
+  const bool alone_on = alone_on_ && !s.strengthening();
+  in_alone_[j] =
+      alone_on && lo < kLnOmegaOut && !(lo < kLnOmegaBack && x.ln_v < ln_slow_ - kLockedMargin);
+  if (in_alone_[j]) {
+    rsf::AloneSlider::Limits lim;
+    lim.ln_v_target = ln_va_;
+    lim.amount = amount;
+    lim.ln_omega_lo = kLnOmegaBack;
+    lim.ln_omega_hi = kLnOmegaOut;
+    lim.ln_v_locked = ln_slow_ - kLockedMargin;
+    const rsf::AloneSlider::Forecast f = alone_.forecast(s, x, lim, path_[j]);
+    using Exit = rsf::AloneSlider::Exit;
+    clock_[j] = f.exit == Exit::Speed ? kDue : f.exit == Exit::Slip ? kQuantum : kPhase;
+    heap_.set(j, t_ref_[j] + f.dt);
+    return;
+  }
+  if (alone_on && lo < kLnOmegaOut) {
+    // Locked and slow: the locked form until Omega reaches kOmegaIn or V kSlowLocked V_pl.
+    const rsf::NextClock c = rsf::next_clock(s, x, ln_slow_, amount, kLnOmegaIn);
+    clock_[j] = c.slip ? kQuantum : kPhase;
+    heap_.set(j, t_ref_[j] + c.time);
+    return;
+  }
   if (nucleates_alone_[j] ? !rsf::locked(s, x) && lo < kLnOmegaOut
                           : s.strengthening() && lo >= kLnOmegaSteady) {
-    quantum_due_[j] = 0;
+    clock_[j] = kDue;
     heap_.set(j, t_ref_[j]);
     return;
   }
-  const double amount = std::isinf(quantum_) ? quantum_ : 0.5 * quantum_ + lead_[j] - unsynced_[j];
   const rsf::NextClock c =
       rsf::next_clock(s, x, ln_vh_, amount, nucleates_alone_[j] ? kLnOmegaIn : 0.0);
-  quantum_due_[j] = c.slip ? 1 : 0;
+  clock_[j] = c.slip ? kQuantum : kDue;
   heap_.set(j, t_ref_[j] + c.time);
 }
 
@@ -254,6 +317,10 @@ std::optional<EventRecord> RsfEventEngine::next(double t_end) {
       t_ = std::max(t_, t_end);
       return std::nullopt;
     }
+    if (loader_.next_is_phase()) {
+      loader_.rephase();
+      continue;
+    }
     if (loader_.next_is_quantum()) {
       loader_.sync(loader_.next_block(), t_next);
       ++syncs_;
@@ -300,11 +367,15 @@ bool cut_short(const Cycle& c, int j) {
 // and take them in again at every step of an event).
 namespace {
 template <class Cycle>
-bool handed_back(const Cycle& c, int j, double ln_vh, bool unstable_alone, bool may_cut) {
+bool handed_back(const Cycle& c, int j, double ln_vh, double ln_va, bool unstable_alone,
+                 bool may_cut) {
   const double ln_v = c.ln_v(j);
-  if (!(ln_v < ln_vh)) return false;
   const RsfModel& m = c.model();
   const rsf::Params& p = m.law[j].params();
+  if (!(p.a > p.b_rsf) && ln_va > -std::numeric_limits<double>::infinity() &&
+      ln_v + c.ln_theta(j) - std::log(p.dc) < kLnOmegaOut)
+    return ln_v < ln_va - kLnAloneBack;
+  if (!(ln_v < ln_vh)) return false;
   const bool cut = may_cut && cut_short(c, j);
   const bool slow = ln_v < std::log(kSlowLocked * m.v_pl);
   const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
@@ -351,7 +422,7 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
     if (detector.in_event()) continue;
     bool done = true;
     for (int j = 0; j < n && done; ++j)
-      done = handed_back(cycle, j, ln_vh, loader_.nucleates_alone(j), true);
+      done = handed_back(cycle, j, ln_vh, loader_.ln_v_alone(), loader_.nucleates_alone(j), true);
     if (done) break;
   }
   steps_ += cycle.accepted();
@@ -371,9 +442,11 @@ void RsfEventEngine::integrate_active(int first, double t0, double t_end) {
   ++integrations_;
   const std::int64_t steps0 = active_->accepted(), syncs0 = active_->syncs(),
                      slots0 = active_->slot_steps();
-  t_ = active_->run(loader_, first, t0, t_end, [this, ln_vh](const RsfActiveIntegration& a, int j) {
-    return handed_back(a, j, ln_vh, loader_.nucleates_alone(j), !a.in_event());
-  });
+  const double ln_va = loader_.ln_v_alone();
+  t_ = active_->run(
+      loader_, first, t0, t_end, [this, ln_vh, ln_va](const RsfActiveIntegration& a, int j) {
+        return handed_back(a, j, ln_vh, ln_va, loader_.nucleates_alone(j), !a.in_event());
+      });
   steps_ += active_->accepted() - steps0;
   syncs_ += active_->syncs() - syncs0;
   active_block_steps_ += active_->slot_steps() - slots0;
@@ -398,7 +471,9 @@ std::vector<double> RsfEventEngine::snapshot() const {
     s.push_back(loader_.lead(j));
     s.push_back(loader_.position(j));
   }
-  s.push_back(static_cast<double>(active_block_steps_));  // last: absent from older checkpoints
+  // The counters of the active-block integration (absent from older checkpoints).
+  s.push_back(static_cast<double>(active_block_steps_));
+  s.push_back(static_cast<double>(loader_.alone_steps()));
   return s;
 }
 
@@ -406,9 +481,9 @@ void RsfEventEngine::restore(const std::vector<double>& s) {
   const int n = loader_.n();
   constexpr std::size_t head = 5, per_block = 6;
   const std::size_t size = head + per_block * static_cast<std::size_t>(n);
-  if (s.size() != size && s.size() != size + 1)
+  if (s.size() < size || s.size() > size + 2)
     throw Error("rsf: a checkpoint of another chain's size");
-  active_block_steps_ = s.size() == size + 1 ? static_cast<std::int64_t>(s.back()) : 0;
+  active_block_steps_ = s.size() > size ? static_cast<std::int64_t>(s[size]) : 0;
   t_ = s[0];
   events_ = static_cast<std::int64_t>(s[1]);
   integrations_ = static_cast<std::int64_t>(s[2]);
@@ -419,6 +494,8 @@ void RsfEventEngine::restore(const std::vector<double>& s) {
     loader_.set(j, b[0], {b[1], b[2]}, b[3], b[4]);
     loader_.set_position(j, b[5]);
   }
+  // After the blocks: their forecasts are the ones the run had made (not counted twice).
+  loader_.set_alone_steps(s.size() > size + 1 ? static_cast<long long>(s[size + 1]) : 0);
   pending_.clear();
 }
 

@@ -13,6 +13,17 @@
 // that a velocity-strengthening block above steady state enters its steady-state phase at
 // constant friction (rsf::onto_steady_state: its stress kept, theta at D_c/V).
 //
+// Blocks alone (with the active-block integration, RsfLoader::integrate_alone): a velocity-
+// weakening block that neither nucleates (V theta/D_c >= kOmegaOut) nor is locked and slow
+// (V theta/D_c < kOmegaBack below kSlowLocked V_pl) is integrated on its own below v_alone
+// (engine/rsf_alone.hpp: its full aging law under the loader's stressing rate, k_eff unloading
+// it, its neighbours' creep in quanta as in the closed forms), with a forecast of its steps
+// from its last set() instead of a closed form; it is due at v_alone and its clocks are the
+// forecast's (the quantum, the closed forms' domains entered at a step's end, the forecast's
+// horizon). A locked block reaching kOmegaIn or kSlowLocked V_pl goes over to it (a change of
+// phase, not due). Without it such blocks join the integrator near steady state (the whole
+// grid's rule), where the active-block integration carries them at its events' step sizes.
+//
 // Between events the neighbours' creep reaches a block in quanta: each block's closed-form
 // slip is passed on as stress steps to its neighbours whenever it reaches rsf.creep_quantum
 // (RsfLoader::sync), and every block is synced when an event starts.
@@ -29,12 +40,14 @@
 
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "engine/event_record.hpp"
 #include "engine/rsf_active.hpp"
+#include "engine/rsf_alone.hpp"
 #include "engine/rsf_cycle.hpp"
 #include "model/rsf_nucleation.hpp"
 
@@ -106,10 +119,26 @@ class RsfLoader {
   void move(int j, double slip) { position_[j] += slip; }
   double position(int j) const { return position_[j]; }
   void set_position(int j, double x) { position_[j] = x; }  // a checkpoint's
-  // The next block to reach V_h or its quantum, and when; whether it is the quantum.
+  // The next block to reach V_h or its quantum, or to change phase, and when; whether it is
+  // the quantum; whether it is a change of phase (the caller then calls rephase()).
   int next_block() const { return heap_.top(); }
   double next_time() const { return heap_.top_time(); }
-  bool next_is_quantum() const { return quantum_due_[heap_.top()] != 0; }
+  bool next_is_quantum() const { return clock_[heap_.top()] == kQuantum; }
+  bool next_is_phase() const { return clock_[heap_.top()] == kPhase; }
+  // The next block's form restarts at its time: a locked block nearing steady state is taken
+  // alone, a block taken alone goes back to a closed form (or its forecast goes on).
+  void rephase();
+
+  // Velocity-weakening blocks that nucleate on their own are integrated alone near steady
+  // sliding (engine/rsf_alone.hpp: V theta/D_c from kOmegaBack to kOmegaOut) below
+  // v_alone, where they are due (instead of joining the integrator there at V_h); tolerance:
+  // the integrator's. Off until called (they are due near steady state, as the whole grid
+  // needs them).
+  void integrate_alone(double v_alone, double tolerance);
+  bool alone(int j) const { return in_alone_[j] != 0; }  // being integrated alone now
+  double ln_v_alone() const { return ln_va_; }
+  long long alone_steps() const { return alone_.steps(); }
+  void set_alone_steps(long long n) { alone_.set_steps(n); }  // a checkpoint's
   double ln_v_handover() const { return ln_vh_; }
   double creep_quantum() const { return quantum_; }
   // Block j's steady sliding is unstable on its own springs: near V theta/D_c = 1 it is left to
@@ -140,9 +169,16 @@ class RsfLoader {
   std::vector<rsf::SliderState> x_ref_;
   std::vector<double> unsynced_, position_;  // slip before t_ref not synced; synced slip
   std::vector<double> lead_;                 // slip passed on less the synced slip
-  std::vector<char> quantum_due_;
+  enum Clock : char { kDue, kQuantum, kPhase };
+  std::vector<char> clock_;  // what each block's heap time is
   IndexedMinHeap heap_;
-  double ln_vh_, quantum_;
+  // Blocks integrated alone: the forecast from their last set (its steps), by block.
+  bool alone_on_ = false;
+  mutable rsf::AloneSlider alone_{1e-8};  // the tolerance: integrate_alone's
+  std::vector<std::vector<rsf::AloneSlider::Point>> path_;
+  std::vector<char> in_alone_;
+  double ln_va_ = -std::numeric_limits<double>::infinity(), ln_slow_ = 0;
+  double ln_vh_, v_pl_, quantum_;
   std::vector<char> held_;           // empty until the first hold()
   std::vector<double> held_stress_;  // stress steps summed for held blocks [Pa]
 };
@@ -173,6 +209,14 @@ class RsfEventEngine {
   // grid (the active-block path's inertial events are not checked). The choice is not part
   // of a snapshot.
   void set_active_blocks(bool on) { active_blocks_ = on; }
+  // With active blocks: velocity-weakening blocks away from their closed forms are integrated
+  // alone below v_alone (RsfLoader::integrate_alone) instead of joining the integration at
+  // V_h; 0 until called. Not part of a snapshot (the scene's).
+  void set_alone_speed(double v_alone) {
+    loader_.integrate_alone(v_alone, tol_);
+    v_alone_ = v_alone;
+  }
+  double alone_speed() const { return v_alone_; }
   bool active_blocks() const { return active_blocks_ && m_.dynamics == RsfDynamics::QuasiDynamic; }
   // Active blocks summed over the integrations' steps (the mean active set is this / steps()
   // over the steps of active-block integrations); 0 for the whole grid.
@@ -193,6 +237,7 @@ class RsfEventEngine {
   std::int64_t events_ = 0, integrations_ = 0, steps_ = 0, syncs_ = 0;
   std::deque<EventRecord> pending_;
   bool active_blocks_ = false;
+  double v_alone_ = 0;
   std::int64_t active_block_steps_ = 0;
   std::unique_ptr<RsfActiveIntegration> active_;
 };

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "integrate/dopri5_dense.hpp"
 #include "integrate/transit.hpp"
 
 namespace bkq {
@@ -19,7 +20,7 @@ namespace {
 
 // Dormand & Prince (1980): nodes, stage coefficients (row S-1 builds stage S from the
 // stages before it; the last row is the 5th-order solution), b - b_hat for the error
-// estimate and the dense-output weights of Shampine (1986) as in Hairer's DOPRI5.
+// estimate (the dense-output weights: integrate/dopri5_dense.hpp).
 constexpr double kC[7] = {0.0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1.0, 1.0};
 constexpr double kA[6][6] = {
     {1.0 / 5},
@@ -30,11 +31,6 @@ constexpr double kA[6][6] = {
     {35.0 / 384, 0.0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84}};
 constexpr double kE[7] = {71.0 / 57600,      0.0,        -71.0 / 16695, 71.0 / 1920,
                           -17253.0 / 339200, 22.0 / 525, -1.0 / 40};
-constexpr double kD[7] = {-12715105075.0 / 11282082432,  0.0,
-                          87487479700.0 / 32700410799,   -10690763975.0 / 1880347072,
-                          701980252875.0 / 199316789632, -1453857185.0 / 822651844,
-                          69997945.0 / 29380423};
-
 // Step-size controller (Hairer, Nørsett & Wanner, §II.4).
 constexpr double kSafety = 0.9, kFacMin = 0.2, kFacMax = 10.0;
 // Transitions are bisected on the dense output, then polished on real steps, to this
@@ -47,13 +43,9 @@ constexpr int kPolishSteps = 12;
 // derivatives k(0..6) (DOPRI5's CONTD5, 4th order).
 template <class K>
 double dense(double y0, double y1, double h, double theta, K&& k) {
-  const double dy = y1 - y0;
-  const double bspl = h * k(0) - dy;
-  const double c4 = dy - h * k(6) - bspl;
   double c5 = 0;
-  for (int l = 0; l < 7; ++l) c5 += kD[l] * k(l);
-  const double theta1 = 1.0 - theta;
-  return y0 + theta * (dy + theta1 * (bspl + theta * (c4 + theta1 * h * c5)));
+  for (int l = 0; l < 7; ++l) c5 += dopri::kDense[l] * k(l);
+  return dopri::dense(y0, y1, k(0), k(6), c5, h, theta);
 }
 
 // Records q into the running maximum m; a NaN sticks (a non-finite step must be rejected).

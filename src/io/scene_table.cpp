@@ -918,6 +918,17 @@ std::vector<ParamSpec> rsf_rows() {
              "scenes, inertial ones integrate the whole grid)")
           .when(rsf_law(), event_driven())
           .later(),
+      real(key::rsf_alone_speed, at(&SceneValues::rsf, &RsfKeys::alone_speed), "auto", '[', 0, 1e6,
+           ']', "m/s",
+           "V_a of the active-block integration: a velocity-weakening block that neither "
+           "nucleates (V theta/D_c >= 10) nor is locked below 3 drive.speed is integrated on its "
+           "own between events (its full aging law; its neighbours' creep in quanta) up to V_a, "
+           "where it joins the event's active blocks, and goes back below V_a/3; between "
+           "drive.speed and rsf.v_threshold; auto: 100 drive.speed, at most rsf.v_threshold/10 "
+           "and eta V_a <= 0.01 a sigma (off where that is not above drive.speed); 0: off (such "
+           "blocks are integrated with the active blocks); rsf.event_integration = active only")
+          .when(rsf_law(), event_driven())
+          .later(),
       choice(key::rsf_pattern, "uniform", at(&SceneValues::rsf, &RsfKeys::pattern),
              {{"uniform", RsfPattern::Uniform}, {"asperities", RsfPattern::Asperities}},
              "per-block values: uniform (rsf.a, rsf.b everywhere), or asperities: blocks with x "
@@ -992,6 +1003,19 @@ void rate_and_state(const Scene& s, const std::string& where) {
                 "allowed: per-block values from rsf.blocks (e.g. a rough D_c from "
                 "analysis/make_rough_blocks.py), or rsf.event_integration = whole" +
                 where);
+  if (v.drive.mode == DriveMode::Events && v.rsf.alone_speed && *v.rsf.alone_speed != 0) {
+    if (!v.rsf.active_blocks)
+      throw Error("rsf.alone_speed = " + s.text(key::rsf_alone_speed) +
+                  " with rsf.event_integration = whole: blocks are integrated alone between "
+                  "events only when each event is integrated on its active blocks; allowed: "
+                  "rsf.event_integration = active, or rsf.alone_speed = auto or 0" +
+                  where);
+    if (!(*v.rsf.alone_speed<v.rsf.v_threshold&& * v.rsf.alone_speed> v.drive.speed))
+      throw Error("rsf.alone_speed = " + s.text(key::rsf_alone_speed) +
+                  ": the speed up to which a block is integrated alone lies between the plate "
+                  "rate and the seismic rate; allowed: 0 (off), auto or (" +
+                  s.text(key::drive_speed) + ", " + s.text(key::rsf_v_threshold) + ")" + where);
+  }
   if (v.drive.mode == DriveMode::Events && v.rsf.handover_speed &&
       !(*v.rsf.handover_speed<v.rsf.v_threshold&& * v.rsf.handover_speed> v.drive.speed))
     throw Error("rsf.handover_speed = " + s.text(key::rsf_handover_speed) +

@@ -147,6 +147,7 @@ struct RsfKeys {
   std::optional<double> handover_speed;  // drive.mode = events; auto: chosen from V_th and eta
   std::optional<double> creep_quantum;   // drive.mode = events; auto: from a sigma and k_c
   bool active_blocks = false;            // rsf.event_integration = active
+  std::optional<double> alone_speed;     // active blocks only; auto: from V_pl, V_th, eta; 0: off
 };
 
 struct SceneValues {

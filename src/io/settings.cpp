@@ -199,6 +199,18 @@ RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
                   ": radiation damping eta V_h exceeds a tenth of a sigma there, which the "
                   "closed form between events leaves out; allowed: up to " +
                   short_real(0.1 * damped) + " m/s (or auto)");
+    // Blocks alone: their law leaves radiation damping out as the closed forms do (eta V_a at
+    // most 0.01 a sigma when auto, 0.1 when given).
+    if (r.active_blocks) {
+      r.v_alone =
+          v.rsf.alone_speed.value_or(std::min({100 * m.v_pl, r.v_threshold / 10, 0.01 * damped}));
+      if (!v.rsf.alone_speed && !(r.v_alone > m.v_pl)) r.v_alone = 0;
+      if (v.rsf.alone_speed && m.eta * r.v_alone > 0.1 * a_min * m.sigma)
+        throw Error("rsf.alone_speed = " + format_real(r.v_alone) +
+                    ": radiation damping eta V_a exceeds a tenth of a sigma there, which a block "
+                    "integrated alone leaves out; allowed: up to " +
+                    short_real(0.1 * damped) + " m/s, auto or 0");
+    }
     if (!(r.v_handover > m.v_pl))
       throw Error("rsf.handover_speed = auto: with radiation damping eta = " + format_real(m.eta) +
                   " Pa s/m the hand-over speed that keeps eta V_h << a sigma (" +

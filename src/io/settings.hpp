@@ -48,6 +48,7 @@ struct RsfSettings {
   double v_handover = 0;       // rsf.handover_speed [m/s], auto resolved
   double creep_quantum = 0;    // rsf.creep_quantum [m], auto resolved
   bool active_blocks = false;  // rsf.event_integration = active
+  double v_alone = 0;          // rsf.alone_speed [m/s], auto resolved; 0: off
   // The start state of every block: theta_init, or each block's steady state at V_pl.
   std::vector<double> theta_start() const {
     std::vector<double> theta;

@@ -36,7 +36,7 @@ RsfModel asperity_grid(int n, int width, int rows = 1) {
 // between, which the active path's held neighbours change). Skipping the activation of
 // neighbours would make them single-block events; a barrier's step along steady state where
 // it joins or where an event's slip reaches it would add blocks and an aftershock.
-void expect_same_first_events(const RsfModel& m, int count) {
+void expect_same_first_events(const RsfModel& m, int count, double v_alone = 0) {
   const int n = m.n();
   std::vector<double> v0(n), theta(n);
   for (int j = 0; j < n; ++j) {
@@ -47,6 +47,7 @@ void expect_same_first_events(const RsfModel& m, int count) {
   RsfEventEngine whole(m, 1e-8, 1e-3, 1e-4, 1e-6, v0, theta);
   RsfEventEngine active(m, 1e-8, 1e-3, 1e-4, 1e-6, v0, theta);
   active.set_active_blocks(true);
+  if (v_alone > 0) active.set_alone_speed(v_alone);
   ASSERT_TRUE(active.active_blocks());
   int several = 0;
   for (int k = 0; k < count; ++k) {
@@ -64,6 +65,10 @@ void expect_same_first_events(const RsfModel& m, int count) {
   // Fewer blocks than N in a step on average: the point of it.
   EXPECT_GT(active.active_block_steps(), 0);
   EXPECT_LT(static_cast<double>(active.active_block_steps()) / active.steps(), 0.5 * n);
+  // With blocks alone, some were (after their events).
+  if (v_alone > 0) {
+    EXPECT_GT(active.loader().alone_steps(), 0);
+  }
 }
 
 TEST(RsfActive, SameFirstEventsAsTheWholeGridOnAChain) {
@@ -72,6 +77,11 @@ TEST(RsfActive, SameFirstEventsAsTheWholeGridOnAChain) {
 
 TEST(RsfActive, SameFirstEventsAsTheWholeGridOnALattice) {
   expect_same_first_events(asperity_grid(24, 3, 4), 3);
+}
+
+TEST(RsfActive, SameFirstEventsAsTheWholeGridWithBlocksAlone) {
+  expect_same_first_events(asperity_grid(20, 3), 4, 1e-4);
+  expect_same_first_events(asperity_grid(24, 3, 4), 3, 1e-4);
 }
 
 // A hand-back test for the direct runs below: a decade below V_h.

@@ -19,17 +19,8 @@
 namespace bkq {
 namespace {
 
-// QDYN's block (a = 0.01, b = 0.025, D_c = 1e-5 m, sigma = 5 MPa, k = 2e9 Pa/m, V_pl = 1e-6).
-rsf::Slider qdyn_slider() {
-  rsf::Slider s;
-  s.a = 0.01;
-  s.b_rsf = 0.025;
-  s.dc = 1e-5;
-  s.sigma = 5e6;
-  s.k_eff = 2e9;
-  s.stressing_rate = 2e9 * 1e-6;
-  return s;
-}
+using test::full_law_block;
+using test::qdyn_slider;
 
 // A velocity-strengthening barrier of the shipped lattice (QDYN's block with a and b swapped)
 // with the lattice's unloading stiffness k + 4 k_c = 6e9 Pa/m.
@@ -39,20 +30,6 @@ rsf::Slider barrier_slider() {
   s.b_rsf = 0.01;
   s.k_eff = 6e9;
   return s;
-}
-
-// One block under the full aging law with slider s's a, b, unloading stiffness and stressing
-// rate (QDYN's block otherwise, no radiation damping), for the cycle integrator.
-RsfModel full_law_block(const rsf::Slider& s) {
-  RsfModel m = test::qdyn_stickslip(1);
-  rsf::Params p = m.law[0].params();
-  p.a = s.a;
-  p.b_rsf = s.b_rsf;
-  m.law[0] = rsf::Law(p);
-  m.eta = 0;
-  m.k = s.k_eff;
-  m.v_pl = s.stressing_rate / s.k_eff;
-  return m;
 }
 
 // The two phases' equations themselves (healing with k_eff V left out while V theta/D_c < 1,

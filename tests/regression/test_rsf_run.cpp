@@ -11,6 +11,7 @@
 #include <initializer_list>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../cli_helpers.hpp"
@@ -122,6 +123,26 @@ TEST(RsfRun, Refusals) {
     const auto r = run_bkquake(rsf_args(tmp.file("ok"), runs));
     EXPECT_EQ(r.status, 0) << r.err;
     std::filesystem::remove_all(tmp.path() / "ok");
+  }
+  // Blocks integrated alone: with the active-block integration only, between V_pl and V_th.
+  expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.alone_speed=1e-4"))),
+                 {"rsf.alone_speed = 1e-04", "rsf.event_integration = whole",
+                  "allowed: rsf.event_integration = active"});
+  for (const auto& [bad, shown] :
+       {std::pair<std::string, std::string>{"1e-6", "1e-06"}, {"2e-3", "0.002"}})
+    expect_refused(run_bkquake(rsf_args(out, with(with(active, "rsf.handover_speed=3e-6"),
+                                                  "rsf.alone_speed=" + bad))),
+                   {"rsf.alone_speed = " + shown, "allowed: 0 (off), auto or (1e-06, 0.001)"});
+  expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.alone_speed=-1"))),
+                 {"rsf.alone_speed", "-1"});
+  {
+    // 0 turns it off (summary.json says so), and whole-grid runs take auto and 0.
+    for (const auto& runs : {with(with(active, "rsf.handover_speed=3e-6"), "rsf.alone_speed=0"),
+                             with(with(ev, "model.kind=bk"), "rsf.alone_speed=0")}) {
+      const auto r = run_bkquake(rsf_args(tmp.file("ok"), runs));
+      EXPECT_EQ(r.status, 0) << r.err;
+      std::filesystem::remove_all(tmp.path() / "ok");
+    }
   }
   expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.handover_speed=2e-3"))),
                  {"rsf.handover_speed = 0.002", "allowed: auto or (1e-06, 0.001)"});
@@ -259,6 +280,16 @@ TEST(RsfRun, ActiveBlocksKilledAndResumedGiveTheSameBytes) {
   };
   EXPECT_FALSE(counter("whole").empty());
   EXPECT_EQ(counter("cut"), counter("whole"));
+  // Blocks integrated alone between events (rsf.alone_speed auto: 100 drive.speed): their
+  // steps are counted, through the checkpoint too.
+  const auto number = [&](const std::string& dir, const std::string& name) {
+    const std::string text = read_file(tmp.file(dir + "/summary.json"));
+    const std::size_t at = text.find("\"" + name + "\": ");
+    return at == std::string::npos ? -1.0 : std::stod(text.substr(at + name.size() + 4));
+  };
+  EXPECT_NEAR(number("whole", "alone_speed"), 1e-4, 1e-15);
+  EXPECT_GT(number("whole", "alone_steps"), 0);
+  EXPECT_EQ(number("cut", "alone_steps"), number("whole", "alone_steps"));
 }
 
 // rsf.blocks: per-block a, b and D_c. Two uncoupled blocks, one with QDYN's law and one with
