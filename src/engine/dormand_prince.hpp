@@ -50,6 +50,12 @@ void stages(double t, double h, const Vec& y, Vec (&k)[7], Vec& ytmp, Vec& err, 
     err[i] = h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
 }
 
+// The running maximum of an error norm's terms, where a NaN (a stage past the range of exp)
+// wins and sticks, so that the step is rejected (std::max would drop it and accept the step).
+inline double worse(double e, double q) {
+  return std::isnan(e) || q <= e ? e : q;
+}
+
 // The step-size control: the factor 0.9 err^(-1/5) on h, within [0.2, 5] after an accepted
 // step (at most 1 if a rejection came before it), within [0.2, 1] after a rejection.
 inline double grow_factor(double err, bool accepted, bool rejected_before) {

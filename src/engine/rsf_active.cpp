@@ -229,7 +229,7 @@ double RsfActiveIntegration::step(double t_max) {
       const double ei = err_[i];
       const double scale =
           i % 3 == 0 ? tol_ * (m_.law[id_[i / 3]].params().dc + std::fabs(ytmp_[i])) : tol_;
-      err = std::max(err, std::fabs(ei) / scale);
+      err = dopri::worse(err, std::fabs(ei) / scale);
     }
     if (!std::isfinite(err)) err = 1e10;
     if (err <= 1) {

@@ -59,8 +59,7 @@ double AloneSlider::step(const Slider& s, const Point& p, double h, Point& out) 
   double err = 0;
   for (int i = 0; i < 3; ++i) {
     const double scale = i == 0 ? tol_ * (s.dc + std::fabs(ytmp_[i])) : tol_;
-    const double e = std::fabs(err_[i]) / scale;
-    if (!(e <= err)) err = e;  // NaN, a step past a runaway, wins
+    err = dopri::worse(err, std::fabs(err_[i]) / scale);
   }
   out.dt = p.dt + h;
   for (int i = 0; i < 3; ++i) {
@@ -103,7 +102,6 @@ AloneSlider::Forecast AloneSlider::forecast(const Slider& s, SliderState x, cons
     }
     ++steps_;
     path.push_back(q);
-    const double grown = h * dopri::grow_factor(err, true, rejected);
     // The earlier of the speed's and the slip's crossings inside the step.
     double cross = std::numeric_limits<double>::infinity();
     Exit exit = Exit::Phase;
@@ -119,8 +117,8 @@ AloneSlider::Forecast AloneSlider::forecast(const Slider& s, SliderState x, cons
       }
     }
     if (exit != Exit::Phase) return {p.dt + cross, exit};
-    h = grown;
     if (outside(q)) return {q.dt, Exit::Phase};
+    h *= dopri::grow_factor(err, true, rejected);
     p = q;
   }
   return {p.dt, Exit::Phase};

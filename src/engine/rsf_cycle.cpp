@@ -137,9 +137,9 @@ double RsfCycle::error_norm(const std::vector<double>& err, const std::vector<do
   double e = 0;
   for (int j = 0; j < n; ++j) {
     const double slip_scale = tol_ * (m_.law[j].params().dc + std::fabs(y[j]));
-    e = std::max(e, std::fabs(err[j]) / slip_scale);
+    e = dopri::worse(e, std::fabs(err[j]) / slip_scale);
   }
-  for (int i = n; i < 3 * n; ++i) e = std::max(e, std::fabs(err[i]) / tol_);
+  for (int i = n; i < 3 * n; ++i) e = dopri::worse(e, std::fabs(err[i]) / tol_);
   return e;
 }
 

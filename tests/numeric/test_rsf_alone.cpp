@@ -2,10 +2,12 @@
 // law, its exits, and the loader's blocks alone (engine/rsf_loader.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "engine/dormand_prince.hpp"
 #include "engine/rsf_alone.hpp"
 #include "engine/rsf_cycle.hpp"
 #include "engine/rsf_loader.hpp"
@@ -115,6 +117,17 @@ TEST(RsfAlone, ExitsAtTheSlipThePhasesAndTheHorizon) {
   EXPECT_EQ(f.exit, Exit::Phase);
   EXPECT_EQ(path.size(), 4u);
   EXPECT_EQ(f.dt, path.back().dt);
+}
+
+// The error norms' running maximum (the cycle integrator's, the active blocks', a block
+// alone's): a NaN term rejects the step, where std::max(e, NaN) returns e and would accept it.
+TEST(RsfAlone, ANaNInTheErrorNormRejectsTheStep) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(dopri::worse(0.5, 0.25), 0.5);
+  EXPECT_EQ(dopri::worse(0.25, 0.5), 0.5);
+  EXPECT_FALSE(dopri::worse(0.5, nan) <= 1);
+  EXPECT_FALSE(dopri::worse(dopri::worse(0.0, nan), 0.5) <= 1);
+  EXPECT_EQ(std::max(0.5, nan), 0.5);  // what the norms did before
 }
 
 // Three uncoupled QDYN blocks (k = 2e9 Pa/m: each nucleates on its own) in the loader with
