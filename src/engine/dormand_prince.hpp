@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace bkq::dopri {
@@ -63,5 +64,48 @@ inline double grow_factor(double err, bool accepted, bool rejected_before) {
   if (!accepted) return std::max(0.2, std::min(1.0, grow));
   return std::min(rejected_before ? 1.0 : 5.0, std::max(0.2, grow));
 }
+
+// An adaptive integration's state: the time and the next step size, the state y and its
+// derivative (FSAL) now and before the last accepted step, the stages and the counters; step()
+// is the rate-and-state integrators' step (the cycle integrator's over the whole grid, the
+// active-block one's over its slots).
+struct Adaptive {
+  double t = 0, t_prev = 0, h = 0;
+  std::vector<double> y, dy, y_prev, dy_prev, k[7], ytmp, err;
+  std::int64_t accepted = 0, rejected = 0;
+
+  // One accepted step of at most t_max - t (clipped there), retried with smaller steps while
+  // norm() of the embedded error (in err, the proposal in ytmp) exceeds 1; returns the step
+  // taken. A clipped step keeps h unless h was itself too large. rhs(t, y, dy) on raw arrays;
+  // fail(t) is called (and must throw) when the step no longer moves the clock.
+  template <class Rhs, class Norm, class Fail>
+  double step(double t_max, Rhs&& rhs, Norm&& norm, Fail&& fail) {
+    k[0] = dy;  // FSAL: the last stage of the previous step
+    bool rejected_before = false;
+    while (true) {
+      const bool clipped = t + h >= t_max;
+      const double hh = clipped ? t_max - t : h;
+      if (!(hh > 0) || t + hh == t) fail(t);
+      stages(t, hh, y, k, ytmp, err, rhs);
+      double e = norm();
+      if (!std::isfinite(e)) e = 1e10;  // a stage left the range of exp: reject, shrink
+      if (e <= 1) {
+        t_prev = t;
+        y_prev.swap(y);
+        dy_prev.swap(dy);
+        y.swap(ytmp);
+        dy = k[6];
+        t = clipped ? t_max : t + hh;
+        ++accepted;
+        const double next = hh * grow_factor(e, true, rejected_before);
+        if (!clipped || next < h) h = next;
+        return hh;
+      }
+      ++rejected;
+      rejected_before = true;
+      h = hh * grow_factor(e, false, rejected_before);
+    }
+  }
+};
 
 }  // namespace bkq::dopri

@@ -34,7 +34,7 @@ RsfActiveIntegration::RsfActiveIntegration(const RsfModel& m, double tolerance, 
 
 double RsfActiveIntegration::value(int i, int comp0) const {
   const int n = m_.n(), comp = i / n, j = i % n;
-  return (comp0 == 0 ? y_ : dy_)[3 * slot_[j] + comp];
+  return (comp0 == 0 ? dp_.y : dp_.dy)[3 * slot_[j] + comp];
 }
 
 double RsfActiveIntegration::friction_stress(int j) const {
@@ -45,7 +45,7 @@ double RsfActiveIntegration::owed(int i) const {
   double dtau = 0;
   for (int e = nb_.start[i]; e < nb_.start[i + 1]; ++e) {
     const int s = slot_[nb_.index[e]];
-    if (s >= 0) dtau += nb_.k[e] * (y_[3 * s] - passed_[e]);
+    if (s >= 0) dtau += nb_.k[e] * (dp_.y[3 * s] - passed_[e]);
   }
   return dtau;
 }
@@ -57,13 +57,13 @@ RsfStepSpan RsfActiveIntegration::span() const {
   p.count = static_cast<int>(id_.size());
   p.id = id_.data();
   p.slot = slot_.data();
-  p.y0 = y_prev_.data();
-  p.d0 = dy_prev_.data();
-  p.y1 = y_.data();
-  p.d1 = dy_.data();
+  p.y0 = dp_.y_prev.data();
+  p.d0 = dp_.dy_prev.data();
+  p.y1 = dp_.y.data();
+  p.d1 = dp_.dy.data();
   p.held_slip = held_.data();
-  p.t0 = t_prev_;
-  p.t1 = t_;
+  p.t0 = dp_.t_prev;
+  p.t1 = dp_.t;
   return p;
 }
 
@@ -71,7 +71,7 @@ void RsfActiveIntegration::activate(RsfLoader& loader, int j, double t_abs, doub
   // It has had every neighbour's slip so far.
   for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) {
     const int i = nb_.index[e];
-    passed_[e] = slot_[i] >= 0 ? y_[3 * slot_[i]] : held_[i];
+    passed_[e] = slot_[i] >= 0 ? dp_.y[3 * slot_[i]] : held_[i];
   }
   loader.sync(j, t_abs, true);
   // The active blocks' stress reaches it at once: the direct effect, theta kept (the loader's
@@ -96,29 +96,29 @@ void RsfActiveIntegration::activate(RsfLoader& loader, int j, double t_abs, doub
   slot_[j] = s;
   id_.push_back(j);
   slip_at_join_[j] = held_[j];
-  for (auto* v : {&y_, &y_prev_}) v->insert(v->end(), {held_[j], x.ln_v, x.ln_theta});
-  for (auto* v : {&dy_, &dy_prev_}) v->insert(v->end(), {0.0, 0.0, 0.0});
+  for (auto* v : {&dp_.y, &dp_.y_prev}) v->insert(v->end(), {held_[j], x.ln_v, x.ln_theta});
+  for (auto* v : {&dp_.dy, &dp_.dy_prev}) v->insert(v->end(), {0.0, 0.0, 0.0});
   // The elastic stress balances friction (and damping) here.
-  double tau = m_.k * (m_.v_pl * t_ - held_[j]);
+  double tau = m_.k * (m_.v_pl * dp_.t - held_[j]);
   for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) tau += nb_.k[e] * (passed_[e] - held_[j]);
   const double v = std::exp(x.ln_v);
   tau0_.push_back(m_.sigma * m_.law[j].friction(m_.form, x.ln_v, x.ln_theta).f + m_.eta * v - tau);
   detector_.activated(j, held_[j]);
   const double h = 1e-3 * std::min(m_.law[j].params().dc / v, std::exp(x.ln_theta));
-  h_ = s == 0 && steps_in_run_ == 0 ? h : std::min(h_, h);
+  dp_.h = s == 0 && steps_in_run_ == 0 ? h : std::min(dp_.h, h);
   ++activations_;
 }
 
 void RsfActiveIntegration::release(RsfLoader& loader, int j, double t_abs) {
   const int s = slot_[j];
-  const double slip = y_[3 * s];
-  const rsf::SliderState x{y_[3 * s + 1], y_[3 * s + 2]};
+  const double slip = dp_.y[3 * s];
+  const rsf::SliderState x{dp_.y[3 * s + 1], dp_.y[3 * s + 2]};
   held_[j] = slip;
   loader.move(j, slip - slip_at_join_[j]);
   const double summed = loader.release(j);
   // A barrier handed back above steady state enters it at constant friction, except at the
   // t_a cut (as the whole grid's hand-back does).
-  const bool cut = t_ >= m_.law[j].params().a * m_.sigma / (m_.k * m_.v_pl);
+  const bool cut = dp_.t >= m_.law[j].params().a * m_.sigma / (m_.k * m_.v_pl);
   loader.set(j, t_abs, cut ? x : rsf::onto_steady_state(loader.slider(j), x));
   if (summed != 0) loader.stress_step(j, t_abs, summed);
   // The last slot takes its place.
@@ -127,12 +127,12 @@ void RsfActiveIntegration::release(RsfLoader& loader, int j, double t_abs) {
     id_[s] = id_[last];
     slot_[id_[s]] = s;
     tau0_[s] = tau0_[last];
-    for (auto* v : {&y_, &y_prev_, &dy_, &dy_prev_})
+    for (auto* v : {&dp_.y, &dp_.y_prev, &dp_.dy, &dp_.dy_prev})
       for (int c = 0; c < 3; ++c) (*v)[3 * s + c] = (*v)[3 * last + c];
   }
   id_.pop_back();
   tau0_.pop_back();
-  for (auto* v : {&y_, &y_prev_, &dy_, &dy_prev_}) v->resize(3 * id_.size());
+  for (auto* v : {&dp_.y, &dp_.y_prev, &dp_.dy, &dp_.dy_prev}) v->resize(3 * id_.size());
   slot_[j] = -1;
   // Its slip to its inactive neighbours, what they have not had of it.
   ++stamp_now_;
@@ -151,7 +151,7 @@ void RsfActiveIntegration::release(RsfLoader& loader, int j, double t_abs) {
   // It has had its neighbours' slip so far (its stress is the law's at its state).
   for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) {
     const int i = nb_.index[e];
-    passed_[e] = slot_[i] >= 0 ? y_[3 * slot_[i]] : held_[i];
+    passed_[e] = slot_[i] >= 0 ? dp_.y[3 * slot_[i]] : held_[i];
   }
 }
 
@@ -171,12 +171,12 @@ void RsfActiveIntegration::rebuild() {
     cstart_.push_back(static_cast<int>(cslot_.size()));
   }
   const std::size_t size = 3 * static_cast<std::size_t>(count);
-  for (auto& k : k_) k.resize(size);
-  ytmp_.resize(size);
-  err_.resize(size);
+  for (auto& k : dp_.k) k.resize(size);
+  dp_.ytmp.resize(size);
+  dp_.err.resize(size);
   v_.resize(count);
-  dy_.resize(size);
-  if (count > 0) rhs(t_, y_.data(), dy_.data());
+  dp_.dy.resize(size);
+  if (count > 0) rhs(dp_.t, dp_.y.data(), dp_.dy.data());
 }
 
 // The cycle integrator's right-hand side over the slots; a held neighbour's slip rate is 0
@@ -213,54 +213,35 @@ void RsfActiveIntegration::rhs(double t, const double* y, double* dy) {
 
 // RsfCycle::step over the slots (the same scheme, error norm and step-size control).
 double RsfActiveIntegration::step(double t_max) {
-  const std::size_t size = y_.size();
-  k_[0] = dy_;
-  bool rejected = false;
-  while (true) {
-    const bool clipped = t_ + h_ >= t_max;
-    const double h = clipped ? t_max - t_ : h_;
-    if (!(h > 0) || t_ + h == t_)
-      throw Error("rsf: the step size fell below the clock's resolution at t = " +
-                  std::to_string(t_) + " s into an event (rsf.dc, integrator.tolerance)");
-    dopri::stages(t_, h, y_, k_, ytmp_, err_,
-                  [&](double t, const double* y, double* dy) { rhs(t, y, dy); });
+  const auto norm = [&] {
     double err = 0;
-    for (std::size_t i = 0; i < size; ++i) {
-      const double ei = err_[i];
+    for (std::size_t i = 0; i < dp_.y.size(); ++i) {
+      const double ei = dp_.err[i];
       const double scale =
-          i % 3 == 0 ? tol_ * (m_.law[id_[i / 3]].params().dc + std::fabs(ytmp_[i])) : tol_;
+          i % 3 == 0 ? tol_ * (m_.law[id_[i / 3]].params().dc + std::fabs(dp_.ytmp[i])) : tol_;
       err = dopri::worse(err, std::fabs(ei) / scale);
     }
-    if (!std::isfinite(err)) err = 1e10;
-    if (err <= 1) {
-      t_prev_ = t_;
-      y_prev_.swap(y_);
-      dy_prev_.swap(dy_);
-      y_.swap(ytmp_);
-      dy_ = k_[6];
-      t_ = clipped ? t_max : t_ + h;
-      ++accepted_;
-      const double next = h * dopri::grow_factor(err, true, rejected);
-      if (!clipped || next < h_) h_ = next;
-      return h;
-    }
-    ++rejected_;
-    rejected = true;
-    h_ = h * dopri::grow_factor(err, false, rejected);
-  }
+    return err;
+  };
+  return dp_.step(
+      t_max, [&](double t, const double* y, double* dy) { rhs(t, y, dy); }, norm,
+      [](double t) {
+        throw Error("rsf: the step size fell below the clock's resolution at t = " +
+                    std::to_string(t) + " s into an event (rsf.dc, integrator.tolerance)");
+      });
 }
 
 double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double t_end,
                                  const HandBack& handed_back) {
-  t_ = t_prev_ = 0;
+  dp_.t = dp_.t_prev = 0;
   steps_in_run_ = 0;
   events_.clear();
   // What the loader has due by now: quanta passed on, blocks at V_h taken in. Due is read on
-  // the integration's clock (a time that rounds to within it of t_ is due), so that a step to
-  // the next loader time always moves t_.
+  // the integration's clock (a time that rounds to within it of dp_.t is due), so that a step to
+  // the next loader time always moves dp_.t.
   const auto take_due = [&](double now) {
     bool joined = false;
-    while (loader.next_time() - t0 <= t_) {
+    while (loader.next_time() - t0 <= dp_.t) {
       const int b = loader.next_block();
       if (loader.next_is_phase()) {
         loader.rephase();
@@ -273,8 +254,8 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
           if (s < 0) continue;
           const double dtau = loader.take_held_stress(i);
           if (dtau == 0) continue;
-          const double v = std::exp(y_[3 * s + 1]);
-          y_[3 * s + 1] += dtau / (m_.law[i].params().a * m_.sigma + m_.eta * v);
+          const double v = std::exp(dp_.y[3 * s + 1]);
+          dp_.y[3 * s + 1] += dtau / (m_.law[i].params().a * m_.sigma + m_.eta * v);
           tau0_[s] += dtau;
           joined = true;  // the slot's derivative is stale: rebuild
         }
@@ -292,17 +273,17 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
   while (true) {
     // Stress steps passed on since (a joining block's creep, a leaving block's slip) may have
     // made a block due now; then up to the loader's next time, at the latest.
-    if (take_due(t0 + t_)) rebuild();
+    if (take_due(t0 + dp_.t)) rebuild();
     step(std::min(t_end, loader.next_time()) - t0);
     ++steps_in_run_;
     slot_steps_ += static_cast<std::int64_t>(id_.size());
     for (int s = 0; s < static_cast<int>(id_.size()); ++s)
-      if (!std::isfinite(y_[3 * s + 1]))
-        throw Error("rsf: non-finite slip rate in an event at t = " + std::to_string(t0 + t_) +
+      if (!std::isfinite(dp_.y[3 * s + 1]))
+        throw Error("rsf: non-finite slip rate in an event at t = " + std::to_string(t0 + dp_.t) +
                     " s (lower integrator.tolerance)");
     if (auto e = detector_.observe(span())) events_.push_back(*e);
-    const double now = t0 + t_;
-    if (t_ >= t_end - t0) break;
+    const double now = t0 + dp_.t;
+    if (dp_.t >= t_end - t0) break;
     bool changed = take_due(now);
     // The active blocks' slip reaches their inactive neighbours' clocks as sudden stress steps
     // (the direct effect) once it has built up to kPassOn a sigma; one brought to V_h, or a
@@ -318,7 +299,7 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
         if (!(std::fabs(dtau) >= kPassOn * m_.law[i].params().a * m_.sigma)) continue;
         loader.sudden_stress_step(i, now, dtau);
         for (int f = nb_.start[i]; f < nb_.start[i + 1]; ++f)
-          if (slot_[nb_.index[f]] >= 0) passed_[f] = y_[3 * slot_[nb_.index[f]]];
+          if (slot_[nb_.index[f]] >= 0) passed_[f] = dp_.y[3 * slot_[nb_.index[f]]];
       }
     }
     changed = take_due(now) || changed;
@@ -333,7 +314,7 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
     // starts the next one, so that its events are returned.
     bool cut = false;
     for (const int j : leaving)
-      cut = cut || t_ >= m_.law[j].params().a * m_.sigma / (m_.k * m_.v_pl);
+      cut = cut || dp_.t >= m_.law[j].params().a * m_.sigma / (m_.k * m_.v_pl);
     for (const int j : leaving) release(loader, j, now);
     if (cut && !detector_.in_event()) break;
     if (!leaving.empty()) {
@@ -342,7 +323,7 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
     }
     if (id_.empty()) break;
   }
-  const double t_stop = t0 + t_;
+  const double t_stop = t0 + dp_.t;
   while (!id_.empty()) release(loader, id_.back(), t_stop);
   for (const int j : touched_) {
     joined_step_[j] = -1;

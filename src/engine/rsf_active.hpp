@@ -34,6 +34,7 @@
 #include <functional>
 #include <vector>
 
+#include "engine/dormand_prince.hpp"
 #include "engine/event_record.hpp"
 #include "engine/rsf_cycle.hpp"
 #include "engine/rsf_events.hpp"
@@ -55,10 +56,10 @@ class RsfActiveIntegration {
   };
   int n() const { return m_.n(); }
   const RsfModel& model() const { return m_; }
-  double t() const { return t_; }
-  double slip(int j) const { return y_[3 * slot_[j]]; }
-  double ln_v(int j) const { return y_[3 * slot_[j] + 1]; }
-  double ln_theta(int j) const { return y_[3 * slot_[j] + 2]; }
+  double t() const { return dp_.t; }
+  double slip(int j) const { return dp_.y[3 * slot_[j]]; }
+  double ln_v(int j) const { return dp_.y[3 * slot_[j] + 1]; }
+  double ln_theta(int j) const { return dp_.y[3 * slot_[j] + 2]; }
   Column y() const { return {this, 0}; }
   Column dy() const { return {this, 3}; }
   double friction_stress(int j) const;
@@ -71,7 +72,7 @@ class RsfActiveIntegration {
   double run(RsfLoader& loader, int first, double t0, double t_end, const HandBack& handed_back);
   const std::vector<EventRecord>& events() const { return events_; }
 
-  std::int64_t accepted() const { return accepted_; }      // steps, all integrations
+  std::int64_t accepted() const { return dp_.accepted; }   // steps, all integrations
   std::int64_t slot_steps() const { return slot_steps_; }  // sum of active blocks per step
   std::int64_t activations() const { return activations_; }
   std::int64_t syncs() const { return syncs_; }    // quanta passed on during integrations
@@ -99,16 +100,16 @@ class RsfActiveIntegration {
   std::vector<double> passed_;  // per spring e of block i's row: slip of index[e] i has had
   std::vector<int> touched_;    // blocks that joined in this integration
   int stamp_now_ = 0;
-  // Per slot: the block, tau0, the state (3 a slot) and the stages.
+  // Per slot: the block, tau0, the state (3 a slot, in dp_ with the stages, the time and the
+  // step size).
   std::vector<int> id_;
-  std::vector<double> tau0_, y_, dy_, y_prev_, dy_prev_, k_[7], ytmp_, err_, v_;
+  std::vector<double> tau0_, v_;
+  dopri::Adaptive dp_;
   // Per slot, its springs: the neighbour's slot (-1: held) and block, and k.
   std::vector<int> cstart_, cslot_, cblock_;
   std::vector<double> ck_;
-  double t_ = 0, t_prev_ = 0, h_ = 0;
   std::int64_t steps_in_run_ = 0;
-  std::int64_t accepted_ = 0, rejected_ = 0, slot_steps_ = 0, activations_ = 0, syncs_ = 0,
-               resets_ = 0;
+  std::int64_t slot_steps_ = 0, activations_ = 0, syncs_ = 0, resets_ = 0;
   std::vector<EventRecord> events_;
 };
 

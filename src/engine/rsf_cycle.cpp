@@ -76,27 +76,27 @@ RsfCycle::RsfCycle(RsfModel model, double tolerance, const std::vector<double>& 
       throw Error("rsf: a start value per block or one for all, got " + std::to_string(x->size()) +
                   " for " + std::to_string(n) + " blocks");
   const auto at = [](const std::vector<double>& x, int j) { return x.size() == 1 ? x[0] : x[j]; };
-  y_.assign(3 * n, 0.0);
+  dp_.y.assign(3 * n, 0.0);
   tau0_.assign(n, 0.0);
   for (int j = 0; j < n; ++j) {
-    y_[n + j] = std::log(at(v, j));
-    y_[2 * n + j] = std::log(at(theta, j));
-    tau0_[j] =
-        m_.sigma * m_.law[j].friction(m_.form, y_[n + j], y_[2 * n + j]).f + m_.eta * at(v, j);
+    dp_.y[n + j] = std::log(at(v, j));
+    dp_.y[2 * n + j] = std::log(at(theta, j));
+    tau0_[j] = m_.sigma * m_.law[j].friction(m_.form, dp_.y[n + j], dp_.y[2 * n + j]).f +
+               m_.eta * at(v, j);
   }
-  for (auto& k : k_) k.assign(3 * n, 0.0);
-  ytmp_.assign(3 * n, 0.0);
-  err_.assign(3 * n, 0.0);
+  for (auto& k : dp_.k) k.assign(3 * n, 0.0);
+  dp_.ytmp.assign(3 * n, 0.0);
+  dp_.err.assign(3 * n, 0.0);
   v_.assign(n, 0.0);
-  dy_.assign(3 * n, 0.0);
-  rhs(0, y_.data(), dy_.data());
-  y_prev_ = y_;
-  dy_prev_ = dy_;
+  dp_.dy.assign(3 * n, 0.0);
+  rhs(0, dp_.y.data(), dp_.dy.data());
+  dp_.y_prev = dp_.y;
+  dp_.dy_prev = dp_.dy;
   // First step: a small share of the fastest time scale, D_c/V or theta; the control grows it.
   double scale = std::numeric_limits<double>::infinity();
   for (int j = 0; j < n; ++j)
     scale = std::min({scale, m_.law[j].params().dc / at(v, j), at(theta, j)});
-  h_ = 1e-3 * scale;
+  dp_.h = 1e-3 * scale;
 }
 
 void RsfCycle::rhs(double t, const double* y, double* dy) {
@@ -144,42 +144,19 @@ double RsfCycle::error_norm(const std::vector<double>& err, const std::vector<do
 }
 
 double RsfCycle::step(double t_max) {
-  k_[0] = dy_;  // FSAL: the last stage of the previous step
-  bool rejected = false;
-  while (true) {
-    const bool clipped = t_ + h_ >= t_max;
-    const double h = clipped ? t_max - t_ : h_;
-    // A step that no longer moves the clock: the scene's time scales are beyond double
-    // precision at this t (or the state left the range of exp).
-    if (!(h > 0) || t_ + h == t_)
-      throw Error("rsf: the step size fell below the clock's resolution at t = " +
-                  std::to_string(t_) + " s (rsf.dc, rsf.v_init or integrator.tolerance)");
-    dopri::stages(t_, h, y_, k_, ytmp_, err_,
-                  [&](double t, const double* y, double* dy) { rhs(t, y, dy); });
-    double err = error_norm(err_, ytmp_);
-    if (!std::isfinite(err)) err = 1e10;  // a stage left the range of exp: reject, shrink
-    if (err <= 1) {
-      t_prev_ = t_;
-      y_prev_.swap(y_);
-      dy_prev_.swap(dy_);
-      y_.swap(ytmp_);
-      dy_ = k_[6];
-      t_ = clipped ? t_max : t_ + h;
-      ++accepted_;
-      // A clipped step says nothing about the step the error allows: keep h_ unless it
-      // was itself too large.
-      const double next = h * dopri::grow_factor(err, true, rejected);
-      if (!clipped || next < h_) h_ = next;
-      return h;
-    }
-    ++rejected_;
-    rejected = true;
-    h_ = h * dopri::grow_factor(err, false, rejected);
-  }
+  return dp_.step(
+      t_max, [&](double t, const double* y, double* dy) { rhs(t, y, dy); },
+      [&] { return error_norm(dp_.err, dp_.ytmp); },
+      [](double t) {
+        // A step that no longer moves the clock: the scene's time scales are beyond double
+        // precision at this t (or the state left the range of exp).
+        throw Error("rsf: the step size fell below the clock's resolution at t = " +
+                    std::to_string(t) + " s (rsf.dc, rsf.v_init or integrator.tolerance)");
+      });
 }
 
 void RsfCycle::advance_to(double t_end) {
-  while (t_ < t_end) step(t_end);
+  while (dp_.t < t_end) step(t_end);
 }
 
 double RsfCycle::friction_stress(int j) const {
@@ -189,17 +166,17 @@ double RsfCycle::friction_stress(int j) const {
 double RsfCycle::friction_stress_rate(int j) const {
   const rsf::FrictionValue fr = m_.law[j].friction(m_.form, ln_v(j), ln_theta(j));
   const int n = m_.n();
-  return m_.sigma * (fr.f_lnv * dy_[n + j] + fr.f_lntheta * dy_[2 * n + j]);
+  return m_.sigma * (fr.f_lnv * dp_.dy[n + j] + fr.f_lntheta * dp_.dy[2 * n + j]);
 }
 
 double RsfCycle::elastic_stress(int j) const {
-  return tau0_[j] + m_.k * (m_.v_pl * t_ - slip(j)) + coupling(j, y_.data());
+  return tau0_[j] + m_.k * (m_.v_pl * dp_.t - slip(j)) + coupling(j, dp_.y.data());
 }
 
 std::vector<double> RsfCycle::snapshot() const {
-  std::vector<double> s = {t_, t_prev_, h_, static_cast<double>(accepted_),
-                           static_cast<double>(rejected_)};
-  for (const auto* v : {&tau0_, &y_, &dy_, &y_prev_, &dy_prev_})
+  std::vector<double> s = {dp_.t, dp_.t_prev, dp_.h, static_cast<double>(dp_.accepted),
+                           static_cast<double>(dp_.rejected)};
+  for (const auto* v : {&tau0_, &dp_.y, &dp_.dy, &dp_.y_prev, &dp_.dy_prev})
     s.insert(s.end(), v->begin(), v->end());
   return s;
 }
@@ -207,13 +184,13 @@ std::vector<double> RsfCycle::snapshot() const {
 void RsfCycle::restore(const std::vector<double>& s) {
   const std::size_t n = static_cast<std::size_t>(m_.n());
   if (s.size() != 5 + n + 12 * n) throw Error("rsf: a checkpoint of another chain's size");
-  t_ = s[0];
-  t_prev_ = s[1];
-  h_ = s[2];
-  accepted_ = static_cast<std::int64_t>(s[3]);
-  rejected_ = static_cast<std::int64_t>(s[4]);
+  dp_.t = s[0];
+  dp_.t_prev = s[1];
+  dp_.h = s[2];
+  dp_.accepted = static_cast<std::int64_t>(s[3]);
+  dp_.rejected = static_cast<std::int64_t>(s[4]);
   auto it = s.begin() + 5;
-  for (auto* v : {&tau0_, &y_, &dy_, &y_prev_, &dy_prev_}) {
+  for (auto* v : {&tau0_, &dp_.y, &dp_.dy, &dp_.y_prev, &dp_.dy_prev}) {
     const std::size_t len = v == &tau0_ ? n : 3 * n;
     v->assign(it, it + static_cast<std::ptrdiff_t>(len));
     it += static_cast<std::ptrdiff_t>(len);

@@ -36,6 +36,7 @@
 #include <limits>
 #include <vector>
 
+#include "engine/dormand_prince.hpp"
 #include "model/coupling.hpp"
 #include "model/laws/rsf.hpp"
 
@@ -101,17 +102,17 @@ class RsfCycle {
 
   const RsfModel& model() const { return m_; }
   int n() const { return m_.n(); }
-  double t() const { return t_; }
-  double t_prev() const { return t_prev_; }
-  double slip(int j) const { return y_[j]; }
-  double ln_v(int j) const { return y_[n() + j]; }
-  double ln_theta(int j) const { return y_[2 * n() + j]; }
+  double t() const { return dp_.t; }
+  double t_prev() const { return dp_.t_prev; }
+  double slip(int j) const { return dp_.y[j]; }
+  double ln_v(int j) const { return dp_.y[n() + j]; }
+  double ln_theta(int j) const { return dp_.y[2 * n() + j]; }
   // The state and its time derivative now and at the start of the last step (y layout:
   // slip, ln V, ln theta, each N long): what dense output and extremum location use.
-  const std::vector<double>& y() const { return y_; }
-  const std::vector<double>& dy() const { return dy_; }
-  const std::vector<double>& y_prev() const { return y_prev_; }
-  const std::vector<double>& dy_prev() const { return dy_prev_; }
+  const std::vector<double>& y() const { return dp_.y; }
+  const std::vector<double>& dy() const { return dp_.dy; }
+  const std::vector<double>& y_prev() const { return dp_.y_prev; }
+  const std::vector<double>& dy_prev() const { return dp_.dy_prev; }
   // Frictional stress sigma f(V_j, theta_j) (QDYN's tau) and the elastic stress tau_j.
   double friction_stress(int j) const;
   double elastic_stress(int j) const;
@@ -119,8 +120,8 @@ class RsfCycle {
   double friction_stress_rate(int j) const;
 
   double tolerance() const { return tol_; }
-  std::int64_t accepted() const { return accepted_; }
-  std::int64_t rejected() const { return rejected_; }
+  std::int64_t accepted() const { return dp_.accepted; }
+  std::int64_t rejected() const { return dp_.rejected; }
 
   // Everything a resumed integration needs, as numbers (the run's checkpoint stores them).
   std::vector<double> snapshot() const;
@@ -132,14 +133,13 @@ class RsfCycle {
 
   RsfModel m_;
   double tol_;
-  double t_ = 0, t_prev_ = 0, h_ = 0;
+  // The integration's time, step size, state (slip, ln V, ln theta) and stages.
+  dopri::Adaptive dp_;
   std::vector<double> tau0_;
-  std::vector<double> y_, dy_, y_prev_, dy_prev_;
   double coupling(int j, const double* x) const;
 
   RsfNeighbours nb_;
-  std::vector<double> k_[7], ytmp_, err_, v_;
-  std::int64_t accepted_ = 0, rejected_ = 0;
+  std::vector<double> v_;
 };
 
 }  // namespace bkq
