@@ -180,5 +180,37 @@ TEST(RsfLoaderAlone, BlocksAloneTheirStepsAndTheirClocks) {
   EXPECT_GT(loader.next_time(), t1);
 }
 
+// After an event: a block locked far below steady state (V theta/D_c = 1e-3) and slow is in the
+// locked form; a sudden stress step that takes it above 3 V_pl there takes it alone (the locked
+// form leaves its creep and unloading out); healing brings it back below 3 V_pl, a change of
+// phase at a step's end that returns it to the locked form.
+TEST(RsfLoaderAlone, ALockedBlockAboveThreeVplIsAloneUntilItHeals) {
+  RsfModel m = test::qdyn_stickslip(1);
+  const double v_pl = m.v_pl, dc = m.law[0].params().dc, a_sigma = m.law[0].params().a * m.sigma;
+  RsfLoader loader(m, 3 * v_pl, kInf);
+  loader.integrate_alone(1e-4, 1e-8);
+  loader.set(0, 0, {std::log(0.5 * v_pl), std::log(1e-3 * dc / (0.5 * v_pl))});
+  EXPECT_FALSE(loader.alone(0));
+  loader.sudden_stress_step(0, 0.0, 2 * a_sigma);  // V times e^2: about 3.7 V_pl
+  ASSERT_TRUE(loader.alone(0));
+  const rsf::SliderState x = loader.state_at(0, 0.0);
+  ASSERT_GT(x.ln_v, std::log(3 * v_pl));
+  ASSERT_LT(rsf::ln_omega(loader.slider(0), x), std::log(0.05));
+  // Its clocks are its forecast's until the change of phase.
+  while (!loader.next_is_phase()) {
+    ASSERT_TRUE(loader.alone(0));
+    ASSERT_FALSE(loader.next_is_quantum());  // no quanta (q = inf)
+    ASSERT_GT(loader.next_time(), 0.0);
+    loader.rephase();
+  }
+  const double t = loader.next_time();
+  loader.rephase();
+  EXPECT_FALSE(loader.alone(0));
+  const rsf::SliderState y = loader.state_at(0, t);
+  EXPECT_LT(y.ln_v, std::log(3 * v_pl));
+  EXPECT_LT(rsf::ln_omega(loader.slider(0), y), std::log(0.05));
+  EXPECT_GT(loader.next_time(), t);
+}
+
 }  // namespace
 }  // namespace bkq
