@@ -190,10 +190,10 @@ void RsfLoader::schedule(int j) {
   // them: see handed_back).
   const double lo = rsf::ln_omega(s, x);
   const double amount = std::isinf(quantum_) ? quantum_ : 0.5 * quantum_ + lead_[j] - unsynced_[j];
-  // Taken alone: a velocity-weakening block below the hand-over to the integrator that neither
-  // nucleates (Omega >= kOmegaOut) nor is locked and slow (Omega < kOmegaBack, below
-  // kSlowLocked V_pl less a margin, so that the locked form's clock to kSlowLocked V_pl lands
-  // here and not back in the locked form).
+  // Taken alone (when on): a velocity-weakening block that neither nucleates (Omega >=
+  // kOmegaOut) nor is locked and slow (Omega < kOmegaBack, below kSlowLocked V_pl less a
+  // margin, so that the locked form's clock to kSlowLocked V_pl lands here and not back in the
+  // locked form); its forecast makes it due at once if it is at v_alone or above.
   const bool alone_on = alone_on_ && !s.strengthening();
   in_alone_[j] =
       alone_on && lo < kLnOmegaOut && !(lo < kLnOmegaBack && x.ln_v < ln_slow_ - kLockedMargin);

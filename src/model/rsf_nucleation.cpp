@@ -371,10 +371,10 @@ NextClock next_clock(const Slider& s, SliderState x, double ln_v_target, double 
       // The speed only while locked can come first (after nucleation it is later than
       // t_omega), and only where ln V, rising at most alpha t, can reach it by t_omega.
       const double alpha = alpha_of(s);
-      if (s.b_rsf >= 0 && (ln_v_target - x.ln_v) / alpha > t_omega) return {t_omega, false, true};
+      if (s.b_rsf >= 0 && (ln_v_target - x.ln_v) / alpha > t_omega) return {t_omega, false};
       const double t_v =
           first_root(x.ln_v - ln_v_target, alpha, -s.b_rsf / s.a, std::exp(x.ln_theta));
-      return {std::min(t_omega, t_v), false, t_omega <= t_v};
+      return {std::min(t_omega, t_v), false};
     }
   }
   double to_speed, to_slip = kNever;
@@ -385,10 +385,8 @@ NextClock next_clock(const Slider& s, SliderState x, double ln_v_target, double 
     to_speed = c.to_speed;
     to_slip = c.to_slip;
   }
-  const double to_omega = omega ? time_to_omega(s, x, ln_omega_target) : kNever;
-  const double earliest = std::min({to_speed, to_slip, to_omega});
-  return {earliest, to_slip < std::min(to_speed, to_omega),
-          to_omega <= std::min(to_speed, to_slip) && to_omega < kNever};
+  if (omega) to_speed = std::min(to_speed, time_to_omega(s, x, ln_omega_target));
+  return {std::min(to_speed, to_slip), to_slip < to_speed};
 }
 
 }  // namespace bkq::rsf

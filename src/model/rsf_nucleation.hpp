@@ -111,7 +111,6 @@ double time_to_omega(const Slider& s, SliderState x, double ln_target);
 struct NextClock {
   double time = 0;
   bool slip = false;
-  bool omega = false;  // the earliest is V theta/D_c reaching its target
 };
 NextClock next_clock(const Slider& s, SliderState x, double ln_v_target, double amount,
                      double ln_omega_target);
