@@ -8,8 +8,8 @@
 // quasi-static balance (radiation damping left out: eta V << a sigma at these speeds), constant
 // stressing rate tau_dot, its own slip unloading it through k_eff:
 //
-//   d ln theta/dt = 1/theta - V/D_c,   a sigma d ln V/dt = tau_dot - k_eff V - b sigma d ln
-//   theta/dt,
+//   d ln theta/dt = 1/theta - V/D_c,
+//   a sigma d ln V/dt = tau_dot - k_eff V - b sigma d ln theta/dt,
 //
 // integrated by Dormand-Prince 5(4) (engine/dormand_prince.hpp) over (slip, ln V, ln theta),
 // the cycle integrator's error norm (slip relative to D_c + |slip|, ln V and ln theta absolute).
@@ -18,9 +18,9 @@
 // at a step's end (nucleating, or locked and slow), or a number of steps (the horizon: a stress
 // step from a neighbour would make the steps past it wasted). The accepted steps are kept with
 // their dense output, so that the state at any time of the forecast costs no right-hand side;
-// crossings are roots of the dense output. Order 5 (4 between the steps), the error per step within
-// the tolerance; the scheme is explicit: its step size falls where the block runs away, and the
-// forecast hands it over (Exit::Speed) before that.
+// crossings are roots of the dense output. Order 5 (4 between the steps), the error per step
+// within the tolerance; the scheme is explicit (its stability limit bounds the step where the
+// block runs away), and the forecast hands the block over (Exit::Speed) before that.
 #pragma once
 
 #include <array>
