@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -68,10 +69,11 @@ inline double grow_factor(double err, bool accepted, bool rejected_before) {
 // An adaptive integration's state: the time and the next step size, the state y and its
 // derivative (FSAL) now and before the last accepted step, the stages and the counters; step()
 // is the rate-and-state integrators' step (the cycle integrator's over the whole grid, the
-// active-block one's over its slots).
+// active-block one's over its slots, a slider's alone: Vec = std::array<double, 3>).
+template <class Vec = std::vector<double>>
 struct Adaptive {
   double t = 0, t_prev = 0, h = 0;
-  std::vector<double> y, dy, y_prev, dy_prev, k[7], ytmp, err;
+  Vec y, dy, y_prev, dy_prev, k[7], ytmp, err;
   std::int64_t accepted = 0, rejected = 0;
 
   // One accepted step of at most t_max - t (clipped there), retried with smaller steps while

@@ -104,7 +104,7 @@ class RsfActiveIntegration {
   // step size).
   std::vector<int> id_;
   std::vector<double> tau0_, v_;
-  dopri::Adaptive dp_;
+  dopri::Adaptive<> dp_;
   // Per slot, its springs: the neighbour's slot (-1: held) and block, and k.
   std::vector<int> cstart_, cslot_, cblock_;
   std::vector<double> ck_;

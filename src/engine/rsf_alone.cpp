@@ -51,24 +51,30 @@ void AloneSlider::rhs(const Slider& s, const double* y, double* dy) const {
   dy[2] = dlnth;
 }
 
-double AloneSlider::step(const Slider& s, const Point& p, double h, Point& out) {
-  std::copy(p.y, p.y + 3, y_.begin());
-  std::copy(p.dy, p.dy + 3, k_[0].begin());
-  dopri::stages(0.0, h, y_, k_, ytmp_, err_,
-                [&](double, const double* y, double* dy) { rhs(s, y, dy); });
-  double err = 0;
+AloneSlider::Point AloneSlider::step(const Slider& s, double dt_max) {
+  dp_.step(
+      dt_max, [&](double, const double* y, double* dy) { rhs(s, y, dy); },
+      [&] {
+        double err = 0;
+        for (int i = 0; i < 3; ++i) {
+          const double scale = i == 0 ? tol_ * (s.dc + std::fabs(dp_.ytmp[i])) : tol_;
+          err = dopri::worse(err, std::fabs(dp_.err[i]) / scale);
+        }
+        return err;
+      },
+      [](double) {
+        throw Error(
+            "rsf: the step size of a block integrated alone fell below the clock's "
+            "resolution (rsf.dc, integrator.tolerance)");
+      });
+  Point q;
+  q.dt = dp_.t;
   for (int i = 0; i < 3; ++i) {
-    const double scale = i == 0 ? tol_ * (s.dc + std::fabs(ytmp_[i])) : tol_;
-    err = dopri::worse(err, std::fabs(err_[i]) / scale);
+    q.y[i] = dp_.y[i];
+    q.dy[i] = dp_.dy[i];
+    for (int l = 0; l < 7; ++l) q.dense[i] += dopri::kDense[l] * dp_.k[l][i];
   }
-  out.dt = p.dt + h;
-  for (int i = 0; i < 3; ++i) {
-    out.y[i] = ytmp_[i];
-    out.dy[i] = k_[6][i];
-    out.dense[i] = 0;
-    for (int l = 0; l < 7; ++l) out.dense[i] += dopri::kDense[l] * k_[l][i];
-  }
-  return std::isfinite(err) ? err : 1e10;
+  return q;
 }
 
 AloneSlider::Forecast AloneSlider::forecast(const Slider& s, SliderState x, const Limits& lim,
@@ -87,19 +93,12 @@ AloneSlider::Forecast AloneSlider::forecast(const Slider& s, SliderState x, cons
   if (x.ln_v >= lim.ln_v_target) return {0, Exit::Speed};
   if (!(lim.amount > 0)) return {0, Exit::Slip};
   if (outside(p)) return {0, Exit::Phase};
-  double h = 0.05 * std::min(s.dc / std::exp(x.ln_v), std::exp(x.ln_theta));
-  Point q;
+  dp_.t = 0;
+  dp_.h = 0.05 * std::min(s.dc / std::exp(x.ln_v), std::exp(x.ln_theta));
+  std::copy(p.y, p.y + 3, dp_.y.begin());
+  std::copy(p.dy, p.dy + 3, dp_.dy.begin());
   for (int n = 0; n < lim.horizon; ++n) {
-    bool rejected = false;
-    double err;
-    while ((err = step(s, p, h, q)) > 1) {
-      rejected = true;
-      h *= dopri::grow_factor(err, false, true);
-      if (!(p.dt + h > p.dt))
-        throw Error(
-            "rsf: the step size of a block integrated alone fell below the clock's "
-            "resolution (rsf.dc, integrator.tolerance)");
-    }
+    const Point q = step(s, std::numeric_limits<double>::infinity());
     ++steps_;
     path.push_back(q);
     // The earlier of the speed's and the slip's crossings inside the step.
@@ -118,7 +117,6 @@ AloneSlider::Forecast AloneSlider::forecast(const Slider& s, SliderState x, cons
     }
     if (exit != Exit::Phase) return {p.dt + cross, exit};
     if (outside(q)) return {q.dt, Exit::Phase};
-    h *= dopri::grow_factor(err, true, rejected);
     p = q;
   }
   return {p.dt, Exit::Phase};
@@ -131,27 +129,19 @@ AloneSlider::Point AloneSlider::at(const Slider& s, const std::vector<Point>& pa
                              [](double t, const Point& p) { return t < p.dt; });
   Point p = *(it == path.begin() ? it : it - 1);
   if (p.dt == dt) return p;
-  Point q;
   if (it != path.end()) {
     const double th = (dt - p.dt) / (it->dt - p.dt);
+    Point q;
     q.dt = dt;
     for (int i = 0; i < 3; ++i) q.y[i] = dense_value(p, *it, i, th);
     return q;
   }
-  // Past the path: steps from its end.
-  double h = path.size() > 1 ? path.back().dt - path[path.size() - 2].dt : dt - p.dt;
-  while (p.dt < dt) {
-    const bool last = p.dt + h >= dt;
-    const double hh = last ? dt - p.dt : h;
-    const double err = step(s, p, hh, q);
-    if (err > 1) {
-      h = hh * dopri::grow_factor(err, false, true);
-      continue;
-    }
-    if (last) q.dt = dt;
-    p = q;
-    h = hh * dopri::grow_factor(err, true, false);
-  }
+  // Past the path: steps from its end, with its last step size.
+  dp_.t = p.dt;
+  dp_.h = path.size() > 1 ? p.dt - path[path.size() - 2].dt : dt - p.dt;
+  std::copy(p.y, p.y + 3, dp_.y.begin());
+  std::copy(p.dy, p.dy + 3, dp_.dy.begin());
+  while (dp_.t < dt) p = step(s, dt);
   return p;
 }
 

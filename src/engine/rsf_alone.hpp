@@ -11,21 +11,23 @@
 //   d ln theta/dt = 1/theta - V/D_c,
 //   a sigma d ln V/dt = tau_dot - k_eff V - b sigma d ln theta/dt,
 //
-// integrated by Dormand-Prince 5(4) (engine/dormand_prince.hpp) over (slip, ln V, ln theta),
-// the cycle integrator's error norm (slip relative to D_c + |slip|, ln V and ln theta absolute).
-// A forecast runs from a state until the first of: ln V reaching a target (the hand-over), the
-// slip reaching an amount (the next creep quantum), the state entering a closed form's domain
-// at a step's end (nucleating, or locked and slow), or a number of steps (the horizon: a stress
-// step from a neighbour would make the steps past it wasted). The accepted steps are kept with
-// their dense output, so that the state at any time of the forecast costs no right-hand side;
-// crossings are roots of the dense output. Order 5 (4 between the steps), the error per step
-// within the tolerance; the scheme is explicit (its stability limit bounds the step where the
-// block runs away), and the forecast hands the block over (Exit::Speed) before that.
+// integrated by Dormand-Prince 5(4) (engine/dormand_prince.hpp: the cycle integrator's step and
+// step-size control) over (slip, ln V, ln theta), the cycle integrator's error norm (slip relative
+// to D_c + |slip|, ln V and ln theta absolute). A forecast runs from a state until the first of: ln
+// V reaching a target (the hand-over), the slip reaching an amount (the next creep quantum), the
+// state entering a closed form's domain at a step's end (nucleating, or locked and slow), or a
+// number of steps (the horizon: a stress step from a neighbour would make the steps past it
+// wasted). The accepted steps are kept with their dense output, so that the state at any time of
+// the forecast costs no right-hand side; crossings are roots of the dense output. Order 5 (4
+// between the steps), the error per step within the tolerance; the scheme is explicit (its
+// stability limit bounds the step where the block runs away), and the forecast hands the block over
+// (Exit::Speed) before that.
 #pragma once
 
 #include <array>
 #include <vector>
 
+#include "engine/dormand_prince.hpp"
 #include "model/rsf_nucleation.hpp"
 
 namespace bkq::rsf {
@@ -66,11 +68,12 @@ class AloneSlider {
 
  private:
   void rhs(const Slider& s, const double* y, double* dy) const;
-  // One step of h from p into out; the error norm (<= 1: accepted).
-  double step(const Slider& s, const Point& p, double h, Point& out);
+  // One accepted step of the integration in dp_ (at most to dt_max), its end as a path point.
+  Point step(const Slider& s, double dt_max);
 
   double tol_;
-  std::array<double, 3> y_, k_[7], ytmp_, err_;
+  // The integration (its time: dt from the forecast's start).
+  dopri::Adaptive<std::array<double, 3>> dp_;
   long long steps_ = 0;
 };
 

@@ -134,7 +134,7 @@ class RsfCycle {
   RsfModel m_;
   double tol_;
   // The integration's time, step size, state (slip, ln V, ln theta) and stages.
-  dopri::Adaptive dp_;
+  dopri::Adaptive<> dp_;
   std::vector<double> tau0_;
   double coupling(int j, const double* x) const;
 

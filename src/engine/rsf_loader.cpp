@@ -105,7 +105,7 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
       path_(m.n()),
       in_alone_(m.n(), 0),
       ln_vh_(std::log(v_handover)),
-      v_pl_(m.v_pl),
+      ln_slow_(std::log(kSlowLocked * m.v_pl)),
       quantum_(creep_quantum) {
   if (!(m.v_pl > 0) || !(m.k > 0))
     throw Error("rsf: the event-driven engine needs a loader (k > 0, V_pl > 0)");
@@ -142,9 +142,11 @@ double RsfLoader::unsynced(int j, double t) const {
 
 void RsfLoader::integrate_alone(double v_alone, double tolerance) {
   alone_ = rsf::AloneSlider(tolerance);
-  alone_on_ = true;
-  ln_va_ = std::log(v_alone);
-  ln_slow_ = std::log(kSlowLocked * v_pl_);
+  v_alone_ = v_alone;
+  alone_limits_.ln_v_target = std::log(v_alone);
+  alone_limits_.ln_omega_lo = kLnOmegaBack;
+  alone_limits_.ln_omega_hi = kLnOmegaOut;
+  alone_limits_.ln_v_locked = ln_slow_ - kLockedMargin;
   for (int j = 0; j < n(); ++j)
     if (!held(j)) schedule(j);
 }
@@ -194,16 +196,12 @@ void RsfLoader::schedule(int j) {
   // kOmegaOut) nor is locked and slow (Omega < kOmegaBack, below kSlowLocked V_pl less a
   // margin, so that the locked form's clock to kSlowLocked V_pl lands here and not back in the
   // locked form); its forecast makes it due at once if it is at v_alone or above.
-  const bool alone_on = alone_on_ && !s.strengthening();
+  const bool alone_on = v_alone_ > 0 && !s.strengthening();
   in_alone_[j] =
-      alone_on && lo < kLnOmegaOut && !(lo < kLnOmegaBack && x.ln_v < ln_slow_ - kLockedMargin);
+      alone_on && lo < kLnOmegaOut && !(lo < kLnOmegaBack && x.ln_v < alone_limits_.ln_v_locked);
   if (in_alone_[j]) {
-    rsf::AloneSlider::Limits lim;
-    lim.ln_v_target = ln_va_;
+    rsf::AloneSlider::Limits lim = alone_limits_;
     lim.amount = amount;
-    lim.ln_omega_lo = kLnOmegaBack;
-    lim.ln_omega_hi = kLnOmegaOut;
-    lim.ln_v_locked = ln_slow_ - kLockedMargin;
     const rsf::AloneSlider::Forecast f = alone_.forecast(s, x, lim, path_[j]);
     using Exit = rsf::AloneSlider::Exit;
     clock_[j] = f.exit == Exit::Speed ? kDue : f.exit == Exit::Slip ? kQuantum : kPhase;
@@ -372,13 +370,12 @@ bool handed_back(const Cycle& c, int j, double ln_vh, double ln_va, bool unstabl
   const double ln_v = c.ln_v(j);
   const RsfModel& m = c.model();
   const rsf::Params& p = m.law[j].params();
-  if (!(p.a > p.b_rsf) && ln_va > -std::numeric_limits<double>::infinity() &&
-      ln_v + c.ln_theta(j) - std::log(p.dc) < kLnOmegaOut)
+  const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
+  if (!(p.a > p.b_rsf) && ln_va > -std::numeric_limits<double>::infinity() && lo < kLnOmegaOut)
     return ln_v < ln_va - kLnAloneBack;
   if (!(ln_v < ln_vh)) return false;
   const bool cut = may_cut && cut_short(c, j);
   const bool slow = ln_v < std::log(kSlowLocked * m.v_pl);
-  const double lo = ln_v + c.ln_theta(j) - std::log(p.dc);
   const bool accelerating = c.dy()[c.n() + j] >= 0;
   if (p.a > p.b_rsf) return lo < 0 ? slow : lo < kLnOmegaSteady || cut;
   if (unstable_alone) {

@@ -136,7 +136,10 @@ class RsfLoader {
   // needs them).
   void integrate_alone(double v_alone, double tolerance);
   bool alone(int j) const { return in_alone_[j] != 0; }  // being integrated alone now
-  double ln_v_alone() const { return ln_va_; }
+  double v_alone() const { return v_alone_; }            // 0: off
+  double ln_v_alone() const {                            // -inf: off
+    return v_alone_ > 0 ? alone_limits_.ln_v_target : -std::numeric_limits<double>::infinity();
+  }
   long long alone_steps() const { return alone_.steps(); }
   void set_alone_steps(long long n) { alone_.set_steps(n); }  // a checkpoint's
   double ln_v_handover() const { return ln_vh_; }
@@ -173,14 +176,14 @@ class RsfLoader {
   std::vector<char> clock_;  // what each block's heap time is
   IndexedMinHeap heap_;
   // Blocks integrated alone: the forecast from their last set (its steps), by block.
-  bool alone_on_ = false;
-  mutable rsf::AloneSlider alone_{1e-8};  // the tolerance: integrate_alone's
+  double v_alone_ = 0;                     // 0: off
+  rsf::AloneSlider::Limits alone_limits_;  // all but the amount (the next quantum's)
+  mutable rsf::AloneSlider alone_{1e-8};   // the tolerance: integrate_alone's
   std::vector<std::vector<rsf::AloneSlider::Point>> path_;
   std::vector<char> in_alone_;
-  double ln_va_ = -std::numeric_limits<double>::infinity(), ln_slow_ = 0;
-  double ln_vh_, v_pl_, quantum_;
-  std::vector<char> held_;           // empty until the first hold()
-  std::vector<double> held_stress_;  // stress steps summed for held blocks [Pa]
+  double ln_vh_, ln_slow_, quantum_;  // ln_slow_: ln(kSlowLocked V_pl), the locked form's limit
+  std::vector<char> held_;            // empty until the first hold()
+  std::vector<double> held_stress_;   // stress steps summed for held blocks [Pa]
 };
 
 class RsfEventEngine {
@@ -212,11 +215,8 @@ class RsfEventEngine {
   // With active blocks: velocity-weakening blocks away from their closed forms are integrated
   // alone below v_alone (RsfLoader::integrate_alone) instead of joining the integration at
   // V_h; 0 until called. Not part of a snapshot (the scene's).
-  void set_alone_speed(double v_alone) {
-    loader_.integrate_alone(v_alone, tol_);
-    v_alone_ = v_alone;
-  }
-  double alone_speed() const { return v_alone_; }
+  void set_alone_speed(double v_alone) { loader_.integrate_alone(v_alone, tol_); }
+  double alone_speed() const { return loader_.v_alone(); }
   bool active_blocks() const { return active_blocks_ && m_.dynamics == RsfDynamics::QuasiDynamic; }
   // Active blocks summed over the integrations' steps (the mean active set is this / steps()
   // over the steps of active-block integrations); 0 for the whole grid.
@@ -237,7 +237,6 @@ class RsfEventEngine {
   std::int64_t events_ = 0, integrations_ = 0, steps_ = 0, syncs_ = 0;
   std::deque<EventRecord> pending_;
   bool active_blocks_ = false;
-  double v_alone_ = 0;
   std::int64_t active_block_steps_ = 0;
   std::unique_ptr<RsfActiveIntegration> active_;
 };
