@@ -17,9 +17,15 @@
 // continuous integrator's steps and CPU split into those taken while the fastest block is below
 // V_h (what the event-driven engine replaces by closed forms) and at or above it (what it
 // integrates too); total CPU / the CPU above V_h is the ceiling on the speed-up at equal events.
+// Each row also gives the blocks integrated per event: block steps (a step of the whole grid
+// counts N, of the active blocks their number, a step of a block alone one) over events. Both
+// engines take about as many steps per event (the event's), so the continuous run's block steps
+// per event over an event-driven run's bound its speed-up where a block step costs the same.
+// --fast runs only the first continuous start and the fastest event-driven engine (active
+// blocks, blocks alone): the ratio without the seed-to-seed yardstick, for long chains.
 //
 //   build/rsf_event [--chain N] [--duration T] [--speed V_pl] [--handover V_h]
-//                   [--quantum q[,q2,...]] [--asperities] [--rough r] [--alone V_a]
+//                   [--quantum q[,q2,...]] [--asperities] [--rough r] [--alone V_a] [--fast]
 //     defaults: N = 100, T = 2000 s, V_pl = 1e-6 m/s, q = 1e-6 m (the scene's auto, D_c/10);
 //     the handover speed is the scene's auto, min(V_th/10, 0.01 a sigma/eta); --rough r spreads
 //     each block's D_c by a factor in [1 - r, 1 + r] (default 0); V_a defaults to the scene's
@@ -51,6 +57,7 @@ struct Result {
   double cpu = 0;
   double mean_active = NAN;   // active-block engine: blocks integrated per step
   long long alone_steps = 0;  // the single-block integrations' steps
+  long long block_steps = 0;  // blocks integrated, summed over steps (alone steps included)
   // Continuous only: steps and CPU while the fastest block is below V_h, and at or above it.
   long long steps_below = 0, steps_above = 0;
   double cpu_below = 0, cpu_above = 0;
@@ -95,6 +102,7 @@ Result continuous(const RsfModel& m, double duration, double phase, double v_h) 
   r.cpu = t1 - t0;
   r.events = events.events();
   r.steps = c.accepted();
+  r.block_steps = r.steps * c.n();
   return r;
 }
 
@@ -114,6 +122,7 @@ Result event_driven(const RsfModel& m, double duration, double phase, double v_h
   r.syncs = engine.syncs();
   if (active) r.mean_active = static_cast<double>(engine.active_block_steps()) / r.steps;
   r.alone_steps = engine.loader().alone_steps();
+  r.block_steps = (active ? engine.active_block_steps() : r.steps * m.n()) + r.alone_steps;
   return r;
 }
 
@@ -146,7 +155,7 @@ int main(int argc, char** argv) {
   int n = 100;
   double duration = 2000, v_pl = 1e-6, v_h = 0, v_alone = 0;
   std::vector<double> quanta;
-  bool asperities = false;
+  bool asperities = false, fast = false;
   double rough_dc = 0;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--chain") == 0 && i + 1 < argc)
@@ -172,6 +181,8 @@ int main(int argc, char** argv) {
       asperities = true;
     } else if (std::strcmp(argv[i], "--rough") == 0 && i + 1 < argc) {
       rough_dc = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--fast") == 0) {
+      fast = true;
     }
   }
   if (quanta.empty()) quanta = {1e-6};
@@ -201,22 +212,30 @@ int main(int argc, char** argv) {
       "chain %d%s, D_c spread %g, V_pl = %g m/s, %g s simulated, V_h = %g m/s, V_a = %g m/s\n", n,
       asperities ? " (asperities)" : "", rough_dc, v_pl, duration, v_h, v_alone);
   const Result c1 = continuous(m, duration, 1.3, v_h);
-  const Result c2 = continuous(m, duration, 0.7, v_h);
+  const Result c2 = fast ? Result{} : continuous(m, duration, 0.7, v_h);
   std::printf(
       "continuous steps with the fastest block below V_h: %lld (%.3f CPU s), at or above: %lld "
       "(%.3f CPU s); ceiling on the speed-up at equal events: total/above = %.1fx\n",
       c1.steps_below, c1.cpu_below, c1.steps_above, c1.cpu_above, c1.cpu / c1.cpu_above);
-  std::printf("%-36s %9s %9s %10s %13s %7s %10s %10s %9s %8s %11s\n", "engine", "events", "CPU [s]",
-              "events/CPU s", "ratio", "KS", "mean M", "steps", "syncs", "active", "alone steps");
+  std::printf("%-36s %9s %9s %10s %13s %7s %10s %10s %9s %8s %11s %12s %13s\n", "engine", "events",
+              "CPU [s]", "events/CPU s", "ratio", "KS", "mean M", "steps", "syncs", "active",
+              "alone steps", "steps/event", "blocks/event");
+  const auto per_event = [](const Result& r) {
+    return static_cast<double>(r.block_steps) / static_cast<double>(r.events);
+  };
   const auto row = [&](const char* name, const Result& r, double ks_value) {
-    std::printf("%-36s %9lld %9.3f %10.2f %12.1fx %7.3f %10.3f %10lld %9lld %8.2f %11lld\n", name,
-                r.events, r.cpu, r.events / r.cpu, (r.events / r.cpu) / (c1.events / c1.cpu),
-                ks_value, mean(r.magnitudes), r.steps, r.syncs, r.mean_active, r.alone_steps);
+    std::printf(
+        "%-36s %9lld %9.3f %10.2f %12.1fx %7.3f %10.3f %10lld %9lld %8.2f %11lld %12.1f %13.0f\n",
+        name, r.events, r.cpu, r.events / r.cpu, (r.events / r.cpu) / (c1.events / c1.cpu),
+        ks_value, mean(r.magnitudes), r.steps, r.syncs, r.mean_active, r.alone_steps,
+        static_cast<double>(r.steps) / static_cast<double>(r.events), per_event(r));
   };
   row("continuous", c1, 0.0);
-  row("continuous, other start", c2, ks(c2.magnitudes, c1.magnitudes));
+  if (!fast) row("continuous, other start", c2, ks(c2.magnitudes, c1.magnitudes));
+  double ceiling = NAN;
   for (const double q : quanta)
     for (const int how_ : {0, 1, 2}) {
+      if (fast && how_ < 2) continue;
       const bool active = how_ > 0;
       const Result e = event_driven(m, duration, 1.3, v_h, q, active, how_ == 2 ? v_alone : 0);
       char name[64];
@@ -228,10 +247,15 @@ int main(int argc, char** argv) {
       else
         std::snprintf(name, sizeof name, "events, %s, q = %g", how, q);
       row(name, e, ks(e.magnitudes, c1.magnitudes));
+      if (how_ == 2) ceiling = per_event(c1) / per_event(e);
     }
   std::printf(
       "magnitudes counted after T/5 (%zu and %zu continuous events); KS to the first "
       "continuous run\n",
       c1.magnitudes.size(), c2.magnitudes.size());
+  std::printf(
+      "blocks integrated per event, continuous over active blocks with blocks alone (last "
+      "quantum): %.1fx, the ratio if a block step cost the same in both\n",
+      ceiling);
   return 0;
 }
