@@ -334,6 +334,10 @@ class RsfRun {
     obs_.start();
     obs_.phase({"time", cycle_.t(), duration_});
     while (cycle_.t() < duration_ && !signals.received()) {
+      // The final state is the one before the step clipped at run.duration: a longer run takes
+      // that step unclipped, so an extension (--resume, a larger run.duration) continues from
+      // here, its rows after this cut back, as one run of the longer scene would.
+      if (cycle_.t() + cycle_.next_step() >= duration_) save(true);
       cycle_.step(duration_);
       if (!std::isfinite(cycle_.ln_v(0)))
         throw Error("rsf: non-finite slip rate at t = " + format_real(cycle_.t()) +
@@ -373,8 +377,9 @@ class RsfRun {
   }
 
   // A checkpoint between two steps: the integrator's state is exact (every double's bits),
-  // so a resumed run takes the same steps and writes the same bytes.
-  void save() {
+  // so a resumed run takes the same steps and writes the same bytes. `final`: the finished
+  // run's final state (checkpoint.final.bin), kept for an extension.
+  void save(bool final = false) {
     prog_.wall_total = prog_.wall_events = wall_.total();
     prog_.events_done = detector_.events();
     prog_.transient_done = 0;
@@ -390,7 +395,10 @@ class RsfRun {
     if (samples_) samples_->checkpoint(c);
     if (slow_file_) slow_file_->checkpoint(c);
     obs_.checkpoint(c);
-    files_.write(c);
+    if (final)
+      files_.write_final(c);
+    else
+      files_.write(c);
   }
 
   RunEnd run_end(int signal) const {
@@ -536,13 +544,16 @@ class RsfEventRun {
                         files_.current(), out_.path("scene.ini"), out_.dir());
       return 128 + sig;
     }
+    // The final state, the records of the last integration not yet returned included: a later
+    // --resume with a larger run.events continues from it as an interrupted run would.
+    save(true);
     obs_.end(run_end(0));
     files_.remove_interim();
     return 0;
   }
 
  private:
-  void save() {
+  void save(bool final = false) {
     prog_.wall_total = prog_.wall_events = wall_.total();
     Checkpoint c =
         Checkpoint::of_run(req_.scene.hash(), req_.scene.to_ini(), settings_.run.seed, prog_);
@@ -552,7 +563,10 @@ class RsfEventRun {
     w.f64s(engine_.snapshot());
     c.put(kStateName, std::move(w.bytes()));
     obs_.checkpoint(c);
-    files_.write(c);
+    if (final)
+      files_.write_final(c);
+    else
+      files_.write(c);
   }
 
   RunEnd run_end(int signal) const {
@@ -582,7 +596,8 @@ class RsfEventRun {
 
 }  // namespace
 
-int run_rsf(const RunRequest& req, const Settings& settings, const OutputFolder& out) {
+int run_rsf(const RunRequest& req, const Settings& settings, const OutputFolder& out,
+            std::optional<RsfExtension> extension) {
   const CheckpointFiles checkpoints(out.dir());
   if (!req.resume) {
     if (checkpoints.exist() && !req.force)
@@ -596,12 +611,15 @@ int run_rsf(const RunRequest& req, const Settings& settings, const OutputFolder&
   }
   // Everything is checked before anything is changed: a refused resume leaves the folder as it
   // was.
-  if (run_status(out.dir()) == RunStatus::Finished)
-    throw Error("--resume: '" + out.dir() +
-                "' holds a finished rate-and-state run; extending one is not written yet");
   std::string from;
-  const Checkpoint saved = checkpoints.read(&from);
-  check_checkpoint_matches(saved, req.scene, from);
+  Checkpoint saved;
+  if (extension) {
+    saved = extension->saved;
+    from = extension->from;
+  } else {
+    saved = checkpoints.read(&from);
+    check_checkpoint_matches(saved, req.scene, from);
+  }
   validate_checkpoint(saved, 0, settings.stats.bin_width, from);
   const CatalogFormat format = settings.output.catalog;
   const std::string catalog =
@@ -612,6 +630,7 @@ int run_rsf(const RunRequest& req, const Settings& settings, const OutputFolder&
   else if (format == CatalogFormat::Hdf5)
     check_catalog_h5(catalog, saved.progress.events_done, saved_catalog_checksum(saved),
                      catalog_layout(settings));
+  if (extension) from = extension->adopt(saved);
   const auto truncate = [&] {
     if (format != CatalogFormat::Csv) return;
     std::error_code ec;

@@ -68,6 +68,16 @@ Checkpoint finished_state(const std::string& dir, const CheckpointFiles& checkpo
   }
   const double t1 = scene_values(before).run.duration;
   const double t2 = settings.run.duration;
+  if (settings.rsf.on) {
+    // A rate-and-state run ends at run.duration exactly (its final state is the one before
+    // the step clipped there).
+    if (t2 <= t1)
+      throw Error(
+          finished + " of duration " + format_real(t1) + ": run.duration = " + format_real(t2) +
+          " would not extend it (allowed: more than " + format_real(t1) + "); nothing to continue");
+    check_checkpoint_matches(saved, same, checkpoints.final_state());
+    return saved;
+  }
   // Equal step counts are no extension (the run ends after ceil(duration / dt) steps).
   const Settings old = settings_from_scene(same);
   if (t2 <= t1 || saved.engine.counters.steps >= continuous_steps(settings))
@@ -77,6 +87,21 @@ Checkpoint finished_state(const std::string& dir, const CheckpointFiles& checkpo
   check_checkpoint_matches(saved, same, checkpoints.final_state());
   extend_segment_state(saved, old, settings);
   return saved;
+}
+
+// An extension makes the finished run an interrupted run of the longer scene: its final state
+// becomes the checkpoint (now of this scene), scene.ini says the new run.events or
+// run.duration and summary.json goes until the run ends again. A crash from here on resumes
+// like any interruption. Returns the checkpoint's file.
+std::string adopt_extension(Checkpoint& saved, const Scene& scene, const OutputFolder& out,
+                            const CheckpointFiles& checkpoints) {
+  saved.scene_hash = scene.hash();
+  saved.scene_ini = scene.to_ini();
+  checkpoints.write(saved);
+  write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
+  std::filesystem::remove(out.path("summary.json"));
+  std::filesystem::remove(checkpoints.final_state());
+  return checkpoints.current();
 }
 
 }  // namespace
@@ -94,6 +119,15 @@ int run_scene(const RunRequest& req) {
           "allowed: csv, none");
     const OutputFolder out(req.out_dir, req.force, req.resume);
     if (req.force) std::filesystem::remove(out.path("summary.json"));
+    if (req.resume && run_status(out.dir()) == RunStatus::Finished) {
+      const CheckpointFiles checkpoints(out.dir());
+      return run_rsf(req, settings, out,
+                     RsfExtension{finished_state(out.dir(), checkpoints, scene, settings,
+                                                 settings.rsf.event_driven),
+                                  checkpoints.final_state(), [&](Checkpoint& saved) {
+                                    return adopt_extension(saved, scene, out, checkpoints);
+                                  }});
+    }
     return run_rsf(req, settings, out);
   }
   const ChainForces forces(p);
@@ -159,19 +193,7 @@ int run_scene(const RunRequest& req) {
                    "the continuation "
                    "is exact only if the engine did not change in between\n",
                    saved.git_revision.c_str(), kGitRevision);
-    // An extension makes the finished run an interrupted run of the longer scene: its
-    // final state becomes the checkpoint (now of this scene), scene.ini says the new
-    // run.events or run.duration and summary.json goes until the run ends again. A crash
-    // from here on resumes like any interruption.
-    const auto adopt = [&] {
-      saved.scene_hash = scene.hash();
-      saved.scene_ini = scene.to_ini();
-      checkpoints.write(saved);
-      write_file_atomic(out.path("scene.ini"), scene.to_ini(provenance_lines(scene)));
-      std::filesystem::remove(out.path("summary.json"));
-      std::filesystem::remove(checkpoints.final_state());
-      from = checkpoints.current();
-    };
+    const auto adopt = [&] { from = adopt_extension(saved, scene, out, checkpoints); };
     if (!events)
       return resume_continuous(req, settings, out, forces, *stepper, saved, from,
                                extend ? std::function<void()>(adopt) : std::function<void()>());

@@ -104,6 +104,7 @@ class RsfCycle {
   int n() const { return m_.n(); }
   double t() const { return dp_.t; }
   double t_prev() const { return dp_.t_prev; }
+  double next_step() const { return dp_.h; }  // the step size the next step tries first
   double slip(int j) const { return dp_.y[j]; }
   double ln_v(int j) const { return dp_.y[n() + j]; }
   double ln_theta(int j) const { return dp_.y[2 * n() + j]; }

@@ -456,8 +456,59 @@ void RsfEventEngine::integrate_active(int first, double t0, double t_end) {
   }
 }
 
+namespace {
+
+// An event record as numbers and back (the integers exactly: each is below 2^53).
+constexpr std::size_t kRecordSize = 18;
+
+void put_record(std::vector<double>& s, const EventRecord& e) {
+  const double r[kRecordSize] = {static_cast<double>(e.event),
+                                 e.load,
+                                 static_cast<double>(e.trigger),
+                                 static_cast<double>(e.blocks),
+                                 e.moment,
+                                 e.magnitude,
+                                 e.duration,
+                                 e.max_speed,
+                                 e.pad_displacement,
+                                 static_cast<double>(e.first_block),
+                                 static_cast<double>(e.last_block),
+                                 e.energy_residual,
+                                 static_cast<double>(e.topplings),
+                                 static_cast<double>(e.trigger_row),
+                                 static_cast<double>(e.first_row),
+                                 static_cast<double>(e.last_row),
+                                 e.hypocentre_time,
+                                 e.peak_time};
+  s.insert(s.end(), r, r + kRecordSize);
+}
+
+EventRecord take_record(const double* r) {
+  EventRecord e;
+  e.event = static_cast<std::int64_t>(r[0]);
+  e.load = r[1];
+  e.trigger = static_cast<int>(r[2]);
+  e.blocks = static_cast<int>(r[3]);
+  e.moment = r[4];
+  e.magnitude = r[5];
+  e.duration = r[6];
+  e.max_speed = r[7];
+  e.pad_displacement = r[8];
+  e.first_block = static_cast<int>(r[9]);
+  e.last_block = static_cast<int>(r[10]);
+  e.energy_residual = r[11];
+  e.topplings = static_cast<std::int64_t>(r[12]);
+  e.trigger_row = static_cast<int>(r[13]);
+  e.first_row = static_cast<int>(r[14]);
+  e.last_row = static_cast<int>(r[15]);
+  e.hypocentre_time = r[16];
+  e.peak_time = r[17];
+  return e;
+}
+
+}  // namespace
+
 std::vector<double> RsfEventEngine::snapshot() const {
-  if (!pending_.empty()) throw Error("rsf: a checkpoint inside an event");
   std::vector<double> s = {t_, static_cast<double>(events_), static_cast<double>(integrations_),
                            static_cast<double>(steps_), static_cast<double>(syncs_)};
   for (int j = 0; j < loader_.n(); ++j) {
@@ -471,6 +522,9 @@ std::vector<double> RsfEventEngine::snapshot() const {
   // The counters of the active-block integration (absent from older checkpoints).
   s.push_back(static_cast<double>(active_block_steps_));
   s.push_back(static_cast<double>(loader_.alone_steps()));
+  // The records not yet returned (absent from older checkpoints: none).
+  s.push_back(static_cast<double>(pending_.size()));
+  for (const EventRecord& e : pending_) put_record(s, e);
   return s;
 }
 
@@ -478,7 +532,9 @@ void RsfEventEngine::restore(const std::vector<double>& s) {
   const int n = loader_.n();
   constexpr std::size_t head = 5, per_block = 6;
   const std::size_t size = head + per_block * static_cast<std::size_t>(n);
-  if (s.size() < size || s.size() > size + 2)
+  const std::size_t pending =
+      s.size() > size + 2 ? static_cast<std::size_t>(std::max(0.0, s[size + 2])) : 0;
+  if (s.size() < size || (s.size() > size + 2 && s.size() != size + 3 + kRecordSize * pending))
     throw Error("rsf: a checkpoint of another chain's size");
   active_block_steps_ = s.size() > size ? static_cast<std::int64_t>(s[size]) : 0;
   t_ = s[0];
@@ -494,6 +550,8 @@ void RsfEventEngine::restore(const std::vector<double>& s) {
   // After the blocks: their forecasts are the ones the run had made (not counted twice).
   loader_.set_alone_steps(s.size() > size + 1 ? static_cast<long long>(s[size + 1]) : 0);
   pending_.clear();
+  for (std::size_t i = 0; i < pending; ++i)
+    pending_.push_back(take_record(s.data() + size + 3 + kRecordSize * i));
 }
 
 }  // namespace bkq

@@ -222,7 +222,9 @@ class RsfEventEngine {
   // over the steps of active-block integrations); 0 for the whole grid.
   std::int64_t active_block_steps() const { return active_block_steps_; }
 
-  // The state between two events, as numbers (a checkpoint's), and back.
+  // The state between two events, as numbers (a checkpoint's), and back; the records of the
+  // last integration not yet returned are part of it (a finished run's final state may fall
+  // between them).
   std::vector<double> snapshot() const;
   void restore(const std::vector<double>& s);
 

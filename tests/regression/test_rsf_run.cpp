@@ -226,6 +226,51 @@ TEST(RsfRun, KilledAndResumedRunGivesTheSameBytes) {
                               {"catalog.csv", "histogram.csv", "rsf_blocks.csv", "slow_slip.csv"});
 }
 
+// A finished continuous run extended to a longer run.duration (--resume) writes the catalogue,
+// histogram, block samples and afterslip episodes of one run of the longer duration, byte for
+// byte, from its final state (the one before the step clipped at the shorter duration).
+TEST(RsfRun, ExtendedRunGivesTheBytesOfOneLongerRun) {
+  test::TempDir tmp;
+  auto args = [&](const std::string& out, const std::string& duration, bool resume) {
+    std::vector<std::string> a = {"run",
+                                  resume ? tmp.file(out + "/scene.ini") : kScene,
+                                  "--quiet",
+                                  "--set",
+                                  "run.duration=" + duration,
+                                  "--set",
+                                  "output.blocks=true",
+                                  "--set",
+                                  "output.every=1000",
+                                  "--set",
+                                  "rsf.slow_slip_threshold=2e-6",
+                                  "--out",
+                                  tmp.file(out)};
+    if (resume) a.push_back("--resume");
+    return a;
+  };
+  const auto whole = run_bkquake(args("whole", "2e6", false));
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  const auto part = run_bkquake(args("part", "1e6", false));
+  ASSERT_EQ(part.status, 0) << part.err;
+  ASSERT_TRUE(std::filesystem::exists(tmp.file("part/checkpoint.final.bin")));
+  const std::string shorter = read_file(tmp.file("part/catalog.csv"));
+  // Not longer: refused, naming both durations, and nothing changed.
+  const auto same = run_bkquake(args("part", "1e6", true));
+  EXPECT_EQ(same.status, 2);
+  EXPECT_NE(same.err.find("run.duration = 1e+06 would not extend it"), std::string::npos)
+      << same.err;
+  EXPECT_EQ(read_file(tmp.file("part/catalog.csv")), shorter);
+  const auto longer = run_bkquake(args("part", "2e6", true));
+  ASSERT_EQ(longer.status, 0) << longer.err;
+  EXPECT_GT(read_file(tmp.file("part/catalog.csv")).size(), shorter.size());
+  for (const char* f : {"catalog.csv", "histogram.csv", "rsf_blocks.csv", "slow_slip.csv"})
+    EXPECT_EQ(read_file(tmp.file(std::string("part/") + f)),
+              read_file(tmp.file(std::string("whole/") + f)))
+        << f;
+  EXPECT_NE(read_file(tmp.file("part/summary.json")).find("\"status\": \"finished\""),
+            std::string::npos);
+}
+
 // The shipped event-driven chain's run arguments, 400 events checkpointed every 50, with
 // `sets` (section.key=value) added.
 auto event_run_args(std::vector<std::string> sets) {
@@ -239,6 +284,15 @@ auto event_run_args(std::vector<std::string> sets) {
     a.insert(a.end(), more.begin(), more.end());
     return a;
   };
+}
+
+// The same chain with its rough D_c (per-block values, which the active-block integration
+// needs), each event on its active blocks.
+auto active_event_run_args() {
+  return event_run_args({"rsf.pattern=uniform",
+                         "rsf.blocks=" + std::string(BKQUAKE_SOURCE_DIR) +
+                             "/data/scenes/rsf/chain-events-rough-blocks.csv",
+                         "rsf.event_integration=active"});
 }
 
 // The shipped event-driven chain (20 blocks here), stopped by SIGTERM after its first
@@ -264,10 +318,7 @@ TEST(RsfRun, EventDrivenKilledAndResumedGivesTheSameBytes) {
 // active blocks over the steps goes through the checkpoint too.
 TEST(RsfRun, ActiveBlocksKilledAndResumedGiveTheSameBytes) {
   test::TempDir tmp;
-  const auto args = event_run_args({"rsf.pattern=uniform",
-                                    "rsf.blocks=" + std::string(BKQUAKE_SOURCE_DIR) +
-                                        "/data/scenes/rsf/chain-events-rough-blocks.csv",
-                                    "rsf.event_integration=active"});
+  const auto args = active_event_run_args();
   const auto whole = run_bkquake(args(tmp.file("whole"), {}));
   ASSERT_EQ(whole.status, 0) << whole.err;
   EXPECT_NE(read_file(tmp.file("whole/summary.json")).find("\"event_integration\": \"active\""),
@@ -290,6 +341,33 @@ TEST(RsfRun, ActiveBlocksKilledAndResumedGiveTheSameBytes) {
   EXPECT_NEAR(number("whole", "alone_speed"), 1e-4, 1e-15);
   EXPECT_GT(number("whole", "alone_steps"), 0);
   EXPECT_EQ(number("cut", "alone_steps"), number("whole", "alone_steps"));
+}
+
+// A finished event-driven run (active blocks, blocks alone) extended twice to more events
+// (--resume with a larger run.events) writes the catalogue and histogram of one run of the
+// most events, byte for byte, wherever the shorter runs ended (between the events of one
+// integration too: the final state keeps the records not yet returned).
+TEST(RsfRun, ExtendedEventRunGivesTheBytesOfOneLongerRun) {
+  test::TempDir tmp;
+  const auto args = active_event_run_args();
+  const auto whole = run_bkquake(args(tmp.file("whole"), {}));
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  for (const char* events : {"run.events=103", "run.events=205", "run.events=400"}) {
+    const bool first = std::string(events) == "run.events=103";
+    const auto r = run_bkquake(
+        args(tmp.file("part"), first ? std::vector<std::string>{"--set", events}
+                                     : std::vector<std::string>{"--resume", "--set", events}));
+    ASSERT_EQ(r.status, 0) << events << ": " << r.err;
+  }
+  for (const char* f : {"catalog.csv", "histogram.csv"})
+    EXPECT_EQ(read_file(tmp.file(std::string("part/") + f)),
+              read_file(tmp.file(std::string("whole/") + f)))
+        << f;
+  // Fewer events than the finished run's: refused.
+  const auto fewer = run_bkquake(args(tmp.file("part"), {"--resume", "--set", "run.events=300"}));
+  EXPECT_EQ(fewer.status, 2);
+  EXPECT_NE(fewer.err.find("would not extend it (allowed: more than 400)"), std::string::npos)
+      << fewer.err;
 }
 
 // rsf.blocks: per-block a, b and D_c. Two uncoupled blocks, one with QDYN's law and one with
