@@ -1,6 +1,7 @@
 // Runs side by side; see compare.hpp.
 #include "app/compare.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "io/catalog_reader.hpp"
 #include "io/ini.hpp"
 #include "io/json.hpp"
+#include "stats/seismicity/moments.hpp"
 
 namespace bkq {
 
@@ -36,29 +38,57 @@ std::string window_text(const CompareRequest& req) {
   return req.from || req.to ? w : "all events";
 }
 
-// The run's events in the window: magnitudes, and (load, mu) for the large-event pass.
-void read_window(const CompareRequest& req, CompareRun& run, std::vector<double>& loads) {
-  CatalogReader reader(catalog_of(run.folder));
+// The members of a RUN_DIR argument: the folder, or a group's comma-separated folders.
+std::vector<std::string> members_of(const std::string& arg) {
+  if (arg.find(',') == std::string::npos || fs::is_directory(arg)) return {arg};
+  std::vector<std::string> m;
+  for (std::size_t p = 0; p <= arg.size();) {
+    const std::size_t comma = std::min(arg.find(',', p), arg.size());
+    if (comma == p)
+      throw Error("compare: " + quote_printable(arg) +
+                  ": an empty folder name in a group; allowed: folders separated by single "
+                  "commas");
+    m.push_back(arg.substr(p, comma - p));
+    p = comma + 1;
+  }
+  return m;
+}
+
+std::string name_of(const std::string& folder) {
+  std::string name = fs::path(folder).lexically_normal().filename().string();
+  if (name.empty()) name = fs::path(folder).lexically_normal().parent_path().filename().string();
+  return name;
+}
+
+// One member's events in the window: magnitudes (appended to the run's), and their loads for
+// the large-event pass.
+void read_window(const CompareRequest& req, const std::string& folder, CompareRun& run,
+                 std::vector<double>& loads) {
+  CatalogReader reader(catalog_of(folder));
   reader.set_growing();  // a run still writing: its last, unfinished row ends the reading
   if (!reader.has_load())
     throw Error("compare: " + reader.file() +
                 " has no load column: the window and the recurrence need the catalogue's clock");
   CatalogEvent e;
   bool first = true;
+  double first_load = 0, last_load = 0;
   while (reader.next(e)) {
-    if (first) run.first_load = e.load;
+    if (first) first_load = e.load;
     first = false;
-    run.last_load = e.load;
+    last_load = e.load;
     if ((req.from && !(e.load > *req.from)) || (req.to && !(e.load <= *req.to))) continue;
     run.mu.push_back(std::log(e.moment));
     loads.push_back(e.load);
   }
-  run.events_read = static_cast<std::size_t>(reader.events_read());
-  if (run.mu.empty())
-    throw Error("compare: " + run.folder + " has no events with " + window_text(req) + " (" +
-                std::to_string(run.events_read) + " events, load " + format_real(run.first_load) +
-                " to " + format_real(run.last_load) +
+  const auto read = static_cast<std::size_t>(reader.events_read());
+  if (loads.empty())
+    throw Error("compare: " + folder + " has no events with " + window_text(req) + " (" +
+                std::to_string(read) + " events, load " + format_real(first_load) + " to " +
+                format_real(last_load) +
                 "); allowed: --from and --to that hold events of every run");
+  run.first_load = run.events_read == 0 ? first_load : std::min(run.first_load, first_load);
+  run.last_load = run.events_read == 0 ? last_load : std::max(run.last_load, last_load);
+  run.events_read += read;
 }
 
 std::optional<CompareAftershocks> aftershocks_of(const std::string& folder) {
@@ -112,15 +142,18 @@ CompareReport compare_runs(const CompareRequest& req) {
     throw Error("compare: --large-quantile = " + format_real(req.large_quantile) +
                 "; allowed: (0, 1)");
   CompareReport rep;
-  std::vector<std::vector<double>> loads(req.runs.size());
+  // loads[i][m]: the window's loads of member m of run i, in the order of its magnitudes.
+  std::vector<std::vector<std::vector<double>>> loads(req.runs.size());
   for (std::size_t i = 0; i < req.runs.size(); ++i) {
     CompareRun run;
     run.folder = req.runs[i];
-    run.name = fs::path(run.folder).lexically_normal().filename().string();
-    if (run.name.empty())
-      run.name = fs::path(run.folder).lexically_normal().parent_path().filename().string();
-    read_window(req, run, loads[i]);
-    run.aftershocks = aftershocks_of(run.folder);
+    run.members = members_of(run.folder);
+    run.name = name_of(run.members[0]);
+    if (run.members.size() > 1) run.name += ",… (" + std::to_string(run.members.size()) + " runs)";
+    loads[i].resize(run.members.size());
+    for (std::size_t m = 0; m < run.members.size(); ++m)
+      read_window(req, run.members[m], run, loads[i][m]);
+    if (run.members.size() == 1) run.aftershocks = aftershocks_of(run.folder);
     rep.runs.push_back(std::move(run));
   }
   if (req.mu_large) {
@@ -133,16 +166,24 @@ CompareReport compare_runs(const CompareRequest& req) {
   }
   for (std::size_t i = 0; i < rep.runs.size(); ++i) {
     CompareRun& r = rep.runs[i];
-    for (std::size_t k = 0; k < r.mu.size(); ++k)
-      if (r.mu[k] >= rep.mu_large) r.large_times.push_back(loads[i][k]);
-    r.recurrence = recurrence_of(r.large_times);
+    std::size_t k = 0;  // the run's magnitudes follow its members' loads in order
+    r.large_times.resize(r.members.size());
+    seis::Moments per_run;
+    for (std::size_t m = 0; m < r.members.size(); ++m) {
+      for (const double load : loads[i][m])
+        if (r.mu[k++] >= rep.mu_large) r.large_times[m].push_back(load);
+      per_run.add(static_cast<double>(r.large_times[m].size()));
+    }
+    r.recurrence = recurrence_of_runs(r.large_times);
+    r.large_mean = per_run.mean();
+    r.large_sd = r.members.size() > 1 ? std::sqrt(per_run.variance()) : NAN;
   }
   const CompareRun& ref = rep.runs[0];
-  const std::vector<double> ref_dt = intervals_of(ref.large_times);
+  const std::vector<double> ref_dt = intervals_of_runs(ref.large_times);
   for (CompareRun& r : rep.runs) {
     r.ks_mu = ks_distance(ref.mu, r.mu);
     r.ks_mu_crit = ks_critical_5pct(ref.mu.size(), r.mu.size());
-    const std::vector<double> dt = intervals_of(r.large_times);
+    const std::vector<double> dt = intervals_of_runs(r.large_times);
     r.ks_intervals = ks_distance(ref_dt, dt);
     r.ks_intervals_crit = ks_critical_5pct(ref_dt.size(), dt.size());
   }
@@ -165,11 +206,12 @@ void print_compare(const CompareReport& rep, const CompareRequest& req, std::ost
         << num(r.ks_mu_crit) << " |\n";
   out << "\nRecurrence of the large events (" << rep.large_rule
       << "), intervals in load; errors: count sqrt(n), mean s/sqrt(n), COV delta method:\n\n"
-      << "| run | large events | mean interval | COV | KS of intervals to " << ref.name
-      << " | 5 % critical |\n|---|---|---|---|---|---|\n";
+      << "| run | large events | a run (mean ± s.d.) | mean interval | COV | KS of intervals to "
+      << ref.name << " | 5 % critical |\n|---|---|---|---|---|---|---|\n";
   for (const CompareRun& r : rep.runs) {
     const Recurrence& c = r.recurrence;
     out << "| " << r.name << " | " << c.count << " ± " << num(c.count_err) << " | "
+        << (r.members.size() > 1 ? num(r.large_mean) + " ± " + num(r.large_sd) : "–") << " | "
         << num_err(c.mean, c.mean_err) << " | " << num_err(c.cov, c.cov_err) << " | "
         << num(r.ks_intervals) << " | " << num(r.ks_intervals_crit) << " |\n";
   }
@@ -180,6 +222,11 @@ void print_compare(const CompareReport& rep, const CompareRequest& req, std::ost
   std::string rules;
   for (const CompareRun& r : rep.runs) {
     out << "| " << r.name << " | ";
+    if (r.members.size() > 1) {
+      out << "a group: bkquake seismicity fits each run alone (compare them one by one) | | | | "
+             "| |\n";
+      continue;
+    }
     if (!r.aftershocks) {
       out << "no seismicity/seismicity.json (run bkquake seismicity " << r.folder
           << ") | | | | | |\n";

@@ -31,8 +31,10 @@ Command compare_command_row() {
       "between the magnitude distributions of the events in a window of the catalogue's\n"
       "clock (load), the recurrence of the large events (count, mean interval, COV, the\n"
       "KS distance between the interval distributions) and the Omori-Utsu aftershock fit\n"
-      "that bkquake seismicity wrote into each run's seismicity/seismicity.json. Prints\n"
-      "Markdown tables; writes nothing.\n",
+      "that bkquake seismicity wrote into each run's seismicity/seismicity.json. A\n"
+      "RUN_DIR may be a group, folders separated by commas (run1,run2,run3): several\n"
+      "starts of one scene pooled, their large events' intervals taken within each run.\n"
+      "Prints Markdown tables; writes nothing.\n",
       {opt::real("from", "LOAD", "window: events with load > LOAD (default: from the start)"),
        opt::real("to", "LOAD", "window: events with load <= LOAD (default: to the end)"),
        opt::real("mu-large", "MU",

@@ -47,12 +47,25 @@ std::vector<double> intervals_of(const std::vector<double>& times) {
   return dt;
 }
 
+std::vector<double> intervals_of_runs(const std::vector<std::vector<double>>& times) {
+  std::vector<double> dt;
+  for (const std::vector<double>& t : times) {
+    const std::vector<double> d = intervals_of(t);
+    dt.insert(dt.end(), d.begin(), d.end());
+  }
+  return dt;
+}
+
 Recurrence recurrence_of(const std::vector<double>& times) {
+  return recurrence_of_runs({times});
+}
+
+Recurrence recurrence_of_runs(const std::vector<std::vector<double>>& times) {
   Recurrence r;
-  r.count = times.size();
+  for (const std::vector<double>& t : times) r.count += t.size();
   r.count_err = std::sqrt(static_cast<double>(r.count));
   seis::Moments m;
-  for (const double dt : intervals_of(times)) m.add(dt);
+  for (const double dt : intervals_of_runs(times)) m.add(dt);
   r.intervals = static_cast<std::size_t>(m.n());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   r.mean = r.intervals >= 2 ? m.mean() : nan;

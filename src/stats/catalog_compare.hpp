@@ -35,4 +35,9 @@ struct Recurrence {
 };
 Recurrence recurrence_of(const std::vector<double>& times);
 
+// Several runs of one scene pooled: the intervals within each run (each run's times sorted
+// ascending; none across two runs), and their recurrence (the count is the sum).
+std::vector<double> intervals_of_runs(const std::vector<std::vector<double>>& times);
+Recurrence recurrence_of_runs(const std::vector<std::vector<double>>& times);
+
 }  // namespace bkq

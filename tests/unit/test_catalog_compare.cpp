@@ -52,6 +52,17 @@ TEST(CatalogCompare, RecurrenceOfPeriodicAndIdenticalTimes) {
   EXPECT_TRUE(std::isnan(bkq::recurrence_of({1, 2}).cov));  // one interval: no spread
 }
 
+// Runs pooled: the intervals lie within each run, never across two.
+TEST(CatalogCompare, RecurrenceOfRunsPooledKeepsIntervalsWithinEachRun) {
+  const bkq::Recurrence r = bkq::recurrence_of_runs({{1, 3, 5}, {100, 104}, {7}});
+  EXPECT_EQ(r.count, 6u);
+  EXPECT_EQ(r.intervals, 3u);
+  EXPECT_DOUBLE_EQ(r.mean, 8.0 / 3.0);
+  EXPECT_EQ(bkq::intervals_of_runs({{1, 3, 5}, {100, 104}}), (std::vector<double>{2, 2, 4}));
+  const bkq::Recurrence one = bkq::recurrence_of_runs({{1, 3, 5, 7, 9}});
+  EXPECT_EQ(one.mean, bkq::recurrence_of({1, 3, 5, 7, 9}).mean);
+}
+
 TEST(CatalogCompare, JsonNumbersAtDottedPaths) {
   const std::string t = R"({"a": {"b": 2.5, "c": null, "s": "x"}, "d": 1, "e": null})";
   EXPECT_EQ(bkq::json_number_at(t, "a.b", "t"), 2.5);
@@ -152,6 +163,40 @@ TEST(CatalogCompare, ReadsTheOmoriFitOfSeismicityJson) {
   fs::remove_all(d);
 }
 
+// A group (folders separated by commas) pools its runs: two copies of a run against the run
+// give KS 0, twice its large events (10 a run, no spread), and its intervals (KS 0): none
+// across the two copies. A shifted member moves the pooled distribution by half its shift.
+TEST(CatalogCompare, AGroupPoolsItsRuns) {
+  const fs::path d = scratch("group");
+  make_run(d / "a", 0);
+  make_run(d / "b", 0);
+  make_run(d / "s", 0.1005);
+  const std::string a = (d / "a").string(), b = (d / "b").string(), s = (d / "s").string();
+  bkq::CompareRequest req;
+  req.runs = {a, a + "," + b, a + "," + s};
+  req.mu_large = 4;
+  const bkq::CompareReport rep = bkq::compare_runs(req);
+  const bkq::CompareRun& g = rep.runs[1];
+  EXPECT_EQ(g.members.size(), 2u);
+  EXPECT_EQ(g.mu.size(), 2000u);
+  EXPECT_EQ(g.ks_mu, 0.0);
+  EXPECT_EQ(g.recurrence.count, 40u);
+  EXPECT_EQ(g.recurrence.intervals, 38u);  // 19 within each copy
+  EXPECT_DOUBLE_EQ(g.recurrence.mean, rep.runs[0].recurrence.mean);
+  EXPECT_EQ(g.ks_intervals, 0.0);
+  EXPECT_DOUBLE_EQ(g.large_mean, 20.0);
+  EXPECT_EQ(g.large_sd, 0.0);
+  EXPECT_TRUE(std::isnan(rep.runs[0].large_sd));  // one run: no spread
+  EXPECT_NEAR(rep.runs[2].ks_mu, 0.0505, 1e-3);   // half the members shifted by 0.1005
+  const auto r =
+      bkq::test::run_process(BKQUAKE_BINARY, {"compare", a, a + "," + b, "--mu-large", "4"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(row(r.out, "a,… (2 runs)", 1).find("| 40 ± 6.325 | 20 ± 0 |"), std::string::npos)
+      << r.out;
+  EXPECT_NE(row(r.out, "a,… (2 runs)", 2).find("a group"), std::string::npos) << r.out;
+  fs::remove_all(d);
+}
+
 TEST(CatalogCompare, BadInputIsOneLineNamingTheValue) {
   const fs::path d = scratch("bad");
   make_run(d / "a", 0);
@@ -163,6 +208,9 @@ TEST(CatalogCompare, BadInputIsOneLineNamingTheValue) {
   };
   one_line(bkq::test::run_process(BKQUAKE_BINARY, {"compare", a, missing}), missing);
   one_line(bkq::test::run_process(BKQUAKE_BINARY, {"compare", a}), "two or more");
+  one_line(bkq::test::run_process(BKQUAKE_BINARY, {"compare", a, a + "," + missing}), missing);
+  one_line(bkq::test::run_process(BKQUAKE_BINARY, {"compare", a, a + ",," + a}),
+           "an empty folder name in a group");
   one_line(bkq::test::run_process(BKQUAKE_BINARY, {"compare", a, a, "--from", "5"}),
            "no events with 5 < load");
   one_line(
