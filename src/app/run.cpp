@@ -68,24 +68,16 @@ Checkpoint finished_state(const std::string& dir, const CheckpointFiles& checkpo
   }
   const double t1 = scene_values(before).run.duration;
   const double t2 = settings.run.duration;
-  if (settings.rsf.on) {
-    // A rate-and-state run ends at run.duration exactly (its final state is the one before
-    // the step clipped there).
-    if (t2 <= t1)
-      throw Error(
-          finished + " of duration " + format_real(t1) + ": run.duration = " + format_real(t2) +
-          " would not extend it (allowed: more than " + format_real(t1) + "); nothing to continue");
-    check_checkpoint_matches(saved, same, checkpoints.final_state());
-    return saved;
-  }
-  // Equal step counts are no extension (the run ends after ceil(duration / dt) steps).
-  const Settings old = settings_from_scene(same);
-  if (t2 <= t1 || saved.engine.counters.steps >= continuous_steps(settings))
+  // A rate-and-state run ends at run.duration exactly (its final state is the one before the
+  // step clipped there); a fixed-step run after ceil(duration / dt) steps, so equal step counts
+  // are no extension.
+  const bool fixed_step = !settings.rsf.on;
+  if (t2 <= t1 || (fixed_step && saved.engine.counters.steps >= continuous_steps(settings)))
     throw Error(finished + " of duration " + format_real(t1) + ": run.duration = " +
                 format_real(t2) + " would not extend it (allowed: more than " + format_real(t1) +
-                " by at least one integrator.dt); nothing to continue");
+                (fixed_step ? " by at least one integrator.dt" : "") + "); nothing to continue");
   check_checkpoint_matches(saved, same, checkpoints.final_state());
-  extend_segment_state(saved, old, settings);
+  if (fixed_step) extend_segment_state(saved, settings_from_scene(same), settings);
   return saved;
 }
 
