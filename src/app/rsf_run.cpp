@@ -443,7 +443,7 @@ class RsfEventFigures : public RunObserver {
     r.set("scheme", "dopri5");
     r.set("handover_speed", v_handover_);
     r.set("creep_quantum", e_.loader().creep_quantum());
-    r.set("event_integration", e_.active_blocks() ? "active" : "whole");
+    r.set("event_integration", !e_.active_blocks() ? "whole" : e_.groups() ? "groups" : "active");
     if (e_.active_blocks()) {
       r.set("active_block_steps", e_.active_block_steps());
       r.set("alone_speed", e_.alone_speed());
@@ -479,6 +479,7 @@ class RsfEventRun {
         transient_(settings.run.transient_events),
         events_(settings.run.events) {
     engine_.set_active_blocks(settings.rsf.active_blocks);
+    engine_.set_groups(settings.rsf.active_groups);
     if (engine_.active_blocks() && settings.rsf.v_alone > 0)
       engine_.set_alone_speed(settings.rsf.v_alone);
     if (resumed) {

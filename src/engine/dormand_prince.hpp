@@ -82,6 +82,16 @@ struct Adaptive {
   // fail(t) is called (and must throw) when the step no longer moves the clock.
   template <class Rhs, class Norm, class Fail>
   double step(double t_max, Rhs&& rhs, Norm&& norm, Fail&& fail) {
+    const double hh = propose(t_max, rhs, norm, fail);
+    accept();
+    return hh;
+  }
+
+  // step() in two halves: propose() finds the step (ytmp and k[6] hold its end, proposed_t its
+  // time) and changes nothing but h and the counters of rejections; accept() takes it. A
+  // proposal not taken is dropped by changing y or proposing again.
+  template <class Rhs, class Norm, class Fail>
+  double propose(double t_max, Rhs&& rhs, Norm&& norm, Fail&& fail) {
     k[0] = dy;  // FSAL: the last stage of the previous step
     bool rejected_before = false;
     while (true) {
@@ -92,15 +102,9 @@ struct Adaptive {
       double e = norm();
       if (!std::isfinite(e)) e = 1e10;  // a stage left the range of exp: reject, shrink
       if (e <= 1) {
-        t_prev = t;
-        y_prev.swap(y);
-        dy_prev.swap(dy);
-        y.swap(ytmp);
-        dy = k[6];
-        t = clipped ? t_max : t + hh;
-        ++accepted;
+        proposed_t = clipped ? t_max : t + hh;
         const double next = hh * grow_factor(e, true, rejected_before);
-        if (!clipped || next < h) h = next;
+        proposed_h = !clipped || next < h ? next : h;
         return hh;
       }
       ++rejected;
@@ -108,6 +112,17 @@ struct Adaptive {
       h = hh * grow_factor(e, false, rejected_before);
     }
   }
+  void accept() {
+    t_prev = t;
+    y_prev.swap(y);
+    dy_prev.swap(dy);
+    y.swap(ytmp);
+    dy = k[6];
+    t = proposed_t;
+    h = proposed_h;
+    ++accepted;
+  }
+  double proposed_t = 0, proposed_h = 0;
 };
 
 }  // namespace bkq::dopri

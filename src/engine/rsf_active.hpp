@@ -23,15 +23,23 @@
 //     puts on its inactive neighbours (k_ij delta_j less what they have had) is passed to them.
 // The integration ends when no block is active and no event is open (or at t_end, where every
 // active block goes back). The seismic detector reads the active slots (RsfStepSpan).
-// Inertial dynamics: each block's tau0 is set when it joins so that its stress balances its
-// friction there (sigma f + eta V), as the cycle integrator does at its start; this is not
-// checked against the whole grid, and the engine integrates inertial scenes on the whole grid.
-// A velocity-strengthening block whose nucleation form has let theta fall far below steady
-// state (V theta/D_c < 1/e) joins at the steady state of its stress (a ln V + b ln theta kept).
+//
+// Groups (set_groups(true)): active blocks joined by a spring are integrated together, and
+// groups that share none each with their own step size and clock, so that a nucleation far
+// from an event is not carried at the event's steps. What they share goes through the loader,
+// in time order: a group's step is taken (its stress passed on, its blocks handed back) only
+// when no other group's step or loader item comes before its end, and a group is first
+// brought to the time of a loader item that touches its active blocks or their neighbours
+// (a block joining it, a neighbour's creep quantum), so that its steps stop at those only
+// (without groups every step stops at every item). A block joining two groups merges them
+// there. Each group has its own seismic detector; events of different groups that overlap in
+// time are one event (one interval with some block above V_th, as the whole grid's detector
+// counts them), the slip of its blocks counted over their own group's part of it.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "engine/dormand_prince.hpp"
@@ -43,9 +51,18 @@ namespace bkq {
 
 class RsfLoader;
 
+// The events the groups' detectors found (times on one clock), in order of their hypocentres,
+// those that overlap in time joined into one: the earlier one's trigger, blocks and moments
+// summed, the union of their bounding boxes, the higher peak, from the first hypocentre to the
+// last end.
+std::vector<EventRecord> join_overlapping(std::vector<EventRecord> found);
+
 class RsfActiveIntegration {
  public:
   RsfActiveIntegration(const RsfModel& m, double tolerance, double v_threshold);
+  // Groups of active blocks integrated apart (see above); off until called.
+  void set_groups(bool on) { grouped_ = on; }
+  bool groups() const { return grouped_; }
 
   // What the engine's hand-back test reads, by block: the cycle integrator's accessors for
   // the active blocks (y() and dy() in its layout, slip at j, ln V at n + j, ln theta at 2n + j).
@@ -56,14 +73,16 @@ class RsfActiveIntegration {
   };
   int n() const { return m_.n(); }
   const RsfModel& model() const { return m_; }
-  double t() const { return dp_.t; }
-  double slip(int j) const { return dp_.y[3 * slot_[j]]; }
-  double ln_v(int j) const { return dp_.y[3 * slot_[j] + 1]; }
-  double ln_theta(int j) const { return dp_.y[3 * slot_[j] + 2]; }
+  // The clock of the group being handed back (the run's, from its start).
+  double t() const { return g_[cur_]->dp.t; }
+  double slip(int j) const { return dp_of(j).y[3 * slot_[j]]; }
+  double ln_v(int j) const { return dp_of(j).y[3 * slot_[j] + 1]; }
+  double ln_theta(int j) const { return dp_of(j).y[3 * slot_[j] + 2]; }
   Column y() const { return {this, 0}; }
   Column dy() const { return {this, 3}; }
   double friction_stress(int j) const;
-  bool in_event() const { return detector_.in_event(); }
+  // Whether the group being handed back is in an event.
+  bool in_event() const { return g_[cur_]->detector.in_event(); }
 
   using HandBack = std::function<bool(const RsfActiveIntegration&, int)>;
   // One integration from block `first` reaching V_h at t0 (absolute times) until no block is
@@ -72,44 +91,76 @@ class RsfActiveIntegration {
   double run(RsfLoader& loader, int first, double t0, double t_end, const HandBack& handed_back);
   const std::vector<EventRecord>& events() const { return events_; }
 
-  std::int64_t accepted() const { return dp_.accepted; }   // steps, all integrations
+  std::int64_t accepted() const { return accepted_; }      // steps, all integrations
   std::int64_t slot_steps() const { return slot_steps_; }  // sum of active blocks per step
   std::int64_t activations() const { return activations_; }
   std::int64_t syncs() const { return syncs_; }    // quanta passed on during integrations
   std::int64_t resets() const { return resets_; }  // barriers started at steady state
 
  private:
+  // A group of active blocks: its slots (block id[s], its (slip, ln V, ln theta) at 3s in dp's
+  // state), their tau0, their springs (the neighbour's slot, -1 where it is held, its block and
+  // k), its detector, and its step proposed but not yet taken (dp.proposed_t).
+  struct Group {
+    explicit Group(double v_threshold) : detector(v_threshold) {}
+    dopri::Adaptive<> dp;
+    std::vector<int> id;
+    std::vector<double> tau0;
+    mutable std::vector<double> v;  // rhs's slip rates
+    std::vector<int> cstart, cslot, cblock;
+    std::vector<double> ck;
+    RsfEventDetector detector;
+    bool live = false, proposed = false, parked = false, stale = false;
+  };
+
+  const dopri::Adaptive<>& dp_of(int j) const { return g_[group_[j]]->dp; }
   double value(int i, int comp0) const;
-  void activate(RsfLoader& loader, int j, double t_abs, double dtau);
+  int new_group(double t);
+  void retire(int g);
+  void rebuild_stale();
+  void activate(RsfLoader& loader, int j, int g, double t_abs, double dtau);
   void release(RsfLoader& loader, int j, double t_abs);
-  void rebuild();  // the slots' neighbour lists, and the FSAL derivative
-  void rhs(double t, const double* y, double* dy);
-  double step(double t_max);
+  void merge(int into, int from);
+  void rebuild(int g);  // the slots' neighbour lists, and the FSAL derivative
+  void rhs(const Group& g, double t, const double* y, double* dy);
+  void propose(int g, double t_max);
+  // The groups with an active block next to block b (the one group, without groups).
+  void concerned(int b);
+  // Loader items due by run time t whose groups are all there: processed; returns whether any
+  // was.
+  bool take_due(RsfLoader& loader, double t, double t0);
+  // Processes the loader's next item at run time t; its groups (concerned_) are there.
+  void process_item(RsfLoader& loader, double t0, double t);
+  // Takes group g's proposed step and what follows it (the stress passed on, hand-backs).
+  void commit(RsfLoader& loader, int g, double t0, const HandBack& handed_back);
+  bool any_in_event() const;
   // The stress the active blocks' slip has put on inactive block i since it last had it.
   double owed(int i) const;
-  RsfStepSpan span() const;
+  RsfStepSpan span(const Group& g) const;
 
   RsfModel m_;
-  double tol_;
+  double tol_, v_th_;
   RsfNeighbours nb_;
-  RsfEventDetector detector_;
-  // Per block (N): slot or -1, slip coordinate (held while inactive), slip when it joined,
-  // the step it joined at, and a stamp for visiting neighbours once.
-  std::vector<int> slot_, joined_step_, stamp_;
+  bool grouped_ = false;
+  // Per block (N): group and slot in it or -1, slip coordinate (held while inactive), slip when
+  // it joined, whether it joined since its group's last step, and a stamp for visiting
+  // neighbours once.
+  std::vector<int> group_, slot_, stamp_;
+  std::vector<char> fresh_;
   std::vector<double> held_, slip_at_join_;
   std::vector<double> passed_;  // per spring e of block i's row: slip of index[e] i has had
   std::vector<int> touched_;    // blocks that joined in this integration
   int stamp_now_ = 0;
-  // Per slot: the block, tau0, the state (3 a slot, in dp_ with the stages, the time and the
-  // step size).
-  std::vector<int> id_;
-  std::vector<double> tau0_, v_;
-  dopri::Adaptive<> dp_;
-  // Per slot, its springs: the neighbour's slot (-1: held) and block, and k.
-  std::vector<int> cstart_, cslot_, cblock_;
-  std::vector<double> ck_;
-  std::int64_t steps_in_run_ = 0;
+  std::vector<std::unique_ptr<Group>> g_;  // groups, live or free for reuse
+  std::vector<int> live_;                  // the live groups, by index
+  std::vector<int> concerned_;             // concerned()'s answer
+  int cur_ = 0;                            // the group being stepped or handed back
+  double t_stop_ = 0;  // run time at which the groups stop (t_end, or a t_a cut)
+  double t_end_ = 0;   // the run's t_end on its clock
+  std::vector<char> in_touched_;
+  std::int64_t accepted_ = 0;
   std::int64_t slot_steps_ = 0, activations_ = 0, syncs_ = 0, resets_ = 0;
+  std::vector<EventRecord> found_;  // the groups' records, before overlapping ones are joined
   std::vector<EventRecord> events_;
 };
 

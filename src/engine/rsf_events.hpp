@@ -51,7 +51,14 @@ class RsfEventDetector {
   // has held since the event's start unless it was integrated then).
   std::optional<EventRecord> observe(const RsfStepSpan& span);
   void activated(int j, double slip);
+  // Two groups of the active-block integration merged at a time both have reached: `theirs`
+  // (other's blocks) join `mine`. An event open in either goes on as one, from the earlier
+  // hypocentre; a block whose group was not in it counts its slip from now (slip(j)).
+  template <class Slip>
+  void absorb(const RsfEventDetector& other, const std::vector<int>& mine,
+              const std::vector<int>& theirs, const Slip& slip);
   bool in_event() const { return in_event_; }
+  void forget_event() { in_event_ = false; }  // an open event dropped (a group's, reused)
   const RsfEventTimes& times() const { return times_; }
   std::int64_t events() const { return events_; }
 
@@ -78,6 +85,45 @@ class RsfEventDetector {
   template <class Ends>
   std::optional<EventRecord> observe_ends(const Ends& s, const RsfModel& m);
 };
+
+template <class Slip>
+void RsfEventDetector::absorb(const RsfEventDetector& o, const std::vector<int>& mine,
+                              const std::vector<int>& theirs, const Slip& slip) {
+  if (!o.in_event_) {
+    for (const int j : theirs) activated(j, slip(j));
+    return;
+  }
+  const std::size_t n = o.seismic_.size();
+  if (seismic_.size() != n) seismic_.assign(n, 0);
+  slip0_.resize(n);
+  slip0_event_.resize(n, 0);
+  const std::int64_t mark = events_ + 1;
+  if (!in_event_) {
+    in_event_ = true;
+    trigger_ = o.trigger_;
+    times_ = o.times_;
+    ln_peak_ = o.ln_peak_;
+    for (const int j : seismic_ids_) seismic_[j] = 0;
+    seismic_ids_.clear();
+    for (const int j : mine) {
+      slip0_[j] = slip(j);
+      slip0_event_[j] = mark;
+    }
+  } else {
+    const double h = o.times_.hypocentre;
+    if (h < times_.hypocentre || (h == times_.hypocentre && o.trigger_ < trigger_))
+      times_.hypocentre = h, trigger_ = o.trigger_;
+    if (o.ln_peak_ > ln_peak_) ln_peak_ = o.ln_peak_, times_.peak = o.times_.peak;
+  }
+  for (const int j : theirs) {
+    slip0_[j] = o.slip0_event_[j] == o.events_ + 1 ? o.slip0_[j] : slip(j);
+    slip0_event_[j] = mark;
+    if (o.seismic_[j] && !seismic_[j]) {
+      seismic_[j] = 1;
+      seismic_ids_.push_back(j);
+    }
+  }
+}
 
 // Slow-slip and afterslip episodes: intervals in which some block slips faster than V_slow
 // (V_pl < V_slow < V_th) without any block reaching the seismic V_th. An interval that holds a

@@ -435,6 +435,7 @@ void RsfEventEngine::integrate_event(double t0, double t_end) {
 // times and numbers as integrate_event's do.
 void RsfEventEngine::integrate_active(int first, double t0, double t_end) {
   if (!active_) active_ = std::make_unique<RsfActiveIntegration>(m_, tol_, v_th_);
+  active_->set_groups(groups_);
   const double ln_vh = loader_.ln_v_handover();
   ++integrations_;
   const std::int64_t steps0 = active_->accepted(), syncs0 = active_->syncs(),

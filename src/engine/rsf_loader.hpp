@@ -123,6 +123,7 @@ class RsfLoader {
   // the quantum; whether it is a change of phase (the caller then calls rephase()).
   int next_block() const { return heap_.top(); }
   double next_time() const { return heap_.top_time(); }
+  double time_of(int j) const { return heap_.time(j); }  // block j's entry
   bool next_is_quantum() const { return clock_[heap_.top()] == kQuantum; }
   bool next_is_phase() const { return clock_[heap_.top()] == kPhase; }
   // The next block's form restarts at its time: a locked block nearing steady state is taken
@@ -212,6 +213,10 @@ class RsfEventEngine {
   // grid (the active-block path's inertial events are not checked). The choice is not part
   // of a snapshot.
   void set_active_blocks(bool on) { active_blocks_ = on; }
+  // With active blocks: groups that share no spring integrated apart (RsfActiveIntegration::
+  // set_groups). Not part of a snapshot (the scene's).
+  void set_groups(bool on) { groups_ = on; }
+  bool groups() const { return groups_; }
   // With active blocks: velocity-weakening blocks away from their closed forms are integrated
   // alone below v_alone (RsfLoader::integrate_alone) instead of joining the integration at
   // V_h; 0 until called. Not part of a snapshot (the scene's).
@@ -238,7 +243,7 @@ class RsfEventEngine {
   double t_ = 0;
   std::int64_t events_ = 0, integrations_ = 0, steps_ = 0, syncs_ = 0;
   std::deque<EventRecord> pending_;
-  bool active_blocks_ = false;
+  bool active_blocks_ = false, groups_ = false;
   std::int64_t active_block_steps_ = 0;
   std::unique_ptr<RsfActiveIntegration> active_;
 };

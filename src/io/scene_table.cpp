@@ -908,14 +908,18 @@ std::vector<ParamSpec> rsf_rows() {
                        "spring), so that a quantum moves a neighbour's slip rate by at most 10 %")
           .when(rsf_law(), event_driven())
           .later(),
-      choice(key::rsf_event_integration, "whole", at(&SceneValues::rsf, &RsfKeys::active_blocks),
-             {{"whole", false}, {"active", true}},
+      choice(key::rsf_event_integration, "whole",
+             at(&SceneValues::rsf, &RsfKeys::event_integration),
+             {{"whole", RsfEventIntegration::Whole},
+              {"active", RsfEventIntegration::Active},
+              {"groups", RsfEventIntegration::Groups}},
              "how the event-driven engine integrates an event: whole (every block, from the "
-             "first to reach rsf.handover_speed until all are below it) or active (only the "
+             "first to reach rsf.handover_speed until all are below it), active (only the "
              "blocks above it or not yet handed back, each back to its closed form on its own "
              "outside events; needs rsf.blocks and rsf.handover_speed up to 3 drive.speed; "
              "quasi-dynamic "
-             "scenes, inertial ones integrate the whole grid)")
+             "scenes, inertial ones integrate the whole grid) or groups (as active, with groups "
+             "of active blocks that share no spring integrated apart, each at its own step size)")
           .when(rsf_law(), event_driven())
           .later(),
       real(key::rsf_alone_speed, at(&SceneValues::rsf, &RsfKeys::alone_speed), "auto", '[', 0, 1e6,
@@ -951,6 +955,7 @@ std::vector<ParamSpec> rsf_rows() {
 // together, continuous drive, a chain or one block, V_th above the plate rate.
 void rate_and_state(const Scene& s, const std::string& where) {
   const SceneValues v = scene_values(s);
+  const bool active = v.rsf.event_integration != RsfEventIntegration::Whole;
   if (!v.friction.law.rsf && v.model.units != Units::Si) return;
   if (!v.friction.law.rsf)
     throw Error("model.parameterisation = si is for friction.law = rsf, but friction.law = " +
@@ -972,7 +977,7 @@ void rate_and_state(const Scene& s, const std::string& where) {
   // auto V_h; a lattice with per-block values (rsf.blocks) runs the same at either
   // (validation page "Event-driven against continuous rate-and-state").
   const bool identical_lattice = v.model.rows > 1 && v.rsf.blocks.empty();
-  const bool slow_handover = identical_lattice || v.rsf.active_blocks;
+  const bool slow_handover = identical_lattice || active;
   if (v.drive.mode == DriveMode::Events && slow_handover &&
       !(v.rsf.handover_speed && *v.rsf.handover_speed <= 3 * v.drive.speed * (1 + 1e-12))) {
     const std::string vh =
@@ -987,7 +992,8 @@ void rate_and_state(const Scene& s, const std::string& where) {
           "rsf.blocks, or drive.mode = continuous" +
           where);
     throw Error("rsf.handover_speed = " + vh +
-                " with rsf.event_integration = active: events integrated on their active blocks "
+                " with rsf.event_integration = " + s.text(key::rsf_event_integration) +
+                ": events integrated on their active blocks "
                 "reproduce the continuous integration's handing over at up to 3 drive.speed "
                 "only; allowed: rsf.handover_speed up to 3 drive.speed, or "
                 "rsf.event_integration = whole" +
@@ -996,15 +1002,16 @@ void rate_and_state(const Scene& s, const std::string& where) {
   // Measured: identical blocks (a pattern, no per-block file) stay in step in the continuous
   // integration, equivalent asperities failing together; the active-block integration falls out
   // of step at once (validation page, "Rough scenes: blocks out of step").
-  if (v.drive.mode == DriveMode::Events && v.rsf.active_blocks && v.rsf.blocks.empty())
-    throw Error("rsf.event_integration = active with rsf.pattern = " + s.text(key::rsf_pattern) +
+  if (v.drive.mode == DriveMode::Events && active && v.rsf.blocks.empty())
+    throw Error("rsf.event_integration = " + s.text(key::rsf_event_integration) +
+                " with rsf.pattern = " + s.text(key::rsf_pattern) +
                 " and no rsf.blocks: on identical blocks the continuous integration keeps "
                 "equivalent blocks in step, which the active-block integration does not follow; "
                 "allowed: per-block values from rsf.blocks (e.g. a rough D_c from "
                 "analysis/make_rough_blocks.py), or rsf.event_integration = whole" +
                 where);
   if (v.drive.mode == DriveMode::Events && v.rsf.alone_speed && *v.rsf.alone_speed != 0) {
-    if (!v.rsf.active_blocks)
+    if (!active)
       throw Error("rsf.alone_speed = " + s.text(key::rsf_alone_speed) +
                   " with rsf.event_integration = whole: blocks are integrated alone between "
                   "events only when each event is integrated on its active blocks; allowed: "

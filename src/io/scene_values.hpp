@@ -134,6 +134,10 @@ struct FrictionKeys {
 // rsf.pattern: per-block values of rsf.a and rsf.b everywhere, or asperities among barriers.
 enum class RsfPattern { Uniform, Asperities };
 
+// rsf.event_integration: the whole grid, the active blocks in one integration, or their groups
+// that share no spring each with its own step size.
+enum class RsfEventIntegration { Whole, Active, Groups };
+
 struct RsfKeys {
   rsf::Params law;  // rsf.a, rsf.b, rsf.dc, rsf.mu0, rsf.v0
   rsf::StateLaw state_law = rsf::StateLaw::Aging;
@@ -146,8 +150,8 @@ struct RsfKeys {
   int pattern_period = 0, pattern_width = 0;
   std::optional<double> handover_speed;  // drive.mode = events; auto: chosen from V_th and eta
   std::optional<double> creep_quantum;   // drive.mode = events; auto: from a sigma and k_c
-  bool active_blocks = false;            // rsf.event_integration = active
-  std::optional<double> alone_speed;     // active blocks only; auto: from V_pl, V_th, eta; 0: off
+  RsfEventIntegration event_integration = RsfEventIntegration::Whole;
+  std::optional<double> alone_speed;  // active blocks only; auto: from V_pl, V_th, eta; 0: off
 };
 
 struct SceneValues {

@@ -180,7 +180,8 @@ RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
     // The closed forms between events leave radiation damping out: V_h keeps eta V_h a small
     // share of a sigma (at most 0.1 when given, 0.01 when auto).
     r.event_driven = true;
-    r.active_blocks = v.rsf.active_blocks;
+    r.active_blocks = v.rsf.event_integration != RsfEventIntegration::Whole;
+    r.active_groups = v.rsf.event_integration == RsfEventIntegration::Groups;
     double a_min = HUGE_VAL, dc_min = HUGE_VAL;
     for (const rsf::Law& law : m.law) {
       a_min = std::min(a_min, law.params().a);

@@ -47,7 +47,8 @@ struct RsfSettings {
   bool event_driven = false;   // drive.mode = events (engine/rsf_loader.hpp)
   double v_handover = 0;       // rsf.handover_speed [m/s], auto resolved
   double creep_quantum = 0;    // rsf.creep_quantum [m], auto resolved
-  bool active_blocks = false;  // rsf.event_integration = active
+  bool active_blocks = false;  // rsf.event_integration = active or groups
+  bool active_groups = false;  // rsf.event_integration = groups
   double v_alone = 0;          // rsf.alone_speed [m/s], auto resolved; 0: off
   // The start state of every block: theta_init, or each block's steady state at V_pl.
   std::vector<double> theta_start() const {

@@ -271,11 +271,11 @@ TEST(RsfRun, ExtendedRunGivesTheBytesOfOneLongerRun) {
             std::string::npos);
 }
 
-// The shipped event-driven chain's run arguments, 400 events checkpointed every 50, with
-// `sets` (section.key=value) added.
-auto event_run_args(std::vector<std::string> sets) {
-  sets.insert(sets.end(),
-              {"run.events=400", "run.transient_events=20", "run.checkpoint_events=50"});
+// The shipped event-driven chain's run arguments, 400 events (or `events`) checkpointed every
+// 50, with `sets` (section.key=value) added.
+auto event_run_args(std::vector<std::string> sets, int events = 400) {
+  sets.insert(sets.end(), {"run.events=" + std::to_string(events), "run.transient_events=20",
+                           "run.checkpoint_events=50"});
   return [sets](const std::string& out, std::vector<std::string> more) {
     std::vector<std::string> a = {
         "run", std::string(BKQUAKE_SOURCE_DIR) + "/data/scenes/rsf/chain-events.ini", "--quiet"};
@@ -287,12 +287,13 @@ auto event_run_args(std::vector<std::string> sets) {
 }
 
 // The same chain with its rough D_c (per-block values, which the active-block integration
-// needs), each event on its active blocks.
-auto active_event_run_args() {
+// needs), each event on its active blocks (in one integration, or in groups).
+auto active_event_run_args(const std::string& mode = "active", int events = 400) {
   return event_run_args({"rsf.pattern=uniform",
                          "rsf.blocks=" + std::string(BKQUAKE_SOURCE_DIR) +
                              "/data/scenes/rsf/chain-events-rough-blocks.csv",
-                         "rsf.event_integration=active"});
+                         "rsf.event_integration=" + mode},
+                        events);
 }
 
 // The shipped event-driven chain (20 blocks here), stopped by SIGTERM after its first
@@ -314,33 +315,38 @@ TEST(RsfRun, EventDrivenKilledAndResumedGivesTheSameBytes) {
 }
 
 // The same with each event on its active blocks (engine/rsf_active.hpp; the chain with its
-// rough D_c, as that integration needs per-block values): the same bytes, and the count of
-// active blocks over the steps goes through the checkpoint too.
+// rough D_c, as that integration needs per-block values), in one integration and in groups:
+// the same bytes, and the count of active blocks over the steps goes through the checkpoint
+// too. 2000 events, so that the run is still going when its first checkpoint is seen.
 TEST(RsfRun, ActiveBlocksKilledAndResumedGiveTheSameBytes) {
-  test::TempDir tmp;
-  const auto args = active_event_run_args();
-  const auto whole = run_bkquake(args(tmp.file("whole"), {}));
-  ASSERT_EQ(whole.status, 0) << whole.err;
-  EXPECT_NE(read_file(tmp.file("whole/summary.json")).find("\"event_integration\": \"active\""),
-            std::string::npos);
-  expect_resumed_equals_whole(tmp, args, {"catalog.csv", "histogram.csv"});
-  const auto counter = [&](const std::string& dir) {
-    const std::string text = read_file(tmp.file(dir + "/summary.json"));
-    const std::size_t at = text.find("\"active_block_steps\": ");
-    return at == std::string::npos ? std::string() : text.substr(at, text.find(',', at) - at);
-  };
-  EXPECT_FALSE(counter("whole").empty());
-  EXPECT_EQ(counter("cut"), counter("whole"));
-  // Blocks integrated alone between events (rsf.alone_speed auto: 100 drive.speed): their
-  // steps are counted, through the checkpoint too.
-  const auto number = [&](const std::string& dir, const std::string& name) {
-    const std::string text = read_file(tmp.file(dir + "/summary.json"));
-    const std::size_t at = text.find("\"" + name + "\": ");
-    return at == std::string::npos ? -1.0 : std::stod(text.substr(at + name.size() + 4));
-  };
-  EXPECT_NEAR(number("whole", "alone_speed"), 1e-4, 1e-15);
-  EXPECT_GT(number("whole", "alone_steps"), 0);
-  EXPECT_EQ(number("cut", "alone_steps"), number("whole", "alone_steps"));
+  for (const std::string mode : {"active", "groups"}) {
+    SCOPED_TRACE(mode);
+    test::TempDir tmp;
+    const auto args = active_event_run_args(mode, 2000);
+    const auto whole = run_bkquake(args(tmp.file("whole"), {}));
+    ASSERT_EQ(whole.status, 0) << whole.err;
+    EXPECT_NE(
+        read_file(tmp.file("whole/summary.json")).find("\"event_integration\": \"" + mode + "\""),
+        std::string::npos);
+    expect_resumed_equals_whole(tmp, args, {"catalog.csv", "histogram.csv"});
+    const auto counter = [&](const std::string& dir) {
+      const std::string text = read_file(tmp.file(dir + "/summary.json"));
+      const std::size_t at = text.find("\"active_block_steps\": ");
+      return at == std::string::npos ? std::string() : text.substr(at, text.find(',', at) - at);
+    };
+    EXPECT_FALSE(counter("whole").empty());
+    EXPECT_EQ(counter("cut"), counter("whole"));
+    // Blocks integrated alone between events (rsf.alone_speed auto: 100 drive.speed): their
+    // steps are counted, through the checkpoint too.
+    const auto number = [&](const std::string& dir, const std::string& name) {
+      const std::string text = read_file(tmp.file(dir + "/summary.json"));
+      const std::size_t at = text.find("\"" + name + "\": ");
+      return at == std::string::npos ? -1.0 : std::stod(text.substr(at + name.size() + 4));
+    };
+    EXPECT_NEAR(number("whole", "alone_speed"), 1e-4, 1e-15);
+    EXPECT_GT(number("whole", "alone_steps"), 0);
+    EXPECT_EQ(number("cut", "alone_steps"), number("whole", "alone_steps"));
+  }
 }
 
 // A finished event-driven run (active blocks, blocks alone) extended twice to more events
