@@ -244,10 +244,7 @@ class ContinuousRun {
     c.put(kContinuousStateName, encode_state(d, next_out_));
     c.engine.state = std::move(d.state);
     observers_.checkpoint(c);
-    if (final)
-      files_.write_final(c);
-    else
-      files_.write(c);
+    files_.save(c, final);
   }
 
   RunEnd run_end(int signal) const {

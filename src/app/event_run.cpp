@@ -297,12 +297,8 @@ class EventRun {
       ~GiveBack() { engine.take_back(c); }
     } give_back{engine, c};
     observers_.checkpoint(c);
-    if (final) {
-      files_.write_final(c);
-      return;
-    }
-    files_.write(c);
-    saved_ = true;
+    files_.save(c, final);
+    saved_ = saved_ || !final;
   }
 
   RunEnd run_end(int signal) const {

@@ -395,10 +395,7 @@ class RsfRun {
     if (samples_) samples_->checkpoint(c);
     if (slow_file_) slow_file_->checkpoint(c);
     obs_.checkpoint(c);
-    if (final)
-      files_.write_final(c);
-    else
-      files_.write(c);
+    files_.save(c, final);
   }
 
   RunEnd run_end(int signal) const {
@@ -564,10 +561,7 @@ class RsfEventRun {
     w.f64s(engine_.snapshot());
     c.put(kStateName, std::move(w.bytes()));
     obs_.checkpoint(c);
-    if (final)
-      files_.write_final(c);
-    else
-      files_.write(c);
+    files_.save(c, final);
   }
 
   RunEnd run_end(int signal) const {

@@ -298,6 +298,13 @@ class CheckpointFiles {
   // Writes `c` as the new checkpoint.bin, keeping the old one as checkpoint.prev.bin.
   // Throws bkq::Error naming the file; the existing checkpoints stay intact on failure.
   void write(const Checkpoint& c) const;
+  // The final state when `final` (write_final), a checkpoint otherwise (write).
+  void save(const Checkpoint& c, bool final) const {
+    if (final)
+      write_final(c);
+    else
+      write(c);
+  }
   // The newest checkpoint and the file it came from: checkpoint.bin, or checkpoint.prev.bin
   // when a crash came between the renames. Throws bkq::Error when there is none or when
   // checkpoint.bin is damaged (then naming checkpoint.prev.bin, if there is one).
