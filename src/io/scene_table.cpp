@@ -930,7 +930,8 @@ std::vector<ParamSpec> rsf_rows() {
            "where it joins the event's active blocks, and goes back below V_a/3; between "
            "drive.speed and rsf.v_threshold; auto: 100 drive.speed, at most rsf.v_threshold/10 "
            "and eta V_a <= 0.01 a sigma (off where that is not above drive.speed); 0: off (such "
-           "blocks are integrated with the active blocks); rsf.event_integration = active only")
+           "blocks are integrated with the active blocks); rsf.event_integration = active or "
+           "groups only")
           .when(rsf_law(), event_driven())
           .later(),
       choice(key::rsf_pattern, "uniform", at(&SceneValues::rsf, &RsfKeys::pattern),
@@ -1015,7 +1016,7 @@ void rate_and_state(const Scene& s, const std::string& where) {
       throw Error("rsf.alone_speed = " + s.text(key::rsf_alone_speed) +
                   " with rsf.event_integration = whole: blocks are integrated alone between "
                   "events only when each event is integrated on its active blocks; allowed: "
-                  "rsf.event_integration = active, or rsf.alone_speed = auto or 0" +
+                  "rsf.event_integration = active or groups, or rsf.alone_speed = auto or 0" +
                   where);
     if (!(*v.rsf.alone_speed<v.rsf.v_threshold&& * v.rsf.alone_speed> v.drive.speed))
       throw Error("rsf.alone_speed = " + s.text(key::rsf_alone_speed) +
