@@ -76,8 +76,8 @@ double RsfActiveIntegration::friction_stress(int j) const {
 double RsfActiveIntegration::owed(int i) const {
   double dtau = 0;
   for (int e = nb_.start[i]; e < nb_.start[i + 1]; ++e) {
-    const int j = nb_.index[e], s = slot_[j];
-    if (s >= 0) dtau += nb_.k[e] * (dp_of(j).y[3 * s] - passed_[e]);
+    const int j = nb_.index[e];
+    if (slot_[j] >= 0) dtau += nb_.k[e] * (slip(j) - passed_[e]);
   }
   return dtau;
 }
@@ -127,7 +127,7 @@ void RsfActiveIntegration::activate(RsfLoader& loader, int j, int g, double t_ab
   // It has had every neighbour's slip so far.
   for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) {
     const int i = nb_.index[e];
-    passed_[e] = slot_[i] >= 0 ? dp_of(i).y[3 * slot_[i]] : held_[i];
+    passed_[e] = slip_or_held(i);
   }
   loader.sync(j, t_abs, true);
   // The active blocks' stress reaches it at once: the direct effect, theta kept (the loader's
@@ -181,7 +181,7 @@ void RsfActiveIntegration::release(RsfLoader& loader, int j, double t_abs) {
   const double summed = loader.release(j);
   // A barrier handed back above steady state enters it at constant friction, except at the
   // t_a cut (as the whole grid's hand-back does).
-  const bool cut = G.dp.t >= m_.law[j].params().a * m_.sigma / (m_.k * m_.v_pl);
+  const bool cut = G.dp.t >= t_a(j);
   loader.set(j, t_abs, cut ? x : rsf::onto_steady_state(loader.slider(j), x));
   if (summed != 0) loader.stress_step(j, t_abs, summed);
   // The last slot takes its place.
@@ -217,7 +217,7 @@ void RsfActiveIntegration::release(RsfLoader& loader, int j, double t_abs) {
   // It has had its neighbours' slip so far (its stress is the law's at its state).
   for (int e = nb_.start[j]; e < nb_.start[j + 1]; ++e) {
     const int i = nb_.index[e];
-    passed_[e] = slot_[i] >= 0 ? dp_of(i).y[3 * slot_[i]] : held_[i];
+    passed_[e] = slip_or_held(i);
   }
 }
 
@@ -390,6 +390,12 @@ bool RsfActiveIntegration::take_due(RsfLoader& loader, double t, double t0) {
   return any;
 }
 
+bool RsfActiveIntegration::all_parked() const {
+  for (const int g : live_)
+    if (!g_[g]->parked) return false;
+  return true;
+}
+
 bool RsfActiveIntegration::any_in_event() const {
   for (const int g : live_)
     if (g_[g]->detector.in_event()) return true;
@@ -439,7 +445,7 @@ void RsfActiveIntegration::commit(RsfLoader& loader, int g, double t0,
       if (!(std::fabs(dtau) >= kPassOn * m_.law[i].params().a * m_.sigma)) continue;
       loader.sudden_stress_step(i, now, dtau);
       for (int f = nb_.start[i]; f < nb_.start[i + 1]; ++f)
-        if (slot_[nb_.index[f]] >= 0) passed_[f] = dp_of(nb_.index[f]).y[3 * slot_[nb_.index[f]]];
+        if (slot_[nb_.index[f]] >= 0) passed_[f] = slip(nb_.index[f]);
     }
   }
   changed = take_due(loader, t, t0) || changed;
@@ -447,7 +453,8 @@ void RsfActiveIntegration::commit(RsfLoader& loader, int g, double t0,
   if (changed) rebuild_stale();
   // Blocks back to their closed forms (not in the step they joined).
   cur_ = g;
-  std::vector<int> leaving;
+  std::vector<int>& leaving = leaving_;
+  leaving.clear();
   if (!g_[g]->detector.in_event())
     for (const int j : g_[g]->id)
       if (!fresh_[j] && handed_back(*this, j)) leaving.push_back(j);
@@ -455,7 +462,7 @@ void RsfActiveIntegration::commit(RsfLoader& loader, int g, double t0,
   // run when no event is open, as the whole grid's integration ends there: what is due then
   // starts the next one, so that its events are returned.
   bool cut = false;
-  for (const int j : leaving) cut = cut || t >= m_.law[j].params().a * m_.sigma / (m_.k * m_.v_pl);
+  for (const int j : leaving) cut = cut || t >= t_a(j);
   for (const int j : leaving) release(loader, j, now);
   if (cut && !any_in_event()) {
     t_stop_ = t;
@@ -490,9 +497,7 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
   rebuild_stale();
   double t_last = 0;
   while (!live_.empty()) {
-    bool all_parked = true;
-    for (const int g : live_) all_parked = all_parked && g_[g]->parked;
-    if (all_parked && (!grouped_ || loader.next_time() - t0 > t_stop_)) break;
+    if (all_parked() && (!grouped_ || loader.next_time() - t0 > t_stop_)) break;
     // The loader's next item: at once where its groups are at its time (or past it: due).
     const double t_item = loader.next_time() - t0;
     concerned(loader.next_block());
@@ -543,9 +548,7 @@ double RsfActiveIntegration::run(RsfLoader& loader, int first, double t0, double
       continue;
     }
     if (next < 0) {
-      bool all = true;
-      for (const int g : live_) all = all && g_[g]->parked;
-      if (all) continue;  // parked at the stop in this pass: the loop's top ends the run
+      if (all_parked()) continue;  // parked at the stop in this pass: the loop's top ends the run
       throw Error("rsf: the active-block integration found no group to step");
     }
     t_last = std::max(t_last, g_[next]->dp.proposed_t);

@@ -114,6 +114,10 @@ class RsfActiveIntegration {
   };
 
   const dopri::Adaptive<>& dp_of(int j) const { return g_[group_[j]]->dp; }
+  // Block j's t_a = a sigma/(k V_pl): the run's length at which the hand-back test cuts.
+  double t_a(int j) const { return m_.law[j].params().a * m_.sigma / (m_.k * m_.v_pl); }
+  // Block j's slip coordinate: integrated while active, held while not.
+  double slip_or_held(int j) const { return slot_[j] >= 0 ? slip(j) : held_[j]; }
   double value(int i, int comp0) const;
   int new_group(double t);
   void retire(int g);
@@ -134,6 +138,7 @@ class RsfActiveIntegration {
   // Takes group g's proposed step and what follows it (the stress passed on, hand-backs).
   void commit(RsfLoader& loader, int g, double t0, const HandBack& handed_back);
   bool any_in_event() const;
+  bool all_parked() const;  // every live group at the stop
   // The stress the active blocks' slip has put on inactive block i since it last had it.
   double owed(int i) const;
   RsfStepSpan span(const Group& g) const;
@@ -160,6 +165,7 @@ class RsfActiveIntegration {
   std::vector<char> in_touched_;
   std::int64_t accepted_ = 0;
   std::int64_t slot_steps_ = 0, activations_ = 0, syncs_ = 0, resets_ = 0;
+  std::vector<int> leaving_;        // commit()'s blocks handed back, kept for its storage
   std::vector<EventRecord> found_;  // the groups' records, before overlapping ones are joined
   std::vector<EventRecord> events_;
 };
