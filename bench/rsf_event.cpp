@@ -23,12 +23,15 @@
 // counts N, of the active blocks their number, a step of a block alone one) over events. Both
 // engines take about as many steps per event (the event's), so the continuous run's block steps
 // per event over an event-driven run's bound its speed-up where a block step costs the same.
+// The blocks alone are integrated at the scene's auto rsf.alone_tolerance (1e-6; --alone-tol
+// sets it), and once more in groups at the integrator's 1e-8: what that accuracy costs.
 // --fast runs only the first continuous start and the fastest event-driven engines (active
 // blocks with blocks alone, in one integration and in groups): the ratio without the
 // seed-to-seed yardstick, for long chains.
 //
 //   build/rsf_event [--chain N] [--duration T] [--speed V_pl] [--handover V_h]
-//                   [--quantum q[,q2,...]] [--asperities] [--rough r] [--alone V_a] [--fast]
+//                   [--quantum q[,q2,...]] [--asperities] [--rough r] [--alone V_a]
+//                   [--alone-tol tol] [--fast]
 //     defaults: N = 100, T = 2000 s, V_pl = 1e-6 m/s, q = 1e-6 m (the scene's auto, D_c/10);
 //     the handover speed is the scene's auto, min(V_th/10, 0.01 a sigma/eta); --rough r spreads
 //     each block's D_c by a factor in [1 - r, 1 + r] (default 0); V_a defaults to the scene's
@@ -115,12 +118,12 @@ Result continuous(const RsfModel& m, double duration, double phase, double v_h) 
 // active: each event on its active blocks (groups: in groups that share no spring, each at
 // its own step size); v_alone > 0: blocks alone below it.
 Result event_driven(const RsfModel& m, double duration, double phase, double v_h, double q,
-                    bool active, double v_alone = 0, bool groups = false) {
+                    bool active, double v_alone = 0, bool groups = false, double alone_tol = 0) {
   Result r;
   RsfEventEngine engine(m, 1e-8, 1e-3, v_h, q, rough(m.n(), m.v_pl, phase), {10});
   engine.set_active_blocks(active);
   engine.set_groups(groups);
-  if (v_alone > 0) engine.set_alone_speed(v_alone);
+  if (v_alone > 0) engine.set_alone_speed(v_alone, alone_tol);
   const double t0 = bench::thread_seconds();
   while (auto e = engine.next(duration))
     if (e->hypocentre_time > duration / 5) r.magnitudes.push_back(e->magnitude);
@@ -161,7 +164,7 @@ double mean(const std::vector<double>& x) {
 
 int main(int argc, char** argv) {
   int n = 100;
-  double duration = 2000, v_pl = 1e-6, v_h = 0, v_alone = 0;
+  double duration = 2000, v_pl = 1e-6, v_h = 0, v_alone = 0, alone_tol = 1e-6;
   std::vector<double> quanta;
   bool asperities = false, fast = false;
   double rough_dc = 0;
@@ -176,6 +179,8 @@ int main(int argc, char** argv) {
       v_h = std::atof(argv[++i]);
     else if (std::strcmp(argv[i], "--alone") == 0 && i + 1 < argc)
       v_alone = std::atof(argv[++i]);
+    else if (std::strcmp(argv[i], "--alone-tol") == 0 && i + 1 < argc)
+      alone_tol = std::atof(argv[++i]);
     else if (std::strcmp(argv[i], "--quantum") == 0 && i + 1 < argc) {
       const std::string list = argv[++i];
       for (std::size_t p = 0; p < list.size();) {
@@ -217,8 +222,9 @@ int main(int argc, char** argv) {
   if (v_h == 0) v_h = std::min(1e-4, 0.01 * 0.01 * m.sigma / m.eta);
   if (v_alone == 0) v_alone = std::min({100 * v_pl, 1e-4, 0.01 * 0.01 * m.sigma / m.eta});
   std::printf(
-      "chain %d%s, D_c spread %g, V_pl = %g m/s, %g s simulated, V_h = %g m/s, V_a = %g m/s\n", n,
-      asperities ? " (asperities)" : "", rough_dc, v_pl, duration, v_h, v_alone);
+      "chain %d%s, D_c spread %g, V_pl = %g m/s, %g s simulated, V_h = %g m/s, V_a = %g m/s, "
+      "blocks alone at tolerance %g\n",
+      n, asperities ? " (asperities)" : "", rough_dc, v_pl, duration, v_h, v_alone, alone_tol);
   const Result c1 = continuous(m, duration, 1.3, v_h);
   const Result c2 = fast ? Result{} : continuous(m, duration, 0.7, v_h);
   std::printf(
@@ -228,7 +234,7 @@ int main(int argc, char** argv) {
       c1.steps_below, c1.cpu_below, c1.steps_above, c1.cpu_above, c1.steps_seismic,
       100.0 * static_cast<double>(c1.steps_seismic) / static_cast<double>(c1.steps),
       c1.cpu / c1.cpu_above);
-  std::printf("%-36s %9s %9s %10s %13s %7s %10s %10s %9s %8s %11s %12s %13s\n", "engine", "events",
+  std::printf("%-42s %9s %9s %10s %13s %7s %10s %10s %9s %8s %11s %12s %13s\n", "engine", "events",
               "CPU [s]", "events/CPU s", "ratio", "KS", "mean M", "steps", "syncs", "active",
               "alone steps", "steps/event", "blocks/event");
   const auto per_event = [](const Result& r) {
@@ -236,7 +242,7 @@ int main(int argc, char** argv) {
   };
   const auto row = [&](const char* name, const Result& r, double ks_value) {
     std::printf(
-        "%-36s %9lld %9.3f %10.2f %12.1fx %7.3f %10.3f %10lld %9lld %8.2f %11lld %12.1f %13.0f\n",
+        "%-42s %9lld %9.3f %10.2f %12.1fx %7.3f %10.3f %10lld %9lld %8.2f %11lld %12.1f %13.0f\n",
         name, r.events, r.cpu, r.events / r.cpu, (r.events / r.cpu) / (c1.events / c1.cpu),
         ks_value, mean(r.magnitudes), r.steps, r.syncs, r.mean_active, r.alone_steps,
         static_cast<double>(r.steps) / static_cast<double>(r.events), per_event(r));
@@ -245,13 +251,15 @@ int main(int argc, char** argv) {
   if (!fast) row("continuous, other start", c2, ks(c2.magnitudes, c1.magnitudes));
   double ceiling = NAN, ceiling_groups = NAN;
   for (const double q : quanta)
-    for (const int how_ : {0, 1, 2, 3}) {
+    for (const int how_ : {0, 1, 2, 4, 3}) {
       if (fast && how_ < 2) continue;
       const bool active = how_ > 0;
-      const Result e =
-          event_driven(m, duration, 1.3, v_h, q, active, how_ >= 2 ? v_alone : 0, how_ == 3);
+      // 4: groups, their blocks alone at the integrator's tolerance (1e-8).
+      const Result e = event_driven(m, duration, 1.3, v_h, q, active, how_ >= 2 ? v_alone : 0,
+                                    how_ >= 3, how_ == 4 ? 1e-8 : alone_tol);
       char name[64];
-      const char* how = how_ == 3   ? "groups, alone"
+      const char* how = how_ == 4   ? "groups, alone at 1e-8"
+                        : how_ == 3 ? "groups, alone"
                         : how_ == 2 ? "active blocks, alone"
                         : active    ? "active blocks"
                                     : "whole grid";

@@ -444,6 +444,7 @@ class RsfEventFigures : public RunObserver {
     if (e_.active_blocks()) {
       r.set("active_block_steps", e_.active_block_steps());
       r.set("alone_speed", e_.alone_speed());
+      r.set("alone_tolerance", e_.alone_tolerance());
       r.set("alone_steps", static_cast<std::int64_t>(e_.loader().alone_steps()));
     }
     r.set("integrations", e_.integrations());
@@ -478,7 +479,7 @@ class RsfEventRun {
     engine_.set_active_blocks(settings.rsf.active_blocks);
     engine_.set_groups(settings.rsf.active_groups);
     if (engine_.active_blocks() && settings.rsf.v_alone > 0)
-      engine_.set_alone_speed(settings.rsf.v_alone);
+      engine_.set_alone_speed(settings.rsf.v_alone, settings.rsf.alone_tolerance);
     if (resumed) {
       restore_rsf_state(*resumed, [&](StateReader& r) { engine_.restore(r.f64s()); });
       prog_ = resumed->progress;

@@ -78,7 +78,7 @@ AloneSlider::Point AloneSlider::step(const Slider& s, double dt_max) {
 }
 
 AloneSlider::Forecast AloneSlider::forecast(const Slider& s, SliderState x, const Limits& lim,
-                                            std::vector<Point>& path) {
+                                            std::vector<Point>& path, double h_first) {
   path.clear();
   Point p;
   p.y[1] = x.ln_v;
@@ -94,7 +94,7 @@ AloneSlider::Forecast AloneSlider::forecast(const Slider& s, SliderState x, cons
   if (!(lim.amount > 0)) return {0, Exit::Slip};
   if (outside(p)) return {0, Exit::Phase};
   dp_.t = 0;
-  dp_.h = 0.05 * std::min(s.dc / std::exp(x.ln_v), std::exp(x.ln_theta));
+  dp_.h = h_first > 0 ? h_first : 0.05 * std::min(s.dc / std::exp(x.ln_v), std::exp(x.ln_theta));
   std::copy(p.y, p.y + 3, dp_.y.begin());
   std::copy(p.dy, p.dy + 3, dp_.dy.begin());
   for (int n = 0; n < lim.horizon; ++n) {
@@ -115,11 +115,11 @@ AloneSlider::Forecast AloneSlider::forecast(const Slider& s, SliderState x, cons
         exit = Exit::Slip;
       }
     }
-    if (exit != Exit::Phase) return {p.dt + cross, exit};
-    if (outside(q)) return {q.dt, Exit::Phase};
+    if (exit != Exit::Phase) return {p.dt + cross, exit, dp_.h};
+    if (outside(q)) return {q.dt, Exit::Phase, dp_.h};
     p = q;
   }
-  return {p.dt, Exit::Phase};
+  return {p.dt, Exit::Phase, dp_.h};
 }
 
 AloneSlider::Point AloneSlider::at(const Slider& s, const std::vector<Point>& path, double dt) {

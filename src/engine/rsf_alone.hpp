@@ -53,16 +53,20 @@ class AloneSlider {
   struct Forecast {
     double dt = 0;
     Exit exit = Exit::Phase;
+    double h_next = 0;  // the step size the control proposes after the path's last step (0: none)
   };
   // From state x (slip 0) until the first exit; the path's points into `path` (the start first).
-  // The first step tried is a twentieth of the shorter of D_c/V and theta (a function of the
-  // state only, so that a run resumed from a checkpoint takes the same steps).
-  Forecast forecast(const Slider& s, SliderState x, const Limits& lim, std::vector<Point>& path);
+  // The first step tried is h_first if > 0 (the caller's: the last forecast's h_next, kept in a
+  // checkpoint so that a resumed run takes the same steps), else a twentieth of the shorter of
+  // D_c/V and theta.
+  Forecast forecast(const Slider& s, SliderState x, const Limits& lim, std::vector<Point>& path,
+                    double h_first = 0);
   // The state and slip dt along a path (0 <= dt): inside it the steps' dense output (Dormand &
   // Prince's fourth-order interpolant, Hairer, Norsett & Wanner 1993, II.6), past its end steps
   // from there.
   Point at(const Slider& s, const std::vector<Point>& path, double dt);
 
+  double tolerance() const { return tol_; }
   long long steps() const { return steps_; }   // accepted steps, all forecasts
   void set_steps(long long n) { steps_ = n; }  // a checkpoint's
 

@@ -104,6 +104,8 @@ RsfLoader::RsfLoader(const RsfModel& m, double v_handover, double creep_quantum)
       heap_(m.n()),
       path_(m.n()),
       in_alone_(m.n(), 0),
+      h_hint_(m.n(), 0.0),
+      h_first_(m.n(), 0.0),
       ln_vh_(std::log(v_handover)),
       ln_slow_(std::log(kSlowLocked * m.v_pl)),
       quantum_(creep_quantum) {
@@ -202,12 +204,15 @@ void RsfLoader::schedule(int j) {
   if (in_alone_[j]) {
     rsf::AloneSlider::Limits lim = alone_limits_;
     lim.amount = amount;
-    const rsf::AloneSlider::Forecast f = alone_.forecast(s, x, lim, path_[j]);
+    h_first_[j] = h_hint_[j];
+    const rsf::AloneSlider::Forecast f = alone_.forecast(s, x, lim, path_[j], h_first_[j]);
+    if (f.h_next > 0) h_hint_[j] = f.h_next;
     using Exit = rsf::AloneSlider::Exit;
     clock_[j] = f.exit == Exit::Speed ? kDue : f.exit == Exit::Slip ? kQuantum : kPhase;
     heap_.set(j, t_ref_[j] + f.dt);
     return;
   }
+  h_hint_[j] = 0;  // a closed form: the next forecast alone starts afresh
   if (alone_on && lo < kLnOmegaOut) {
     // Locked and slow: the locked form until Omega reaches kOmegaIn or V kSlowLocked V_pl.
     const rsf::NextClock c = rsf::next_clock(s, x, ln_slow_, amount, kLnOmegaIn);
@@ -273,6 +278,7 @@ void RsfLoader::hold(int j) {
   }
   held_[j] = 1;
   held_stress_[j] = 0;
+  h_hint_[j] = 0;
   heap_.set(j, std::numeric_limits<double>::infinity());
 }
 
@@ -526,6 +532,8 @@ std::vector<double> RsfEventEngine::snapshot() const {
   // The records not yet returned (absent from older checkpoints: none).
   s.push_back(static_cast<double>(pending_.size()));
   for (const EventRecord& e : pending_) put_record(s, e);
+  // The blocks' first steps alone (absent from older checkpoints: none).
+  for (int j = 0; j < loader_.n(); ++j) s.push_back(loader_.alone_first_step(j));
   return s;
 }
 
@@ -535,8 +543,11 @@ void RsfEventEngine::restore(const std::vector<double>& s) {
   const std::size_t size = head + per_block * static_cast<std::size_t>(n);
   const std::size_t pending =
       s.size() > size + 2 ? static_cast<std::size_t>(std::max(0.0, s[size + 2])) : 0;
-  if (s.size() < size || (s.size() > size + 2 && s.size() != size + 3 + kRecordSize * pending))
+  const std::size_t records_end = size + 3 + kRecordSize * pending;
+  const bool hints = s.size() == records_end + static_cast<std::size_t>(n);
+  if (s.size() < size || (s.size() > size + 2 && s.size() != records_end && !hints))
     throw Error("rsf: a checkpoint of another chain's size");
+  for (int j = 0; j < n; ++j) loader_.set_alone_first_step(j, hints ? s[records_end + j] : 0.0);
   active_block_steps_ = s.size() > size ? static_cast<std::int64_t>(s[size]) : 0;
   t_ = s[0];
   events_ = static_cast<std::int64_t>(s[1]);

@@ -138,9 +138,15 @@ class RsfLoader {
   void integrate_alone(double v_alone, double tolerance);
   bool alone(int j) const { return in_alone_[j] != 0; }  // being integrated alone now
   double v_alone() const { return v_alone_; }            // 0: off
-  double ln_v_alone() const {                            // -inf: off
+  double alone_tolerance() const { return alone_.tolerance(); }
+  double ln_v_alone() const {  // -inf: off
     return v_alone_ > 0 ? alone_limits_.ln_v_target : -std::numeric_limits<double>::infinity();
   }
+  // A block's forecasts alone start with the step size the last one proposed at its end (0:
+  // none, the forecast's own first step). The first step block j's current forecast tried is part
+  // of a snapshot: set before the block's set(), its forecast takes the same steps again.
+  double alone_first_step(int j) const { return h_first_[j]; }
+  void set_alone_first_step(int j, double h) { h_hint_[j] = h; }
   long long alone_steps() const { return alone_.steps(); }
   void set_alone_steps(long long n) { alone_.set_steps(n); }  // a checkpoint's
   double ln_v_handover() const { return ln_vh_; }
@@ -182,6 +188,8 @@ class RsfLoader {
   mutable rsf::AloneSlider alone_{1e-8};   // the tolerance: integrate_alone's
   std::vector<std::vector<rsf::AloneSlider::Point>> path_;
   std::vector<char> in_alone_;
+  std::vector<double> h_hint_;        // by block: the next forecast's first step
+  std::vector<double> h_first_;       // by block: the current forecast's
   double ln_vh_, ln_slow_, quantum_;  // ln_slow_: ln(kSlowLocked V_pl), the locked form's limit
   std::vector<char> held_;            // empty until the first hold()
   std::vector<double> held_stress_;   // stress steps summed for held blocks [Pa]
@@ -219,9 +227,13 @@ class RsfEventEngine {
   bool groups() const { return groups_; }
   // With active blocks: velocity-weakening blocks away from their closed forms are integrated
   // alone below v_alone (RsfLoader::integrate_alone) instead of joining the integration at
-  // V_h; 0 until called. Not part of a snapshot (the scene's).
-  void set_alone_speed(double v_alone) { loader_.integrate_alone(v_alone, tol_); }
+  // V_h; 0 until called. tolerance: of their integration (0: the integrator's). Not part of a
+  // snapshot (the scene's).
+  void set_alone_speed(double v_alone, double tolerance = 0) {
+    loader_.integrate_alone(v_alone, tolerance > 0 ? tolerance : tol_);
+  }
   double alone_speed() const { return loader_.v_alone(); }
+  double alone_tolerance() const { return loader_.alone_tolerance(); }
   bool active_blocks() const { return active_blocks_ && m_.dynamics == RsfDynamics::QuasiDynamic; }
   // Active blocks summed over the integrations' steps (the mean active set is this / steps()
   // over the steps of active-block integrations); 0 for the whole grid.

@@ -79,6 +79,7 @@ inline constexpr Key rsf_handover_speed{"rsf.handover_speed"};
 inline constexpr Key rsf_creep_quantum{"rsf.creep_quantum"};
 inline constexpr Key rsf_event_integration{"rsf.event_integration"};
 inline constexpr Key rsf_alone_speed{"rsf.alone_speed"};
+inline constexpr Key rsf_alone_tolerance{"rsf.alone_tolerance"};
 inline constexpr Key rsf_pattern_period{"rsf.pattern_period"};
 inline constexpr Key rsf_pattern_width{"rsf.pattern_width"};
 

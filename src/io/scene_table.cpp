@@ -934,6 +934,14 @@ std::vector<ParamSpec> rsf_rows() {
            "groups only")
           .when(rsf_law(), event_driven())
           .later(),
+      real(key::rsf_alone_tolerance, at(&SceneValues::rsf, &RsfKeys::alone_tolerance), "auto", '[',
+           1e-14, 1e-2, ']', "",
+           "local error tolerance of the blocks integrated alone (as integrator.tolerance, per "
+           "Dormand-Prince 5(4) step); auto: 1e-6, or integrator.tolerance where that is larger "
+           "(their error then stays far below the creep quantum's, k q / (2 a sigma) in ln V); "
+           "rsf.event_integration = active or groups only")
+          .when(rsf_law(), event_driven())
+          .later(),
       choice(key::rsf_pattern, "uniform", at(&SceneValues::rsf, &RsfKeys::pattern),
              {{"uniform", RsfPattern::Uniform}, {"asperities", RsfPattern::Asperities}},
              "per-block values: uniform (rsf.a, rsf.b everywhere), or asperities: blocks with x "
@@ -1024,6 +1032,11 @@ void rate_and_state(const Scene& s, const std::string& where) {
                   "rate and the seismic rate; allowed: 0 (off), auto or (" +
                   s.text(key::drive_speed) + ", " + s.text(key::rsf_v_threshold) + ")" + where);
   }
+  if (v.drive.mode == DriveMode::Events && v.rsf.alone_tolerance && !active)
+    throw Error("rsf.alone_tolerance = " + s.text(key::rsf_alone_tolerance) +
+                " with rsf.event_integration = whole: no block is integrated alone; allowed: "
+                "rsf.event_integration = active or groups, or rsf.alone_tolerance = auto" +
+                where);
   if (v.drive.mode == DriveMode::Events && v.rsf.handover_speed &&
       !(*v.rsf.handover_speed<v.rsf.v_threshold&& * v.rsf.handover_speed> v.drive.speed))
     throw Error("rsf.handover_speed = " + s.text(key::rsf_handover_speed) +

@@ -151,7 +151,8 @@ struct RsfKeys {
   std::optional<double> handover_speed;  // drive.mode = events; auto: chosen from V_th and eta
   std::optional<double> creep_quantum;   // drive.mode = events; auto: from a sigma and k_c
   RsfEventIntegration event_integration = RsfEventIntegration::Whole;
-  std::optional<double> alone_speed;  // active blocks only; auto: from V_pl, V_th, eta; 0: off
+  std::optional<double> alone_speed;      // active blocks only; auto: from V_pl, V_th, eta; 0: off
+  std::optional<double> alone_tolerance;  // blocks alone; auto: 1e-6, or integrator.tolerance
 };
 
 struct SceneValues {

@@ -22,6 +22,11 @@ namespace bkq {
 
 namespace {
 
+// rsf.alone_tolerance's auto (where integrator.tolerance is tighter): a block alone near steady
+// sliding then errs by ~1e-6 in ln V over a forecast, against the creep quantum's k q / (2 a
+// sigma), some 5e-2 in the shipped chains.
+constexpr double kAloneTolerance = 1e-6;
+
 // The chain's physics from the model.* and friction.* keys.
 ModelParams model_of(const SceneValues& v) {
   const ModelKeys& k = v.model;
@@ -206,6 +211,7 @@ RsfSettings rsf_of(const SceneValues& v, const ModelParams& chain) {
       r.v_alone =
           v.rsf.alone_speed.value_or(std::min({100 * m.v_pl, r.v_threshold / 10, 0.01 * damped}));
       if (!v.rsf.alone_speed && !(r.v_alone > m.v_pl)) r.v_alone = 0;
+      r.alone_tolerance = v.rsf.alone_tolerance.value_or(std::max(r.tolerance, kAloneTolerance));
       if (v.rsf.alone_speed && m.eta * r.v_alone > 0.1 * a_min * m.sigma)
         throw Error("rsf.alone_speed = " + format_real(r.v_alone) +
                     ": radiation damping eta V_a exceeds a tenth of a sigma there, which a block "

@@ -50,6 +50,7 @@ struct RsfSettings {
   bool active_blocks = false;  // rsf.event_integration = active or groups
   bool active_groups = false;  // rsf.event_integration = groups
   double v_alone = 0;          // rsf.alone_speed [m/s], auto resolved; 0: off
+  double alone_tolerance = 0;  // rsf.alone_tolerance, auto resolved
   // The start state of every block: theta_init, or each block's steady state at V_pl.
   std::vector<double> theta_start() const {
     std::vector<double> theta;

@@ -75,6 +75,40 @@ TEST(RsfAlone, FollowsTheFullAgingLawAndExitsAtTheSpeed) {
   }
 }
 
+// A forecast started with a step size given (the loader's: the last forecast's proposal, h_next)
+// and at the blocks-alone tolerance 1e-6 (rsf.alone_tolerance's auto) follows the same law: its
+// states along the way are the full law's within 1e-4 and its speed exit lies within 1e-4
+// (relative) of the one at 1e-8, in fewer steps; a first step far too large is rejected and
+// shrunk, not taken.
+TEST(RsfAlone, AGivenFirstStepAndTheLooserToleranceFollowTheSameLaw) {
+  const rsf::Slider s = unstable_slider();
+  const double v_inf = s.stressing_rate / s.k_eff;
+  const rsf::SliderState x{std::log(0.5 * v_inf), std::log(s.dc / v_inf)};
+  const double target = std::log(1e3 * v_inf);
+  std::vector<rsf::AloneSlider::Point> fine_path, path;
+  rsf::AloneSlider fine(1e-8);
+  const auto ref = fine.forecast(s, x, open_limits(target), fine_path);
+  EXPECT_GT(ref.h_next, 0);
+  for (const double h_first : {0.0, 0.3 * s.dc / v_inf, 1e3 * s.dc / v_inf}) {
+    SCOPED_TRACE(h_first);
+    rsf::AloneSlider loose(1e-6);
+    const auto f = loose.forecast(s, x, open_limits(target), path, h_first);
+    ASSERT_EQ(f.exit, rsf::AloneSlider::Exit::Speed);
+    EXPECT_NEAR(f.dt / ref.dt, 1, 1e-4);
+    EXPECT_LT(loose.steps(), fine.steps());
+    if (h_first > s.dc / v_inf) {
+      EXPECT_LT(path[1].dt, h_first);  // rejected, shrunk
+    }
+    for (const double share : {0.1, 0.5, 0.9}) {
+      const double t = share * f.dt;
+      const rsf::AloneSlider::Point p = loose.at(s, path, t);
+      const std::vector<double> full = full_law(s, x, t);
+      EXPECT_NEAR(p.y[1], full[1], 1e-4) << t;
+      EXPECT_NEAR(p.y[2], full[2], 1e-4) << t;
+    }
+  }
+}
+
 // The other exits: the slip reaching an amount (the state there has it), nucleation
 // (V theta/D_c >= 10 at the exit's step end, below it the step before), the locked form's
 // domain (V theta/D_c < 0.05 below the locked speed), and the horizon (so many steps).

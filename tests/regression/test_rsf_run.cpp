@@ -135,6 +135,12 @@ TEST(RsfRun, Refusals) {
                    {"rsf.alone_speed = " + shown, "allowed: 0 (off), auto or (1e-06, 0.001)"});
   expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.alone_speed=-1"))),
                  {"rsf.alone_speed", "-1"});
+  // Their tolerance: with the active-block integration only, within integrator.tolerance's range.
+  expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.alone_tolerance=1e-5"))),
+                 {"rsf.alone_tolerance = 1e-05", "rsf.event_integration = whole",
+                  "allowed: rsf.event_integration = active or groups"});
+  expect_refused(run_bkquake(rsf_args(out, with(ev, "rsf.alone_tolerance=0.5"))),
+                 {"rsf.alone_tolerance", "0.5"});
   {
     // 0 turns it off (summary.json says so), and whole-grid runs take auto and 0.
     for (const auto& runs : {with(with(active, "rsf.handover_speed=3e-6"), "rsf.alone_speed=0"),
@@ -344,6 +350,7 @@ TEST(RsfRun, ActiveBlocksKilledAndResumedGiveTheSameBytes) {
       return at == std::string::npos ? -1.0 : std::stod(text.substr(at + name.size() + 4));
     };
     EXPECT_NEAR(number("whole", "alone_speed"), 1e-4, 1e-15);
+    EXPECT_NEAR(number("whole", "alone_tolerance"), 1e-6, 1e-20);  // auto: 1e-6 over 1e-8
     EXPECT_GT(number("whole", "alone_steps"), 0);
     EXPECT_EQ(number("cut", "alone_steps"), number("whole", "alone_steps"));
   }
