@@ -284,7 +284,7 @@ void RsfActiveIntegration::rhs(const Group& g, double t, const double* y, double
   for (int s = 0; s < count; ++s) {
     const rsf::Law& law = m_.law[g.id[s]];
     const double ln_v = y[3 * s + 1], ln_th = y[3 * s + 2];
-    const double dlnth = law.dlntheta_dt(m_.state_law, ln_v, ln_th);
+    const double dlnth = law.dlntheta_dt(m_.state_law, v[s], ln_v, ln_th);
     const rsf::FrictionValue fr = law.friction(m_.form, ln_v, ln_th);
     double dlnv;
     if (m_.dynamics == RsfDynamics::QuasiDynamic) {

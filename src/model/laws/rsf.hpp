@@ -64,6 +64,13 @@ class Law {
     if (law == StateLaw::Aging) return std::exp(-ln_theta) - omega;  // 1/theta - V/D_c
     return -omega * (ln_v + ln_theta - ln_dc_);                      // -(V/D_c) ln(V theta/D_c)
   }
+  // The same with V = exp(ln_v) known already: one exponential fewer (the active-block
+  // integrator's; rounds differently from the form above).
+  double dlntheta_dt(StateLaw law, double v, double ln_v, double ln_theta) const {
+    const double omega = v / p_.dc;
+    if (law == StateLaw::Aging) return std::exp(-ln_theta) - omega;
+    return -omega * (ln_v + ln_theta - ln_dc_);
+  }
 
   // Steady state at slip rate V: theta_ss = D_c/V (both state laws), and its friction.
   double steady_ln_theta(double v) const { return ln_dc_ - std::log(v); }
