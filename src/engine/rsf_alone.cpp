@@ -20,7 +20,9 @@ double dense_value(const AloneSlider::Point& p, const AloneSlider::Point& e, int
 
 // The time after p at which component i of the dense output reaches `target`, between p
 // (below it) and e (at or above it): Newton's method on the quartic in th from the chord's
-// root, kept inside a bracket that bisection narrows where Newton would leave it.
+// root, kept inside a bracket that bisection narrows where Newton would leave it. A point where
+// the quartic is exactly the target is the root (Newton would stay on the bracket's end it just
+// set, and bisection crawl to it).
 double dense_root(const AloneSlider::Point& p, const AloneSlider::Point& e, int i, double target) {
   const double h = e.dt - p.dt, diff = e.y[i] - p.y[i], bspl = h * p.dy[i] - diff;
   const double r4 = diff - h * e.dy[i] - bspl, r5 = h * e.dense[i];
@@ -29,6 +31,7 @@ double dense_root(const AloneSlider::Point& p, const AloneSlider::Point& e, int 
   double lo = 0, hi = 1, th = (target - p.y[i]) / diff;
   for (int n = 0; n < 100; ++n) {
     const double f = p.y[i] - target + th * (c1 + th * (c2 + th * (c3 + th * c4)));
+    if (f == 0) return th * h;
     (f < 0 ? lo : hi) = th;
     const double df = c1 + th * (2 * c2 + th * (3 * c3 + th * 4 * c4));
     double next = df > 0 ? th - f / df : 0.5 * (lo + hi);
