@@ -60,16 +60,12 @@ class Law {
 
   // d ln(theta)/dt at slip rate exp(ln_v).
   double dlntheta_dt(StateLaw law, double ln_v, double ln_theta) const {
-    const double omega = std::exp(ln_v - ln_dc_);                    // V/D_c
-    if (law == StateLaw::Aging) return std::exp(-ln_theta) - omega;  // 1/theta - V/D_c
-    return -omega * (ln_v + ln_theta - ln_dc_);                      // -(V/D_c) ln(V theta/D_c)
+    return dlntheta_dt_at(law, std::exp(ln_v - ln_dc_), ln_v, ln_theta);
   }
   // The same with V = exp(ln_v) known already: one exponential fewer (the active-block
   // integrator's; rounds differently from the form above).
   double dlntheta_dt(StateLaw law, double v, double ln_v, double ln_theta) const {
-    const double omega = v / p_.dc;
-    if (law == StateLaw::Aging) return std::exp(-ln_theta) - omega;
-    return -omega * (ln_v + ln_theta - ln_dc_);
+    return dlntheta_dt_at(law, v / p_.dc, ln_v, ln_theta);
   }
 
   // Steady state at slip rate V: theta_ss = D_c/V (both state laws), and its friction.
@@ -79,6 +75,12 @@ class Law {
   }
 
  private:
+  // Both state laws at omega = V/D_c.
+  double dlntheta_dt_at(StateLaw law, double omega, double ln_v, double ln_theta) const {
+    if (law == StateLaw::Aging) return std::exp(-ln_theta) - omega;  // 1/theta - V/D_c
+    return -omega * (ln_v + ln_theta - ln_dc_);                      // -(V/D_c) ln(V theta/D_c)
+  }
+
   Params p_;
   double ln_v0_, ln_dc_, psi0_;
 };
