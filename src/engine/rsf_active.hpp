@@ -7,9 +7,10 @@
 // from the integration's start in one coordinate per block, held while the block is not active.
 //   - An inactive neighbour's slip is held at its value (its spring pulls an active block back
 //     with -k_ji V_j, an extra unloading stiffness). Its closed-form creep meanwhile reaches the
-//     active block through the loader's quanta, summed while the block is active and passed on
-//     as one stress step when it leaves (RsfLoader::hold/release): late by at most the block's
-//     active time, k_ji times the neighbour's creep in it (below V_h).
+//     active block through the loader's quanta, each a stress step on the block's integrated
+//     state as it comes (the direct effect, theta kept); what the loader sums for the block
+//     otherwise (a neighbour's creep settled as it joins or leaves) is passed on as one stress
+//     step when the block leaves (RsfLoader::hold/release).
 //   - Activation: after every accepted step each inactive neighbour i of an active block gets
 //     the stress the active blocks' slip has put on it since its last update, sum k_ij
 //     (delta_j - passed_ij), as the direct effect on its closed form, V_i exp(dtau/(a sigma))
