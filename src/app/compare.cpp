@@ -20,9 +20,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A folder: false where the name cannot be one (too long, say) instead of a filesystem_error.
+bool is_folder(const std::string& name) {
+  std::error_code ec;
+  return fs::is_directory(name, ec);
+}
+
 fs::path catalog_of(const std::string& run) {
   const fs::path dir(run);
-  if (!fs::is_directory(dir))
+  if (!is_folder(run))
     throw Error("compare: " + quote_printable(run) +
                 ": no such folder; allowed: run folders holding catalog.csv or catalog.h5");
   for (const char* name : {"catalog.csv", "catalog.h5"})
@@ -40,7 +46,7 @@ std::string window_text(const CompareRequest& req) {
 
 // The members of a RUN_DIR argument: the folder, or a group's comma-separated folders.
 std::vector<std::string> members_of(const std::string& arg) {
-  if (arg.find(',') == std::string::npos || fs::is_directory(arg)) return {arg};
+  if (arg.find(',') == std::string::npos || is_folder(arg)) return {arg};
   std::vector<std::string> m;
   for (std::size_t p = 0; p <= arg.size();) {
     const std::size_t comma = std::min(arg.find(',', p), arg.size());

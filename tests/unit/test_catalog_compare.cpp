@@ -197,6 +197,34 @@ TEST(CatalogCompare, AGroupPoolsItsRuns) {
   fs::remove_all(d);
 }
 
+// A group of many relative folder names is longer than a file name may be: it is still read
+// as a group (the check whether it is one folder must not throw).
+TEST(CatalogCompare, AGroupLongerThanAFileNameIsAGroup) {
+  const fs::path d = scratch("long");
+  make_run(d / "a", 0);
+  std::string group = "a";
+  for (int i = 1; i < 150; ++i) group += ",a";
+  ASSERT_GT(group.size(), 255u);
+  const fs::path cwd = fs::current_path();
+  fs::current_path(d);
+  bkq::CompareRequest req;
+  req.runs = {"a", group};
+  req.mu_large = 4;
+  std::size_t members = 0;
+  double ks = -1;
+  try {
+    const bkq::CompareReport rep = bkq::compare_runs(req);
+    members = rep.runs[1].members.size();
+    ks = rep.runs[1].ks_mu;
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what();
+  }
+  fs::current_path(cwd);
+  EXPECT_EQ(members, 150u);
+  EXPECT_EQ(ks, 0.0);
+  fs::remove_all(d);
+}
+
 TEST(CatalogCompare, BadInputIsOneLineNamingTheValue) {
   const fs::path d = scratch("bad");
   make_run(d / "a", 0);
@@ -211,6 +239,8 @@ TEST(CatalogCompare, BadInputIsOneLineNamingTheValue) {
   one_line(bkq::test::run_process(BKQUAKE_BINARY, {"compare", a, a + "," + missing}), missing);
   one_line(bkq::test::run_process(BKQUAKE_BINARY, {"compare", a, a + ",," + a}),
            "an empty folder name in a group");
+  const std::string too_long(300, 'x');  // longer than a file name may be
+  one_line(bkq::test::run_process(BKQUAKE_BINARY, {"compare", a, too_long}), "no such folder");
   one_line(bkq::test::run_process(BKQUAKE_BINARY, {"compare", a, a, "--from", "5"}),
            "no events with 5 < load");
   one_line(
