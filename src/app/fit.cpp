@@ -56,7 +56,8 @@ bool starts_with_histogram_header(const fs::path& file) {
 }
 
 Resolved resolve(const fs::path& input) {
-  if (fs::is_directory(input)) {
+  std::error_code ec;  // a name that cannot be a file (too long, say) does not exist
+  if (fs::is_directory(input, ec)) {
     if (fs::exists(input / "sweep.ini") && fs::exists(input / "sweep.csv"))
       return {Input::Sweep, input, input};
     for (const char* name : {"catalog.csv", "catalog.h5"})
@@ -66,7 +67,7 @@ Resolved resolve(const fs::path& input) {
     throw Error("fit: folder '" + input.string() +
                 "' holds no catalog.csv, catalog.h5, histogram.csv or sweep.csv (sweep.ini)");
   }
-  if (!fs::exists(input)) throw Error("fit: '" + input.string() + "' does not exist");
+  if (!fs::exists(input, ec)) throw Error("fit: '" + input.string() + "' does not exist");
   const fs::path folder = input.has_parent_path() ? input.parent_path() : fs::path(".");
   if (starts_with_histogram_header(input)) return {Input::Histogram, input, folder};
   return {Input::Catalog, input, folder};

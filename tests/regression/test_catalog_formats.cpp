@@ -88,6 +88,13 @@ void expect_one_line_refusal(const test::ProcessResult& r, const std::string& pa
   EXPECT_NE(errors[0].find(part), std::string::npos) << errors[0];
 }
 
+// A name longer than a file name may be is refused as one that does not exist, in one line
+// (the checks on it must not throw a filesystem error).
+TEST(FitInput, ANameLongerThanAFileNameIsOneLine) {
+  const std::string too_long(300, 'x');
+  expect_one_line_refusal(run_bkquake({"fit", too_long}), "does not exist");
+}
+
 class CatalogFormats : public ::testing::Test {
  protected:
   void SetUp() override {
