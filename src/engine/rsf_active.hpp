@@ -9,8 +9,8 @@
 //     with -k_ji V_j, an extra unloading stiffness). Its closed-form creep meanwhile reaches the
 //     active block through the loader's quanta, each a stress step on the block's integrated
 //     state as it comes (the direct effect, theta kept); what the loader sums for the block
-//     otherwise (a neighbour's creep settled as it joins or leaves) is passed on as one stress
-//     step when the block leaves (RsfLoader::hold/release).
+//     otherwise (a neighbour's creep settled as that neighbour joins) is passed on as one
+//     stress step when the block leaves (RsfLoader::hold/release).
 //   - Activation: after every accepted step each inactive neighbour i of an active block gets
 //     the stress the active blocks' slip has put on it since its last update, sum k_ij
 //     (delta_j - passed_ij), as the direct effect on its closed form, V_i exp(dtau/(a sigma))
